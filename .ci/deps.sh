@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages beamid needs, and only those that are missing.
+# Quiet and fast (one dpkg-query) when everything is present; uses sudo when not root.
+# The list follows ../shared/docs/toolchain.md, without the packages beamid does not use
+# (matplotlib, MPI, yaml-cpp, nlohmann-json, CLI11, fmt).
+set -euo pipefail
+
+packages=(
+  g++ make cmake pkgconf git
+  libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
+  libgtest-dev libbenchmark-dev
+  gnuplot-nox
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "deps: installing missing Debian packages: ${missing[*]}" >&2
+if [ "$(id -u)" -eq 0 ]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "deps: not root and no sudo: install these packages by hand: ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -q >&2
+"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" >&2

@@ -1,0 +1,199 @@
+#include "apps/commands.h"
+
+#include <cmath>
+#include <fstream>
+#include <filesystem>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+
+#include "apps/verification.h"
+#include "beamid/version.h"
+#include "galerkin/modes.h"
+#include "io/arguments.h"
+#include "io/csv.h"
+#include "io/report_blocks.h"
+#include "model/beam_toml.h"
+#include "model/errors.h"
+#include "model/exact_frequencies.h"
+#include "simulation/simulator.h"
+
+namespace beamid::apps {
+namespace {
+
+const io::FlagSpec kHelp{"help", false, "print this help"};
+const io::FlagSpec kBeam{"beam", true, "preset (banks-aluminium, thick-steel) or a TOML file with a [beam] table"};
+const io::FlagSpec kElements{"elements", true, "Galerkin order N >= 1 (cubic B-spline elements)"};
+
+bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
+  if (!a.has("help")) return false;
+  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
+  return true;
+}
+
+int elements(const io::Arguments& a) {
+  const int n = a.integer("elements");
+  a.require(n >= 1 && n <= 1000, "elements", "must be an integer in 1..1000");
+  return n;
+}
+
+}  // namespace
+
+std::string overview() {
+  return std::string("beamid ") + BEAMID_VERSION + " (commit " + BEAMID_GIT_COMMIT +
+         "): identification of Timoshenko-beam parameters (Banks & Wang 1993)\n"
+         "\n"
+         "usage: beamid COMMAND [flags]     (beamid COMMAND --help for its flags)\n"
+         "  modes      natural frequencies and damping ratios (Galerkin or exact)\n"
+         "  simulate   sampled sensor signal of a pulse or pluck experiment, as CSV\n"
+         "  verify     forward-model verification tables (Galerkin vs exact, fast vs CVODE)\n"
+         "  report     refresh the generated blocks of REPORT.md from results/\n";
+}
+
+int run_modes(const Args& args, std::ostream& out) {
+  const io::Arguments a("modes", args,
+                        {kHelp, kBeam, kElements, {"exact", false, "exact Timoshenko frequencies from the determinant"},
+                         {"undamped", false, "undamped Galerkin frequencies (damping_ratio 0)"},
+                         {"count", true, "number of modes (default: all underdamped Galerkin modes, 4 exact)"}});
+  if (wants_help(a, out, "--beam B (--elements N [--undamped] | --exact) [--count K]")) return 0;
+  const model::BeamParameters beam = model::resolve_beam(a.text("beam"));
+  const std::optional<int> count = a.optional_integer("count");
+  a.require(!count || *count >= 1, "count", "must be >= 1");
+  if (a.has("exact") == a.has("elements"))
+    throw InputError("beamid modes: give exactly one of --elements N (Galerkin) and --exact (determinant)");
+
+  if (a.has("exact")) {
+    if (a.has("undamped")) throw InputError("beamid modes: --undamped goes with --elements, not --exact");
+    const auto omega = model::timoshenko_frequencies_rad_s(beam, count.value_or(4));
+    out << "mode,frequency_hz\n";
+    for (std::size_t k = 0; k < omega.size(); ++k)
+      out << k + 1 << "," << io::full_precision(omega[k] / (2 * std::numbers::pi)) << "\n";
+    if (count && static_cast<int>(omega.size()) < *count)
+      throw NumericalError("only " + std::to_string(omega.size()) + " modes lie below the shear cut-off");
+    return 0;
+  }
+
+  const galerkin::SplineSpace space(elements(a));
+  const galerkin::SecondOrderSystem system = galerkin::assemble(space, beam);
+  out << "mode,frequency_hz,damping_ratio\n";
+  if (a.has("undamped")) {
+    const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
+    const int shown = std::min<int>(count.value_or(static_cast<int>(omega.size())), static_cast<int>(omega.size()));
+    for (int k = 0; k < shown; ++k)
+      out << k + 1 << "," << io::full_precision(omega(k) / (2 * std::numbers::pi)) << ","
+          << io::full_precision(0.0) << "\n";
+    return 0;
+  }
+  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
+  const std::size_t shown = std::min<std::size_t>(count.value_or(static_cast<int>(modes.size())), modes.size());
+  for (std::size_t k = 0; k < shown; ++k)
+    out << k + 1 << "," << io::full_precision(modes[k].frequency_hz) << ","
+        << io::full_precision(modes[k].damping_ratio) << "\n";
+  return 0;
+}
+
+int run_simulate(const Args& args, std::ostream& out) {
+  const io::Arguments a(
+      "simulate", args,
+      {kHelp, kBeam, kElements,
+       {"dt", true, "sampling interval, s (default 1e-3)"},
+       {"samples", true, "number of samples Nbar >= 2 (default 4096)"},
+       {"sensor-x", true, "sensor position xbar, m (default: the tip)"},
+       {"output", true, "displacement | velocity | acceleration (default displacement)"},
+       {"excitation", true, "pulse | pluck (default pulse)"},
+       {"force-x", true, "force position x_f, m (default: the tip)"},
+       {"force-amplitude", true, "pulse peak F0, or pluck static load P0, N (default 1)"},
+       {"pulse-width", true, "pulse width tau, s (default 0.01; pulse only)"},
+       {"integrator", true, "fast | cvode (default fast)"},
+       {"rtol", true, "CVODE relative tolerance (default 1e-10)"},
+       {"atol", true, "CVODE absolute tolerance (default: rtol times the state's natural size)"},
+       {"max-order", true, "CVODE BDF order limit 1..5 (default 5)"},
+       {"verbose", false, "say on stderr what ran, with the integrator statistics"}});
+  if (wants_help(a, out, "--beam B --elements N [experiment flags] [--integrator fast|cvode]")) return 0;
+  const std::string beam_name = a.text("beam");
+  const model::BeamParameters beam = model::resolve_beam(beam_name);
+  const int n = elements(a);
+
+  simulation::Experiment e;
+  e.dt_s = a.optional_number("dt").value_or(e.dt_s);
+  e.samples = a.optional_integer("samples").value_or(e.samples);
+  e.sensor_x_m = a.optional_number("sensor-x");
+  e.output = a.text_or("output", e.output);
+  e.excitation = a.text_or("excitation", e.excitation);
+  e.force_x_m = a.optional_number("force-x");
+  e.force_amplitude_N = a.optional_number("force-amplitude").value_or(e.force_amplitude_N);
+  e.pulse_width_s = a.optional_number("pulse-width").value_or(e.pulse_width_s);
+  if (e.excitation == "pluck" && a.has("pulse-width"))
+    throw InputError("beamid simulate: --pulse-width applies to --excitation pulse only");
+  if (auto error = simulation::validation_error(e, beam.l)) throw InputError("beamid simulate: " + *error);
+
+  simulation::SimulatorOptions options;
+  options.integrator = a.text_or("integrator", options.integrator);
+  options.cvode.rtol = a.optional_number("rtol").value_or(options.cvode.rtol);
+  options.cvode.atol = a.optional_number("atol").value_or(options.cvode.atol);
+  options.cvode.max_order = a.optional_integer("max-order").value_or(options.cvode.max_order);
+  if (auto error = simulation::validation_error(options)) throw InputError("beamid simulate: " + *error);
+
+  const galerkin::SplineSpace space(n);
+  const galerkin::BeamForms forms(space, beam.l);
+  const simulation::Trace trace = simulation::simulate(forms, beam, e, options);
+  if (!trace.ok()) throw NumericalError("beamid simulate: " + trace.status);
+
+  std::ostringstream csv;
+  csv << "t_s," << simulation::output_column(e.output) << "\n";
+  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, trace.y[static_cast<std::size_t>(i)]});
+  out << csv.str();
+  if (a.has("verbose")) {
+    const auto& s = trace.stats;
+    std::cerr << "beamid simulate (commit " << BEAMID_GIT_COMMIT << "): beam " << beam_name << ", N = " << n
+              << ", " << e.excitation << ", " << e.output << ", dt = " << e.dt_s << " s, " << e.samples
+              << " samples, integrator " << s.integrator << ": steps " << s.steps << ", rhs " << s.rhs_evaluations
+              << ", jacobians " << s.jacobian_evaluations << ", linear-solver setups " << s.linear_solver_setups << ", error-test failures " << s.error_test_failures
+              << ", modes " << s.modes << ", eigenvector rcond " << s.eigenvector_rcond << "\n";
+  }
+  return 0;
+}
+
+int run_verify(const Args& args, std::ostream& out) {
+  const io::Arguments a("verify", args, {kHelp, {"output", true, "folder for the CSV and Markdown tables"}});
+  if (wants_help(a, out, "--output DIR")) return 0;
+  write_verification(a.text("output"), out);
+  return 0;
+}
+
+int run_report(const Args& args, std::ostream& out) {
+  const io::Arguments a("report", args,
+                        {kHelp, {"update", true, "the Markdown report whose generated blocks are refreshed"},
+                         {"results", true, "folder the block names are relative to (default results)"}});
+  if (wants_help(a, out, "--update REPORT.md [--results DIR]")) return 0;
+  const std::string path = a.text("update");
+  const std::filesystem::path results = a.text_or("results", "results");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("beamid report: --update = '" + path + "': cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::map<std::string, std::string> contents;
+  for (const auto& name : io::block_names(text.str(), path)) {
+    const std::filesystem::path file = results / (name + ".md");
+    std::ifstream block(file, std::ios::binary);
+    if (!block) {
+      out << "report: block '" << name << "' kept: " << file.string() << " does not exist\n";
+      continue;
+    }
+    std::ostringstream body;
+    body << block.rdbuf();
+    contents[name] = body.str();
+  }
+  const std::string updated = io::replace_blocks(text.str(), contents, path);
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream write(temporary, std::ios::binary);
+    write << updated;
+    if (!write) throw InputError("beamid report: cannot write " + temporary);
+  }
+  std::filesystem::rename(temporary, path);  // atomic: a reader sees the old or the new report, never half
+  out << "report: " << contents.size() << " generated block(s) refreshed in " << path << "\n";
+  return 0;
+}
+
+}  // namespace beamid::apps

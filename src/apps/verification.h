@@ -1,0 +1,16 @@
+// Forward-model verification, written as tables for REPORT.md (make verify):
+//   frequencies.{csv,md}:   undamped Galerkin frequencies of both presets for N = 2..32 against the exact
+//                           Timoshenko determinant, relative error per mode (Rayleigh-Ritz: >= 0, non-increasing);
+//   fast_vs_cvode.{csv,md}: the exact modal propagator against CVODE BDF at decreasing rtol, for all three outputs,
+//                           max |fast - cvode| / max |y|, with CVODE's step counts.
+// Deterministic content only (no timings), so a rerun leaves the files byte-identical.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+namespace beamid::apps {
+
+void write_verification(const std::string& folder, std::ostream& log);
+
+}  // namespace beamid::apps

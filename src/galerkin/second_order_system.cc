@@ -1,0 +1,72 @@
+#include "galerkin/second_order_system.h"
+
+#include <cmath>
+
+#include "model/errors.h"
+
+namespace beamid::galerkin {
+
+namespace {
+double checked_length(double length_m) {
+  if (!(length_m > 0) || !std::isfinite(length_m))
+    throw InputError("beam length l = " + format_value(length_m) + ": must be finite and > 0");
+  return length_m;
+}
+}  // namespace
+
+BeamForms::BeamForms(const SplineSpace& s, double l) : space(s), length_m(checked_length(l)) {
+  const int n = space.dimension();
+  const Eigen::MatrixXd g0 = length_m * space.G0();     // int_0^l beta_i beta_j dx
+  const Eigen::MatrixXd g11 = space.G11() / length_m;   // int_0^l beta_i' beta_j' dx
+  const Eigen::MatrixXd& g10 = space.G10();             // int_0^l beta_i' beta_j dx (scale-free)
+  const Eigen::VectorXd& nu = space.tip_trace();
+  const Eigen::MatrixXd nnt = nu * nu.transpose();
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
+
+  const auto blocks = [n](const Eigen::MatrixXd& uu, const Eigen::MatrixXd& ua, const Eigen::MatrixXd& au,
+                          const Eigen::MatrixXd& aa) {
+    Eigen::MatrixXd m(2 * n, 2 * n);
+    m << uu, ua, au, aa;
+    return m;
+  };
+  // <u_x - alpha, phi1_x - phi2>: rows phi1 = beta_i give [G11, -G10], rows phi2 = beta_i give [-G10^T, G0].
+  shear = blocks(g11, -g10, -g10.transpose(), g0);
+  bending = blocks(zero, zero, zero, g11);
+  translation = blocks(g0, zero, zero, zero);
+  rotation = blocks(zero, zero, zero, g0);
+  tip_uu = blocks(nnt, zero, zero, zero);
+  tip_ua = blocks(zero, nnt, nnt, zero);
+  tip_aa = blocks(zero, zero, zero, nnt);
+}
+
+Eigen::VectorXd BeamForms::values_at(double x_m) const {
+  if (!(x_m >= 0 && x_m <= length_m))
+    throw InputError("position x = " + format_value(x_m) + " m: must lie on the beam, 0 <= x <= l = " +
+                     format_value(length_m));
+  return space.values(x_m / length_m);
+}
+
+SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
+  if (p.l != f.length_m)
+    throw InputError("beam length l = " + format_value(p.l) + " differs from the length the Galerkin forms were made for (" +
+                     format_value(f.length_m) + ")");
+  // Tip inertia Lambda = [[m, m c], [m c, m c^2 + J_o]] acting on (u(l), alpha(l)).
+  SecondOrderSystem s;
+  s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + (p.m * p.c) * f.tip_ua +
+        (p.J_o + p.m * p.c * p.c) * f.tip_aa;
+  s.K = p.kAG * f.shear + p.EI * f.bending;
+  s.C = p.kAcs * f.shear + p.cDI * f.bending + p.gamma * f.translation;
+  return s;
+}
+
+SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters& beam) {
+  return combine(BeamForms(space, beam.l), beam);
+}
+
+Eigen::VectorXd point_load(const BeamForms& forms, double x_m) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(forms.dimension());
+  f.head(forms.space.dimension()) = forms.values_at(x_m);
+  return f;
+}
+
+}  // namespace beamid::galerkin

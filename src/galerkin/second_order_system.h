@@ -1,0 +1,48 @@
+// The Galerkin second-order system  M w'' + C w' + K w = F(t),  w = (a; b) in R^{2(N+2)},
+// u^N = sum a_j beta_j (displacement), alpha^N = sum b_j beta_j (section rotation), model.md section 2:
+//
+//   M = [ rho G0 + m nu nu^T      m c nu nu^T                       ]
+//       [ m c nu nu^T             rho_r2 G0 + (J_o + m c^2) nu nu^T ]
+//   K = kAG S + EI B,   C = kAcs S + cDI B + gamma T,   M = rho T + rho_r2 R + tip terms, with the parameter-free
+//   S = [ G11  -G10 ; -G10^T  G0 ]  (shear form of <u_x - alpha, phi1_x - phi2>),
+//   B = [ 0 0 ; 0 G11 ] (bending),  T = [ G0 0 ; 0 0 ] (translation),  R = [ 0 0 ; 0 G0 ] (rotation),
+// where G0, G11, G10 are the Gram matrices on [0, l] (l G0_ref, G11_ref / l, G10_ref).
+// The matrices are linear in the parameters: BeamForms holds S, B, T, R and the tip blocks once per (N, l), and
+// combine() forms M, C, K for any parameter values with a few scaled additions.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "galerkin/spline_space.h"
+#include "model/beam_parameters.h"
+
+namespace beamid::galerkin {
+
+struct SecondOrderSystem {
+  Eigen::MatrixXd M, C, K;  // all symmetric, size 2(N+2)
+};
+
+struct BeamForms {
+  // Parameter-free forms of `space` mapped to [0, length_m] (InputError unless length_m is finite and > 0).
+  BeamForms(const SplineSpace& space, double length_m);
+
+  SplineSpace space;
+  double length_m;
+  Eigen::MatrixXd shear, bending, translation, rotation;  // S, B, T, R above
+  Eigen::MatrixXd tip_uu, tip_ua, tip_aa;                 // [nu nu^T 0; 0 0], [0 nnT; nnT 0], [0 0; 0 nu nu^T]
+
+  int dimension() const { return 2 * space.dimension(); }
+  // beta(x/l): the u-block of point loads and displacement sensors; InputError unless 0 <= x_m <= l.
+  Eigen::VectorXd values_at(double x_m) const;
+};
+
+// M, C, K for the given parameters; beam.l must equal forms.length_m (InputError otherwise).
+SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
+
+// Convenience: BeamForms(space, beam.l) then combine.
+SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters& beam);
+
+// Generalised load of a unit transverse point force at x_m: F = [beta(x_m); 0] (also the displacement sensor row).
+Eigen::VectorXd point_load(const BeamForms& forms, double x_m);
+
+}  // namespace beamid::galerkin

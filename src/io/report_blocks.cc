@@ -1,0 +1,91 @@
+#include "io/report_blocks.h"
+
+#include <sstream>
+
+#include "model/errors.h"
+
+namespace beamid::io {
+namespace {
+
+const std::string kBegin = "<!-- BEGIN GENERATED ";
+const std::string kEnd = "<!-- END GENERATED ";
+const std::string kClose = " -->";
+
+// The block name if `line` is exactly a marker of the given kind.
+bool marker(const std::string& line, const std::string& kind, std::string* name) {
+  if (line.rfind(kind, 0) != 0 || line.size() < kind.size() + kClose.size() ||
+      line.compare(line.size() - kClose.size(), kClose.size(), kClose) != 0)
+    return false;
+  *name = line.substr(kind.size(), line.size() - kind.size() - kClose.size());
+  return !name->empty();
+}
+
+struct Block {
+  std::string name;
+  std::size_t begin_line, end_line;  // 0-based indices of the marker lines
+};
+
+std::vector<Block> scan(const std::vector<std::string>& lines, const std::string& source) {
+  std::vector<Block> blocks;
+  bool open = false;
+  Block current{};
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::string name;
+    if (marker(lines[i], kBegin, &name)) {
+      if (open)
+        throw InputError(source + ":" + std::to_string(i + 1) + ": BEGIN GENERATED " + name + " inside open block '" +
+                         current.name + "' (opened at line " + std::to_string(current.begin_line + 1) + ")");
+      open = true;
+      current = {name, i, 0};
+    } else if (marker(lines[i], kEnd, &name)) {
+      if (!open || name != current.name)
+        throw InputError(source + ":" + std::to_string(i + 1) + ": END GENERATED " + name +
+                         (open ? " does not close block '" + current.name + "'" : " without a BEGIN"));
+      current.end_line = i;
+      blocks.push_back(current);
+      open = false;
+    }
+  }
+  if (open)
+    throw InputError(source + ":" + std::to_string(current.begin_line + 1) + ": block '" + current.name +
+                     "' is never closed (END GENERATED " + current.name + ")");
+  return blocks;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+}  // namespace
+
+std::vector<std::string> block_names(const std::string& text, const std::string& source_name) {
+  std::vector<std::string> names;
+  for (const auto& b : scan(split_lines(text), source_name)) names.push_back(b.name);
+  return names;
+}
+
+std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
+                           const std::string& source_name) {
+  const std::vector<std::string> lines = split_lines(text);
+  const std::vector<Block> blocks = scan(lines, source_name);
+  std::string out;
+  std::size_t next = 0;
+  for (const auto& b : blocks) {
+    for (; next <= b.begin_line; ++next) out += lines[next] + "\n";
+    auto it = contents.find(b.name);
+    if (it == contents.end()) {
+      for (; next < b.end_line; ++next) out += lines[next] + "\n";
+    } else {
+      out += it->second;
+      if (!it->second.empty() && it->second.back() != '\n') out += "\n";
+      next = b.end_line;
+    }
+  }
+  for (; next < lines.size(); ++next) out += lines[next] + "\n";
+  return out;
+}
+
+}  // namespace beamid::io

@@ -1,0 +1,23 @@
+// Generated blocks in REPORT.md. A block is delimited by
+//   <!-- BEGIN GENERATED name -->
+//   ...
+//   <!-- END GENERATED name -->
+// and `name` is the path, relative to a results folder and without ".md", of the Markdown file that fills it
+// (e.g. "verification/frequencies" <- results/verification/frequencies.md). Only the text between the markers is
+// rewritten; everything people wrote around them stays as it is.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace beamid::io {
+
+// Names of the blocks in `text`, in order. InputError (naming source:line) for an unmatched or mismatched marker.
+std::vector<std::string> block_names(const std::string& text, const std::string& source_name);
+
+// `text` with the content of each named block replaced by contents.at(name) (blocks not in `contents` are kept).
+std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
+                           const std::string& source_name);
+
+}  // namespace beamid::io

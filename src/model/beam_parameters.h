@@ -1,0 +1,65 @@
+// Lumped physical parameters of the cantilevered Timoshenko beam with a rigid tip body (model.md section 1).
+//
+//   rho u_tt - S_x + gamma u_t = f,   rho_r2 alpha_tt - M_x - S = 0,
+//   M = EI alpha_x + cDI alpha_xt (Kelvin-Voigt),  S = kAG beta + kAcs beta_t,  beta = u_x - alpha,
+//   clamped at x = 0; at x = l a tip body of mass m, offset c and inertia J_o about its centre of mass.
+//
+// Members carry the symbols of the equations (and the TOML keys); the unit of each is in parameter_table().
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace beamid::model {
+
+struct BeamParameters {
+  double l = 0;       // m        length
+  double rho = 0;     // kg/m    linear mass density
+  double rho_r2 = 0;  // kg m    rotary inertia per length, rho I / A
+  double kAG = 0;     // N       shear stiffness kappa A G
+  double EI = 0;      // N m^2   bending stiffness
+  double gamma = 0;   // N s/m^2 viscous (air) damping
+  double cDI = 0;     // N m^2 s Kelvin-Voigt bending damping c_D I
+  double kAcs = 0;    // N s     Kelvin-Voigt shear damping kappa A c_s
+  double m = 0;       // kg      tip body mass
+  double c = 0;       // m       tip body centre of mass beyond the tip, on the axis
+  double J_o = 0;     // kg m^2  tip body inertia about its centre of mass
+};
+
+// One row per parameter, in the canonical order l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o.
+// The single place where names, units and admissibility live (the TOML loader and the fit's parameter map use it).
+struct ParameterInfo {
+  std::string_view key;
+  std::string_view unit;
+  std::string_view meaning;
+  double BeamParameters::*member;
+  bool strictly_positive;  // true: must be > 0; false: must be >= 0
+};
+inline constexpr std::size_t kParameterCount = 11;
+const std::array<ParameterInfo, kParameterCount>& parameter_table();
+
+// The row for `key`, or nullptr when no parameter has that name.
+const ParameterInfo* find_parameter(std::string_view key);
+// Comma-separated list of all keys, for "valid names are ..." messages.
+std::string parameter_keys();
+
+// The constraint `value` violates for this parameter ("must be finite", "must be > 0", "must be >= 0"), or nothing.
+std::optional<std::string> constraint_violation(const ParameterInfo& info, double value);
+
+// The first violated constraint as "EI = -1: must be > 0", or nothing when all values are admissible:
+// all finite; l, rho, rho_r2, kAG, EI > 0; gamma, cDI, kAcs, m, c, J_o >= 0.
+std::optional<std::string> validation_error(const BeamParameters& beam);
+
+// Built-in parameter sets of model.md section 5: "banks-aluminium" and "thick-steel".
+std::vector<std::string> preset_names();
+bool is_preset(std::string_view name);
+// Throws InputError listing the valid names when `name` is not a preset.
+BeamParameters preset(std::string_view name);
+
+// Shear cut-off angular frequency sqrt(kAG / rho_r2), rad/s: the exact Timoshenko reference is valid below it.
+double shear_cutoff_rad_s(const BeamParameters& beam);
+
+}  // namespace beamid::model

@@ -1,0 +1,26 @@
+// The two kinds of failure a program reports.
+// InputError: caused by what a user gave (a file, a flag, a value). The message is one line that names where (file:line or flag), the key, the value and the violated constraint,
+// for example: "beam.toml:7: beam.EI = -1: must be > 0". Programs print it and exit non-zero.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace beamid {
+
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// NumericalError: a computation that could not be carried out for admissible input (a singular matrix, an
+// eigensolver or integrator that did not converge). Inside a study it becomes a row with a status, never a crash.
+class NumericalError : public std::runtime_error {
+ public:
+  explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Shortest round-trip text of a double, for error messages ("-1", "0.491", "1e-300", "nan").
+std::string format_value(double value);
+
+}  // namespace beamid

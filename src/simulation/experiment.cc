@@ -1,0 +1,51 @@
+#include "simulation/experiment.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "model/errors.h"
+
+namespace beamid::simulation {
+
+std::optional<std::string> validation_error(const Experiment& e, double length_m) {
+  const auto bad = [](const std::string& key, double value, const std::string& constraint) {
+    return key + " = " + format_value(value) + ": " + constraint;
+  };
+  if (e.excitation != "pulse" && e.excitation != "pluck")
+    return "excitation = '" + e.excitation + "': must be one of pulse, pluck";
+  if (e.output != "displacement" && e.output != "velocity" && e.output != "acceleration")
+    return "output = '" + e.output + "': must be one of displacement, velocity, acceleration";
+  const std::string on_beam = "must lie on the beam, 0 <= x <= l = " + format_value(length_m);
+  if (e.force_x_m && !(*e.force_x_m >= 0 && *e.force_x_m <= length_m)) return bad("force_x_m", *e.force_x_m, on_beam);
+  if (e.sensor_x_m && !(*e.sensor_x_m >= 0 && *e.sensor_x_m <= length_m))
+    return bad("sensor_x_m", *e.sensor_x_m, on_beam);
+  if (!std::isfinite(e.force_amplitude_N)) return bad("force_amplitude_N", e.force_amplitude_N, "must be finite");
+  if (e.excitation == "pulse" && !(e.pulse_width_s > 0 && std::isfinite(e.pulse_width_s)))
+    return bad("pulse_width_s", e.pulse_width_s, "must be finite and > 0");
+  if (!(e.dt_s > 0 && std::isfinite(e.dt_s))) return bad("dt_s", e.dt_s, "must be finite and > 0");
+  if (e.samples < 2) return "samples = " + std::to_string(e.samples) + ": must be >= 2";
+  return std::nullopt;
+}
+
+int output_derivative(const std::string& output) {
+  if (output == "displacement") return 0;
+  if (output == "velocity") return 1;
+  if (output == "acceleration") return 2;
+  throw InputError("output = '" + output + "': must be one of displacement, velocity, acceleration");
+}
+
+std::string output_column(const std::string& output) {
+  switch (output_derivative(output)) {
+    case 0: return "displacement_m";
+    case 1: return "velocity_m_s";
+    default: return "acceleration_m_s2";
+  }
+}
+
+double ResponseProblem::force_N(double t_s) const {
+  if (pulse_width_s <= 0 || t_s < 0 || t_s > pulse_width_s) return 0;
+  const double s = std::sin(std::numbers::pi * t_s / pulse_width_s);
+  return amplitude_N * s * s;
+}
+
+}  // namespace beamid::simulation

@@ -1,0 +1,52 @@
+// What is done to the beam and what is measured (model.md section 3).
+//   excitation "pulse": P(t) = F0 sin^2(pi t / tau) for 0 <= t <= tau, 0 after, at x_f; zero initial state.
+//   excitation "pluck": released at t = 0, at rest, from the static deflection K w0 = F0 beta(x_f) (a tip load when
+//                       x_f = l); no force afterwards.
+//   sensor at xbar: displacement, velocity or acceleration of u; samples t_i = i dt, i = 0..Nbar-1.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+namespace beamid::simulation {
+
+struct Experiment {
+  std::string excitation = "pulse";      // "pulse" | "pluck"
+  std::optional<double> force_x_m;       // x_f; default: the tip (x = l)
+  double force_amplitude_N = 1.0;        // F0 (pulse peak) or P0 (pluck static load)
+  double pulse_width_s = 0.01;           // tau (pulse only)
+  std::optional<double> sensor_x_m;      // xbar; default: the tip
+  std::string output = "displacement";   // "displacement" | "velocity" | "acceleration"
+  double dt_s = 1e-3;                    // sampling interval
+  int samples = 4096;                    // Nbar
+};
+
+// First violated constraint as "key = value: constraint", e.g. "pulse_width_s = -1: must be > 0", or nothing.
+// length_m is the beam length (positions must lie in [0, l]).
+std::optional<std::string> validation_error(const Experiment& experiment, double length_m);
+
+// 0, 1, 2 for displacement, velocity, acceleration (InputError for another name).
+int output_derivative(const std::string& output);
+// CSV column name with unit: "displacement_m", "velocity_m_s", "acceleration_m_s2".
+std::string output_column(const std::string& output);
+
+// The experiment as the linear-algebra problem both integrators solve:
+//   M w'' + C w' + K w = load * P(t),  P(t) = amplitude sin^2(pi t / tau) on [0, tau] (none when tau = 0),
+//   w(0) = w0, w'(0) = 0,  y_i = sensor^T (d/dt)^derivative w (t_i).
+struct ResponseProblem {
+  Eigen::VectorXd load;        // generalised load of a unit force at x_f
+  double amplitude_N = 0;      // F0 of the pulse (0 for a pluck)
+  double pulse_width_s = 0;    // tau (0 for a pluck)
+  Eigen::VectorXd w0;          // initial displacement state
+  Eigen::VectorXd sensor;      // [beta(xbar); 0]
+  int derivative = 0;
+  double dt_s = 0;
+  int samples = 0;
+
+  // P(t) of the pulse, N.
+  double force_N(double t_s) const;
+};
+
+}  // namespace beamid::simulation

@@ -1,0 +1,58 @@
+#include "simulation/simulator.h"
+
+#include "model/errors.h"
+#include "simulation/cvode_simulator.h"
+#include "simulation/modal_simulator.h"
+
+namespace beamid::simulation {
+
+std::optional<std::string> validation_error(const SimulatorOptions& o) {
+  if (o.integrator != "fast" && o.integrator != "cvode")
+    return "integrator = '" + o.integrator + "': must be one of fast, cvode";
+  if (!(o.cvode.rtol > 0 && o.cvode.rtol < 1)) return "cvode.rtol = " + format_value(o.cvode.rtol) + ": must be in (0, 1)";
+  if (!(o.cvode.atol >= 0 && std::isfinite(o.cvode.atol)))
+    return "cvode.atol = " + format_value(o.cvode.atol) + ": must be finite and >= 0";
+  if (o.cvode.linear_solver != "structured" && o.cvode.linear_solver != "dense")
+    return "cvode.linear_solver = '" + o.cvode.linear_solver + "': must be one of structured, dense";
+  if (o.cvode.max_order < 1 || o.cvode.max_order > 5)
+    return "cvode.max_order = " + std::to_string(o.cvode.max_order) + ": must be in 1..5";
+  if (o.cvode.max_steps_per_sample < 1)
+    return "cvode.max_steps_per_sample = " + std::to_string(o.cvode.max_steps_per_sample) + ": must be >= 1";
+  return std::nullopt;
+}
+
+std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options) {
+  if (auto error = validation_error(options)) throw InputError(*error);
+  if (options.integrator == "cvode") return std::make_unique<CvodeSimulator>(options.cvode);
+  return std::make_unique<ModalSimulator>();
+}
+
+ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
+                             const Experiment& e) {
+  if (auto error = validation_error(e, forms.length_m)) throw InputError(*error);
+  ResponseProblem p;
+  p.load = galerkin::point_load(forms, e.force_x_m.value_or(forms.length_m));
+  p.sensor = galerkin::point_load(forms, e.sensor_x_m.value_or(forms.length_m));
+  p.derivative = output_derivative(e.output);
+  p.dt_s = e.dt_s;
+  p.samples = e.samples;
+  if (e.excitation == "pulse") {
+    p.amplitude_N = e.force_amplitude_N;
+    p.pulse_width_s = e.pulse_width_s;
+    p.w0 = Eigen::VectorXd::Zero(p.load.size());
+  } else {
+    // Static deflection under the load: K w0 = P0 f (K is SPD for admissible parameters).
+    Eigen::LLT<Eigen::MatrixXd> k(system.K);
+    if (k.info() != Eigen::Success) throw NumericalError("stiffness matrix K is not positive definite");
+    p.w0 = k.solve(e.force_amplitude_N * p.load);
+  }
+  return p;
+}
+
+Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,
+               const SimulatorOptions& options) {
+  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
+  return make_simulator(options)->run(system, make_problem(forms, system, experiment));
+}
+
+}  // namespace beamid::simulation

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The command-line contract that checks outside the test suite rely on: exact CSV headers, 17 significant digits,
+# physics sanity of the printed numbers, and one-line errors with a non-zero exit status.
+# Needs BEAMID (the binary) and SRC (the source tree) in the environment.
+set -u
+fail=0; passed=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+check() {  # check NAME CONDITION-COMMAND...
+  local name=$1; shift
+  if "$@"; then passed=$((passed + 1)); else echo "FAIL: $name"; fail=$((fail + 1)); fi
+}
+# Expect failure with exit status > 0 and exactly one stderr line that contains the given text.
+expect_error() {
+  local name=$1 text=$2; shift 2
+  "$BEAMID" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  if [ $rc -ne 0 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$text" "$tmp/err"; then
+    passed=$((passed + 1))
+  else
+    echo "FAIL: $name (exit $rc): $(cat "$tmp/err")"; fail=$((fail + 1))
+  fi
+}
+
+# modes: Galerkin and exact, both presets. At N = 32 the undamped modes 1-4 of both presets are within 1e-4 of exact
+# (thin-beam mode 4 converges slowest: 4e-5). The damped natural frequencies are another thing: thick-steel's
+# non-proportional shear damping moves mode 4 by 3e-3.
+for preset in banks-aluminium thick-steel; do
+  "$BEAMID" modes --beam $preset --elements 32 --count 4 >"$tmp/d.csv" || fail=$((fail + 1))
+  check "damped modes header $preset" test "$(head -1 "$tmp/d.csv")" = "mode,frequency_hz,damping_ratio"
+  check "damping ratios in (0, 0.1) $preset" awk -F, 'NR > 1 && !($3 > 0 && $3 < 0.1) { bad = 1 } END { exit bad }' "$tmp/d.csv"
+  "$BEAMID" modes --beam $preset --elements 32 --count 4 --undamped >"$tmp/g.csv" || fail=$((fail + 1))
+  "$BEAMID" modes --beam $preset --exact --count 4 >"$tmp/e.csv" || fail=$((fail + 1))
+  check "modes header $preset" test "$(head -1 "$tmp/g.csv")" = "mode,frequency_hz,damping_ratio"
+  check "exact header $preset" test "$(head -1 "$tmp/e.csv")" = "mode,frequency_hz"
+  check "modes rows $preset" test "$(wc -l <"$tmp/g.csv")" -eq 5
+  check "galerkin near exact $preset" awk -F, 'NR==FNR { if (FNR > 1) g[$1] = $2; next }
+      FNR > 1 { r = g[$1] / $2 - 1; if (r < 0) r = -r; if (r > 1e-4) bad = 1 } END { exit bad }' "$tmp/g.csv" "$tmp/e.csv"
+done
+check "exact banks mode 1 = 2.4637 Hz" awk -F, 'NR == 2 { exit !($2 > 2.46365 && $2 < 2.46375) }' \
+  <("$BEAMID" modes --beam banks-aluminium --exact)
+
+# simulate: header, sample count, 17 significant digits, all outputs and integrators, pluck.
+for output in displacement:displacement_m velocity:velocity_m_s acceleration:acceleration_m_s2; do
+  "$BEAMID" simulate --beam thick-steel --elements 8 --dt 1e-4 --samples 64 --sensor-x 0.3 --output ${output%%:*} \
+    --excitation pulse --force-x 0.2 --force-amplitude 10 --pulse-width 5e-4 --integrator fast >"$tmp/s.csv"
+  check "simulate header ${output%%:*}" test "$(head -1 "$tmp/s.csv")" = "t_s,${output##*:}"
+  check "simulate rows ${output%%:*}" test "$(wc -l <"$tmp/s.csv")" -eq 65
+done
+check "17 significant digits" grep -qE '^1\.0000000000000000e-04,-?[0-9]\.[0-9]{16}e[-+][0-9]{2}$' "$tmp/s.csv"
+"$BEAMID" simulate --beam thick-steel --elements 8 --dt 1e-4 --samples 64 --sensor-x 0.3 --output acceleration \
+  --excitation pulse --force-x 0.2 --force-amplitude 10 --pulse-width 5e-4 --integrator cvode >"$tmp/c.csv"
+check "fast and cvode agree (1e-6 of max |y| at default rtol 1e-10)" awk -F, '
+  NR == FNR { if (FNR > 1) f[FNR] = $2; next }
+  FNR > 1 { d = f[FNR] - $2; if (d < 0) d = -d; if (d > dmax) dmax = d; a = $2 < 0 ? -$2 : $2; if (a > ymax) ymax = a }
+  END { exit !(dmax < 1e-6 * ymax) }' "$tmp/s.csv" "$tmp/c.csv"
+"$BEAMID" simulate --beam banks-aluminium --elements 4 --excitation pluck --force-amplitude 0.01 --samples 16 \
+  >"$tmp/p.csv"
+# Pluck starts at the static tip deflection P0 (l^3/(3 EI) + l/kAG) of banks-aluminium: cubic splines represent
+# the static Timoshenko solution exactly, so only round-off separates them (1e-9 relative).
+check "pluck starts at static deflection" awk -F, 'NR == 2 { x = 0.01 * (0.4573^3 / (3 * 0.491) + 0.4573 / 7.363e5);
+  r = $2 / x - 1; exit !(r < 1e-9 && r > -1e-9) }' "$tmp/p.csv"
+
+# A TOML beam file works like the preset it copies (banks-aluminium: its values are exact decimals).
+cat >"$tmp/beam.toml" <<'TOML'
+[beam]
+l = 0.4573
+rho = 0.093
+rho_r2 = 1.984e-8
+kAG = 7.363e5
+EI = 0.491
+gamma = 0.013
+cDI = 0.649e-5
+kAcs = 9.73
+m = 0.050
+c = 0.0125
+J_o = 5.208e-6
+TOML
+check "toml equals preset" cmp -s <("$BEAMID" modes --beam "$tmp/beam.toml" --elements 8) \
+  <("$BEAMID" modes --beam banks-aluminium --elements 8)
+
+# Errors: one line, non-zero exit, naming what is wrong.
+sed 's/^EI = .*/EI = -5/' "$tmp/beam.toml" >"$tmp/bad.toml"
+expect_error "bad toml value" "bad.toml:6: beam.EI = -5: must be > 0" modes --beam "$tmp/bad.toml" --elements 4
+sed 's/^kAG/kAGG/' "$tmp/beam.toml" >"$tmp/bad2.toml"
+expect_error "unknown toml key" "bad2.toml:5: unknown key beam.kAGG" modes --beam "$tmp/bad2.toml" --elements 4
+expect_error "unknown preset" "unknown beam preset 'steel'" modes --beam steel --elements 4
+expect_error "missing file" "nope.toml: cannot open beam file" modes --beam "$tmp/nope.toml" --elements 4
+expect_error "bad elements" "--elements = '0': must be an integer in 1..1000" modes --beam thick-steel --elements 0
+expect_error "bad dt" "dt_s = -1: must be finite and > 0" simulate --beam thick-steel --elements 4 --dt -1
+expect_error "bad number" "--dt = 'fast': must be a finite number" simulate --beam thick-steel --elements 4 --dt fast
+expect_error "sensor off beam" "sensor_x_m = 2: must lie on the beam" simulate --beam thick-steel --elements 4 --sensor-x 2
+expect_error "bad output" "output = 'strain': must be one of displacement, velocity, acceleration" \
+  simulate --beam thick-steel --elements 4 --output strain
+expect_error "bad integrator" "integrator = 'rk4': must be one of fast, cvode" \
+  simulate --beam thick-steel --elements 4 --integrator rk4
+expect_error "unknown flag" "unknown flag --sensor" simulate --beam thick-steel --elements 4 --sensor 0.1
+expect_error "unknown command" "unknown command 'fit2'" fit2
+
+echo "cli contract: $passed passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,73 @@
+// Forward-model benchmarks (make bench): assembly of M, C, K from the parameter-free forms, and one `fast` and one
+// `cvode` simulation of banks-aluminium (dt = 1 ms, Nbar = 4096, sin^2 pulse of 4 ms at 0.7 l, tip displacement)
+// for N in {4, 8, 16, 32}. CVODE runs at rtol 1e-8, where it agrees with `fast` to about 1e-6 of max |y|
+// (results/verification/fast_vs_cvode.md), and at 1e-10 (about 1e-8).
+#include <benchmark/benchmark.h>
+
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "model/beam_parameters.h"
+#include "simulation/simulator.h"
+
+namespace {
+
+using namespace beamid;
+
+simulation::Experiment banks_experiment(double length_m) {
+  simulation::Experiment e;
+  e.dt_s = 1e-3;
+  e.samples = 4096;
+  e.pulse_width_s = 4e-3;
+  e.force_x_m = 0.7 * length_m;
+  return e;
+}
+
+void BM_SplineSpace(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(galerkin::SplineSpace(static_cast<int>(state.range(0))));
+}
+BENCHMARK(BM_SplineSpace)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
+
+// Re-assembly during a fit: combine the parameter-free forms with new parameter values.
+void BM_Combine(benchmark::State& state) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const galerkin::SplineSpace space(static_cast<int>(state.range(0)));
+  const galerkin::BeamForms forms(space, beam.l);
+  for (auto _ : state) benchmark::DoNotOptimize(galerkin::combine(forms, beam));
+}
+BENCHMARK(BM_Combine)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
+
+void BM_StateSpaceModes(benchmark::State& state) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const auto system = galerkin::assemble(galerkin::SplineSpace(static_cast<int>(state.range(0))), beam);
+  for (auto _ : state) benchmark::DoNotOptimize(galerkin::StateSpaceModes(system));
+}
+BENCHMARK(BM_StateSpaceModes)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+
+void simulate(benchmark::State& state, const std::string& integrator, double rtol) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const galerkin::SplineSpace space(static_cast<int>(state.range(0)));
+  const galerkin::BeamForms forms(space, beam.l);
+  const auto e = banks_experiment(beam.l);
+  simulation::SimulatorOptions options;
+  options.integrator = integrator;
+  options.cvode.rtol = rtol;
+  long steps = 0;
+  for (auto _ : state) {
+    // Includes assembly and the problem set-up, as one cost evaluation of a fit would.
+    const auto trace = simulation::simulate(forms, beam, e, options);
+    if (!trace.ok()) state.SkipWithError(trace.status.c_str());
+    steps = trace.stats.steps;
+    benchmark::DoNotOptimize(trace.y.data());
+  }
+  state.counters["cvode_steps"] = static_cast<double>(steps);
+}
+void BM_SimulateFast(benchmark::State& state) { simulate(state, "fast", 0); }
+void BM_SimulateCvode1e8(benchmark::State& state) { simulate(state, "cvode", 1e-8); }
+void BM_SimulateCvode1e10(benchmark::State& state) { simulate(state, "cvode", 1e-10); }
+BENCHMARK(BM_SimulateFast)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SimulateCvode1e8)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_SimulateCvode1e10)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,161 @@
+// M, K, C of the Galerkin system: structure, definiteness, linearity in the parameters, and convergence of the
+// undamped frequencies to the exact Timoshenko ones (model.md sections 2 and 6).
+#include "galerkin/second_order_system.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "galerkin/modes.h"
+#include "model/errors.h"
+#include "model/exact_frequencies.h"
+
+namespace beamid::galerkin {
+namespace {
+
+using model::BeamParameters;
+
+double asymmetry(const Eigen::MatrixXd& a) { return (a - a.transpose()).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff(); }
+
+TEST(SecondOrderSystem, SymmetricAndDefinite) {
+  for (const auto& name : model::preset_names()) {
+    for (int n : {1, 4, 16}) {
+      const SecondOrderSystem s = assemble(SplineSpace(n), model::preset(name));
+      // Exactly symmetric by construction (blocks and their transposes): allow only round-off.
+      EXPECT_LT(asymmetry(s.M), 1e-15) << name << " N=" << n;
+      EXPECT_LT(asymmetry(s.K), 1e-15) << name << " N=" << n;
+      EXPECT_LT(asymmetry(s.C), 1e-15) << name << " N=" << n;
+      EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(s.M).info(), Eigen::Success) << "M positive definite, " << name;
+      EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(s.K).info(), Eigen::Success) << "K positive definite, " << name;
+      // C is positive semi-definite (dissipative): smallest eigenvalue >= -round-off.
+      const double cmin = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s.C).eigenvalues().minCoeff();
+      EXPECT_GT(cmin, -1e-12 * s.C.cwiseAbs().maxCoeff()) << name;
+    }
+  }
+}
+
+TEST(SecondOrderSystem, LinearInParameters) {
+  // M(p + q) = M(p) + M(q) for every parameter that enters linearly (all but l, and m c, m c^2 in the tip block).
+  const SplineSpace space(6);
+  const BeamForms forms(space, 0.5);
+  BeamParameters p{0.5, 0.1, 2e-8, 7e5, 0.5, 0.01, 6e-6, 9.0, 0.0, 0.0, 0.0};
+  BeamParameters q{0.5, 0.3, 5e-8, 2e5, 1.5, 0.02, 1e-6, 3.0, 0.0, 0.0, 0.0};
+  BeamParameters sum = p;
+  sum.rho += q.rho, sum.rho_r2 += q.rho_r2, sum.kAG += q.kAG, sum.EI += q.EI, sum.gamma += q.gamma, sum.cDI += q.cDI,
+      sum.kAcs += q.kAcs;
+  const SecondOrderSystem a = combine(forms, p), b = combine(forms, q), c = combine(forms, sum);
+  EXPECT_LT((c.M - a.M - b.M).cwiseAbs().maxCoeff(), 1e-15 * c.M.cwiseAbs().maxCoeff());
+  EXPECT_LT((c.K - a.K - b.K).cwiseAbs().maxCoeff(), 1e-15 * c.K.cwiseAbs().maxCoeff());
+  EXPECT_LT((c.C - a.C - b.C).cwiseAbs().maxCoeff(), 1e-15 * c.C.cwiseAbs().maxCoeff());
+  EXPECT_THROW(combine(forms, model::preset("thick-steel")), InputError);  // l differs from the forms' length
+}
+
+TEST(SecondOrderSystem, RigidTipBlockAndStaticDeflection) {
+  // A tip body adds Lambda = [[m, mc], [mc, mc^2 + J_o]] on (u(l), alpha(l)): check it through the tip trace.
+  const SplineSpace space(5);
+  BeamParameters bare = model::preset("thick-steel");
+  BeamParameters tip = bare;
+  bare.m = bare.c = bare.J_o = 0;
+  const Eigen::MatrixXd dm = assemble(space, tip).M - assemble(space, bare).M;
+  const Eigen::VectorXd nu = space.tip_trace();
+  const int n = space.dimension();
+  const Eigen::VectorXd eu = (Eigen::VectorXd(2 * n) << nu, Eigen::VectorXd::Zero(n)).finished();
+  const Eigen::VectorXd ea = (Eigen::VectorXd(2 * n) << Eigen::VectorXd::Zero(n), nu).finished();
+  // Any w with u(l) = x, alpha(l) = y sees [x y] Lambda [x y]^T; nu.nu normalises these trace vectors.
+  const double s = nu.squaredNorm();
+  EXPECT_NEAR(eu.dot(dm * eu) / (s * s), tip.m, 1e-14);
+  EXPECT_NEAR(eu.dot(dm * ea) / (s * s), tip.m * tip.c, 1e-14);
+  EXPECT_NEAR(ea.dot(dm * ea) / (s * s), tip.m * tip.c * tip.c + tip.J_o, 1e-14);
+
+  // Static tip deflection under a tip load P: Timoshenko cantilever P l^3/(3 EI) + P l/kAG, which cubic splines
+  // represent exactly (u is cubic, alpha quadratic): agreement to round-off amplified by cond(K) (~1e-10 here).
+  const BeamParameters beam = model::preset("thick-steel");
+  const SecondOrderSystem sys = assemble(space, beam);
+  const BeamForms forms(space, beam.l);
+  const Eigen::VectorXd f = point_load(forms, beam.l);
+  const Eigen::VectorXd w = sys.K.llt().solve(f);
+  const double exact = std::pow(beam.l, 3) / (3 * beam.EI) + beam.l / beam.kAG;
+  EXPECT_NEAR(f.dot(w), exact, 1e-9 * exact);
+}
+
+std::vector<double> galerkin_frequencies_hz(const BeamParameters& beam, int n, int count) {
+  const Eigen::VectorXd omega = undamped_modes(assemble(SplineSpace(n), beam)).omega_rad_s;
+  std::vector<double> f;
+  for (int k = 0; k < count; ++k) f.push_back(omega(k) / (2 * std::numbers::pi));
+  return f;
+}
+
+TEST(GalerkinConvergence, ThickSteelAtSixteenElements) {
+  // model.md section 6: set B at N = 16 is within 3e-6 of exact for modes 1-3.
+  const BeamParameters beam = model::preset("thick-steel");
+  const auto exact = model::timoshenko_frequencies_rad_s(beam, 3);
+  const auto galerkin = galerkin_frequencies_hz(beam, 16, 3);
+  for (int k = 0; k < 3; ++k) {
+    const double error = (galerkin[k] - exact[k] / (2 * std::numbers::pi)) / (exact[k] / (2 * std::numbers::pi));
+    EXPECT_GE(error, -1e-12) << "Rayleigh-Ritz bounds from above, mode " << k + 1;
+    EXPECT_LT(error, 3e-6) << "mode " << k + 1;
+  }
+}
+
+// Round-off floor of the undamped frequencies: the thin beam's stiffness rows cancel from ~kAG/h down to
+// rho h omega_1^2 (ratio ~1e8 at N = 32), so eigenvalues carry ~1e-16 x 1e8 relative noise; 1e-8 bounds it.
+constexpr double kFloor = 1e-8;
+
+TEST(GalerkinConvergence, MonotoneFromAboveAsNDoubles) {
+  // Nested spaces (N -> 2N) and Rayleigh-Ritz: each undamped frequency is >= exact and does not increase.
+  for (const auto& name : model::preset_names()) {
+    const BeamParameters beam = model::preset(name);
+    const auto exact = model::timoshenko_frequencies_rad_s(beam, 4);
+    std::vector<double> previous(4, INFINITY), previous_error(4, INFINITY);
+    for (int n : {4, 8, 16, 32}) {
+      const auto f = galerkin_frequencies_hz(beam, n, 4);
+      for (int k = 0; k < 4; ++k) {
+        const double fe = exact[k] / (2 * std::numbers::pi);
+        const double error = f[k] / fe - 1;
+        EXPECT_GE(error, -kFloor) << name << " N=" << n << " mode " << k + 1;
+        EXPECT_LE(f[k], previous[k] * (1 + kFloor)) << name << " N=" << n << " mode " << k + 1;
+        // Convergence order in the asymptotic range (16 -> 32): eigenvalue errors fall as O(h^6) here (measured
+        // ratios 66-76); require at least 32 (between h^5 and h^6) wherever the error stands clear of the floor.
+        if (n == 32 && error > 1e3 * kFloor) {
+          EXPECT_GT(previous_error[k] / error, 32.0) << name << " mode " << k + 1;
+        }
+        previous[k] = f[k];
+        previous_error[k] = error;
+      }
+    }
+  }
+}
+
+TEST(GalerkinConvergence, BanksThinBeamMatchesModelNotes) {
+  // model.md: mode 2 is 0.45 % high at N = 8 (two digits), and mode 3 at N = 4 sits at 140 Hz against 82 Hz exact
+  // (the (A4) pairing warning). model.md also says mode 2 is 25 % high at N = 4 and 0.008 % at N = 16; this Galerkin
+  // solution gives 13.8 % and 0.0066 %. Galerkin in a given space is unique and these values are verified upper
+  // bounds converging at O(h^6), so the two other figures are not asserted (see the closing note of issue 2).
+  const BeamParameters beam = model::preset("banks-aluminium");
+  const auto exact = model::timoshenko_frequencies_rad_s(beam, 3);
+  const double exact2 = exact[1] / (2 * std::numbers::pi);
+  EXPECT_NEAR(galerkin_frequencies_hz(beam, 8, 2)[1] / exact2 - 1, 0.0045, 0.00005);
+  EXPECT_NEAR(galerkin_frequencies_hz(beam, 4, 3)[2], 140.0, 0.5);
+  EXPECT_NEAR(exact[2] / (2 * std::numbers::pi), 81.67, 0.005);
+}
+
+TEST(StateSpaceModes, DampedModesOfPresets) {
+  // model.md section 5: banks-aluminium damping ratios about 8.1e-4, 1.5e-3, 3.5e-3, 6.9e-3 ("about": 5 %).
+  // The natural frequency |lambda| of a damped mode differs from the undamped one at the same N only at O(zeta^2)
+  // (damping is not proportional, so not exactly): 10 zeta^2 bounds it.
+  const BeamParameters beam = model::preset("banks-aluminium");
+  const SecondOrderSystem system = assemble(SplineSpace(16), beam);
+  const auto modes = StateSpaceModes(system).underdamped_modes();
+  const Eigen::VectorXd omega = undamped_modes(system).omega_rad_s;
+  const double zeta[] = {8.1e-4, 1.5e-3, 3.5e-3, 6.9e-3};
+  ASSERT_GE(modes.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(modes[k].frequency_hz / (omega(k) / (2 * std::numbers::pi)), 1.0, 10 * zeta[k] * zeta[k])
+        << "mode " << k + 1;
+    EXPECT_NEAR(modes[k].damping_ratio / zeta[k], 1.0, 0.05) << "mode " << k + 1;
+  }
+}
+
+}  // namespace
+}  // namespace beamid::galerkin

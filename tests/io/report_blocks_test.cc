@@ -1,0 +1,37 @@
+// REPORT.md generated blocks: only the text between matching markers changes.
+#include "io/report_blocks.h"
+
+#include <gtest/gtest.h>
+
+#include "model/errors.h"
+
+namespace beamid::io {
+namespace {
+
+const std::string kReport =
+    "# Report\nprose\n<!-- BEGIN GENERATED a/x -->\nold x\n<!-- END GENERATED a/x -->\nmiddle\n"
+    "<!-- BEGIN GENERATED b -->\nold b\nold b2\n<!-- END GENERATED b -->\nend\n";
+
+TEST(ReportBlocks, ReplacesOnlyNamedBlocks) {
+  EXPECT_EQ(block_names(kReport, "R.md"), (std::vector<std::string>{"a/x", "b"}));
+  const std::string out = replace_blocks(kReport, {{"b", "new b\n"}}, "R.md");
+  EXPECT_EQ(out,
+            "# Report\nprose\n<!-- BEGIN GENERATED a/x -->\nold x\n<!-- END GENERATED a/x -->\nmiddle\n"
+            "<!-- BEGIN GENERATED b -->\nnew b\n<!-- END GENERATED b -->\nend\n");
+  // Idempotent: applying the same content again changes nothing.
+  EXPECT_EQ(replace_blocks(out, {{"b", "new b\n"}}, "R.md"), out);
+  EXPECT_EQ(replace_blocks(kReport, {}, "R.md"), kReport);
+}
+
+TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
+  EXPECT_THROW(block_names("<!-- BEGIN GENERATED a -->\n", "R.md"), InputError);
+  try {
+    block_names("x\n<!-- BEGIN GENERATED a -->\n<!-- END GENERATED b -->\n", "R.md");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "R.md:3: END GENERATED b does not close block 'a'");
+  }
+}
+
+}  // namespace
+}  // namespace beamid::io

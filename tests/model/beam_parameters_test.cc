@@ -1,0 +1,109 @@
+// Beam parameters: presets, validation, and strict TOML loading with located errors.
+#include "model/beam_parameters.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "model/beam_toml.h"
+#include "model/errors.h"
+
+namespace beamid::model {
+namespace {
+
+const char* kValid = R"([beam]
+l = 0.4573
+rho = 0.093
+rho_r2 = 1.984e-8
+kAG = 7.363e5
+EI = 0.491
+gamma = 0.013
+cDI = 0.649e-5
+kAcs = 9.73
+m = 0.050
+c = 0.0125
+J_o = 5.208e-6
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_beam_toml(text, "beam.toml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(BeamParameters, PresetsAreAdmissibleAndDistinct) {
+  for (const auto& name : preset_names()) EXPECT_FALSE(validation_error(preset(name))) << name;
+  EXPECT_DOUBLE_EQ(preset("banks-aluminium").EI, 0.491);
+  EXPECT_DOUBLE_EQ(preset("thick-steel").kAcs, 490.0);
+  EXPECT_THROW(preset("steel"), InputError);
+}
+
+TEST(BeamParameters, TableCoversEveryMemberOnce) {
+  BeamParameters p;
+  double value = 1;
+  for (const auto& info : parameter_table()) p.*info.member = value++;
+  EXPECT_EQ(p.l, 1);
+  EXPECT_EQ(p.J_o, 11);
+  EXPECT_EQ(parameter_keys(), "l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
+}
+
+TEST(BeamParameters, ValidationNamesKeyValueAndConstraint) {
+  BeamParameters p = preset("thick-steel");
+  p.EI = -1;
+  EXPECT_EQ(validation_error(p).value_or(""), "EI = -1: must be > 0");
+  p = preset("thick-steel");
+  p.gamma = -0.5;
+  EXPECT_EQ(validation_error(p).value_or(""), "gamma = -0.5: must be >= 0");
+  p = preset("thick-steel");
+  p.m = std::nan("");
+  EXPECT_EQ(validation_error(p).value_or(""), "m = nan: must be finite");
+  p = preset("thick-steel");
+  p.cDI = 0;  // zero damping is admissible
+  EXPECT_FALSE(validation_error(p));
+}
+
+TEST(BeamToml, ReadsAllKeysMatchingThePreset) {
+  const BeamParameters p = parse_beam_toml(kValid, "beam.toml");
+  const BeamParameters q = preset("banks-aluminium");
+  for (const auto& info : parameter_table()) EXPECT_DOUBLE_EQ(p.*info.member, q.*info.member) << info.key;
+  // Integers are accepted as numbers.
+  EXPECT_DOUBLE_EQ(parse_beam_toml(replace(kValid, "kAcs = 9.73", "kAcs = 10"), "b").kAcs, 10.0);
+}
+
+TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
+  EXPECT_EQ(error_of(replace(kValid, "EI = 0.491", "EI = -0.491")), "beam.toml:6: beam.EI = -0.491: must be > 0");
+  EXPECT_EQ(error_of(replace(kValid, "gamma = 0.013", "gamma = -1")), "beam.toml:7: beam.gamma = -1: must be >= 0");
+  EXPECT_EQ(error_of(replace(kValid, "rho = 0.093", "rho = nan")), "beam.toml:3: beam.rho = nan: must be finite");
+  EXPECT_EQ(error_of(replace(kValid, "m = 0.050", "m = \"heavy\"")), "beam.toml:10: beam.m must be a number in kg");
+  EXPECT_EQ(error_of(replace(kValid, "c = 0.0125\n", "")),
+            "beam.toml:1: [beam] is missing key 'c' (tip body offset beyond the tip, m)");
+  EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6", "J_o = 5.208e-6\nEA = 1")),
+            "beam.toml:13: unknown key beam.EA: valid keys are l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
+  EXPECT_EQ(error_of(std::string(kValid) + "[fit]\nx = 1\n"),
+            "beam.toml:13: unknown top-level key 'fit': a beam file holds only a [beam] table");
+  EXPECT_NE(error_of("[beam\nl = 1").find("beam.toml:1: TOML syntax error"), std::string::npos);
+  EXPECT_EQ(error_of("l = 1\n"), "beam.toml:1: unknown top-level key 'l': a beam file holds only a [beam] table");
+  EXPECT_EQ(error_of(""), "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
+}
+
+TEST(BeamToml, ResolvesPresetsAndFiles) {
+  EXPECT_DOUBLE_EQ(resolve_beam("thick-steel").EI, 1406.25);
+  try {
+    resolve_beam("/nonexistent/beam.toml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/beam.toml: cannot open beam file"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace beamid::model
