@@ -65,11 +65,12 @@ int run_modes(const Args& args, std::ostream& out) {
   if (a.has("exact")) {
     if (a.has("undamped")) throw InputError("beamid modes: --undamped goes with --elements, not --exact");
     const auto omega = model::timoshenko_frequencies_rad_s(beam, count.value_or(4));
+    if (count && static_cast<int>(omega.size()) < *count)
+      throw InputError("beamid modes: --count = " + std::to_string(*count) + ": only " +
+                       std::to_string(omega.size()) + " modes lie below the shear cut-off");
     out << "mode,frequency_hz\n";
     for (std::size_t k = 0; k < omega.size(); ++k)
       out << k + 1 << "," << io::full_precision(omega[k] / (2 * std::numbers::pi)) << "\n";
-    if (count && static_cast<int>(omega.size()) < *count)
-      throw NumericalError("only " + std::to_string(omega.size()) + " modes lie below the shear cut-off");
     return 0;
   }
 

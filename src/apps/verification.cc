@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -61,26 +62,28 @@ void write_verification(const std::string& folder, std::ostream& log) {
   std::ostringstream csv, md;
   csv << "preset,elements,mode,galerkin_hz,exact_hz,relative_error\n";
   md << "Undamped Galerkin frequencies against the exact Timoshenko determinant (model.md section 6): relative error "
-        "(f_N - f)/f of modes 1-4. Rayleigh-Ritz on nested spline spaces makes every entry positive and "
-        "non-increasing in N; the `monotone` column checks it for every N from 2 to 32 (all N are in "
-        "`results/verification/frequencies.csv`; the table shows a selection).\n\n";
+        "(f_N - f)/f of modes 1-4. Rayleigh-Ritz bounds every Galerkin frequency from above, and the spline space of "
+        "order 2N contains that of order N, so f_2N <= f_N; the `bounds` column checks both for every N from 2 to 32, "
+        "up to the round-off floor of the thin beam's matrices (1e-8 relative). All N are in "
+        "`results/verification/frequencies.csv`; the table shows a selection.\n\n";
   for (const auto& name : presets) {
     const model::BeamParameters beam = model::preset(name);
     const std::vector<double> exact = model::timoshenko_frequencies_rad_s(beam, kModes);
     md << "**" << name << "**, exact: ";
     for (int k = 0; k < kModes; ++k) md << (k ? ", " : "") << fixed(exact[k] / (2 * std::numbers::pi), 4);
-    md << " Hz\n\n| N | mode 1 | mode 2 | mode 3 | mode 4 | monotone |\n|---|---|---|---|---|---|\n";
-    std::vector<double> previous(kModes, INFINITY);
+    md << " Hz\n\n| N | mode 1 | mode 2 | mode 3 | mode 4 | bounds |\n|---|---|---|---|---|---|\n";
+    std::map<int, Eigen::VectorXd> by_n;  // omega for each N, to compare N with N/2 (nested spaces)
     for (int n = 2; n <= 32; ++n) {
       const galerkin::SplineSpace space(n);
       const Eigen::VectorXd omega = galerkin::undamped_modes(galerkin::assemble(space, beam)).omega_rad_s;
+      by_n[n] = omega;
       bool monotone = true;
       std::string row = "| " + std::to_string(n) + " |";
       for (int k = 0; k < kModes; ++k) {
         const double error = (omega(k) - exact[k]) / exact[k];
-        // Non-increasing, allowing for round-off once the error reaches ~1e-12.
-        monotone = monotone && error > -1e-11 && omega(k) <= previous[k] * (1 + 1e-12);
-        previous[k] = omega(k);
+        constexpr double kFloor = 1e-8;  // round-off floor of the thin beam's matrices (see the galerkin tests)
+        monotone = monotone && error > -kFloor;
+        if (n % 2 == 0 && n / 2 >= 2) monotone = monotone && omega(k) <= by_n[n / 2](k) * (1 + kFloor);
         csv << name << "," << n << "," << k + 1 << "," << io::full_precision(omega(k) / (2 * std::numbers::pi)) << ","
             << io::full_precision(exact[k] / (2 * std::numbers::pi)) << "," << io::full_precision(error) << "\n";
         row += " " + sci(error) + " |";
@@ -99,7 +102,8 @@ void write_verification(const std::string& folder, std::ostream& log) {
   std::ostringstream csv2, md2;
   csv2 << "preset,elements,output,cvode_rtol,max_abs_difference,max_abs_y,relative_difference,cvode_steps,"
           "cvode_rhs_evaluations,cvode_error_test_failures,fast_modes,fast_eigenvector_rcond\n";
-  md2 << "The exact modal propagator (`fast`) against CVODE BDF with the analytic Jacobian at N = 16: "
+  md2 << "The exact modal propagator (`fast`) against CVODE BDF (Newton with the exact Schur complement of the "
+         "analytic Jacobian) at N = 16: "
          "max |y_fast - y_cvode| / max |y| over the whole record. A sin^2 pulse at x_f = 0.7 l, sensor at the tip, "
          "banks-aluminium with dt = 1 ms, 4096 samples, tau = 4 ms; thick-steel with dt = 0.1 ms, 8192 samples, "
          "tau = 0.4 ms. The difference falls with CVODE's tolerance: it is CVODE's error, and `fast` has no "
