@@ -36,10 +36,10 @@ bench: build
 # Forward-model verification tables (results/verification/) and the REPORT.md blocks made from them.
 verify: build
 	$(BEAMID) verify --output results/verification
-	$(BEAMID) report --update REPORT.md --blocks results/verification
+	$(BEAMID) report --update REPORT.md --results results
 
 report: build
-	$(BEAMID) report --update REPORT.md --blocks results/verification
+	$(BEAMID) report --update REPORT.md --results results
 
 clean:
 	rm -rf $(BUILD) $(SAN_BUILD)
