@@ -52,7 +52,10 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
     const Eigen::VectorXcd g =
         pulse ? Eigen::VectorXcd(p.amplitude_N * modes.input_coefficients(p.load)) : Eigen::VectorXcd::Zero(lambda.size());
-    const Eigen::VectorXcd e0 = modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
+    // Modal initial state: only a pluck has one (a pulse starts at rest), so the pulse path skips the solve.
+    const Eigen::VectorXcd e0 = p.w0.isZero(0.0)
+                                    ? Eigen::VectorXcd::Zero(lambda.size())
+                                    : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
     const double direct = (p.derivative == 2 && pulse) ? modes.feedthrough(p.sensor, p.load) : 0.0;
     trace.stats.eigenvector_rcond = modes.eigenvector_rcond();
 
