@@ -1,0 +1,110 @@
+#include "signal/spectrum.h"
+
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <numbers>
+
+#include <fftw3.h>
+
+#include "model/errors.h"
+
+namespace beamid::signal {
+namespace {
+
+// FFTW's planner is not thread-safe (execution of an existing plan is): plans are made and destroyed under a lock.
+std::mutex& planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+}  // namespace
+
+std::optional<std::string> validation_error(const WindowOptions& options) {
+  if (options.name != "rectangular" && options.name != "hann" && options.name != "exponential")
+    return "window = '" + options.name + "': must be one of rectangular, hann, exponential";
+  if (options.name == "exponential" &&
+      !(std::isfinite(options.exponential_end) && options.exponential_end > 0 && options.exponential_end < 1))
+    return "exponential_end = " + format_value(options.exponential_end) + ": must be in (0, 1)";
+  return std::nullopt;
+}
+
+std::vector<double> window_weights(const WindowOptions& options, int samples) {
+  std::vector<double> w(static_cast<std::size_t>(samples), 1.0);
+  if (options.name == "hann") {
+    for (int i = 0; i < samples; ++i) {
+      const double s = std::sin(std::numbers::pi * i / samples);
+      w[static_cast<std::size_t>(i)] = s * s;
+    }
+  } else if (options.name == "exponential") {
+    const double alpha = -std::log(options.exponential_end);
+    for (int i = 0; i < samples; ++i) w[static_cast<std::size_t>(i)] = std::exp(-alpha * i / samples);
+  }
+  return w;
+}
+
+std::complex<double> Spectrum::at(long k) const {
+  const long n = samples;
+  long r = k % n;
+  if (r < 0) r += n;
+  if (r <= n / 2) return half[static_cast<std::size_t>(r)];
+  return std::conj(half[static_cast<std::size_t>(n - r)]);
+}
+
+struct Dft::Plan {
+  double* in = nullptr;
+  fftw_complex* out = nullptr;
+  fftw_plan plan = nullptr;
+};
+
+Dft::Dft(int samples, double dt_s, WindowOptions window)
+    : samples_(samples), dt_s_(dt_s), window_(std::move(window)), plan_(std::make_unique<Plan>()) {
+  if (samples < 2) throw InputError("DFT: samples = " + std::to_string(samples) + ": must be >= 2");
+  if (!(std::isfinite(dt_s) && dt_s > 0)) throw InputError("DFT: dt_s = " + format_value(dt_s) + ": must be > 0");
+  if (auto error = validation_error(window_)) throw InputError("DFT: " + *error);
+  weights_ = window_weights(window_, samples);
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  plan_->in = fftw_alloc_real(static_cast<std::size_t>(samples));
+  plan_->out = fftw_alloc_complex(static_cast<std::size_t>(samples / 2 + 1));
+  if (!plan_->in || !plan_->out) throw NumericalError("DFT: cannot allocate FFTW buffers");
+  plan_->plan = fftw_plan_dft_r2c_1d(samples, plan_->in, plan_->out, FFTW_ESTIMATE);
+  if (!plan_->plan) throw NumericalError("DFT: FFTW could not plan a transform of " + std::to_string(samples));
+}
+
+Dft::~Dft() {
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  if (plan_->plan) fftw_destroy_plan(plan_->plan);
+  fftw_free(plan_->in);
+  fftw_free(plan_->out);
+}
+
+Spectrum Dft::transform(const std::vector<double>& z) {
+  if (static_cast<int>(z.size()) != samples_)
+    throw InputError("DFT: record of " + std::to_string(z.size()) + " samples given to a transform of " +
+                     std::to_string(samples_));
+  for (int i = 0; i < samples_; ++i) plan_->in[i] = weights_[static_cast<std::size_t>(i)] * z[static_cast<std::size_t>(i)];
+  fftw_execute(plan_->plan);
+  Spectrum s;
+  s.samples = samples_;
+  s.dt_s = dt_s_;
+  s.half.resize(static_cast<std::size_t>(samples_ / 2 + 1));
+  const double scale = 1.0 / samples_;  // the paper's 1/Nbar
+  for (std::size_t k = 0; k < s.half.size(); ++k)
+    s.half[k] = std::complex<double>(plan_->out[k][0], plan_->out[k][1]) * scale;
+  return s;
+}
+
+double fourier_least_squares(const Spectrum& model, const Spectrum& data) {
+  if (model.samples != data.samples || model.half.size() != data.half.size())
+    throw InputError("Fourier least squares: model and data spectra differ in length");
+  const int n = data.samples;
+  double sum = 0;
+  for (int k = 0; k <= n / 2; ++k) {
+    const double d = std::norm(model.half[static_cast<std::size_t>(k)] - data.half[static_cast<std::size_t>(k)]);
+    const bool single = k == 0 || (n % 2 == 0 && k == n / 2);
+    sum += single ? d : 2 * d;
+  }
+  return sum;
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,74 @@
+// The DFT of a sampled record with the paper's scaling (3.2)-(3.4):
+//   Z(k) = (1/Nbar) sum_{i=0}^{Nbar-1} w_i z_i exp(-j 2 pi k i / Nbar),   f_k = k / (Nbar dt) = k df,
+// where w is an optional window applied identically to data and model:
+//   "rectangular" (default) w_i = 1;
+//   "hann"        w_i = sin^2(pi i / Nbar) (periodic Hann; halves the leakage of a record cut off mid-decay);
+//   "exponential" w_i = exp(-alpha i / Nbar) with exp(-alpha) = exponential_end, the impact-testing window that adds a
+//                 known decay rate alpha / T to every mode (T = Nbar dt) and forces short records to die out.
+// Only k = 0..Nbar/2 is stored; the full DFT of a real signal follows as Z(k mod Nbar) with Z(Nbar - k) = conj Z(k),
+// which is how a bin k^u + j outside 0..Nbar/2 in the spike cost is read (Spectrum::at).
+// FFTW is used through Dft only; its plan is made once per record length (FFTW_ESTIMATE, so that the algorithm and
+// hence the round-off are the same on every run: tables must be byte-identical) and reused for every evaluation.
+#pragma once
+
+#include <complex>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beamid::signal {
+
+struct WindowOptions {
+  std::string name = "rectangular";  // "rectangular" | "hann" | "exponential"
+  double exponential_end = 0.01;     // w at i = Nbar (exponential only), in (0, 1)
+};
+// First violated constraint ("window = 'x': must be one of rectangular, hann, exponential"), or nothing.
+std::optional<std::string> validation_error(const WindowOptions& options);
+
+// w_0..w_{Nbar-1}.
+std::vector<double> window_weights(const WindowOptions& options, int samples);
+
+struct Spectrum {
+  int samples = 0;                       // Nbar
+  double dt_s = 0;                       // sampling interval
+  std::vector<std::complex<double>> half;  // Z(0..Nbar/2)
+
+  double df_hz() const { return 1.0 / (samples * dt_s); }
+  double frequency_hz(double k) const { return k * df_hz(); }
+  int last_bin() const { return samples / 2; }  // Nbar/2 (integer division)
+  // Z(k) of the full DFT for any integer k (index modulo Nbar, conjugate symmetry above Nbar/2).
+  std::complex<double> at(long k) const;
+  double magnitude(long k) const { return std::abs(at(k)); }
+};
+
+// Reusable transform for records of one length. Not thread-safe (it owns its FFTW buffers): one per thread.
+class Dft {
+ public:
+  // InputError unless samples >= 2 and dt_s > 0, or the window is invalid.
+  Dft(int samples, double dt_s, WindowOptions window = {});
+  ~Dft();
+  Dft(const Dft&) = delete;
+  Dft& operator=(const Dft&) = delete;
+
+  int samples() const { return samples_; }
+  double dt_s() const { return dt_s_; }
+  const WindowOptions& window() const { return window_; }
+  // InputError unless z.size() == samples().
+  Spectrum transform(const std::vector<double>& z);
+
+ private:
+  struct Plan;
+  int samples_;
+  double dt_s_;
+  WindowOptions window_;
+  std::vector<double> weights_;
+  std::unique_ptr<Plan> plan_;
+};
+
+// Plain Fourier least squares over the full DFT: sum_{k=0}^{Nbar-1} |U(k) - Z(k)|^2, computed from the stored halves
+// (k = 0 and, for even Nbar, k = Nbar/2 once, the others twice). With the rectangular window it equals
+// sum_i (y_i - z_i)^2 / Nbar (Parseval), i.e. the time-domain cost over Nbar.
+double fourier_least_squares(const Spectrum& model, const Spectrum& data);
+
+}  // namespace beamid::signal

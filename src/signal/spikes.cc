@@ -1,0 +1,109 @@
+#include "signal/spikes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "model/errors.h"
+
+namespace beamid::signal {
+
+std::optional<std::string> validation_error(const SpikeOptions& o) {
+  if (o.count < 1) return "spikes = " + std::to_string(o.count) + ": must be >= 1";
+  if (o.rule != "largest" && o.rule != "prominence")
+    return "spike_rule = '" + o.rule + "': must be one of largest, prominence";
+  if (!(std::isfinite(o.min_frequency_hz) && o.min_frequency_hz >= 0))
+    return "min_frequency_hz = " + format_value(o.min_frequency_hz) + ": must be finite and >= 0";
+  if (!(o.max_frequency_hz > o.min_frequency_hz))
+    return "max_frequency_hz = " + format_value(o.max_frequency_hz) + ": must be > min_frequency_hz = " +
+           format_value(o.min_frequency_hz);
+  if (!(o.support_level > 0 && o.support_level < 1))
+    return "support_level = " + format_value(o.support_level) + ": must be in (0, 1)";
+  return std::nullopt;
+}
+
+std::vector<int> local_maxima(const Spectrum& s) {
+  std::vector<int> peaks;
+  for (int k = 1; k <= s.last_bin(); ++k) {
+    const double m = s.magnitude(k);
+    if (m > s.magnitude(k - 1) && m >= s.magnitude(k + 1)) peaks.push_back(k);
+  }
+  return peaks;
+}
+
+std::pair<int, int> support(const Spectrum& s, int bin, double level) {
+  const double threshold = level * s.magnitude(bin);
+  int left = 0;
+  while (bin - left - 1 >= 0 && s.magnitude(bin - left - 1) >= threshold) ++left;
+  int right = 0;
+  while (bin + right + 1 <= s.last_bin() && s.magnitude(bin + right + 1) >= threshold) ++right;
+  return {left, right};
+}
+
+namespace {
+
+// Prominence of the peak at `bin` among bins [lo, hi]: its height minus the higher of the lowest points between it
+// and the nearest strictly higher bin on each side (or the band edge).
+double prominence(const Spectrum& s, int bin, int lo, int hi) {
+  const double h = s.magnitude(bin);
+  double left_min = h;
+  for (int k = bin - 1; k >= lo; --k) {
+    const double m = s.magnitude(k);
+    if (m > h) break;
+    left_min = std::min(left_min, m);
+  }
+  double right_min = h;
+  for (int k = bin + 1; k <= hi; ++k) {
+    const double m = s.magnitude(k);
+    if (m > h) break;
+    right_min = std::min(right_min, m);
+  }
+  return h - std::max(left_min, right_min);
+}
+
+}  // namespace
+
+std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options) {
+  if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
+  const double df = s.df_hz();
+  const int lo = static_cast<int>(std::ceil(options.min_frequency_hz / df - 1e-9));
+  const int hi = std::min<double>(s.last_bin(), std::floor(options.max_frequency_hz / df + 1e-9)) ;
+  std::vector<std::pair<double, int>> ranked;  // (score, bin)
+  for (int k : local_maxima(s)) {
+    if (k < lo || k > hi) continue;
+    const double score = options.rule == "prominence" ? prominence(s, k, std::max(lo, 0), hi) : s.magnitude(k);
+    ranked.emplace_back(score, k);
+  }
+  // Largest first; ties broken towards the lower bin so that the choice is deterministic.
+  std::sort(ranked.begin(), ranked.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+  if (static_cast<int>(ranked.size()) > options.count) ranked.resize(static_cast<std::size_t>(options.count));
+  std::vector<Spike> spikes;
+  for (const auto& [score, k] : ranked) {
+    Spike p;
+    p.bin = k;
+    p.frequency_hz = k * df;
+    p.magnitude = s.magnitude(k);
+    std::tie(p.n_left, p.n_right) = support(s, k, options.support_level);
+    spikes.push_back(p);
+  }
+  std::sort(spikes.begin(), spikes.end(), [](const Spike& a, const Spike& b) { return a.bin < b.bin; });
+  return spikes;
+}
+
+PoleEstimate three_bin_estimate(const Spectrum& s, int bin) {
+  const std::complex<double> a = s.at(bin - 1), b = s.at(bin), c = s.at(bin + 1);
+  const std::complex<double> denominator = 2.0 * b - a - c;
+  PoleEstimate e;
+  if (std::abs(denominator) == 0 || !std::isfinite(std::abs(denominator))) return e;
+  const std::complex<double> r = (a - c) / denominator;
+  const double x = std::numbers::pi / s.samples;
+  const double candan = std::tan(x) / x;
+  const double record_s = s.samples * s.dt_s;
+  e.frequency_hz = (bin + candan * r.real()) * s.df_hz();
+  e.decay_rate_1_s = 2 * std::numbers::pi * r.imag() / record_s;
+  e.ok = std::isfinite(e.frequency_hz) && std::isfinite(e.decay_rate_1_s);
+  return e;
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,59 @@
+// Spikes of a DFT magnitude spectrum, as the paper reads plainly (model.md section 4), and sub-bin pole estimates.
+//
+// Peak rule "largest" (default): the local maxima of |Z|, i.e. bins 1 <= k <= Nbar/2 with
+//   |Z(k)| > |Z(k-1)| and |Z(k)| >= |Z(k+1)|   (Z(Nbar/2 + 1) read through the full DFT, = conj Z(Nbar/2 - 1)),
+// the NM largest of them, reported in order of frequency. Rule "prominence" ranks the same maxima by their prominence
+// (height above the higher of the two minima between the peak and the nearest higher maximum, or the band edge, on
+// either side) instead of their height, which keeps a rectangular window's sidelobes out. A band [min, max] Hz
+// restricts the candidates either way.
+// 20 % support (from the data only): n_l = the last i with |Z(k - i')| >= level |Z(k)| for every 0 <= i' <= i,
+// the search stopping at k = 0; N_l likewise to the right, stopping at Nbar/2.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "signal/spectrum.h"
+
+namespace beamid::signal {
+
+struct SpikeOptions {
+  int count = 4;                    // NM
+  std::string rule = "largest";     // "largest" | "prominence"
+  double min_frequency_hz = 0;      // candidates restricted to [min, max]
+  double max_frequency_hz = std::numeric_limits<double>::infinity();
+  double support_level = 0.2;       // the paper's 20 %
+};
+// First violated constraint ("spikes = 0: must be >= 1"), or nothing.
+std::optional<std::string> validation_error(const SpikeOptions& options);
+
+struct Spike {
+  int bin = 0;             // k
+  double frequency_hz = 0; // f_k = k df
+  double magnitude = 0;    // |Z(k)|
+  int n_left = 0;          // n_l
+  int n_right = 0;         // N_l
+};
+
+// All local maxima of |Z| in 1..Nbar/2 (ascending bins).
+std::vector<int> local_maxima(const Spectrum& spectrum);
+// The support (n_l, N_l) of the peak at bin k at `level` times its height.
+std::pair<int, int> support(const Spectrum& spectrum, int bin, double level);
+// The NM spikes by the rule, ascending in frequency, with their supports. Fewer when fewer maxima exist.
+std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& options);
+
+// Sub-bin pole estimate from the complex 3-bin ratio (Jacobsen), R = (Z(k-1) - Z(k+1)) / (2 Z(k) - Z(k-1) - Z(k+1)):
+// for a sampled damped exponential e^{(j 2 pi f - sigma) t} on the rectangular window, Z(k) ~ 1/(f/df - k + j sigma T/(2 pi))
+// near the pole, which makes R = (f/df - k) + j sigma T / (2 pi) exactly in that approximation; Candan's factor
+// tan(pi/Nbar)/(pi/Nbar) on Re R removes most of the bias of the small-angle step. With another window the
+// estimates are still a smooth, consistent feature (the same on data and model) but biased by the window.
+struct PoleEstimate {
+  double frequency_hz = 0;
+  double decay_rate_1_s = 0;  // sigma (the exponential window's alpha/T is not removed)
+  bool ok = false;            // false when the denominator vanishes (a flat spectrum)
+};
+PoleEstimate three_bin_estimate(const Spectrum& spectrum, int bin);
+
+}  // namespace beamid::signal
