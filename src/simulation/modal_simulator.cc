@@ -58,6 +58,8 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
                                     : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
     const double direct = (p.derivative == 2 && pulse) ? modes.feedthrough(p.sensor, p.load) : 0.0;
     trace.stats.eigenvector_rcond = modes.eigenvector_rcond();
+    for (int k = 0; k < lambda.size(); ++k)
+      if (lambda(k).imag() > 0) trace.poles_rad_s.push_back(lambda(k));
 
     const double tau = pulse ? p.pulse_width_s : 0.0;
     // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.

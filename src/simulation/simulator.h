@@ -5,6 +5,7 @@
 // A failed integration is reported in Trace::status, never thrown, so a study can record it as a row.
 #pragma once
 
+#include <complex>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,9 @@ struct Trace {
   std::vector<double> y;     // y_i at t_i = i dt
   std::string status = "ok"; // "ok", or what failed
   SimulationStats stats;
+  // fast only: the underdamped state-space eigenvalues (Im > 0), rad/s, as computed for this run (the spike-smooth
+  // cost can compare them with the data's poles without a second eigen-decomposition). Empty for cvode.
+  std::vector<std::complex<double>> poles_rad_s;
   bool ok() const { return status == "ok"; }
 };
 

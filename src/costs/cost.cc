@@ -1,0 +1,312 @@
+#include "costs/cost.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "model/errors.h"
+
+namespace beamid::costs {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool all_finite(const std::vector<double>& y) {
+  for (double v : y)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// A model output that cannot be compared: the evaluation is undefined, never a crash.
+std::optional<std::string> unusable(const std::vector<double>& y, std::size_t samples) {
+  if (y.size() != samples)
+    return "the model gave " + std::to_string(y.size()) + " samples for " + std::to_string(samples) + " data samples";
+  if (!all_finite(y)) return "the model output is not finite";
+  return std::nullopt;
+}
+
+class TimeCost final : public Cost {
+ public:
+  TimeCost(CostOptions options, std::vector<double> data) : options_(std::move(options)), z_(std::move(data)) {}
+  const CostOptions& options() const override { return options_; }
+  int residual_count() const override { return static_cast<int>(z_.size()); }
+  const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
+  std::string weights() const override { return ""; }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    if (auto why = unusable(model.y, z_.size())) {
+      e.status = *why;
+      return e;
+    }
+    const Eigen::Map<const Eigen::VectorXd> y(model.y.data(), static_cast<Eigen::Index>(model.y.size()));
+    const Eigen::Map<const Eigen::VectorXd> z(z_.data(), static_cast<Eigen::Index>(z_.size()));
+    if (options_.unknown_amplitude) {
+      // min_a |a y - z|^2: the response is linear in the excitation amplitude.
+      const double yy = y.squaredNorm();
+      e.amplitude_scale = yy > 0 ? y.dot(z) / yy : 0.0;
+    }
+    e.residuals = e.amplitude_scale * y - z;
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+
+ private:
+  CostOptions options_;
+  std::vector<double> z_;
+  std::vector<SpikePair> no_spikes_;
+};
+
+// Shared by the two spike costs: the data spectrum, its spikes and supports, and the weights.
+class SpikeCostBase : public Cost {
+ public:
+  SpikeCostBase(CostOptions options, std::vector<double> data, double dt_s)
+      : options_(std::move(options)), samples_(data.size()),
+        dft_(static_cast<int>(data.size()), dt_s, options_.window) {
+    data_ = dft_.transform(data);
+    const auto spikes = signal::detect_spikes(data_, options_.spikes);
+    if (static_cast<int>(spikes.size()) < options_.spikes.count)
+      throw InputError("cost " + options_.name + ": spikes = " + std::to_string(options_.spikes.count) +
+                       ": the data spectrum has only " + std::to_string(spikes.size()) +
+                       " local maxima under the peak rule and band");
+    const bool smooth = options_.name == "spike-smooth";
+    double support_energy = 0;
+    for (const auto& s : spikes) {
+      SpikePair p;
+      p.data = s;
+      p.data_frequency_hz = s.frequency_hz;
+      if (smooth) {
+        const auto pole = signal::three_bin_estimate(data_, s.bin);
+        if (!pole.ok)
+          throw InputError("cost spike-smooth: the 3-bin estimate fails at the data spike of bin " +
+                           std::to_string(s.bin));
+        p.data_frequency_hz = pole.frequency_hz;
+        p.data_decay_rate_1_s = pole.decay_rate_1_s;
+      }
+      for (int j = -s.n_left; j <= s.n_right; ++j) support_energy += std::norm(data_.at(s.bin + j));
+      compared_bins_ += s.n_left + s.n_right + 1;
+      pairs_.push_back(p);
+    }
+    const double df = data_.df_hz();
+    const double record_s = static_cast<double>(samples_) * dt_s;
+    eps1_ = options_.eps1.value_or(1.0 / (df * df));
+    eps2_ = options_.eps2.value_or(support_energy > 0 ? 1.0 / support_energy : 1.0);
+    eps3_ = options_.eps3.value_or(std::pow(record_s / (2 * std::numbers::pi), 2));
+  }
+
+  const CostOptions& options() const override { return options_; }
+  const std::vector<SpikePair>& data_spikes() const override { return pairs_; }
+  std::string weights() const override {
+    std::ostringstream out;
+    out.precision(6);
+    out << "eps1 = " << eps1_ << " 1/Hz^2, eps2 = " << eps2_ << " 1/(signal unit)^2";
+    if (options_.name == "spike-smooth") out << ", eps3 = " << eps3_ << " s^2";
+    return out.str();
+  }
+
+ protected:
+  // Least-squares scale of the model magnitudes against the data's on the compared bins (1 unless scale-free).
+  double magnitude_scale(const signal::Spectrum& u, const std::vector<int>& model_centres) const {
+    if (!options_.unknown_amplitude) return 1.0;
+    double uz = 0, uu = 0;
+    for (std::size_t l = 0; l < pairs_.size(); ++l)
+      for (int j = -pairs_[l].data.n_left; j <= pairs_[l].data.n_right; ++j) {
+        const double mu = u.magnitude(model_centres[l] + j);
+        uz += mu * data_.magnitude(pairs_[l].data.bin + j);
+        uu += mu * mu;
+      }
+    return uu > 0 ? uz / uu : 0.0;
+  }
+
+  // Model spikes by the data's rule, or the (A4) violation.
+  std::optional<std::vector<signal::Spike>> model_spikes(const signal::Spectrum& u, Evaluation& e) const {
+    auto spikes = signal::detect_spikes(u, options_.spikes);
+    if (spikes.size() < pairs_.size()) {
+      e.status = e.a4 = "(A4) violated: the model spectrum shows " + std::to_string(spikes.size()) +
+                        " spikes, the data " + std::to_string(pairs_.size());
+      return std::nullopt;
+    }
+    return spikes;
+  }
+
+  // Marks pairs whose model frequency is nearer to another data spike than to its partner.
+  void check_pairing(Evaluation& e) const {
+    std::string jumped;
+    for (std::size_t l = 0; l < e.pairs.size(); ++l) {
+      const double f = e.pairs[l].model_frequency_hz;
+      const double own = std::abs(f - e.pairs[l].data_frequency_hz);
+      for (std::size_t m = 0; m < e.pairs.size(); ++m)
+        if (m != l && std::abs(f - e.pairs[m].data_frequency_hz) < own) e.pairs[l].jumps = true;
+      if (e.pairs[l].jumps) jumped += (jumped.empty() ? "" : ", ") + std::to_string(l + 1);
+    }
+    if (!jumped.empty()) e.a4 = "(A4) pairing jumps modes at spike(s) " + jumped;
+  }
+
+  void append_magnitudes(const signal::Spectrum& u, const std::vector<int>& model_centres, Evaluation& e,
+                         Eigen::Index& row) const {
+    const double w = std::sqrt(eps2_);
+    for (std::size_t l = 0; l < pairs_.size(); ++l) {
+      const auto& s = pairs_[l].data;
+      for (int j = -s.n_left; j <= s.n_right; ++j)
+        e.residuals(row++) = w * (e.amplitude_scale * u.magnitude(model_centres[l] + j) - data_.magnitude(s.bin + j));
+      e.pairs[l].model_magnitude = e.amplitude_scale * u.magnitude(model_centres[l]);
+    }
+  }
+
+  CostOptions options_;
+  std::size_t samples_;
+  signal::Dft dft_;
+  signal::Spectrum data_;
+  std::vector<SpikePair> pairs_;
+  int compared_bins_ = 0;
+  double eps1_ = 1, eps2_ = 1, eps3_ = 1;
+};
+
+class SpikeCost final : public SpikeCostBase {
+ public:
+  using SpikeCostBase::SpikeCostBase;
+  int residual_count() const override { return static_cast<int>(pairs_.size()) + compared_bins_; }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    e.pairs = pairs_;
+    if (auto why = unusable(model.y, samples_)) {
+      e.status = *why;
+      return e;
+    }
+    const signal::Spectrum u = dft_.transform(model.y);
+    const auto spikes = model_spikes(u, e);
+    if (!spikes) return e;
+    std::vector<int> centres;
+    for (std::size_t l = 0; l < pairs_.size(); ++l) {
+      const auto& s = (*spikes)[l];
+      centres.push_back(s.bin);
+      e.pairs[l].has_model = true;
+      e.pairs[l].model_bin = s.bin;
+      e.pairs[l].model_frequency_hz = s.frequency_hz;
+    }
+    check_pairing(e);
+    e.amplitude_scale = magnitude_scale(u, centres);
+    e.residuals.resize(residual_count());
+    Eigen::Index row = 0;
+    const double w = std::sqrt(eps1_);
+    for (std::size_t l = 0; l < pairs_.size(); ++l)
+      e.residuals(row++) = w * (e.pairs[l].model_frequency_hz - pairs_[l].data.frequency_hz);
+    append_magnitudes(u, centres, e, row);  // |U(k^u_l + j)| against |Z(k^z_l + j)|
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+};
+
+class SmoothSpikeCost final : public SpikeCostBase {
+ public:
+  using SpikeCostBase::SpikeCostBase;
+  int residual_count() const override { return 2 * static_cast<int>(pairs_.size()) + compared_bins_; }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    e.pairs = pairs_;
+    if (auto why = unusable(model.y, samples_)) {
+      e.status = *why;
+      return e;
+    }
+    const signal::Spectrum u = dft_.transform(model.y);
+    if (options_.model_poles == "eigenvalues") {
+      if (!poles_from_eigenvalues(model.poles_rad_s, u, e)) return e;
+    } else {
+      const auto spikes = model_spikes(u, e);
+      if (!spikes) return e;
+      for (std::size_t l = 0; l < pairs_.size(); ++l) {
+        const auto pole = signal::three_bin_estimate(u, (*spikes)[l].bin);
+        if (!pole.ok) {
+          e.status = "the 3-bin estimate fails at model spike bin " + std::to_string((*spikes)[l].bin);
+          return e;
+        }
+        e.pairs[l].has_model = true;
+        e.pairs[l].model_bin = (*spikes)[l].bin;
+        e.pairs[l].model_frequency_hz = pole.frequency_hz;
+        e.pairs[l].model_decay_rate_1_s = pole.decay_rate_1_s;
+      }
+      check_pairing(e);
+    }
+    // Magnitudes on the data's own bins k^z_l + j: no re-indexing, so no staircase.
+    std::vector<int> centres;
+    for (const auto& p : pairs_) centres.push_back(p.data.bin);
+    e.amplitude_scale = magnitude_scale(u, centres);
+    e.residuals.resize(residual_count());
+    Eigen::Index row = 0;
+    for (std::size_t l = 0; l < pairs_.size(); ++l) {
+      e.residuals(row++) = std::sqrt(eps1_) * (e.pairs[l].model_frequency_hz - pairs_[l].data_frequency_hz);
+      e.residuals(row++) = std::sqrt(eps3_) * (e.pairs[l].model_decay_rate_1_s - pairs_[l].data_decay_rate_1_s);
+    }
+    append_magnitudes(u, centres, e, row);
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+
+ private:
+  // Each data spike takes the model pole whose frequency, aliased into [0, fs/2], is nearest to it; the decay rate
+  // gets the exponential window's added alpha/T, which the data's 3-bin estimate contains too.
+  bool poles_from_eigenvalues(const std::vector<std::complex<double>>& poles, const signal::Spectrum& u,
+                              Evaluation& e) const {
+    if (poles.empty()) {
+      e.status = "model_poles = 'eigenvalues': the model response carries no eigenvalues";
+      return false;
+    }
+    const double fs = 1.0 / u.dt_s;
+    const double record_s = u.samples * u.dt_s;
+    const double added = options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
+    std::vector<int> chosen;
+    for (std::size_t l = 0; l < pairs_.size(); ++l) {
+      int best = -1;
+      double best_distance = kInf, best_f = 0;
+      for (std::size_t k = 0; k < poles.size(); ++k) {
+        double f = std::fmod(poles[k].imag() / (2 * std::numbers::pi), fs);
+        if (f > fs / 2) f = fs - f;
+        const double d = std::abs(f - pairs_[l].data_frequency_hz);
+        if (d < best_distance) best_distance = d, best = static_cast<int>(k), best_f = f;
+      }
+      for (int c : chosen)
+        if (c == best) e.pairs[l].jumps = true;
+      chosen.push_back(best);
+      e.pairs[l].has_model = true;
+      e.pairs[l].model_frequency_hz = best_f;
+      e.pairs[l].model_decay_rate_1_s = -poles[static_cast<std::size_t>(best)].real() + added;
+    }
+    std::string jumped;
+    for (std::size_t l = 0; l < e.pairs.size(); ++l)
+      if (e.pairs[l].jumps) jumped += (jumped.empty() ? "" : ", ") + std::to_string(l + 1);
+    if (!jumped.empty()) e.a4 = "(A4) two data spikes take the same model mode at spike(s) " + jumped;
+    return true;
+  }
+};
+
+}  // namespace
+
+bool is_spike_cost(const std::string& name) { return name == "spike" || name == "spike-smooth"; }
+
+std::optional<std::string> validation_error(const CostOptions& o) {
+  if (o.name != "time" && !is_spike_cost(o.name))
+    return "cost = '" + o.name + "': must be one of time, spike, spike-smooth";
+  if (auto error = signal::validation_error(o.spikes)) return error;
+  if (auto error = signal::validation_error(o.window)) return error;
+  const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
+  for (const auto& [key, value] : eps)
+    if (value && !(std::isfinite(*value) && *value >= 0))
+      return std::string(key) + " = " + format_value(*value) + ": must be finite and >= 0";
+  if (o.model_poles != "dft" && o.model_poles != "eigenvalues")
+    return "model_poles = '" + o.model_poles + "': must be one of dft, eigenvalues";
+  return std::nullopt;
+}
+
+std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> data, double dt_s) {
+  if (auto error = validation_error(options)) throw InputError(*error);
+  if (data.size() < 8) throw InputError("data: " + std::to_string(data.size()) + " samples: at least 8 are needed");
+  for (std::size_t i = 0; i < data.size(); ++i)
+    if (!std::isfinite(data[i])) throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
+  if (options.name == "time") return std::make_unique<TimeCost>(options, std::move(data));
+  if (options.name == "spike") return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
+  return std::make_unique<SmoothSpikeCost>(options, std::move(data), dt_s);
+}
+
+}  // namespace beamid::costs
