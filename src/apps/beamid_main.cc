@@ -23,9 +23,12 @@ int main(int argc, char** argv) {
   try {
     if (all[0] == "modes") return apps::run_modes(rest, std::cout);
     if (all[0] == "simulate") return apps::run_simulate(rest, std::cout);
+    if (all[0] == "spikes") return apps::run_spikes(rest, std::cout);
+    if (all[0] == "cost") return apps::run_cost(rest, std::cout);
+    if (all[0] == "fit") return apps::run_fit(rest, std::cout);
     if (all[0] == "verify") return apps::run_verify(rest, std::cout);
     if (all[0] == "report") return apps::run_report(rest, std::cout);
-    std::cerr << "beamid: unknown command '" << all[0] << "' (commands: modes, simulate, verify, report)\n";
+    std::cerr << "beamid: unknown command '" << all[0] << "' (commands: modes, simulate, spikes, cost, fit, verify, report)\n";
     return 2;
   } catch (const InputError& error) {
     std::cerr << "beamid: " << error.what() << "\n";

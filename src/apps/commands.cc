@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "apps/experiment_flags.h"
 #include "apps/verification.h"
 #include "beamid/version.h"
 #include "galerkin/modes.h"
@@ -46,6 +47,9 @@ std::string overview() {
          "usage: beamid COMMAND [flags]     (beamid COMMAND --help for its flags)\n"
          "  modes      natural frequencies and damping ratios (Galerkin or exact)\n"
          "  simulate   sampled sensor signal of a pulse or pluck experiment, as CSV\n"
+         "  spikes     the DFT spikes of a record, with their 20 % supports\n"
+         "  cost       the time, spike or spike-smooth cost of a prediction against data\n"
+         "  fit        identify beam parameters from a record (NLopt or Ceres, direct or staged)\n"
          "  verify     forward-model verification tables (Galerkin vs exact, fast vs CVODE)\n"
          "  report     refresh the generated blocks of REPORT.md from results/\n";
 }
@@ -94,39 +98,22 @@ int run_modes(const Args& args, std::ostream& out) {
 }
 
 int run_simulate(const Args& args, std::ostream& out) {
+  std::vector<io::FlagSpec> flags{kHelp, kBeam, kElements};
+  for (const auto& f : experiment_flag_specs()) flags.push_back(f);
   const io::Arguments a(
       "simulate", args,
-      {kHelp, kBeam, kElements,
-       {"dt", true, "sampling interval, s (default 1e-3)"},
-       {"samples", true, "number of samples Nbar >= 2 (default 4096)"},
-       {"sensor-x", true, "sensor position xbar, m (default: the tip)"},
-       {"output", true, "displacement | velocity | acceleration (default displacement)"},
-       {"excitation", true, "pulse | pluck (default pulse)"},
-       {"force-x", true, "force position x_f, m (default: the tip)"},
-       {"force-amplitude", true, "pulse peak F0, or pluck static load P0, N (default 1)"},
-       {"pulse-width", true, "pulse width tau, s (default 0.01; pulse only)"},
+      join_flags(flags, {
        {"integrator", true, "fast | cvode (default fast)"},
        {"rtol", true, "CVODE relative tolerance (default 1e-10)"},
        {"atol", true, "CVODE absolute tolerance (default: rtol times the state's natural size)"},
        {"max-order", true, "CVODE BDF order limit 1..5 (default 5)"},
-       {"verbose", false, "say on stderr what ran, with the integrator statistics"}});
+       {"verbose", false, "say on stderr what ran, with the integrator statistics"}}));
   if (wants_help(a, out, "--beam B --elements N [experiment flags] [--integrator fast|cvode]")) return 0;
   const std::string beam_name = a.text("beam");
   const model::BeamParameters beam = model::resolve_beam(beam_name);
   const int n = elements(a);
 
-  simulation::Experiment e;
-  e.dt_s = a.optional_number("dt").value_or(e.dt_s);
-  e.samples = a.optional_integer("samples").value_or(e.samples);
-  e.sensor_x_m = a.optional_number("sensor-x");
-  e.output = a.text_or("output", e.output);
-  e.excitation = a.text_or("excitation", e.excitation);
-  e.force_x_m = a.optional_number("force-x");
-  e.force_amplitude_N = a.optional_number("force-amplitude").value_or(e.force_amplitude_N);
-  e.pulse_width_s = a.optional_number("pulse-width").value_or(e.pulse_width_s);
-  if (e.excitation == "pluck" && a.has("pulse-width"))
-    throw InputError("beamid simulate: --pulse-width applies to --excitation pulse only");
-  if (auto error = simulation::validation_error(e, beam.l)) throw InputError("beamid simulate: " + *error);
+  const simulation::Experiment e = read_experiment(a, beam.l);
 
   simulation::SimulatorOptions options;
   options.integrator = a.text_or("integrator", options.integrator);

@@ -14,6 +14,13 @@ using Args = std::vector<std::string>;
 int run_modes(const Args& args, std::ostream& out);
 // beamid simulate --beam B --elements N [experiment flags] [--integrator fast|cvode] [--rtol R --atol A]
 int run_simulate(const Args& args, std::ostream& out);
+// beamid spikes --data FILE.csv --spikes NM [--window NAME]: CSV spike,bin,frequency_hz,magnitude,n_left,n_right
+int run_spikes(const Args& args, std::ostream& out);
+// beamid cost --data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]
+int run_cost(const Args& args, std::ostream& out);
+// beamid fit --data FILE.csv --beam B --elements N --estimate KEYS --cost NAME [...]: CSV
+// parameter,estimate,standard_error,start,lower,upper; exit 3 when the fit failed
+int run_fit(const Args& args, std::ostream& out);
 // beamid verify --output DIR: forward-model verification tables (see verification.h)
 int run_verify(const Args& args, std::ostream& out);
 // beamid report --update REPORT.md [--results DIR]: refresh the generated blocks

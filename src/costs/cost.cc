@@ -214,16 +214,20 @@ class SmoothSpikeCost final : public SpikeCostBase {
     if (options_.model_poles == "eigenvalues") {
       if (!poles_from_eigenvalues(model.poles_rad_s, u, e)) return e;
     } else {
-      const auto spikes = model_spikes(u, e);
-      if (!spikes) return e;
+      const std::vector<int> maxima = signal::local_maxima(u);
+      if (maxima.empty()) {
+        e.status = e.a4 = "(A4) violated: the model spectrum has no local maximum";
+        return e;
+      }
       for (std::size_t l = 0; l < pairs_.size(); ++l) {
-        const auto pole = signal::three_bin_estimate(u, (*spikes)[l].bin);
+        const int bin = partner_bin(u, maxima, pairs_[l].data);
+        const auto pole = signal::three_bin_estimate(u, bin);
         if (!pole.ok) {
-          e.status = "the 3-bin estimate fails at model spike bin " + std::to_string((*spikes)[l].bin);
+          e.status = "the 3-bin estimate fails at model spike bin " + std::to_string(bin);
           return e;
         }
         e.pairs[l].has_model = true;
-        e.pairs[l].model_bin = (*spikes)[l].bin;
+        e.pairs[l].model_bin = bin;
         e.pairs[l].model_frequency_hz = pole.frequency_hz;
         e.pairs[l].model_decay_rate_1_s = pole.decay_rate_1_s;
       }
@@ -245,6 +249,19 @@ class SmoothSpikeCost final : public SpikeCostBase {
   }
 
  private:
+  // The model's partner of a data spike: the local maximum of |U| nearest to the data spike's bin (the higher one on
+  // a tie). Unlike ranking the model's own NM largest maxima, this does not re-pair when two model peaks trade
+  // places in height, so the cost stays continuous while the model peak moves.
+  static int partner_bin(const signal::Spectrum& u, const std::vector<int>& maxima, const signal::Spike& d) {
+    int best = -1;
+    for (int k : maxima) {
+      const int distance = std::abs(k - d.bin), best_distance = best < 0 ? 0 : std::abs(best - d.bin);
+      if (best < 0 || distance < best_distance || (distance == best_distance && u.magnitude(k) > u.magnitude(best)))
+        best = k;
+    }
+    return best;
+  }
+
   // Each data spike takes the model pole whose frequency, aliased into [0, fs/2], is nearest to it; the decay rate
   // gets the exponential window's added alpha/T, which the data's 3-bin estimate contains too.
   bool poles_from_eigenvalues(const std::vector<std::complex<double>>& poles, const signal::Spectrum& u,

@@ -7,9 +7,11 @@
 //   "spike-smooth"  J_S = sum_l [eps1 (f^u_l - f^z_l)^2 + eps3 (sigma^u_l - sigma^z_l)^2
 //                                + eps2 sum_j (s |U(k^z_l + j)| - |Z(k^z_l + j)|)^2]
 //                   with sub-bin frequencies and decay rates from the 3-bin estimator (signal/spikes.h) on both, or
-//                   the model's from its eigenvalues ("eigenvalues"), and magnitudes on the data's bins.
-// Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; model spikes k^u_l are found by
-// the same rule on |U| and paired with the data's in order of frequency. A bin outside 0..Nbar/2 is read from the
+//                   the model's from its eigenvalues ("eigenvalues"), and magnitudes on the data's bins. The model
+//                   peak paired with data spike l is the local maximum of |U| nearest to k^z_l, so pairs do not
+//                   swap when model peaks trade heights.
+// Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
+// are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside 0..Nbar/2 is read from the
 // full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|).
 // s = 1, or with an unknown excitation amplitude ("scale-free") s = sum |U||Z| / sum |U|^2 over the compared bins,
 // the least-squares scale of the model's magnitudes (frequencies and decay rates do not depend on it).

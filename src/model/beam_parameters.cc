@@ -21,17 +21,17 @@ namespace beamid::model {
 
 const std::array<ParameterInfo, kParameterCount>& parameter_table() {
   static const std::array<ParameterInfo, kParameterCount> table = {{
-      {"l", "m", "length", &BeamParameters::l, true},
-      {"rho", "kg/m", "linear mass density", &BeamParameters::rho, true},
-      {"rho_r2", "kg m", "rotary inertia per length (rho I/A)", &BeamParameters::rho_r2, true},
-      {"kAG", "N", "shear stiffness (kappa A G)", &BeamParameters::kAG, true},
-      {"EI", "N m^2", "bending stiffness", &BeamParameters::EI, true},
-      {"gamma", "N s/m^2", "viscous air damping", &BeamParameters::gamma, false},
-      {"cDI", "N m^2 s", "Kelvin-Voigt bending damping", &BeamParameters::cDI, false},
-      {"kAcs", "N s", "Kelvin-Voigt shear damping", &BeamParameters::kAcs, false},
-      {"m", "kg", "tip body mass", &BeamParameters::m, false},
-      {"c", "m", "tip body offset beyond the tip", &BeamParameters::c, false},
-      {"J_o", "kg m^2", "tip body inertia about its centre of mass", &BeamParameters::J_o, false},
+      {"l", "m", "length", &BeamParameters::l, true, "geometry"},
+      {"rho", "kg/m", "linear mass density", &BeamParameters::rho, true, "inertia"},
+      {"rho_r2", "kg m", "rotary inertia per length (rho I/A)", &BeamParameters::rho_r2, true, "inertia"},
+      {"kAG", "N", "shear stiffness (kappa A G)", &BeamParameters::kAG, true, "stiffness"},
+      {"EI", "N m^2", "bending stiffness", &BeamParameters::EI, true, "stiffness"},
+      {"gamma", "N s/m^2", "viscous air damping", &BeamParameters::gamma, false, "damping"},
+      {"cDI", "N m^2 s", "Kelvin-Voigt bending damping", &BeamParameters::cDI, false, "damping"},
+      {"kAcs", "N s", "Kelvin-Voigt shear damping", &BeamParameters::kAcs, false, "damping"},
+      {"m", "kg", "tip body mass", &BeamParameters::m, false, "inertia"},
+      {"c", "m", "tip body offset beyond the tip", &BeamParameters::c, false, "geometry"},
+      {"J_o", "kg m^2", "tip body inertia about its centre of mass", &BeamParameters::J_o, false, "inertia"},
   }};
   return table;
 }

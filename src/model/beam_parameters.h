@@ -37,6 +37,9 @@ struct ParameterInfo {
   std::string_view meaning;
   double BeamParameters::*member;
   bool strictly_positive;  // true: must be > 0; false: must be >= 0
+  // "geometry" (l, c), "inertia" (rho, rho_r2, m, J_o), "stiffness" (kAG, EI) or "damping" (gamma, cDI, kAcs):
+  // the paper's staged fit estimates stiffness and inertia first, damping second, then all.
+  std::string_view role;
 };
 inline constexpr std::size_t kParameterCount = 11;
 const std::array<ParameterInfo, kParameterCount>& parameter_table();

@@ -82,5 +82,29 @@ expect_error "bad integrator" "integrator = 'rk4': must be one of fast, cvode" \
 expect_error "unknown flag" "unknown flag --sensor" simulate --beam thick-steel --elements 4 --sensor 0.1
 expect_error "unknown command" "unknown command 'fit2'" fit2
 
+
+# Identification commands: spikes, cost and fit on a fast-simulated banks record (N = 4, exact propagator data, so
+# the fit at the same N recovers EI to round-off: 1e-6 is a loose bound).
+"$BEAMID" simulate --beam banks-aluminium --elements 4 --pulse-width 0.004 >"$tmp/z.csv"
+"$BEAMID" spikes --data "$tmp/z.csv" --spikes 3 >"$tmp/s.csv"
+check "spikes header" test "$(head -1 "$tmp/s.csv")" = "spike,bin,frequency_hz,magnitude,n_left,n_right"
+check "spikes rows" test "$(wc -l <"$tmp/s.csv")" -eq 4
+check "first spike at 2.44 Hz (bin 10)" awk -F, 'NR == 2 { exit !($2 == 10) }' "$tmp/s.csv"
+for c in time spike spike-smooth; do
+  check "cost $c of the data against itself is 0" awk '{ exit !($1 == 0) }' \
+    <("$BEAMID" cost --data "$tmp/z.csv" --prediction "$tmp/z.csv" --cost $c --spikes 3)
+done
+"$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --start-scale 1.02 \
+  --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>/dev/null
+check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper"
+check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
+check "fit report written" grep -q "^## Result" "$tmp/fit.md"
+expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \
+  --elements 4 --estimate EJ --cost time
+expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth" fit --data "$tmp/z.csv" \
+  --beam banks-aluminium --elements 4 --estimate EI --cost freq
+printf 't_s,y\n0,1\n0.001,2\n0.0025,3\n0.003,1\n0.004,1\n0.005,1\n0.006,1\n0.007,1\n' >"$tmp/bad.csv"
+expect_error "spikes non-uniform time" "bad.csv:4: t_s = 0.0025: non-uniform time base" spikes --data "$tmp/bad.csv" --spikes 1
+
 echo "cli contract: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -1,0 +1,122 @@
+#include "apps/fit_report.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "beamid/version.h"
+#include "io/csv.h"
+#include "model/errors.h"
+#include "signal/spectrum.h"
+
+namespace beamid::apps {
+namespace {
+
+std::string g(double v, int digits = 6) {
+  std::ostringstream s;
+  s << std::setprecision(digits) << v;
+  return s.str();
+}
+
+}  // namespace
+
+void write_fit_report(const std::string& path, const FitReportInput& in) {
+  const auto& o = in.options;
+  const auto& r = in.result;
+  std::ostringstream md;
+  md << "# beamid fit report\n\n";
+  md << "beamid " << BEAMID_VERSION << " (commit " << BEAMID_GIT_COMMIT << "): `beamid fit";
+  for (const auto& arg : in.arguments) md << " " << arg;
+  md << "`\n\n";
+  md << "- data: `" << in.data.path << "`, " << in.data.values.size() << " samples at dt = " << g(in.data.dt_s)
+     << " s (column `" << in.data.value_column << "`)\n";
+  md << "- model: beam `" << in.beam_name << "` (known parameters and start), N = " << o.elements << ", "
+     << o.experiment.excitation << " excitation, " << o.experiment.output << " output, integrator "
+     << o.simulator.integrator << "\n";
+  md << "- cost `" << o.cost.name << "`";
+  if (costs::is_spike_cost(o.cost.name))
+    md << ", NM = " << o.cost.spikes.count << " spikes (rule " << o.cost.spikes.rule << "), window "
+       << o.cost.window.name;
+  if (o.cost.unknown_amplitude) md << ", unknown excitation amplitude (scale " << g(r.final_evaluation.amplitude_scale) << ")";
+  md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
+     << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
+
+  md << "## Result\n\n";
+  md << "Status **" << r.status << "** (" << r.termination << "); cost " << g(r.cost, 10) << "; " << r.evaluations
+     << " model evaluations; " << g(r.wall_time_s, 3) << " s.\n\n";
+  md << "| parameter | estimate | standard error | start | lower | upper |\n|---|---|---|---|---|---|\n";
+  for (const auto& p : r.parameters)
+    md << "| " << p.key << " | " << g(p.estimate, 10) << " | " << (std::isnan(p.standard_error) ? "-" : g(p.standard_error, 3))
+       << " | " << g(p.start) << " | " << g(p.lower) << " | " << g(p.upper) << " |\n";
+  md << "\nStandard errors and correlations are formal: (J^T J)^-1 |r|^2/(m - n) at the estimate, valid only if the "
+        "residuals are independent Gaussian noise of equal variance, which is not so for the spike costs' mixed "
+        "terms nor for model error. Covariance: "
+     << r.covariance_status << ".\n\n";
+  if (r.correlation.size() > 0) {
+    md << "| correlation |";
+    for (const auto& p : r.parameters) md << " " << p.key << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) md << "---|";
+    md << "\n";
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      md << "| " << r.parameters[i].key << " |";
+      for (std::size_t j = 0; j < r.parameters.size(); ++j)
+        md << " " << g(r.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)), 3) << " |";
+      md << "\n";
+    }
+    md << "\n";
+  }
+  md << "| stage | parameters | status | cost | evaluations | termination |\n|---|---|---|---|---|---|\n";
+  for (const auto& s : r.stages) {
+    std::string keys;
+    for (const auto& k : s.keys) keys += (keys.empty() ? "" : ", ") + k;
+    md << "| " << s.name << " | " << keys << " | " << s.result.status << " | " << g(s.result.cost, 6) << " | "
+       << s.result.evaluations << " | " << s.result.termination << " |\n";
+  }
+
+  // Spectra of data and fitted model (same window as the cost).
+  signal::Dft dft(static_cast<int>(in.data.values.size()), in.data.dt_s, o.cost.window);
+  const signal::Spectrum z = dft.transform(in.data.values);
+  const bool have_model = r.model_output.size() == in.data.values.size();
+  const signal::Spectrum u = have_model ? dft.transform(r.model_output) : z;
+  const auto& pairs = r.final_evaluation.pairs;
+  if (!pairs.empty()) {
+    md << "\n## Spikes and (A4)\n\n(A4) check at the estimate: " << r.final_evaluation.a4 << ".\n\n";
+    md << "| spike | data bin | data f (Hz) | data sigma (1/s) | n_l | N_l | model bin | model f (Hz) | model sigma (1/s) | data abs Z | model abs U | jumps |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t l = 0; l < pairs.size(); ++l) {
+      const auto& p = pairs[l];
+      md << "| " << l + 1 << " | " << p.data.bin << " | " << g(p.data_frequency_hz, 8) << " | "
+         << (std::isnan(p.data_decay_rate_1_s) ? "-" : g(p.data_decay_rate_1_s, 5)) << " | " << p.data.n_left << " | "
+         << p.data.n_right << " | " << (p.model_bin >= 0 ? std::to_string(p.model_bin) : "-") << " | "
+         << g(p.model_frequency_hz, 8) << " | "
+         << (std::isnan(p.model_decay_rate_1_s) ? "-" : g(p.model_decay_rate_1_s, 5)) << " | " << g(p.data.magnitude, 4)
+         << " | " << g(p.model_magnitude, 4) << " | " << (p.jumps ? "yes" : "no") << " |\n";
+    }
+    md << "\nData and model spectra around each data spike (|Z| and |U| on the same bins):\n\n"
+          "| spike | bin | f (Hz) | data abs Z | model abs U |\n|---|---|---|---|---|\n";
+    for (std::size_t l = 0; l < pairs.size(); ++l)
+      for (int j = -3; j <= 3; ++j) {
+        const int k = pairs[l].data.bin + j;
+        if (k < 0 || k > z.last_bin()) continue;
+        md << "| " << l + 1 << " | " << k << " | " << g(z.frequency_hz(k), 8) << " | " << g(z.magnitude(k), 4) << " | "
+           << (have_model ? g(u.magnitude(k), 4) : "-") << " |\n";
+      }
+  }
+  const std::string spectra_path = path + ".spectra.csv";
+  md << "\nFull spectra: `" << spectra_path << "` (bin, frequency_hz, data_magnitude, model_magnitude).\n";
+
+  std::ofstream file(path);
+  file << md.str();
+  if (!file) throw InputError("beamid fit: --report = '" + path + "': cannot write the file");
+  std::ofstream spectra(spectra_path);
+  spectra << "bin,frequency_hz,data_magnitude,model_magnitude\n";
+  for (int k = 0; k <= z.last_bin(); ++k) {
+    spectra << k << ",";
+    io::write_row(spectra, {z.frequency_hz(k), z.magnitude(k), have_model ? u.magnitude(k) : std::nan("")});
+  }
+  if (!spectra) throw InputError("beamid fit: cannot write " + spectra_path);
+}
+
+}  // namespace beamid::apps

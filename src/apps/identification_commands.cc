@@ -1,0 +1,205 @@
+// beamid spikes, cost and fit: the identification commands (see commands.h for their forms).
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "apps/experiment_flags.h"
+#include "apps/fit_report.h"
+#include "beamid/version.h"
+#include "costs/cost.h"
+#include "fit/identification.h"
+#include "io/arguments.h"
+#include "io/csv.h"
+#include "io/time_series.h"
+#include "model/beam_toml.h"
+#include "model/errors.h"
+#include "signal/spikes.h"
+
+namespace beamid::apps {
+namespace {
+
+const io::FlagSpec kHelp{"help", false, "print this help"};
+
+bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
+  if (!a.has("help")) return false;
+  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
+  return true;
+}
+
+std::vector<io::FlagSpec> spike_flags() {
+  return {{"spikes", true, "number of spikes NM >= 1 (default 4)"},
+          {"window", true, "rectangular | hann | exponential (default rectangular)"},
+          {"exponential-end", true, "exponential window's last weight, in (0, 1) (default 0.01)"},
+          {"spike-rule", true, "largest | prominence (default largest: the NM highest local maxima)"},
+          {"min-frequency", true, "lowest spike frequency considered, Hz (default 0)"},
+          {"max-frequency", true, "highest spike frequency considered, Hz (default Nyquist)"}};
+}
+
+std::vector<io::FlagSpec> cost_flags() {
+  auto flags = spike_flags();
+  flags.push_back({"cost", true, "time | spike | spike-smooth"});
+  flags.push_back({"eps1", true, "weight of squared frequency errors, 1/Hz^2 (default 1/df^2)"});
+  flags.push_back({"eps2", true, "weight of squared magnitude errors (default 1 / sum of |Z|^2 on the supports)"});
+  flags.push_back({"eps3", true, "spike-smooth: weight of squared decay-rate errors, s^2 (default (T/2pi)^2)"});
+  flags.push_back({"unknown-amplitude", false,
+                   "excitation amplitude unknown: solved in closed form (time), scale-free magnitudes (spike costs)"});
+  flags.push_back({"model-poles", true, "spike-smooth: dft | eigenvalues (default dft)"});
+  return flags;
+}
+
+signal::SpikeOptions read_spike_options(const io::Arguments& a) {
+  signal::SpikeOptions o;
+  o.count = a.optional_integer("spikes").value_or(o.count);
+  o.rule = a.text_or("spike-rule", o.rule);
+  o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
+  o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
+  if (auto error = signal::validation_error(o)) throw InputError("beamid " + a.command() + ": " + *error);
+  return o;
+}
+
+signal::WindowOptions read_window(const io::Arguments& a) {
+  signal::WindowOptions w;
+  w.name = a.text_or("window", w.name);
+  w.exponential_end = a.optional_number("exponential-end").value_or(w.exponential_end);
+  if (auto error = signal::validation_error(w)) throw InputError("beamid " + a.command() + ": " + *error);
+  return w;
+}
+
+costs::CostOptions read_cost_options(const io::Arguments& a) {
+  costs::CostOptions o;
+  o.name = a.text("cost");
+  o.spikes = read_spike_options(a);
+  o.window = read_window(a);
+  o.eps1 = a.optional_number("eps1");
+  o.eps2 = a.optional_number("eps2");
+  o.eps3 = a.optional_number("eps3");
+  o.unknown_amplitude = a.has("unknown-amplitude");
+  o.model_poles = a.text_or("model-poles", o.model_poles);
+  if (auto error = costs::validation_error(o)) throw InputError("beamid " + a.command() + ": " + *error);
+  return o;
+}
+
+}  // namespace
+
+int run_spikes(const Args& args, std::ostream& out) {
+  const io::Arguments a("spikes", args,
+                        join_flags({kHelp, {"data", true, "CSV record (t_s, signal) as written by beamid simulate"}}, spike_flags()));
+  if (wants_help(a, out, "--data FILE.csv --spikes NM [--window NAME]")) return 0;
+  const io::TimeSeries data = io::read_time_series(a.text("data"));
+  signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s, read_window(a));
+  const signal::Spectrum spectrum = dft.transform(data.values);
+  const auto spikes = signal::detect_spikes(spectrum, read_spike_options(a));
+  out << "spike,bin,frequency_hz,magnitude,n_left,n_right\n";
+  for (std::size_t l = 0; l < spikes.size(); ++l)
+    out << l + 1 << "," << spikes[l].bin << "," << io::full_precision(spikes[l].frequency_hz) << ","
+        << io::full_precision(spikes[l].magnitude) << "," << spikes[l].n_left << "," << spikes[l].n_right << "\n";
+  return 0;
+}
+
+int run_cost(const Args& args, std::ostream& out) {
+  const io::Arguments a("cost", args,
+                        join_flags({kHelp, {"data", true, "CSV record of the data"},
+                              {"prediction", true, "CSV record of the model prediction, same sampling"}},
+                             cost_flags()));
+  if (wants_help(a, out, "--data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]"))
+    return 0;
+  const io::TimeSeries data = io::read_time_series(a.text("data"));
+  const io::TimeSeries prediction = io::read_time_series(a.text("prediction"));
+  if (prediction.values.size() != data.values.size() || std::abs(prediction.dt_s - data.dt_s) > 1e-9 * data.dt_s)
+    throw InputError("beamid cost: --prediction = '" + prediction.path + "': " +
+                     std::to_string(prediction.values.size()) + " samples at dt = " + format_value(prediction.dt_s) +
+                     " s: must match the data's " + std::to_string(data.values.size()) + " at " +
+                     format_value(data.dt_s) + " s");
+  const costs::CostOptions options = read_cost_options(a);
+  if (options.model_poles == "eigenvalues")
+    throw InputError("beamid cost: --model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
+  auto cost = costs::make_cost(options, data.values, data.dt_s);
+  const std::vector<std::complex<double>> none;
+  const costs::Evaluation e = cost->evaluate(costs::ModelResponse{prediction.values, none});
+  if (!e.ok()) throw NumericalError("beamid cost: " + e.status);
+  out << io::full_precision(e.value) << "\n";
+  if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";
+  return 0;
+}
+
+int run_fit(const Args& args, std::ostream& out) {
+  const io::Arguments a(
+      "fit", args,
+      join_flags(join_flags({kHelp,
+                 {"data", true, "CSV record (t_s, signal) to fit; its time step and length fix dt and Nbar"},
+                 {"beam", true, "preset or TOML file: the known parameters and the start of the estimated ones"},
+                 {"elements", true, "Galerkin order N of the fitted model"},
+                 {"estimate", true, "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma"},
+                 {"optimizer", true, "lm | bobyqa | nelder-mead | sbplx | direct-l | crs2-lm (default: lm, nelder-mead for spike)"},
+                 {"strategy", true, "direct | staged | continuation (default direct)"},
+                 {"start-scale", true, "start of every estimated parameter = S x its --beam value (default 1)"},
+                 {"bound-factor", true, "bounds [v/F, v F] around each --beam value v (default 2)"},
+                 {"bounds", true, "explicit bounds KEY=LO:HI,... (override --bound-factor)"},
+                 {"scaling", true, "linear | log optimizer coordinates (default linear)"},
+                 {"starts", true, "number of starts: the given one plus space-filling starts in the bounds (default 1)"},
+                 {"seed", true, "seed of the extra starts and of stochastic optimizers (default 1)"},
+                 {"max-evaluations", true, "model evaluations per optimizer run (default 3000)"},
+                 {"integrator", true, "fast | cvode model integrator (default fast)"},
+                 {"report", true, "write a Markdown fit report to this file"}},
+                experiment_flag_specs()),
+           cost_flags()));
+  if (wants_help(a, out,
+                 "--data FILE.csv --beam B --elements N --estimate KEYS --cost NAME [--optimizer NAME] "
+                 "[--strategy staged|direct|continuation] [--start-scale S] [--seed K] [experiment flags] [--report FILE.md]"))
+    return 0;
+  const io::TimeSeries data = io::read_time_series(a.text("data"));
+  if (std::abs(data.t0_s) > 1e-9 * data.dt_s)
+    throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
+                     " s: must be 0 (the experiment starts at t = 0)");
+  const std::string beam_name = a.text("beam");
+  const model::BeamParameters nominal = model::resolve_beam(beam_name);
+
+  fit::FitOptions o;
+  o.elements = a.integer("elements");
+  a.require(o.elements >= 1 && o.elements <= 1000, "elements", "must be an integer in 1..1000");
+  o.experiment = read_experiment(a, nominal.l);
+  if (a.has("dt") && std::abs(o.experiment.dt_s - data.dt_s) > 1e-9 * data.dt_s)
+    a.require(false, "dt", "must equal the data's time step " + format_value(data.dt_s) + " s");
+  if (a.has("samples") && o.experiment.samples != static_cast<int>(data.values.size()))
+    a.require(false, "samples", "must equal the data's " + std::to_string(data.values.size()));
+  o.experiment.dt_s = data.dt_s;
+  o.experiment.samples = static_cast<int>(data.values.size());
+  o.simulator.integrator = a.text_or("integrator", o.simulator.integrator);
+  o.cost = read_cost_options(a);
+  o.optimizer.method = a.text_or("optimizer", fit::default_optimizer(o.cost.name));
+  o.optimizer.max_evaluations = a.optional_integer("max-evaluations").value_or(o.optimizer.max_evaluations);
+  o.strategy = a.text_or("strategy", o.strategy);
+  o.scaling = a.text_or("scaling", o.scaling);
+  o.starts = a.optional_integer("starts").value_or(o.starts);
+  const std::optional<int> seed = a.optional_integer("seed");
+  a.require(!seed || *seed >= 0, "seed", "must be an integer >= 0");
+  o.seed = static_cast<std::uint64_t>(seed.value_or(1));
+  const double start_scale = a.optional_number("start-scale").value_or(1.0);
+  a.require(start_scale > 0, "start-scale", "must be > 0");
+  const double factor = a.optional_number("bound-factor").value_or(2.0);
+  a.require(factor > 1, "bound-factor", "must be > 1");
+  o.estimate = parse_estimate(a, nominal, factor);
+  o.start = nominal;
+  for (const auto& e : o.estimate) o.start.*(model::find_parameter(e.key)->member) *= start_scale;
+
+  const fit::FitResult result = fit::fit(o, data.values);
+  out << "parameter,estimate,standard_error,start,lower,upper\n";
+  for (const auto& p : result.parameters)
+    out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
+        << io::full_precision(p.start) << "," << io::full_precision(p.lower) << "," << io::full_precision(p.upper)
+        << "\n";
+  std::cerr << "beamid fit (commit " << BEAMID_GIT_COMMIT << "): " << data.path << ", beam " << beam_name << ", N = "
+            << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method << ", strategy "
+            << o.strategy << ": " << result.status << " (" << result.termination << "), cost "
+            << result.cost << ", " << result.evaluations << " evaluations, " << result.wall_time_s << " s"
+            << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
+  if (a.has("report")) {
+    FitReportInput input{o, result, data, beam_name, args};
+    write_fit_report(a.text("report"), input);
+  }
+  return result.status == "failed" ? 3 : 0;
+}
+
+}  // namespace beamid::apps

@@ -1,0 +1,151 @@
+// Ceres adapter: the only file that sees Ceres types. Levenberg-Marquardt with dense QR on the residual vector,
+// central numeric differences (relative step 1e-6 on coordinates of order one: truncation O(h^2) ~ 1e-12 and
+// round-off ~ eps/h ~ 1e-10, both far below the noise-free recovery target of 1e-6) and box bounds.
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+
+#include "fit/optimizer.h"
+
+namespace beamid::fit::detail {
+namespace {
+
+// Ceres' residual functor: evaluations go through the guard (counted, exceptions and non-finite values caught).
+struct Residuals {
+  GuardedProblem* guarded;
+  double scale = 1;  // the solver sees scale * r, so that its absolute tolerances mean the same for any units
+  bool operator()(double const* const* parameters, double* out) const {
+    const int n = guarded->problem.dimension();
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(parameters[0], n);
+    Eigen::VectorXd r;
+    if (!guarded->residuals(x, r)) return false;  // Ceres rejects the step and shrinks the trust region
+    Eigen::Map<Eigen::VectorXd>(out, guarded->problem.residual_count) = scale * r;
+    return true;
+  }
+};
+
+ceres::CostFunction* cost_function(GuardedProblem& guarded, double scale = 1) {
+  auto* f = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(new Residuals{&guarded, scale});
+  f->AddParameterBlock(guarded.problem.dimension());
+  f->SetNumResiduals(guarded.problem.residual_count);
+  return f;
+}
+
+// Stops the solver once the evaluation budget is spent.
+class Budget final : public ceres::IterationCallback {
+ public:
+  Budget(const GuardedProblem& guarded, long limit) : guarded_(guarded), limit_(limit) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    if (guarded_.evaluations < limit_) return ceres::SOLVER_CONTINUE;
+    exhausted = true;
+    return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+  }
+  bool exhausted = false;
+
+ private:
+  const GuardedProblem& guarded_;
+  long limit_;
+};
+
+}  // namespace
+
+OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options) {
+  const int n = problem.dimension();
+  GuardedProblem guarded(problem);
+  Eigen::VectorXd x = start;
+  // Residuals are divided by their norm at the start, so that the solver's absolute gradient tolerance is relative
+  // to the initial misfit whatever the signal's units (a thick beam's displacements are ~1e-7 m).
+  Eigen::VectorXd r0;
+  double scale = 1;
+  if (guarded.residuals(start, r0) && r0.norm() > 0) scale = 1 / r0.norm();
+  ceres::Problem ceres_problem;
+  ceres_problem.AddResidualBlock(cost_function(guarded, scale), nullptr, x.data());
+  for (int i = 0; i < n; ++i) {
+    ceres_problem.SetParameterLowerBound(x.data(), i, problem.lower(i));
+    ceres_problem.SetParameterUpperBound(x.data(), i, problem.upper(i));
+  }
+  Budget budget(guarded, options.max_evaluations);
+  ceres::Solver::Options solver;
+  solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options.max_evaluations;  // the budget callback stops it first
+  solver.parameter_tolerance = options.xtol_rel;
+  solver.function_tolerance = options.ftol_rel > 0 ? options.ftol_rel : 1e-15;
+  solver.gradient_tolerance = 1e-14;  // on the scaled residuals: gradient 1e-14 of the initial misfit's
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  solver.num_threads = 1;  // results must not depend on threads
+  solver.callbacks.push_back(&budget);
+
+  OptimizerResult result;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &ceres_problem, &summary);
+  result.evaluations = guarded.evaluations;
+  result.x = guarded.best_x.size() == n ? guarded.best_x : x;
+  result.cost = guarded.best_cost;
+  result.termination = summary.message;
+  if (budget.exhausted) {
+    result.status = "max-evaluations";
+    result.termination = "evaluation budget exhausted";
+  } else if (summary.termination_type == ceres::CONVERGENCE || summary.termination_type == ceres::USER_SUCCESS) {
+    result.status = "converged";
+  } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    result.status = "max-evaluations";
+  } else {
+    result.status = "failed";
+  }
+  if (!guarded.first_exception.empty()) {
+    result.status = "failed";
+    result.termination = "the objective threw: " + guarded.first_exception;
+  } else if (!std::isfinite(result.cost)) {
+    result.status = "failed";
+    result.termination = "no evaluation gave a finite residual vector (" + summary.message + ")";
+  }
+  return result;
+}
+
+}  // namespace beamid::fit::detail
+
+namespace beamid::fit {
+
+Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
+  Covariance c;
+  const int n = problem.dimension();
+  if (problem.residual_count < 1 || !problem.residuals) {
+    c.status = "the cost has no residual vector";
+    return c;
+  }
+  if (problem.residual_count <= n) {
+    c.status = "no degrees of freedom (" + std::to_string(problem.residual_count) + " residuals, " +
+               std::to_string(n) + " parameters)";
+    return c;
+  }
+  // Ceres reports a rank-deficient covariance through glog on stderr as well as through its return value; the
+  // status below says it once, in words, so glog is kept to fatal messages.
+  static const bool quiet = [] { FLAGS_minloglevel = google::GLOG_FATAL; return true; }();
+  (void)quiet;
+  detail::GuardedProblem guarded(problem);
+  Eigen::VectorXd r;
+  if (!guarded.residuals(at, r)) {
+    c.status = "the residual vector is undefined at the estimate";
+    return c;
+  }
+  Eigen::VectorXd x = at;
+  ceres::Problem ceres_problem;
+  ceres_problem.AddResidualBlock(detail::cost_function(guarded), nullptr, x.data());
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::DENSE_SVD;  // reports rank deficiency instead of guessing
+  options.num_threads = 1;
+  ceres::Covariance covariance(options);
+  const std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
+  if (!covariance.Compute(blocks, &ceres_problem)) {
+    c.status = "the information matrix J^T J is singular or too ill-conditioned (parameters not identifiable)";
+    return c;
+  }
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block(n, n);
+  covariance.GetCovarianceBlock(x.data(), x.data(), block.data());
+  // Ceres gives (J^T J)^-1; the residual variance estimate is |r|^2 / (m - n).
+  c.matrix = block * (r.squaredNorm() / (problem.residual_count - n));
+  return c;
+}
+
+}  // namespace beamid::fit

@@ -1,0 +1,232 @@
+#include "fit/identification.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "model/errors.h"
+
+namespace beamid::fit {
+
+std::string default_optimizer(const std::string& cost) { return cost == "spike" ? "nelder-mead" : "lm"; }
+
+struct Objective::Impl {
+  galerkin::SplineSpace space;
+  galerkin::BeamForms forms;
+  simulation::Experiment experiment;
+  std::unique_ptr<simulation::Simulator> simulator;
+  bool needs_poles;
+};
+
+Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
+  if (o.elements < 1 || o.elements > 1000)
+    throw InputError("elements = " + std::to_string(o.elements) + ": must be an integer in 1..1000");
+  if (auto error = model::validation_error(o.start)) throw InputError("start beam: " + *error);
+  if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError("experiment: " + *error);
+  if (static_cast<int>(data.size()) != o.experiment.samples)
+    throw InputError("experiment: samples = " + std::to_string(o.experiment.samples) + ": the data have " +
+                     std::to_string(data.size()));
+  if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
+  cost_ = costs::make_cost(o.cost, data, o.experiment.dt_s);
+  const galerkin::SplineSpace space(o.elements);
+  impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l), o.experiment,
+                                      simulation::make_simulator(o.simulator),
+                                      o.cost.name == "spike-smooth" && o.cost.model_poles == "eigenvalues"});
+}
+
+Objective::~Objective() = default;
+
+Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
+  Output out;
+  std::vector<std::complex<double>> poles;
+  if (auto error = model::validation_error(beam)) {
+    out.evaluation.status = "inadmissible parameters: " + *error;
+    return out;
+  }
+  try {
+    const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
+    const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
+    simulation::Trace trace = impl_->simulator->run(system, problem);
+    if (!trace.ok()) {
+      out.evaluation.status = trace.status;
+      return out;
+    }
+    out.y = std::move(trace.y);
+    poles = std::move(trace.poles_rad_s);
+    if (impl_->needs_poles && poles.empty())
+      for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
+  } catch (const std::exception& error) {  // NumericalError from a decomposition, or InputError from the load
+    out.evaluation.status = error.what();
+    return out;
+  }
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
+  return out;
+}
+
+namespace {
+
+// The optimizer problem over a subset `active` of the estimated coordinates, the others held at `x_fixed`.
+Problem subproblem(Objective& objective, const ParameterMap& map, const std::vector<int>& active,
+                   const Eigen::VectorXd& x_fixed) {
+  Problem p;
+  const auto n = static_cast<Eigen::Index>(active.size());
+  p.lower.resize(n);
+  p.upper.resize(n);
+  const Eigen::VectorXd lo = map.lower(), hi = map.upper();
+  for (Eigen::Index i = 0; i < n; ++i) p.lower(i) = lo(active[static_cast<std::size_t>(i)]), p.upper(i) = hi(active[static_cast<std::size_t>(i)]);
+  auto full = [&map, active, x_fixed](const Eigen::VectorXd& x) {
+    Eigen::VectorXd all = x_fixed;
+    for (std::size_t i = 0; i < active.size(); ++i) all(active[i]) = x(static_cast<Eigen::Index>(i));
+    return map.beam(all);
+  };
+  p.cost = [&objective, full](const Eigen::VectorXd& x) { return objective.evaluate(full(x)).evaluation.value; };
+  p.residual_count = objective.cost().residual_count();
+  p.residuals = [&objective, full](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    auto out = objective.evaluate(full(x));
+    if (!out.evaluation.ok()) return false;
+    r = std::move(out.evaluation.residuals);
+    return true;
+  };
+  return p;
+}
+
+struct StrategyRun {
+  Eigen::VectorXd x;
+  double cost = std::numeric_limits<double>::infinity();
+  long evaluations = 0;
+  std::vector<StageResult> stages;
+};
+
+StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const FitOptions& o, Eigen::VectorXd x,
+                         const std::vector<double>& data) {
+  std::vector<std::pair<std::string, std::vector<int>>> plan;
+  std::vector<int> all(static_cast<std::size_t>(map.size()));
+  for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
+  StrategyRun run;
+  run.x = x;
+  if (o.strategy == "continuation") {
+    // Record-length continuation: all parameters on the first Nbar/16, Nbar/8, Nbar/4, Nbar/2 samples (at least
+    // 64), each from the previous estimate; the full record follows as the final stage below. A record of length T
+    // has a basin about 1/(2 f T) wide in relative frequency for a lightly damped mode at f (model.md section 4),
+    // so short records make the start good enough for the next.
+    for (int divisor = 16; divisor >= 2; divisor /= 2) {
+      FitOptions prefix = o;
+      prefix.experiment.samples = o.experiment.samples / divisor;
+      if (prefix.experiment.samples < 64) continue;
+      const std::vector<double> head(data.begin(), data.begin() + prefix.experiment.samples);
+      Objective part(prefix, head);
+      StageResult stage;
+      stage.name = "first " + std::to_string(prefix.experiment.samples) + " samples";
+      for (const auto& e : map.estimated()) stage.keys.push_back(e.key);
+      stage.result = minimize(subproblem(part, map, all, run.x), run.x, o.optimizer);
+      run.evaluations += stage.result.evaluations;
+      if (stage.result.usable()) run.x = stage.result.x;
+      run.stages.push_back(std::move(stage));
+    }
+  }
+  if (o.strategy == "staged") {
+    const auto structural = map.with_roles({"stiffness", "inertia", "geometry"});
+    const auto damping = map.with_roles({"damping"});
+    if (!structural.empty() && !damping.empty()) {
+      plan.emplace_back("stiffness and inertia", structural);
+      plan.emplace_back("damping", damping);
+    }
+    plan.emplace_back("all", all);
+  } else {
+    plan.emplace_back(o.strategy == "continuation" ? "full record" : "direct", all);
+  }
+  for (const auto& [name, active] : plan) {
+    const Problem p = subproblem(objective, map, active, run.x);
+    Eigen::VectorXd start(static_cast<Eigen::Index>(active.size()));
+    for (std::size_t i = 0; i < active.size(); ++i) start(static_cast<Eigen::Index>(i)) = run.x(active[i]);
+    StageResult stage;
+    stage.name = name;
+    for (int i : active) stage.keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
+    stage.result = minimize(p, start, o.optimizer);
+    run.evaluations += stage.result.evaluations;
+    if (stage.result.usable() && stage.result.cost <= run.cost) {
+      for (std::size_t i = 0; i < active.size(); ++i) run.x(active[i]) = stage.result.x(static_cast<Eigen::Index>(i));
+      run.cost = stage.result.cost;
+    }
+    const bool failed = !stage.result.usable();
+    run.stages.push_back(std::move(stage));
+    if (failed) break;
+  }
+  return run;
+}
+
+}  // namespace
+
+FitResult fit(const FitOptions& o, const std::vector<double>& data) {
+  if (o.strategy != "direct" && o.strategy != "staged" && o.strategy != "continuation")
+    throw InputError("strategy = '" + o.strategy + "': must be one of direct, staged, continuation");
+  if (auto error = validation_error(o.optimizer)) throw InputError(*error);
+  if (o.starts < 1) throw InputError("starts = " + std::to_string(o.starts) + ": must be >= 1");
+  if (o.start_design != "lhs" && o.start_design != "random")
+    throw InputError("start_design = '" + o.start_design + "': must be one of lhs, random");
+  const ParameterMap map(o.start, o.estimate, o.scaling);
+  for (int i = 0; i < map.size(); ++i) {
+    const auto& e = map.estimated()[static_cast<std::size_t>(i)];
+    const double s = o.start.*(model::find_parameter(e.key)->member);
+    if (!(s >= e.lower && s <= e.upper))
+      throw InputError("start " + e.key + " = " + format_value(s) + ": outside its bounds [" + format_value(e.lower) +
+                       ", " + format_value(e.upper) + "]");
+  }
+  Objective objective(o, data);
+
+  const auto begin = std::chrono::steady_clock::now();
+  std::vector<Eigen::VectorXd> starts{map.coordinates(o.start)};
+  if (o.starts > 1)
+    for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed)) starts.push_back(x);
+  FitResult result;
+  StrategyRun best;
+  for (std::size_t s = 0; s < starts.size(); ++s) {
+    FitOptions seeded = o;
+    seeded.optimizer.seed = o.seed + s;  // a distinct, reproducible stream per start
+    StrategyRun run = run_strategy(objective, map, seeded, starts[s], data);
+    result.evaluations += run.evaluations;
+    if (s == 0 || run.cost < best.cost) {
+      best = std::move(run);
+      result.best_start = static_cast<int>(s);
+    }
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  result.stages = best.stages;
+  result.status = best.stages.empty() ? "failed" : best.stages.back().result.status;
+  result.termination = best.stages.empty() ? "no stage ran" : best.stages.back().result.termination;
+  result.beam = map.beam(best.x);
+  result.cost = best.cost;
+
+  const Objective::Output final_output = objective.evaluate(result.beam);
+  result.final_evaluation = final_output.evaluation;
+  result.model_output = final_output.y;
+  if (result.final_evaluation.ok()) result.cost = result.final_evaluation.value;
+
+  // Standard errors from the formal covariance on all estimated coordinates, mapped to physical units.
+  std::vector<int> all(static_cast<std::size_t>(map.size()));
+  for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
+  const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x);
+  result.covariance_status = covariance.status;
+  Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
+  if (covariance.ok()) {
+    Eigen::VectorXd d(map.size());
+    for (int i = 0; i < map.size(); ++i) d(i) = map.derivative(i, best.x(i));
+    const Eigen::MatrixXd physical = d.asDiagonal() * covariance.matrix * d.asDiagonal();
+    standard_error = physical.diagonal().cwiseMax(0.0).cwiseSqrt();
+    result.correlation = physical;
+    for (int i = 0; i < map.size(); ++i)
+      for (int j = 0; j < map.size(); ++j) {
+        const double s = standard_error(i) * standard_error(j);
+        result.correlation(i, j) = s > 0 ? physical(i, j) / s : std::numeric_limits<double>::quiet_NaN();
+      }
+  }
+  for (int i = 0; i < map.size(); ++i) {
+    const auto& e = map.estimated()[static_cast<std::size_t>(i)];
+    result.parameters.push_back({e.key, map.value(i, best.x(i)), standard_error(i),
+                                 o.start.*(model::find_parameter(e.key)->member), e.lower, e.upper});
+  }
+  return result;
+}
+
+}  // namespace beamid::fit

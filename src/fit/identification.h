@@ -1,0 +1,99 @@
+// Identification of beam parameters from one sampled record: the forward model (Galerkin order N, an integrator)
+// and a cost (costs/cost.h) minimised over chosen parameters (fit/parameter_map.h) by an optimizer
+// (fit/optimizer.h), with one of two strategies:
+//   "direct": all estimated parameters at once;
+//   "staged": the paper's procedure, (1) damping fixed at its start, fit stiffness and inertia; (2) those fixed,
+//             fit damping; (3) fit all from there (a stage with no parameter is skipped);
+//   "continuation": record-length continuation, all parameters on the first Nbar/16, /8, /4, /2 samples and then
+//             the whole record, each from the previous estimate (not in the paper; a known remedy for the narrow
+//             basins of the time-domain cost);
+// each run from the given start and, with starts > 1, from further space-filling starts in the bounds (the lowest
+// final cost wins; ties go to the earlier start, so the outcome does not depend on timing).
+// A failed model evaluation (integration, eigen-decomposition, (A4)) is an infinite cost; a failed fit is a status.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "costs/cost.h"
+#include "fit/optimizer.h"
+#include "fit/parameter_map.h"
+#include "model/beam_parameters.h"
+#include "simulation/experiment.h"
+#include "simulation/simulator.h"
+
+namespace beamid::fit {
+
+struct FitOptions {
+  model::BeamParameters start;            // the fixed parameters, and the start of the estimated ones
+  int elements = 16;                      // Galerkin order N
+  simulation::Experiment experiment;      // dt_s and samples must match the data
+  simulation::SimulatorOptions simulator; // "fast" by default
+  costs::CostOptions cost;
+  std::vector<EstimatedParameter> estimate;
+  std::string scaling = "linear";         // "linear" | "log"
+  std::string strategy = "direct";        // "direct" | "staged" | "continuation"
+  OptimizerOptions optimizer;
+  int starts = 1;                         // 1: the given start only; more: plus space-filling starts
+  std::string start_design = "lhs";       // "lhs" | "random"
+  std::uint64_t seed = 1;                 // for the extra starts and stochastic optimizers
+};
+
+// The default optimizer for a cost: "lm" for the sums of squares with a usable Jacobian (time, spike-smooth),
+// "nelder-mead" for the paper's spike cost, whose frequency term has zero gradient almost everywhere.
+std::string default_optimizer(const std::string& cost);
+
+struct ParameterEstimate {
+  std::string key;
+  double estimate = 0, standard_error = 0, start = 0, lower = 0, upper = 0;  // standard_error NaN when unknown
+};
+
+struct StageResult {
+  std::string name;                 // "direct", "stiffness and inertia", "damping", "all"
+  std::vector<std::string> keys;
+  OptimizerResult result;
+};
+
+struct FitResult {
+  std::vector<ParameterEstimate> parameters;
+  model::BeamParameters beam;           // the estimate with the fixed parameters
+  Eigen::MatrixXd correlation;          // of the estimates (empty when the covariance is unavailable)
+  std::string covariance_status = "not computed";
+  double cost = 0;
+  long evaluations = 0;                 // over all starts and stages
+  double wall_time_s = 0;
+  std::string status = "failed";        // of the final stage of the best start: converged | max-evaluations | failed
+  std::string termination;
+  int best_start = 0;                   // 0: the given start
+  std::vector<StageResult> stages;      // of the best start
+  costs::Evaluation final_evaluation;   // at the estimate (spike table, (A4), amplitude scale)
+  std::vector<double> model_output;     // y at the estimate
+};
+
+// Model output and cost of one parameter set against fixed data, with the forms, simulator and DFT plans built once.
+class Objective {
+ public:
+  // InputError when the options or data are inadmissible (checked before anything runs).
+  Objective(const FitOptions& options, const std::vector<double>& data);
+  ~Objective();
+  struct Output {
+    std::vector<double> y;
+    costs::Evaluation evaluation;
+  };
+  // Never throws for admissible options: a failed simulation is an evaluation with that status.
+  Output evaluate(const model::BeamParameters& beam);
+  const costs::Cost& cost() const { return *cost_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<costs::Cost> cost_;
+};
+
+// Validates everything first (InputError naming the option, value and constraint), then fits.
+FitResult fit(const FitOptions& options, const std::vector<double>& data);
+
+}  // namespace beamid::fit

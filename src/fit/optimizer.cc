@@ -1,0 +1,119 @@
+#include "fit/optimizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "model/errors.h"
+
+namespace beamid::fit {
+
+std::vector<std::string> optimizer_names() { return {"lm", "bobyqa", "nelder-mead", "sbplx", "direct-l", "crs2-lm"}; }
+
+bool needs_residuals(const std::string& method) { return method == "lm"; }
+
+std::optional<std::string> validation_error(const OptimizerOptions& o) {
+  const auto names = optimizer_names();
+  if (std::find(names.begin(), names.end(), o.method) == names.end())
+    return "optimizer = '" + o.method + "': must be one of lm, bobyqa, nelder-mead, sbplx, direct-l, crs2-lm";
+  if (o.max_evaluations < 1) return "max_evaluations = " + std::to_string(o.max_evaluations) + ": must be >= 1";
+  if (!(std::isfinite(o.xtol_rel) && o.xtol_rel >= 0)) return "xtol_rel = " + format_value(o.xtol_rel) + ": must be >= 0";
+  if (!(std::isfinite(o.ftol_rel) && o.ftol_rel >= 0)) return "ftol_rel = " + format_value(o.ftol_rel) + ": must be >= 0";
+  if (!(o.initial_step > 0 && o.initial_step <= 1))
+    return "initial_step = " + format_value(o.initial_step) + ": must be in (0, 1]";
+  return std::nullopt;
+}
+
+namespace detail {
+
+GuardedProblem::GuardedProblem(const Problem& p) : problem(p) {}
+
+double GuardedProblem::cost(const Eigen::VectorXd& x) {
+  ++evaluations;
+  double value = std::numeric_limits<double>::infinity();
+  try {
+    value = problem.cost(x);
+  } catch (const std::exception& error) {
+    if (first_exception.empty()) first_exception = error.what();
+  } catch (...) {
+    if (first_exception.empty()) first_exception = "unknown exception";
+  }
+  if (!std::isfinite(value)) value = std::numeric_limits<double>::infinity();
+  if (value < best_cost) best_cost = value, best_x = x;
+  return value;
+}
+
+bool GuardedProblem::residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  ++evaluations;
+  bool ok = false;
+  try {
+    ok = problem.residuals(x, r) && r.size() == problem.residual_count && r.allFinite();
+  } catch (const std::exception& error) {
+    if (first_exception.empty()) first_exception = error.what();
+  } catch (...) {
+    if (first_exception.empty()) first_exception = "unknown exception";
+  }
+  if (ok) {
+    const double value = r.squaredNorm();
+    if (value < best_cost) best_cost = value, best_x = x;
+  }
+  return ok;
+}
+
+}  // namespace detail
+
+OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options) {
+  if (auto error = validation_error(options)) throw InputError(*error);
+  OptimizerResult failed;
+  failed.x = start;
+  const int n = problem.dimension();
+  if (n < 1 || problem.upper.size() != n || start.size() != n) {
+    failed.termination = "the problem has no parameters, or bounds and start differ in size";
+    return failed;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!(std::isfinite(problem.lower(i)) && std::isfinite(problem.upper(i)) && problem.lower(i) < problem.upper(i))) {
+      failed.termination = "bounds of coordinate " + std::to_string(i) + " are not finite with lower < upper";
+      return failed;
+    }
+    if (!(start(i) >= problem.lower(i) && start(i) <= problem.upper(i))) {
+      failed.termination = "the start lies outside the bounds at coordinate " + std::to_string(i) + " (" +
+                           format_value(start(i)) + " not in [" + format_value(problem.lower(i)) + ", " +
+                           format_value(problem.upper(i)) + "])";
+      return failed;
+    }
+  }
+  if (needs_residuals(options.method) && (problem.residual_count < 1 || !problem.residuals)) {
+    failed.termination = "optimizer '" + options.method + "' needs a residual vector, which this cost does not give";
+    return failed;
+  }
+  const auto begin = std::chrono::steady_clock::now();
+  OptimizerResult result = options.method == "lm" ? detail::minimize_ceres(problem, start, options)
+                                                  : detail::minimize_nlopt(problem, start, options);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return result;
+}
+
+std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                                  int count, const std::string& design, std::uint64_t seed) {
+  if (design != "lhs" && design != "random")
+    throw InputError("start_design = '" + design + "': must be one of lhs, random");
+  std::mt19937_64 engine(seed);
+  auto uniform = [&engine] { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };  // [0, 1)
+  const auto n = lower.size();
+  std::vector<Eigen::VectorXd> points(static_cast<std::size_t>(std::max(count, 0)), Eigen::VectorXd(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::vector<int> strata(points.size());
+    for (std::size_t s = 0; s < strata.size(); ++s) strata[s] = static_cast<int>(s);
+    for (std::size_t s = strata.size(); s > 1; --s)  // Fisher-Yates
+      std::swap(strata[s - 1], strata[static_cast<std::size_t>(uniform() * static_cast<double>(s))]);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const double u = design == "lhs" ? (strata[p] + uniform()) / static_cast<double>(points.size()) : uniform();
+      points[p](i) = lower(i) + u * (upper(i) - lower(i));
+    }
+  }
+  return points;
+}
+
+}  // namespace beamid::fit

@@ -1,0 +1,94 @@
+// Bound-constrained minimisation behind one small interface, with two adapters:
+//   NLopt (fit/nlopt_optimizer.cc):  "nelder-mead" (LN_NELDERMEAD), "bobyqa" (LN_BOBYQA), "sbplx" (LN_SBPLX),
+//                                    "direct-l" (GN_DIRECT_L), "crs2-lm" (GN_CRS2_LM, stochastic: seeded by
+//                                    nlopt_srand(seed) before every run);
+//   Ceres (fit/ceres_optimizer.cc):  "lm", Levenberg-Marquardt on the residual vector with central numeric
+//                                    differences and the bounds; also the formal covariance of an estimate.
+// Optimizers see dimensionless coordinates of order one (fit/parameter_map.h maps them to physical values).
+// Nothing here throws for what happens during a run: an exception inside the objective, a non-finite cost or an
+// undefined residual vector becomes an infinite cost (or a rejected step), and a run that cannot go on becomes a
+// result with status "failed" and the reason in words.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace beamid::fit {
+
+struct Problem {
+  Eigen::VectorXd lower, upper;  // finite, lower < upper
+  // The scalar cost; may throw (caught) and may return a non-finite value (treated as +infinity).
+  std::function<double(const Eigen::VectorXd&)> cost;
+  // Optional residual vector with cost = |r|^2; returns false where it is undefined. Needed by "lm".
+  int residual_count = 0;
+  std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)> residuals;
+  int dimension() const { return static_cast<int>(lower.size()); }
+};
+
+struct OptimizerOptions {
+  std::string method = "bobyqa";
+  int max_evaluations = 3000;   // cost or residual evaluations (a central-difference Jacobian costs 2n)
+  double xtol_rel = 1e-10;      // stop when a step changes every coordinate by less than this, relatively
+  double ftol_rel = 0;          // stop when the cost changes by less than this, relatively (0: off)
+  double initial_step = 0.02;   // NLopt local methods: first step, as a fraction of each bound range
+  std::uint64_t seed = 1;       // stochastic methods
+};
+std::vector<std::string> optimizer_names();
+// First violated constraint ("optimizer = 'x': must be one of ..."), or nothing.
+std::optional<std::string> validation_error(const OptimizerOptions& options);
+// Whether the method needs Problem::residuals.
+bool needs_residuals(const std::string& method);
+
+struct OptimizerResult {
+  Eigen::VectorXd x;            // the best point seen
+  double cost = std::numeric_limits<double>::infinity();
+  long evaluations = 0;         // calls of cost or residuals
+  double wall_time_s = 0;
+  std::string status = "failed";  // "converged" | "max-evaluations" | "failed"
+  std::string termination;        // the reason in words
+  bool usable() const { return status != "failed"; }
+};
+
+// Runs `options.method` from `start` (which must lie within the bounds, else status "failed").
+OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options);
+
+// Formal covariance of the least-squares estimate x: (J^T J)^-1 |r|^2 / (m - n), J by central differences
+// (through Ceres). Valid for independent Gaussian residuals of equal variance; status says why when unavailable.
+struct Covariance {
+  Eigen::MatrixXd matrix;       // in the optimizer's coordinates
+  std::string status = "ok";    // "ok" or why not (no residuals, m <= n, singular information matrix)
+  bool ok() const { return status == "ok"; }
+};
+Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x);
+
+// Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
+// independent uniform points ("random"). Uniforms are drawn as (engine() >> 11) 2^-53 over std::mt19937_64 and the
+// shuffle is a Fisher-Yates on the same draws, so a seed gives the same points with any standard library.
+std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                                  int count, const std::string& design, std::uint64_t seed);
+
+namespace detail {
+// Adapter entry points (one per library), called by minimize() after the common checks.
+OptimizerResult minimize_nlopt(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options);
+OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options);
+// Wraps the problem so that every call is counted and guarded: exceptions and non-finite values become +inf
+// (cost) or false (residuals), and the first exception's message is kept for the status.
+struct GuardedProblem {
+  explicit GuardedProblem(const Problem& problem);
+  double cost(const Eigen::VectorXd& x);
+  bool residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  const Problem& problem;
+  long evaluations = 0;
+  std::string first_exception;
+  Eigen::VectorXd best_x;
+  double best_cost = std::numeric_limits<double>::infinity();
+};
+}  // namespace detail
+
+}  // namespace beamid::fit

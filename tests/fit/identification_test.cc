@@ -1,0 +1,180 @@
+// Noise-free recovery of beam parameters from CVODE data (no inverse crime in the integrator: the data come from
+// BDF at rtol 1e-12, the model from the exact modal propagator, at the same N = 8). The data then agree with the
+// model at the truth to ~1e-10 of their size, which bounds the recovery error well below the 1e-6 asked for
+// (measured: 1e-7 or better for every parameter). Starts are 5 % off the truth.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "fit/identification.h"
+#include "galerkin/modes.h"
+#include "model/errors.h"
+
+namespace beamid::fit {
+namespace {
+
+constexpr int kElements = 8;
+
+simulation::Experiment experiment_for(const std::string& preset, double length_m) {
+  simulation::Experiment e;  // model.md section 5's sampling; a sin^2 pulse at 0.7 l, tip displacement
+  e.dt_s = preset == "banks-aluminium" ? 1e-3 : 1e-4;
+  e.samples = preset == "banks-aluminium" ? 4096 : 8192;
+  e.pulse_width_s = 4 * e.dt_s;
+  e.force_x_m = 0.7 * length_m;
+  return e;
+}
+
+// CVODE at rtol 1e-12 takes ~40 s for banks-aluminium (4.5 M steps: its kHz modes at N = 8 are barely damped),
+// so the record is made once per build tree and kept in a file that the test processes share (written to a
+// temporary name and renamed, so a concurrent reader never sees half a file). At rtol 1e-11 the data are only
+// good enough for 1.2e-6 in gamma with spike-smooth.
+const std::vector<double>& cvode_data(const std::string& preset) {
+  static std::map<std::string, std::vector<double>> cache;
+  auto& y = cache[preset];
+  if (!y.empty()) return y;
+  const auto truth = model::preset(preset);
+  const auto e = experiment_for(preset, truth.l);
+  const std::string path = std::string(BEAMID_BINARY_DIR) + "/test-data-" + preset + "-N8-cvode-1e-12.bin";
+  std::ifstream in(path, std::ios::binary);
+  y.resize(static_cast<std::size_t>(e.samples));
+  if (in.read(reinterpret_cast<char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)))) return y;
+  simulation::SimulatorOptions s;
+  s.integrator = "cvode";
+  s.cvode.rtol = 1e-12;
+  const galerkin::SplineSpace space(kElements);
+  const auto trace = simulation::simulate(galerkin::BeamForms(space, truth.l), truth, e, s);
+  EXPECT_TRUE(trace.ok()) << trace.status;
+  y = trace.y;
+  const std::string temporary = path + "." + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)));
+  }
+  std::filesystem::rename(temporary, path);
+  return y;
+}
+
+// EI, rho, cDI, gamma in [truth/2, 2 truth]; start "up" (all +5 %) or "mixed" (EI, cDI +5 %, rho, gamma -5 %).
+FitOptions options_for(const std::string& preset, const std::string& cost, const std::string& start, int spikes) {
+  const auto truth = model::preset(preset);
+  FitOptions o;
+  o.start = truth;
+  o.elements = kElements;
+  o.experiment = experiment_for(preset, truth.l);
+  o.cost.name = cost;
+  o.cost.spikes.count = spikes;
+  o.optimizer.method = default_optimizer(cost);
+  const std::map<std::string, double> scale = start == "up"
+      ? std::map<std::string, double>{{"EI", 1.05}, {"rho", 1.05}, {"cDI", 1.05}, {"gamma", 1.05}}
+      : std::map<std::string, double>{{"EI", 1.05}, {"rho", 0.95}, {"cDI", 1.05}, {"gamma", 0.95}};
+  for (const auto& [key, factor] : scale) {
+    double& v = o.start.*(model::find_parameter(key)->member);
+    o.estimate.push_back({key, v / 2, v * 2});
+    v *= factor;
+  }
+  return o;
+}
+
+double worst_relative_error(const FitResult& r, const std::string& preset) {
+  const auto truth = model::preset(preset);
+  double worst = 0;
+  for (const auto& p : r.parameters)
+    worst = std::max(worst, std::abs(p.estimate / (truth.*(model::find_parameter(p.key)->member)) - 1));
+  std::printf("[ worst relative error %.2e ]\n", worst);
+  return worst;
+}
+
+TEST(Identification, TimeCostRecoversBanksFromAUniformFivePercentStart) {
+  const auto r = fit(options_for("banks-aluminium", "time", "up", 4), cvode_data("banks-aluminium"));
+  EXPECT_EQ(r.status, "converged") << r.termination;
+  EXPECT_LT(worst_relative_error(r, "banks-aluminium"), 1e-6);
+  EXPECT_EQ(r.covariance_status, "ok");
+  for (const auto& p : r.parameters) EXPECT_GT(p.standard_error, 0) << p.key;
+}
+
+TEST(Identification, TimeCostNeedsRecordLengthContinuationFromAMixedStart) {
+  // The paper's point, measured: from EI +5 %, rho -5 % the lowest mode is ~5 % off, at the edge of its basin
+  // (1/(2 f T) = 5 % for 2.46 Hz over 4 s) and the others far outside theirs, so LM on the whole record stops in a
+  // local minimum (cost ~1e-6 against ~1e-21 at the truth). Continuation over growing records reaches the truth.
+  auto o = options_for("banks-aluminium", "time", "mixed", 4);
+  const auto direct = fit(o, cvode_data("banks-aluminium"));
+  EXPECT_GT(worst_relative_error(direct, "banks-aluminium"), 1e-2);
+  EXPECT_GT(direct.cost, 1e-12);
+  o.strategy = "continuation";
+  const auto continued = fit(o, cvode_data("banks-aluminium"));
+  EXPECT_LT(worst_relative_error(continued, "banks-aluminium"), 1e-6);
+  ASSERT_EQ(continued.stages.size(), 5u);  // 256, 512, 1024, 2048 samples, then the whole record
+  EXPECT_EQ(continued.stages.front().name, "first 256 samples");
+  EXPECT_EQ(continued.stages.back().name, "full record");
+}
+
+TEST(Identification, SmoothSpikeCostRecoversBanksFromTheMixedStart) {
+  // Three spikes: the fourth largest local maximum at N = 8 is a broad shoulder, not a resolved mode.
+  const auto r = fit(options_for("banks-aluminium", "spike-smooth", "mixed", 3), cvode_data("banks-aluminium"));
+  EXPECT_EQ(r.status, "converged") << r.termination;
+  EXPECT_LT(worst_relative_error(r, "banks-aluminium"), 1e-6);
+  EXPECT_EQ(r.final_evaluation.a4, "ok");
+}
+
+TEST(Identification, PapersSpikeCostRecoversFrequenciesToWithinABin) {
+  // (3.5) is a staircase in q: its minimisers are determined up to a cell. The criterion is therefore physical:
+  // the fitted model's first three natural frequencies lie within one bin (df = 0.244 Hz) of the truth's.
+  const auto o = options_for("banks-aluminium", "spike", "up", 3);
+  const auto r = fit(o, cvode_data("banks-aluminium"));
+  ASSERT_NE(r.status, "failed") << r.termination;
+  const galerkin::SplineSpace space(kElements);
+  const auto fitted = galerkin::StateSpaceModes(galerkin::assemble(space, r.beam)).underdamped_modes();
+  const auto truth = galerkin::StateSpaceModes(galerkin::assemble(space, model::preset("banks-aluminium"))).underdamped_modes();
+  const double df = 1 / (o.experiment.samples * o.experiment.dt_s);
+  for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(fitted[k].frequency_hz - truth[k].frequency_hz), df) << "mode " << k + 1;
+}
+
+TEST(Identification, ThickSteelWithTheSmoothSpikeCostAndWithContinuedTimeFits) {
+  // thick-steel's lowest mode makes 67 cycles in the 0.82 s record (basin 0.75 %), so the time cost needs the
+  // continuation; two spikes (modes at 82 and 580 Hz; the third is a 3 %-damped hump 2700 bins wide at N = 8).
+  auto smooth = options_for("thick-steel", "spike-smooth", "mixed", 2);
+  EXPECT_LT(worst_relative_error(fit(smooth, cvode_data("thick-steel")), "thick-steel"), 1e-6);
+  auto time = options_for("thick-steel", "time", "mixed", 2);
+  time.strategy = "continuation";
+  EXPECT_LT(worst_relative_error(fit(time, cvode_data("thick-steel")), "thick-steel"), 1e-6);
+}
+
+TEST(Identification, StagedStrategyRunsThePapersThreeSteps) {
+  auto o = options_for("banks-aluminium", "spike-smooth", "up", 3);
+  o.strategy = "staged";
+  const auto r = fit(o, cvode_data("banks-aluminium"));
+  ASSERT_EQ(r.stages.size(), 3u);
+  EXPECT_EQ(r.stages[0].keys, (std::vector<std::string>{"EI", "rho"}));  // the order of --estimate
+  EXPECT_EQ(r.stages[1].keys, (std::vector<std::string>{"cDI", "gamma"}));
+  EXPECT_EQ(r.stages[2].keys.size(), 4u);
+  EXPECT_LT(worst_relative_error(r, "banks-aluminium"), 1e-6);
+}
+
+TEST(Identification, BadSetupsAreInputErrorsBeforeAnyWork) {
+  const auto& data = cvode_data("banks-aluminium");
+  auto o = options_for("banks-aluminium", "time", "up", 3);
+  o.start.EI = 5.0;  // outside [0.2455, 0.982]
+  try {
+    fit(o, data);
+    FAIL() << "no error for a start outside the bounds";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("start EI = 5: outside its bounds"), std::string::npos) << e.what();
+  }
+  o = options_for("banks-aluminium", "time", "up", 3);
+  o.estimate.push_back({"l", 0.1, 1});
+  EXPECT_THROW(fit(o, data), InputError);
+  o = options_for("banks-aluminium", "time", "up", 3);
+  o.strategy = "greedy";
+  EXPECT_THROW(fit(o, data), InputError);
+  o = options_for("banks-aluminium", "time", "up", 3);
+  EXPECT_THROW(fit(o, std::vector<double>(data.begin(), data.begin() + 100)), InputError);  // samples mismatch
+}
+
+}  // namespace
+}  // namespace beamid::fit

@@ -1,0 +1,126 @@
+// The optimizer adapters on Rosenbrock's function, and the failure paths: a throwing callback, a NaN cost, a start
+// outside the bounds, a method that needs residuals; reproducible space-filling starts.
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "fit/optimizer.h"
+#include "model/errors.h"
+
+namespace beamid::fit {
+namespace {
+
+// f = (1 - x)^2 + 100 (y - x^2)^2 = |r|^2 with r = (1 - x, 10 (y - x^2)); minimum 0 at (1, 1).
+Problem rosenbrock() {
+  Problem p;
+  p.lower = Eigen::Vector2d(-2, -1);
+  p.upper = Eigen::Vector2d(2, 3);
+  p.residual_count = 2;
+  p.residuals = [](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    r = Eigen::Vector2d(1 - x(0), 10 * (x(1) - x(0) * x(0)));
+    return true;
+  };
+  p.cost = [](const Eigen::VectorXd& x) { return std::pow(1 - x(0), 2) + 100 * std::pow(x(1) - x(0) * x(0), 2); };
+  return p;
+}
+
+TEST(Optimizers, EveryAdapterFindsTheRosenbrockMinimum) {
+  // Local methods from (-1.2, 1) to xtol 1e-10: the minimiser to 1e-6 (the valley is flat along its floor, so the
+  // cost is ~1e-12 where x is 1e-6 off). Global methods within their budget: to 1e-2 (DIRECT-L and CRS2 locate
+  // the basin; they are not meant to polish).
+  for (const std::string method : {"lm", "bobyqa", "nelder-mead", "sbplx", "direct-l", "crs2-lm"}) {
+    OptimizerOptions o;
+    o.method = method;
+    o.max_evaluations = method == "direct-l" || method == "crs2-lm" ? 20000 : 5000;
+    o.xtol_rel = 1e-10;
+    o.ftol_rel = method == "direct-l" || method == "crs2-lm" ? 1e-14 : 0;
+    const OptimizerResult r = minimize(rosenbrock(), Eigen::Vector2d(-1.2, 1), o);
+    ASSERT_TRUE(r.usable()) << method << ": " << r.termination;
+    const double tolerance = method == "direct-l" || method == "crs2-lm" ? 1e-2 : 1e-6;
+    EXPECT_NEAR(r.x(0), 1, tolerance) << method;
+    EXPECT_NEAR(r.x(1), 1, 2 * tolerance) << method;
+    EXPECT_GT(r.evaluations, 0) << method;
+    EXPECT_FALSE(r.termination.empty()) << method;
+  }
+}
+
+TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
+  // y = a + b t at t = 0..9 with residual pattern e: cov = s^2 (X^T X)^-1, s^2 = |e|^2/(10 - 2).
+  const Eigen::VectorXd e = (Eigen::VectorXd(10) << 0.1, -0.2, 0.05, 0.3, -0.1, 0.0, 0.2, -0.3, 0.1, -0.15).finished();
+  Problem p;
+  p.lower = Eigen::Vector2d(-10, -10);
+  p.upper = Eigen::Vector2d(10, 10);
+  p.residual_count = 10;
+  p.residuals = [e](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    r.resize(10);
+    for (int t = 0; t < 10; ++t) r(t) = x(0) + x(1) * t - (1 + 2 * t + e(t));
+    return true;
+  };
+  p.cost = [p](const Eigen::VectorXd& x) { Eigen::VectorXd r; p.residuals(x, r); return r.squaredNorm(); };
+  OptimizerOptions o;
+  o.method = "lm";
+  const auto fit = minimize(p, Eigen::Vector2d(0, 0), o);
+  const auto c = covariance_at(p, fit.x);
+  ASSERT_TRUE(c.ok()) << c.status;
+  Eigen::MatrixXd X(10, 2);
+  for (int t = 0; t < 10; ++t) X(t, 0) = 1, X(t, 1) = t;
+  Eigen::VectorXd r;
+  p.residuals(fit.x, r);
+  const Eigen::MatrixXd expected = (X.transpose() * X).inverse() * (r.squaredNorm() / 8);
+  // Central differences of a linear function are exact up to round-off: 1e-8 relative is ample.
+  EXPECT_LT((c.matrix - expected).norm(), 1e-8 * expected.norm());
+}
+
+TEST(Optimizers, FailuresBecomeStatusesNotCrashes) {
+  OptimizerOptions o;
+  Problem throwing = rosenbrock();
+  throwing.cost = [](const Eigen::VectorXd&) -> double { throw std::runtime_error("model exploded"); };
+  throwing.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd&) -> bool { throw std::runtime_error("model exploded"); };
+  for (const std::string method : {"bobyqa", "lm"}) {
+    o.method = method;
+    const auto r = minimize(throwing, Eigen::Vector2d(0, 0), o);
+    EXPECT_EQ(r.status, "failed") << method;
+    EXPECT_NE(r.termination.find("model exploded"), std::string::npos) << method << ": " << r.termination;
+  }
+  Problem nan = rosenbrock();
+  nan.cost = [](const Eigen::VectorXd&) { return std::nan(""); };
+  nan.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd& r) { r = Eigen::Vector2d(std::nan(""), 0); return true; };
+  for (const std::string method : {"nelder-mead", "lm"}) {
+    o.method = method;
+    o.max_evaluations = 200;
+    const auto r = minimize(nan, Eigen::Vector2d(0, 0), o);
+    EXPECT_EQ(r.status, "failed") << method;
+    EXPECT_TRUE(std::isinf(r.cost)) << method;
+  }
+  o.method = "bobyqa";
+  const auto outside = minimize(rosenbrock(), Eigen::Vector2d(5, 0), o);
+  EXPECT_EQ(outside.status, "failed");
+  EXPECT_NE(outside.termination.find("outside the bounds at coordinate 0"), std::string::npos);
+  Problem scalar_only = rosenbrock();
+  scalar_only.residual_count = 0;
+  o.method = "lm";
+  EXPECT_NE(minimize(scalar_only, Eigen::Vector2d(0, 0), o).termination.find("needs a residual vector"), std::string::npos);
+  o.method = "newton";
+  EXPECT_THROW(minimize(rosenbrock(), Eigen::Vector2d(0, 0), o), InputError);
+}
+
+TEST(Optimizers, SpaceFillingStartsAreReproducibleAndStratified) {
+  const Eigen::Vector2d lo(0, 10), hi(1, 20);
+  const auto a = space_filling_starts(lo, hi, 8, "lhs", 42);
+  const auto b = space_filling_starts(lo, hi, 8, "lhs", 42);
+  ASSERT_EQ(a.size(), 8u);
+  std::vector<int> strata(8, 0);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]);
+    ++strata[static_cast<std::size_t>(a[i](0) * 8)];  // one point per eighth of each axis
+    EXPECT_GE(a[i](1), 10);
+    EXPECT_LT(a[i](1), 20);
+  }
+  for (int count : strata) EXPECT_EQ(count, 1);
+  EXPECT_NE(space_filling_starts(lo, hi, 8, "lhs", 43)[0], a[0]);
+  EXPECT_THROW(space_filling_starts(lo, hi, 8, "sobol", 1), InputError);
+}
+
+}  // namespace
+}  // namespace beamid::fit
