@@ -32,6 +32,8 @@ bench: build
 	@mkdir -p results/benchmarks
 	$(BUILD)/beamid_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
 	    --benchmark_out=results/benchmarks/forward_model.json --benchmark_out_format=json
+	$(BUILD)/beamid_identification_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+	    --benchmark_out=results/benchmarks/identification.json --benchmark_out_format=json
 
 # Forward-model verification tables (results/verification/) and the REPORT.md blocks made from them.
 verify: build

@@ -1,0 +1,60 @@
+// Identification benchmarks (make bench): one evaluation of each cost at N = 16, Nbar = 4096 (model by `fast`, plus
+// DFT and cost), and one full spike-smooth fit of EI, rho, cDI, gamma from a 5 % start (banks-aluminium, pulse of
+// 4 ms at 0.7 l, tip displacement; data from `fast` at N = 16 so that the benchmark needs no CVODE run).
+#include <benchmark/benchmark.h>
+
+#include "fit/identification.h"
+
+namespace {
+
+using namespace beamid;
+
+fit::FitOptions options(const std::string& cost) {
+  fit::FitOptions o;
+  o.start = model::preset("banks-aluminium");
+  o.elements = 16;
+  o.experiment.dt_s = 1e-3;
+  o.experiment.samples = 4096;
+  o.experiment.pulse_width_s = 4e-3;
+  o.experiment.force_x_m = 0.7 * o.start.l;
+  o.cost.name = cost;
+  o.cost.spikes.count = 3;
+  o.optimizer.method = fit::default_optimizer(cost);
+  for (const char* key : {"EI", "rho", "cDI", "gamma"}) {
+    const double v = o.start.*(model::find_parameter(key)->member);
+    o.estimate.push_back({key, v / 2, v * 2});
+  }
+  return o;
+}
+
+const std::vector<double>& data() {
+  static const std::vector<double> y = [] {
+    const auto o = options("time");
+    const galerkin::SplineSpace space(16);
+    return simulation::simulate(galerkin::BeamForms(space, o.start.l), o.start, o.experiment, {}).y;
+  }();
+  return y;
+}
+
+void BM_CostEvaluation(benchmark::State& state, const std::string& cost) {
+  fit::Objective objective(options(cost), data());
+  auto beam = model::preset("banks-aluminium");
+  beam.EI *= 1.01;
+  for (auto _ : state) benchmark::DoNotOptimize(objective.evaluate(beam).evaluation.value);
+}
+BENCHMARK_CAPTURE(BM_CostEvaluation, time, std::string("time"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CostEvaluation, spike, std::string("spike"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CostEvaluation, spike_smooth, std::string("spike-smooth"))->Unit(benchmark::kMillisecond);
+
+void BM_FullFit(benchmark::State& state) {
+  auto o = options("spike-smooth");
+  for (const char* key : {"EI", "rho", "cDI", "gamma"}) o.start.*(model::find_parameter(key)->member) *= 1.05;
+  long evaluations = 0;
+  for (auto _ : state) evaluations = fit::fit(o, data()).evaluations;
+  state.counters["evaluations"] = static_cast<double>(evaluations);
+}
+BENCHMARK(BM_FullFit)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
