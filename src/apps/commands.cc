@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "apps/experiment_flags.h"
+#include "apps/command_flags.h"
 #include "apps/verification.h"
 #include "beamid/version.h"
 #include "galerkin/modes.h"
@@ -22,15 +22,8 @@
 namespace beamid::apps {
 namespace {
 
-const io::FlagSpec kHelp{"help", false, "print this help"};
 const io::FlagSpec kBeam{"beam", true, "preset (banks-aluminium, thick-steel) or a TOML file with a [beam] table"};
 const io::FlagSpec kElements{"elements", true, "Galerkin order N >= 1 (cubic B-spline elements)"};
-
-bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
-  if (!a.has("help")) return false;
-  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
-  return true;
-}
 
 int elements(const io::Arguments& a) {
   const int n = a.integer("elements");
@@ -56,7 +49,7 @@ std::string overview() {
 
 int run_modes(const Args& args, std::ostream& out) {
   const io::Arguments a("modes", args,
-                        {kHelp, kBeam, kElements, {"exact", false, "exact Timoshenko frequencies from the determinant"},
+                        {kHelpFlag, kBeam, kElements, {"exact", false, "exact Timoshenko frequencies from the determinant"},
                          {"undamped", false, "undamped Galerkin frequencies (damping_ratio 0)"},
                          {"count", true, "number of modes (default: all underdamped Galerkin modes, 4 exact)"}});
   if (wants_help(a, out, "--beam B (--elements N [--undamped] | --exact) [--count K]")) return 0;
@@ -98,7 +91,7 @@ int run_modes(const Args& args, std::ostream& out) {
 }
 
 int run_simulate(const Args& args, std::ostream& out) {
-  std::vector<io::FlagSpec> flags{kHelp, kBeam, kElements};
+  std::vector<io::FlagSpec> flags{kHelpFlag, kBeam, kElements};
   for (const auto& f : experiment_flag_specs()) flags.push_back(f);
   const io::Arguments a(
       "simulate", args,
@@ -143,7 +136,7 @@ int run_simulate(const Args& args, std::ostream& out) {
 }
 
 int run_verify(const Args& args, std::ostream& out) {
-  const io::Arguments a("verify", args, {kHelp, {"output", true, "folder for the CSV and Markdown tables"}});
+  const io::Arguments a("verify", args, {kHelpFlag, {"output", true, "folder for the CSV and Markdown tables"}});
   if (wants_help(a, out, "--output DIR")) return 0;
   write_verification(a.text("output"), out);
   return 0;
@@ -151,7 +144,7 @@ int run_verify(const Args& args, std::ostream& out) {
 
 int run_report(const Args& args, std::ostream& out) {
   const io::Arguments a("report", args,
-                        {kHelp, {"update", true, "the Markdown report whose generated blocks are refreshed"},
+                        {kHelpFlag, {"update", true, "the Markdown report whose generated blocks are refreshed"},
                          {"results", true, "folder the block names are relative to (default results)"}});
   if (wants_help(a, out, "--update REPORT.md [--results DIR]")) return 0;
   const std::string path = a.text("update");

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "apps/experiment_flags.h"
+#include "apps/command_flags.h"
 #include "apps/fit_report.h"
 #include "beamid/version.h"
 #include "costs/cost.h"
@@ -20,13 +20,6 @@
 namespace beamid::apps {
 namespace {
 
-const io::FlagSpec kHelp{"help", false, "print this help"};
-
-bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
-  if (!a.has("help")) return false;
-  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
-  return true;
-}
 
 std::vector<io::FlagSpec> spike_flags() {
   return {{"spikes", true, "number of spikes NM >= 1 (default 4)"},
@@ -85,7 +78,7 @@ costs::CostOptions read_cost_options(const io::Arguments& a) {
 
 int run_spikes(const Args& args, std::ostream& out) {
   const io::Arguments a("spikes", args,
-                        join_flags({kHelp, {"data", true, "CSV record (t_s, signal) as written by beamid simulate"}}, spike_flags()));
+                        join_flags({kHelpFlag, {"data", true, "CSV record (t_s, signal) as written by beamid simulate"}}, spike_flags()));
   if (wants_help(a, out, "--data FILE.csv --spikes NM [--window NAME]")) return 0;
   const io::TimeSeries data = io::read_time_series(a.text("data"));
   signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s, read_window(a));
@@ -100,7 +93,7 @@ int run_spikes(const Args& args, std::ostream& out) {
 
 int run_cost(const Args& args, std::ostream& out) {
   const io::Arguments a("cost", args,
-                        join_flags({kHelp, {"data", true, "CSV record of the data"},
+                        join_flags({kHelpFlag, {"data", true, "CSV record of the data"},
                               {"prediction", true, "CSV record of the model prediction, same sampling"}},
                              cost_flags()));
   if (wants_help(a, out, "--data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]"))
@@ -127,7 +120,7 @@ int run_cost(const Args& args, std::ostream& out) {
 int run_fit(const Args& args, std::ostream& out) {
   const io::Arguments a(
       "fit", args,
-      join_flags(join_flags({kHelp,
+      join_flags(join_flags({kHelpFlag,
                  {"data", true, "CSV record (t_s, signal) to fit; its time step and length fix dt and Nbar"},
                  {"beam", true, "preset or TOML file: the known parameters and the start of the estimated ones"},
                  {"elements", true, "Galerkin order N of the fitted model"},

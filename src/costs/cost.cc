@@ -129,17 +129,34 @@ class SpikeCostBase : public Cost {
     return spikes;
   }
 
+  // The model's spectrum with the evaluation's pairs initialised, or nothing (with the status) when the model output
+  // cannot be compared.
+  std::optional<signal::Spectrum> model_spectrum(const ModelResponse& model, Evaluation& e) {
+    e.pairs = pairs_;
+    if (auto why = unusable(model.y, samples_)) {
+      e.status = *why;
+      return std::nullopt;
+    }
+    return dft_.transform(model.y);
+  }
+
   // Marks pairs whose model frequency is nearer to another data spike than to its partner.
-  void check_pairing(Evaluation& e) const {
-    std::string jumped;
+  static void check_pairing(Evaluation& e) {
     for (std::size_t l = 0; l < e.pairs.size(); ++l) {
       const double f = e.pairs[l].model_frequency_hz;
       const double own = std::abs(f - e.pairs[l].data_frequency_hz);
       for (std::size_t m = 0; m < e.pairs.size(); ++m)
         if (m != l && std::abs(f - e.pairs[m].data_frequency_hz) < own) e.pairs[l].jumps = true;
-      if (e.pairs[l].jumps) jumped += (jumped.empty() ? "" : ", ") + std::to_string(l + 1);
     }
-    if (!jumped.empty()) e.a4 = "(A4) pairing jumps modes at spike(s) " + jumped;
+    report_jumps(e, "(A4) pairing jumps modes at spike(s) ");
+  }
+
+  // e.a4 = prefix + the 1-based numbers of the pairs marked as jumping, when there are any.
+  static void report_jumps(Evaluation& e, const std::string& prefix) {
+    std::string jumped;
+    for (std::size_t l = 0; l < e.pairs.size(); ++l)
+      if (e.pairs[l].jumps) jumped += (jumped.empty() ? "" : ", ") + std::to_string(l + 1);
+    if (!jumped.empty()) e.a4 = prefix + jumped;
   }
 
   void append_magnitudes(const signal::Spectrum& u, const std::vector<int>& model_centres, Evaluation& e,
@@ -169,12 +186,9 @@ class SpikeCost final : public SpikeCostBase {
 
   Evaluation evaluate(const ModelResponse& model) override {
     Evaluation e;
-    e.pairs = pairs_;
-    if (auto why = unusable(model.y, samples_)) {
-      e.status = *why;
-      return e;
-    }
-    const signal::Spectrum u = dft_.transform(model.y);
+    const auto spectrum = model_spectrum(model, e);
+    if (!spectrum) return e;
+    const signal::Spectrum& u = *spectrum;
     const auto spikes = model_spikes(u, e);
     if (!spikes) return e;
     std::vector<int> centres;
@@ -205,12 +219,9 @@ class SmoothSpikeCost final : public SpikeCostBase {
 
   Evaluation evaluate(const ModelResponse& model) override {
     Evaluation e;
-    e.pairs = pairs_;
-    if (auto why = unusable(model.y, samples_)) {
-      e.status = *why;
-      return e;
-    }
-    const signal::Spectrum u = dft_.transform(model.y);
+    const auto spectrum = model_spectrum(model, e);
+    if (!spectrum) return e;
+    const signal::Spectrum& u = *spectrum;
     if (options_.model_poles == "eigenvalues") {
       if (!poles_from_eigenvalues(model.poles_rad_s, u, e)) return e;
     } else {
@@ -290,10 +301,7 @@ class SmoothSpikeCost final : public SpikeCostBase {
       e.pairs[l].model_frequency_hz = best_f;
       e.pairs[l].model_decay_rate_1_s = -poles[static_cast<std::size_t>(best)].real() + added;
     }
-    std::string jumped;
-    for (std::size_t l = 0; l < e.pairs.size(); ++l)
-      if (e.pairs[l].jumps) jumped += (jumped.empty() ? "" : ", ") + std::to_string(l + 1);
-    if (!jumped.empty()) e.a4 = "(A4) two data spikes take the same model mode at spike(s) " + jumped;
+    report_jumps(e, "(A4) two data spikes take the same model mode at spike(s) ");
     return true;
   }
 };

@@ -93,13 +93,7 @@ OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& st
   } else {
     result.status = "failed";
   }
-  if (!guarded.first_exception.empty()) {
-    result.status = "failed";
-    result.termination = "the objective threw: " + guarded.first_exception;
-  } else if (!std::isfinite(result.cost)) {
-    result.status = "failed";
-    result.termination = "no evaluation gave a finite residual vector (" + summary.message + ")";
-  }
+  guarded.finish(result, "residual vector", summary.message);
   return result;
 }
 

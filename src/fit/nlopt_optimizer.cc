@@ -80,13 +80,7 @@ OptimizerResult minimize_nlopt(const Problem& problem, const Eigen::VectorXd& st
     result.x = guarded.best_x;
     result.cost = guarded.best_cost;
   }
-  if (!guarded.first_exception.empty()) {
-    result.status = "failed";
-    result.termination = "the objective threw: " + guarded.first_exception;
-  } else if (!std::isfinite(result.cost)) {
-    result.status = "failed";
-    result.termination = "no evaluation gave a finite cost (" + result.termination + ")";
-  }
+  guarded.finish(result, "cost", result.termination);
   return result;
 }
 

@@ -61,6 +61,16 @@ bool GuardedProblem::residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r) {
   return ok;
 }
 
+void GuardedProblem::finish(OptimizerResult& result, const std::string& what, const std::string& detail) const {
+  if (!first_exception.empty()) {
+    result.status = "failed";
+    result.termination = "the objective threw: " + first_exception;
+  } else if (!std::isfinite(result.cost)) {
+    result.status = "failed";
+    result.termination = "no evaluation gave a finite " + what + " (" + detail + ")";
+  }
+}
+
 }  // namespace detail
 
 OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options) {

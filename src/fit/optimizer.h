@@ -88,6 +88,9 @@ struct GuardedProblem {
   std::string first_exception;
   Eigen::VectorXd best_x;
   double best_cost = std::numeric_limits<double>::infinity();
+  // Overrides the adapter's verdict when the objective threw or never gave a finite value; `what` names the
+  // quantity ("cost", "residual vector") and `detail` is the adapter's own termination text.
+  void finish(OptimizerResult& result, const std::string& what, const std::string& detail) const;
 };
 }  // namespace detail
 

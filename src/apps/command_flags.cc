@@ -1,4 +1,4 @@
-#include "apps/experiment_flags.h"
+#include "apps/command_flags.h"
 
 #include <cstdlib>
 #include <map>
@@ -7,6 +7,12 @@
 #include "model/errors.h"
 
 namespace beamid::apps {
+
+bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
+  if (!a.has("help")) return false;
+  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
+  return true;
+}
 
 std::vector<io::FlagSpec> join_flags(std::vector<io::FlagSpec> a, const std::vector<io::FlagSpec>& b) {
   a.insert(a.end(), b.begin(), b.end());

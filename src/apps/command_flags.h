@@ -1,6 +1,9 @@
-// Flags shared by the commands that describe an experiment (simulate, fit) and the estimated-parameter list.
+// Flag handling shared by the beamid commands: --help, the experiment flags (simulate, fit) and the
+// estimated-parameter list (fit).
 #pragma once
 
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include "fit/parameter_map.h"
@@ -9,6 +12,11 @@
 #include "simulation/experiment.h"
 
 namespace beamid::apps {
+
+inline const io::FlagSpec kHelpFlag{"help", false, "print this help"};
+
+// With --help: prints "usage: beamid COMMAND synopsis" and the flags to `out`, and returns true.
+bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis);
 
 // a followed by b.
 std::vector<io::FlagSpec> join_flags(std::vector<io::FlagSpec> a, const std::vector<io::FlagSpec>& b);
