@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "apps/commands.h"
-#include "beamid/version.h"
+#include "io/provenance.h"
 #include "model/errors.h"
 
 int main(int argc, char** argv) {
@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   if (all[0] == "--version") {
-    std::cout << "beamid " << BEAMID_VERSION << " (commit " << BEAMID_GIT_COMMIT << ")\n";
+    std::cout << "beamid " << io::version() << " (commit " << io::commit_label() << ")\n";
     return 0;
   }
   const std::vector<std::string> rest(all.begin() + 1, all.end());
@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
     if (all[0] == "fit") return apps::run_fit(rest, std::cout);
     if (all[0] == "verify") return apps::run_verify(rest, std::cout);
     if (all[0] == "report") return apps::run_report(rest, std::cout);
+    if (all[0] == "study") return apps::run_study(rest, std::cout);
+    if (all[0] == "merge") return apps::run_merge(rest, std::cout);
     std::cerr << "beamid: unknown command '" << all[0] << "' (commands: modes, simulate, spikes, cost, fit, verify, report)\n";
     return 2;
   } catch (const InputError& error) {

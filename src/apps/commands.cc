@@ -9,7 +9,7 @@
 
 #include "apps/command_flags.h"
 #include "apps/verification.h"
-#include "beamid/version.h"
+#include "io/provenance.h"
 #include "galerkin/modes.h"
 #include "io/arguments.h"
 #include "io/csv.h"
@@ -34,7 +34,7 @@ int elements(const io::Arguments& a) {
 }  // namespace
 
 std::string overview() {
-  return std::string("beamid ") + BEAMID_VERSION + " (commit " + BEAMID_GIT_COMMIT +
+  return std::string("beamid ") + io::version() + " (commit " + io::commit_label() +
          "): identification of Timoshenko-beam parameters (Banks & Wang 1993)\n"
          "\n"
          "usage: beamid COMMAND [flags]     (beamid COMMAND --help for its flags)\n"
@@ -44,7 +44,9 @@ std::string overview() {
          "  cost       the time, spike or spike-smooth cost of a prediction against data\n"
          "  fit        identify beam parameters from a record (NLopt or Ceres, direct or staged)\n"
          "  verify     forward-model verification tables (Galerkin vs exact, fast vs CVODE)\n"
-         "  report     refresh the generated blocks of REPORT.md from results/\n";
+         "  report     refresh the generated blocks of REPORT.md from results/\n"
+         "  study      run a study file (studies/*.toml): cases in parallel, resumable, tables in results/<study>/\n"
+         "  merge      combine the results of a study's shards (--shard K/N) into the tables of one run\n";
 }
 
 int run_modes(const Args& args, std::ostream& out) {
@@ -126,7 +128,7 @@ int run_simulate(const Args& args, std::ostream& out) {
   out << csv.str();
   if (a.has("verbose")) {
     const auto& s = trace.stats;
-    std::cerr << "beamid simulate (commit " << BEAMID_GIT_COMMIT << "): beam " << beam_name << ", N = " << n
+    std::cerr << "beamid simulate (commit " << io::commit_label() << "): beam " << beam_name << ", N = " << n
               << ", " << e.excitation << ", " << e.output << ", dt = " << e.dt_s << " s, " << e.samples
               << " samples, integrator " << s.integrator << ": steps " << s.steps << ", rhs " << s.rhs_evaluations
               << ", jacobians " << s.jacobian_evaluations << ", linear-solver setups " << s.linear_solver_setups << ", error-test failures " << s.error_test_failures

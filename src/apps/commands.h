@@ -26,6 +26,11 @@ int run_verify(const Args& args, std::ostream& out);
 // beamid report --update REPORT.md [--results DIR]: refresh the generated blocks
 int run_report(const Args& args, std::ostream& out);
 
+// beamid study STUDY.toml [--jobs J] [--output DIR] [--shard K/N]: run a study (tables in results/<study>/)
+int run_study(const Args& args, std::ostream& out);
+// beamid merge STUDY.toml --shards DIR1,DIR2 [--output DIR]: combine shard runs into the tables of one run
+int run_merge(const Args& args, std::ostream& out);
+
 // The overview printed by "beamid --help".
 std::string overview();
 

@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "beamid/version.h"
+#include "io/provenance.h"
 #include "io/csv.h"
 #include "model/errors.h"
 #include "signal/spectrum.h"
@@ -26,7 +26,7 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   const auto& r = in.result;
   std::ostringstream md;
   md << "# beamid fit report\n\n";
-  md << "beamid " << BEAMID_VERSION << " (commit " << BEAMID_GIT_COMMIT << "): `beamid fit";
+  md << "beamid " << io::version() << " (commit " << io::commit_label() << "): `beamid fit";
   for (const auto& arg : in.arguments) md << " " << arg;
   md << "`\n\n";
   md << "- data: `" << in.data.path << "`, " << in.data.values.size() << " samples at dt = " << g(in.data.dt_s)

@@ -7,7 +7,7 @@
 #include "apps/commands.h"
 #include "apps/command_flags.h"
 #include "apps/fit_report.h"
-#include "beamid/version.h"
+#include "io/provenance.h"
 #include "costs/cost.h"
 #include "fit/identification.h"
 #include "io/arguments.h"
@@ -183,7 +183,7 @@ int run_fit(const Args& args, std::ostream& out) {
     out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
         << io::full_precision(p.start) << "," << io::full_precision(p.lower) << "," << io::full_precision(p.upper)
         << "\n";
-  std::cerr << "beamid fit (commit " << BEAMID_GIT_COMMIT << "): " << data.path << ", beam " << beam_name << ", N = "
+  std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name << ", N = "
             << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method << ", strategy "
             << o.strategy << ": " << result.status << " (" << result.termination << "), cost "
             << result.cost << ", " << result.evaluations << " evaluations, " << result.wall_time_s << " s"

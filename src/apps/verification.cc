@@ -8,7 +8,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "beamid/version.h"
+#include "io/provenance.h"
 #include "galerkin/modes.h"
 #include "io/csv.h"
 #include "model/errors.h"

@@ -1,5 +1,7 @@
 #include "fit/identification.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 
@@ -119,6 +121,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
       StageResult stage;
       stage.name = "first " + std::to_string(prefix.experiment.samples) + " samples";
       for (const auto& e : map.estimated()) stage.keys.push_back(e.key);
+      run.x = run.x.cwiseMax(map.lower()).cwiseMin(map.upper());
       stage.result = minimize(subproblem(part, map, all, run.x), run.x, o.optimizer);
       run.evaluations += stage.result.evaluations;
       if (stage.result.usable()) run.x = stage.result.x;
@@ -139,7 +142,12 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
   for (const auto& [name, active] : plan) {
     const Problem p = subproblem(objective, map, active, run.x);
     Eigen::VectorXd start(static_cast<Eigen::Index>(active.size()));
-    for (std::size_t i = 0; i < active.size(); ++i) start(static_cast<Eigen::Index>(i)) = run.x(active[i]);
+    // A previous stage may end on a bound, and an optimizer may leave it by a rounding error: the next stage
+    // starts on the bound, not outside it.
+    for (std::size_t i = 0; i < active.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      start(k) = std::clamp(run.x(active[i]), p.lower(k), p.upper(k));
+    }
     StageResult stage;
     stage.name = name;
     for (int i : active) stage.keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);

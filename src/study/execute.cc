@@ -1,0 +1,293 @@
+#include "study/execute.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "fit/identification.h"
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "galerkin/spline_space.h"
+#include "model/beam_toml.h"
+#include "model/errors.h"
+#include "signal/noise.h"
+#include "signal/spectrum.h"
+#include "simulation/simulator.h"
+
+namespace beamid::study {
+namespace {
+
+double& member(model::BeamParameters& beam, const std::string& key) {
+  return beam.*(model::find_parameter(key)->member);
+}
+double value(const model::BeamParameters& beam, const std::string& key) {
+  return beam.*(model::find_parameter(key)->member);
+}
+
+simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
+  simulation::Experiment e = spec.truth.experiment;
+  e.pulse_width_s = unit.pulse_width_s;
+  e.samples = unit.samples;
+  return e;
+}
+
+// The clean record of a unit: the truth's samples cut to the unit's record length.
+std::vector<double> clean_record(const Record& truth, int samples) {
+  std::vector<double> y = truth.numbers("y");
+  if (static_cast<int>(y.size()) < samples) throw NumericalError("truth record shorter than the case's record");
+  y.resize(static_cast<std::size_t>(samples));
+  return y;
+}
+
+// The fit options of a unit at `elements`, with the start at the truth scaled by `factors` (1 when absent).
+fit::FitOptions fit_options(const StudySpec& spec, const Unit& unit, const std::vector<double>& clean,
+                            const Record& truth, int& modes, int& spikes) {
+  const model::BeamParameters beam = truth_beam(spec);
+  fit::FitOptions o;
+  o.start = beam;
+  o.elements = unit.elements;
+  o.experiment = experiment_of(spec, unit);
+  o.cost.name = unit.cost;
+  o.cost.window.name = spec.fit.window;
+  modes = modes_in_data(clean, o.experiment.dt_s, truth.numbers("mode_frequency_hz"));
+  spikes = spec.fit.spikes > 0 ? spec.fit.spikes : std::clamp(modes, 1, spec.fit.max_spikes);
+  o.cost.spikes.count = spikes;
+  o.cost.spikes.rule = spec.fit.spike_rule;
+  o.cost.spikes.min_frequency_hz = spec.fit.min_frequency_hz;
+  if (spec.fit.max_frequency_hz > 0) o.cost.spikes.max_frequency_hz = spec.fit.max_frequency_hz;
+  for (const auto& key : spec.fit.estimate) {
+    const double v = value(beam, key);
+    o.estimate.push_back({key, v / spec.fit.bound_factor, v * spec.fit.bound_factor});
+  }
+  o.scaling = spec.fit.scaling;
+  o.optimizer.max_evaluations = spec.fit.max_evaluations;
+  o.optimizer.method = fit::default_optimizer(unit.cost);
+  o.seed = unit.seed;
+  o.optimizer.seed = unit.seed;
+  return o;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+double tolerance(const StudySpec& spec, const std::string& key) {
+  return model::find_parameter(key)->role == "damping" ? spec.fit.damping_tolerance : spec.fit.success_tolerance;
+}
+
+model::BeamParameters truth_beam(const StudySpec& spec) {
+  return spec.truth.beam_path.empty() ? model::preset(spec.truth.beam) : model::load_beam_toml(spec.truth.beam_path);
+}
+
+Record run_truth(const StudySpec& spec, const Unit& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const model::BeamParameters beam = truth_beam(spec);
+    const galerkin::SplineSpace space(spec.truth.elements);
+    const galerkin::BeamForms forms(space, beam.l);
+    simulation::SimulatorOptions options;
+    options.integrator = "cvode";
+    options.cvode.rtol = spec.truth.rtol;
+    const simulation::Trace trace = simulation::simulate(forms, beam, experiment_of(spec, truth), options);
+    const galerkin::StateSpaceModes modes(galerkin::combine(forms, beam));
+    std::vector<double> f, zeta;
+    for (const auto& m : modes.underdamped_modes()) {
+      f.push_back(m.frequency_hz);
+      zeta.push_back(m.damping_ratio);
+    }
+    r.set("status", trace.status);
+    r.set("y", trace.y);
+    r.set("mode_frequency_hz", f);
+    r.set("mode_damping_ratio", zeta);
+    r.set("steps", static_cast<double>(trace.stats.steps));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vector<double>& mode_frequency_hz) {
+  signal::Dft dft(static_cast<int>(clean.size()), dt_s);
+  const signal::Spectrum s = dft.transform(clean);
+  std::vector<double> peak;
+  for (double f : mode_frequency_hz) {
+    const long k = std::lround(f / s.df_hz());
+    if (k < 1 || k + 1 > s.last_bin()) continue;  // at or above Nyquist: not resolvable
+    peak.push_back(std::max({s.magnitude(k - 1), s.magnitude(k), s.magnitude(k + 1)}));
+  }
+  if (peak.empty()) return 0;
+  const double largest = *std::max_element(peak.begin(), peak.end());
+  return static_cast<int>(std::count_if(peak.begin(), peak.end(), [&](double p) { return p >= 1e-3 * largest; }));
+}
+
+Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("failed"));
+  r.set("termination", std::string("not run"));
+  r.set("cost", std::numeric_limits<double>::infinity());
+  r.set("evaluations", 0.0);
+  r.set("success", 0.0);
+  r.set("a4", std::string("-"));
+  const model::BeamParameters beam = truth_beam(spec);
+  for (const auto& key : spec.fit.estimate) {
+    r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
+    r.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
+    r.set("relative_error." + key, std::numeric_limits<double>::quiet_NaN());
+  }
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    int modes = 0, spikes = 0;
+    fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("modes_in_data", static_cast<double>(modes));
+    r.set("spikes", static_cast<double>(costs::is_spike_cost(unit.cost) ? spikes : 0));
+    const MethodSpec& m = spec.method(unit.method);
+    o.strategy = m.strategy;
+    if (m.optimizer != "default") o.optimizer.method = m.optimizer;
+    o.starts = m.starts;
+    for (const auto& [key, factor] : spec.start(unit.start).factor) member(o.start, key) *= factor;
+    const fit::FitResult result = fit::fit(o, data);
+    r.set("status", result.status);
+    r.set("termination", result.termination);
+    r.set("cost", result.cost);
+    r.set("evaluations", static_cast<double>(result.evaluations));
+    r.set("best_start", static_cast<double>(result.best_start));
+    r.set("a4", result.final_evaluation.a4);
+    bool success = result.status != "failed";
+    for (const auto& p : result.parameters) {
+      const double t = value(beam, p.key);
+      const double rel = (p.estimate - t) / t;
+      r.set("estimate." + p.key, p.estimate);
+      r.set("standard_error." + p.key, p.standard_error);
+      r.set("relative_error." + p.key, rel);
+      success = success && std::abs(rel) <= tolerance(spec, p.key);
+    }
+    r.set("success", success ? 1.0 : 0.0);
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed"));
+    r.set("termination", e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("ok"));
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    int modes = 0, spikes = 0;
+    fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("modes_in_data", static_cast<double>(modes));
+    const model::BeamParameters beam = truth_beam(spec);
+    const double F = spec.landscape.range_factor;
+    // Log-spaced axis v F^(2j/(P-1) - 1), j = 0..P-1: the middle point (P odd) is the true value.
+    const auto axis = [&](const std::string& key, int points) {
+      std::vector<double> x(static_cast<std::size_t>(points));
+      for (int j = 0; j < points; ++j)
+        x[static_cast<std::size_t>(j)] = value(beam, key) * std::pow(F, 2.0 * j / (points - 1) - 1);
+      return x;
+    };
+    if (unit.kind == "slice" || unit.kind == "grid") {
+      fit::Objective objective(o, clean);
+      const auto cost_at = [&](const model::BeamParameters& b) {
+        const double c = objective.evaluate(b).evaluation.value;
+        return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
+      };
+      if (unit.kind == "slice") {
+        const std::vector<double> x = axis(unit.parameters[0], spec.landscape.points);
+        std::vector<double> c;
+        for (double v : x) {
+          model::BeamParameters b = beam;
+          member(b, unit.parameters[0]) = v;
+          c.push_back(cost_at(b));
+        }
+        r.set("x", x);
+        r.set("cost", c);
+      } else {
+        const std::vector<double> x = axis(unit.parameters[0], spec.landscape.grid_points);
+        const std::vector<double> y = axis(unit.parameters[1], spec.landscape.grid_points);
+        std::vector<double> c;
+        for (double u : x)
+          for (double v : y) {
+            model::BeamParameters b = beam;
+            member(b, unit.parameters[0]) = u;
+            member(b, unit.parameters[1]) = v;
+            c.push_back(cost_at(b));
+          }
+        r.set("x", x);
+        r.set("y", y);
+        r.set("cost", c);
+      }
+    } else {  // multistart: index -1 starts at the truth (the reference minimum), others at random points
+      if (unit.index >= 0) {
+        Eigen::VectorXd lower(static_cast<int>(o.estimate.size())), upper(lower.size());
+        for (std::size_t i = 0; i < o.estimate.size(); ++i) {
+          lower[static_cast<int>(i)] = std::log(o.estimate[i].lower);
+          upper[static_cast<int>(i)] = std::log(o.estimate[i].upper);
+        }
+        // One Latin hypercube (in log coordinates) per cost, shared by its multistart units; this unit takes point k.
+        const auto points = fit::space_filling_starts(
+            lower, upper, spec.landscape.multistarts, "lhs", signal::derive_seed(spec.seed, "multistart;" + unit.cost));
+        for (std::size_t i = 0; i < o.estimate.size(); ++i)
+          member(o.start, o.estimate[i].key) = std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]);
+      }
+      for (const auto& e : o.estimate) r.set("start." + e.key, value(o.start, e.key));
+      const fit::FitResult result = fit::fit(o, clean);
+      r.set("status", result.status);
+      r.set("cost", result.cost);
+      r.set("evaluations", static_cast<double>(result.evaluations));
+      for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+    }
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Overlay overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
+  Overlay out;
+  const std::vector<double> clean = clean_record(truth, unit.samples);
+  const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+  int modes = 0, spikes = 0;
+  fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+  model::BeamParameters estimate = truth_beam(spec);
+  for (const auto& key : spec.fit.estimate) {
+    const double v = result.number("estimate." + key);
+    if (std::isfinite(v)) member(estimate, key) = v;
+  }
+  fit::Objective objective(o, data);
+  const auto model = objective.evaluate(estimate);
+  const double dt = o.experiment.dt_s;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    out.t_s.push_back(static_cast<double>(i) * dt);
+    out.data.push_back(data[i]);
+    out.model.push_back(i < model.y.size() ? model.y[i] : std::numeric_limits<double>::quiet_NaN());
+  }
+  signal::Dft dft(static_cast<int>(data.size()), dt);
+  const signal::Spectrum zs = dft.transform(data);
+  const signal::Spectrum us = model.y.size() == data.size() ? dft.transform(model.y) : zs;
+  for (int k = 0; k <= zs.last_bin(); ++k) {
+    out.frequency_hz.push_back(zs.frequency_hz(k));
+    out.data_magnitude.push_back(zs.magnitude(k));
+    out.model_magnitude.push_back(model.y.size() == data.size() ? us.magnitude(k)
+                                                                 : std::numeric_limits<double>::quiet_NaN());
+  }
+  for (const auto& p : objective.cost().data_spikes()) {
+    out.spike_bins.push_back(p.data.bin);
+    out.support_left.push_back(p.data.n_left);
+    out.support_right.push_back(p.data.n_right);
+  }
+  return out;
+}
+
+}  // namespace beamid::study

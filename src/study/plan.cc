@@ -1,0 +1,154 @@
+#include "study/plan.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "io/csv.h"
+#include "signal/noise.h"
+
+namespace beamid::study {
+namespace {
+
+std::string hex(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+// Shortest exact text of a number for canonical strings (round-trips, so distinct values stay distinct).
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+void identify(Unit& u, const StudySpec& spec) {
+  const std::uint64_t h = signal::fnv1a64(u.canonical);
+  u.id = hex(h);
+  u.seed = signal::mix64(spec.seed ^ h);
+}
+
+std::string truth_text(const StudySpec& spec, double pulse_width_s) {
+  const auto& t = spec.truth;
+  const auto& e = t.experiment;
+  std::ostringstream os;
+  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << num(t.rtol) << ";integrator=cvode"
+     << ";dt_s=" << num(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
+     << ";force_x_m=" << (e.force_x_m ? num(*e.force_x_m) : "tip") << ";force_amplitude_N=" << num(e.force_amplitude_N)
+     << ";pulse_width_s=" << num(pulse_width_s) << ";sensor_x_m=" << (e.sensor_x_m ? num(*e.sensor_x_m) : "tip")
+     << ";output=" << e.output;
+  return os.str();
+}
+
+std::string fit_text(const StudySpec& spec) {
+  const auto& f = spec.fit;
+  std::ostringstream os;
+  os << "estimate=";
+  for (std::size_t i = 0; i < f.estimate.size(); ++i) os << (i ? "," : "") << f.estimate[i];
+  os << ";spikes=" << (f.spikes == 0 ? "auto" + std::to_string(f.max_spikes) : std::to_string(f.spikes))
+     << ";spike_rule=" << f.spike_rule << ";band_hz=" << num(f.min_frequency_hz) << ":" << num(f.max_frequency_hz)
+     << ";window=" << f.window << ";bound_factor=" << num(f.bound_factor) << ";scaling=" << f.scaling
+     << ";max_evaluations=" << f.max_evaluations;  // the tolerances judge a result and do not change it
+  return os.str();
+}
+
+}  // namespace
+
+Plan make_plan(const StudySpec& spec) {
+  Plan plan;
+  for (double tau : spec.sweep.pulse_width_s) {
+    Unit t;
+    t.kind = "truth";
+    t.pulse_width_s = tau;
+    t.samples = spec.truth.experiment.samples;
+    t.canonical = "truth;" + truth_text(spec, tau);
+    identify(t, spec);
+    plan.truths.push_back(t);
+  }
+  const std::string fit = fit_text(spec);
+  for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
+    for (int samples : spec.sweep.samples)
+      for (double noise : spec.sweep.noise)
+        for (int rep = 0; rep < (noise == 0 ? 1 : spec.sweep.replicates); ++rep)
+          for (int n : spec.sweep.elements)
+            for (const auto& cost : spec.sweep.cost)
+              for (const auto& method_name : spec.sweep.method)
+                for (const auto& start_name : spec.sweep.start) {
+                  Unit u;
+                  u.kind = "case";
+                  u.truth = static_cast<int>(ti);
+                  u.pulse_width_s = plan.truths[ti].pulse_width_s;
+                  u.samples = samples;
+                  u.elements = n;
+                  u.cost = cost;
+                  u.noise = noise;
+                  u.replicate = rep;
+                  u.method = method_name;
+                  u.start = start_name;
+                  const MethodSpec& m = spec.method(method_name);
+                  const StartSpec& s = spec.start(start_name);
+                  std::ostringstream os;
+                  os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples << ";noise=" << num(noise)
+                     << ";replicate=" << rep << ";N=" << n << ";cost=" << cost << ";" << fit << ";method=" << m.strategy
+                     << "/" << m.optimizer << "/" << m.starts << ";start=";
+                  for (const auto& [key, factor] : s.factor) os << key << ":" << num(factor) << ",";
+                  u.canonical = os.str();
+                  identify(u, spec);
+                  // Same record for every cost, N, method and start (common random numbers).
+                  u.noise_seed = signal::mix64(
+                      spec.seed ^ signal::fnv1a64("noise;" + plan.truths[ti].canonical + ";record_samples=" +
+                                                  std::to_string(samples) + ";noise=" + num(noise) +
+                                                  ";replicate=" + std::to_string(rep)));
+                  plan.units.push_back(u);
+                }
+  if (spec.landscape.enabled) {
+    const auto& l = spec.landscape;
+    const std::string base = plan.truths[0].canonical + ";record_samples=" + std::to_string(spec.truth.experiment.samples) +
+                             ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + num(l.range_factor);
+    const auto add = [&](Unit u) {
+      u.truth = 0;
+      u.pulse_width_s = plan.truths[0].pulse_width_s;
+      u.samples = spec.truth.experiment.samples;
+      u.elements = l.elements;
+      identify(u, spec);
+      plan.units.push_back(u);
+    };
+    for (const auto& cost : l.cost) {
+      for (const auto& key : spec.fit.estimate) {
+        Unit u;
+        u.kind = "slice";
+        u.cost = cost;
+        u.parameters = {key};
+        u.canonical = "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
+        add(u);
+      }
+      for (const auto& [a, b] : l.pairs) {
+        Unit u;
+        u.kind = "grid";
+        u.cost = cost;
+        u.parameters = {a, b};
+        u.canonical = "grid;" + base + ";cost=" + cost + ";parameters=" + a + "," + b +
+                      ";points=" + std::to_string(l.grid_points);
+        add(u);
+      }
+      for (int k = 0; k < l.multistarts; ++k) {
+        Unit u;
+        u.kind = "multistart";
+        u.cost = cost;
+        u.index = k;
+        u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" + std::to_string(k);
+        add(u);
+      }
+    }
+  }
+  return plan;
+}
+
+std::vector<const Unit*> shard(const std::vector<Unit>& units, int k, int n) {
+  std::vector<const Unit*> out;
+  for (std::size_t i = static_cast<std::size_t>(k - 1); i < units.size(); i += static_cast<std::size_t>(n))
+    out.push_back(&units[i]);
+  return out;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,51 @@
+// The study's work store: one small text file per finished unit (results/<study>/store/<id>.rec), written atomically
+// (a temporary file renamed into place), so an interrupted study loses at most the units that were running and a
+// resumed one skips everything already stored. A record is "key<TAB>value" lines; lists of numbers are space
+// separated in 17 significant digits. Each record carries the code version that made it; a record from another
+// build is ignored (recomputed), so a resumed study never mixes results of different code.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beamid::study {
+
+class Record {
+ public:
+  void set(const std::string& key, const std::string& value);
+  void set(const std::string& key, double value);
+  void set(const std::string& key, const std::vector<double>& values);
+  bool has(const std::string& key) const { return fields_.count(key) != 0; }
+  const std::string& text(const std::string& key) const;           // InputError naming the key when absent
+  double number(const std::string& key) const;
+  std::vector<double> numbers(const std::string& key) const;
+  const std::map<std::string, std::string>& fields() const { return fields_; }
+
+  std::string serialise() const;
+  // InputError naming source:line for a malformed line.
+  static Record parse(const std::string& text, const std::string& source);
+
+ private:
+  std::map<std::string, std::string> fields_;
+};
+
+class Store {
+ public:
+  // Creates the folder if needed.
+  Store(std::string directory, std::string code_version);
+  const std::string& directory() const { return directory_; }
+  // The stored record of unit `id`, if there is one made by this code version.
+  std::optional<Record> load(const std::string& id) const;
+  // Stamps the code version and writes atomically.
+  void save(const std::string& id, Record record) const;
+  // Copies every record file of another store folder into this one (for merging shards); returns how many.
+  int absorb(const std::string& other_directory) const;
+
+ private:
+  std::string directory_;
+  std::string code_version_;
+};
+
+}  // namespace beamid::study
