@@ -4,7 +4,11 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: all deps build test test-sanitize bench verify report clean
+.PHONY: all deps build test test-sanitize bench verify report clean study study-smoke plots golden
+
+# The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature).
+STUDIES    ?= paper thick modes landscape
+STUDY_JOBS ?= 0
 
 all: build
 
@@ -43,5 +47,26 @@ verify: build
 report: build
 	$(BEAMID) report --update REPORT.md --results results
 
-clean:
-	rm -rf $(BUILD) $(SAN_BUILD)
+# Every study (each resumes from its results/<study>/store/ if interrupted), then plots and REPORT.md. Tables are
+# byte-identical run to run; only results/*/timings.csv changes.
+study: build
+	@set -e; for s in $(STUDIES); do \
+	  echo "== beamid study studies/$$s.toml"; \
+	  $(BEAMID) study studies/$$s.toml --jobs $(STUDY_JOBS); \
+	done
+	$(MAKE) --no-print-directory plots report
+
+study-smoke: build
+	$(BEAMID) study studies/smoke.toml --jobs $(STUDY_JOBS)
+	bash plots/make_plots.sh results/smoke plots/smoke
+
+# gnuplot, from the CSVs alone (plots/make_plots.sh), for every study that has results.
+plots: deps
+	@set -e; for s in $(STUDIES) smoke; do \
+	  if [ -f results/$$s/provenance.csv ]; then bash plots/make_plots.sh results/$$s plots/$$s; fi; \
+	done
+
+# Regenerates CI's golden table (tests/golden/smoke_cases.csv) from a fresh smoke run. Review the diff before
+# committing: the golden test (ctest GoldenSmoke.*) fails on any estimate that moves by more than 1e-4.
+golden: build
+	BEAMID_UPDATE_GOLDEN=1 $(BUILD)/beamid_tests --gtest_filter='GoldenSmoke.*'

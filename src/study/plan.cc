@@ -102,44 +102,53 @@ Plan make_plan(const StudySpec& spec) {
                   plan.units.push_back(u);
                 }
   if (spec.landscape.enabled) {
+    // Slices for every experiment (truth x record length), so basin widths can be set against the number of modes;
+    // grids and multi-starts for the first experiment only.
     const auto& l = spec.landscape;
-    const std::string base = plan.truths[0].canonical + ";record_samples=" + std::to_string(spec.truth.experiment.samples) +
-                             ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + num(l.range_factor);
-    const auto add = [&](Unit u) {
-      u.truth = 0;
-      u.pulse_width_s = plan.truths[0].pulse_width_s;
-      u.samples = spec.truth.experiment.samples;
-      u.elements = l.elements;
-      identify(u, spec);
-      plan.units.push_back(u);
-    };
-    for (const auto& cost : l.cost) {
-      for (const auto& key : spec.fit.estimate) {
-        Unit u;
-        u.kind = "slice";
-        u.cost = cost;
-        u.parameters = {key};
-        u.canonical = "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
-        add(u);
+    bool first = true;
+    for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
+      for (int samples : spec.sweep.samples) {
+        const std::string base = plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) +
+                                 ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + num(l.range_factor);
+        const auto add = [&](Unit u) {
+          u.truth = static_cast<int>(ti);
+          u.pulse_width_s = plan.truths[ti].pulse_width_s;
+          u.samples = samples;
+          u.elements = l.elements;
+          identify(u, spec);
+          plan.units.push_back(u);
+        };
+        for (const auto& cost : l.cost) {
+          for (const auto& key : spec.fit.estimate) {
+            Unit u;
+            u.kind = "slice";
+            u.cost = cost;
+            u.parameters = {key};
+            u.canonical = "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
+            add(u);
+          }
+          if (!first) continue;
+          for (const auto& [a, b] : l.pairs) {
+            Unit u;
+            u.kind = "grid";
+            u.cost = cost;
+            u.parameters = {a, b};
+            u.canonical = "grid;" + base + ";cost=" + cost + ";parameters=" + a + "," + b +
+                          ";points=" + std::to_string(l.grid_points);
+            add(u);
+          }
+          for (int k = 0; k < l.multistarts; ++k) {
+            Unit u;
+            u.kind = "multistart";
+            u.cost = cost;
+            u.index = k;
+            u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" + std::to_string(k) + "/" +
+                          std::to_string(l.multistarts);
+            add(u);
+          }
+        }
+        first = false;
       }
-      for (const auto& [a, b] : l.pairs) {
-        Unit u;
-        u.kind = "grid";
-        u.cost = cost;
-        u.parameters = {a, b};
-        u.canonical = "grid;" + base + ";cost=" + cost + ";parameters=" + a + "," + b +
-                      ";points=" + std::to_string(l.grid_points);
-        add(u);
-      }
-      for (int k = 0; k < l.multistarts; ++k) {
-        Unit u;
-        u.kind = "multistart";
-        u.cost = cost;
-        u.index = k;
-        u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" + std::to_string(k);
-        add(u);
-      }
-    }
   }
   return plan;
 }

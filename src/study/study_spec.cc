@@ -262,8 +262,11 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     r.finish({"beam", "elements", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
               "pulse_width_s", "sensor_x_m", "output"});
     const model::BeamParameters beam = t.beam_path.empty() ? model::preset(t.beam) : model::load_beam_toml(t.beam_path);
-    if (auto e = simulation::validation_error(t.experiment, beam.l))
-      throw InputError(r.where(nullptr) + ": truth." + *e);
+    if (auto e = simulation::validation_error(t.experiment, beam.l)) {
+      // The message starts with the offending key ("force_x_m = 0.9: ..."): point at its line.
+      const std::string key = e->substr(0, e->find(' '));
+      throw InputError(r.where(r.get(key)) + ": truth." + *e);
+    }
   }
   {  // [fit]
     TableReader r(required_table(root, "fit", source), "fit.", source);

@@ -549,6 +549,8 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
   std::vector<SliceRow> slice_rows;
   std::vector<GridRow> grid_rows;
   std::map<std::string, std::pair<int, int>> multistart_reach;  // cost -> (reached, started)
+  struct BasinRow { int modes; std::string cost, parameter; SliceShape shape; };
+  std::vector<BasinRow> basin_rows;  // slices of every experiment
   if (spec.landscape.enabled) {
     std::map<std::string, Record> reference;  // cost -> multistart from the truth... (index -1 is not planned)
     std::ostringstream ms;
@@ -556,6 +558,8 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
     for (const auto& k : keys) ms << ",start_" << k << ",estimate_" << k;
     ms << "\n";
     // The reference minimum of each cost: the lowest final cost over its multistarts and the truth's own value.
+    std::ostringstream basin;
+    basin << "modes_in_data,pulse_width_s,samples,cost,parameter,local_minima,basin_lower,basin_upper,basin_width\n";
     std::map<std::string, const Record*> best;
     for (const auto& [u, rec] : landscape)
       if (u->kind == "multistart" && rec.text("status") != "failed" && rec.text("status").rfind("failed", 0) != 0) {
@@ -568,6 +572,16 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
         const std::vector<double> x = rec.has("x") ? rec.numbers("x") : std::vector<double>{};
         const std::vector<double> c = rec.has("cost") ? rec.numbers("cost") : std::vector<double>{};
         const double v = beam.*(model::find_parameter(u->parameters[0])->member);
+        if (!c.empty()) {
+          const SliceShape shape = slice_shape(x, c, v);
+          basin << (rec.has("modes_in_data") ? rec.text("modes_in_data") : "nan") << "," << full(u->pulse_width_s)
+                << "," << u->samples << "," << u->cost << "," << u->parameters[0] << "," << shape.local_minima << ","
+                << full(shape.basin_lower) << "," << full(shape.basin_upper) << ","
+                << full(shape.basin_upper - shape.basin_lower) << "\n";
+          basin_rows.push_back({rec.has("modes_in_data") ? static_cast<int>(rec.number("modes_in_data")) : 0, u->cost,
+                                u->parameters[0], shape});
+        }
+        if (u->pulse_width_s != spec.sweep.pulse_width_s.front() || u->samples != spec.sweep.samples.front()) continue;
         std::ostringstream os;
         os << "ratio,value,cost,normalised_cost\n";
         double mn = INFINITY, mx = -INFINITY;
@@ -629,6 +643,7 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
       }
     }
     write_file(dir / "landscape" / "multistart.csv", ms.str());
+    write_file(dir / "landscape" / "basin.csv", basin.str());
     std::ostringstream csv, md;
     csv << "cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,descent_share\n";
     md << "| cost | slice or grid | local minima | basin around the minimum | TV / range | flat steps | "
@@ -781,6 +796,19 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
                            std::to_string(by_modes.rbegin()->first));
     }
   }
+  if (several_experiments && !basin_rows.empty()) {
+    // Median basin width (over the estimated parameters) at the fewest and the most modes, per cost.
+    for (const auto& cost : spec.landscape.cost) {
+      std::map<int, std::vector<double>> widths;
+      for (const auto& b : basin_rows)
+        if (b.cost == cost) widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
+      if (widths.size() < 2) continue;
+      const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);
+      claim(hi < lo, cost + "'s median basin width narrows from " + pct(lo) + " with " +
+                         std::to_string(widths.begin()->first) + " mode(s) in the data to " + pct(hi) + " with " +
+                         std::to_string(widths.rbegin()->first));
+    }
+  }
   if (!slice_rows.empty()) {
     const auto count = [&](const std::string& a, const std::string& b, auto better) {
       int holds = 0, total = 0;
@@ -833,9 +861,25 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
                 "formal errors are right; they assume independent Gaussian residuals):\n\n" << read("spread.md") << "\n";
   }
   if (spec.landscape.enabled) report << "Landscape smoothness at N = " << spec.landscape.elements << ":\n\n" << read("smoothness.md") << "\n";
-  // Plot links: every image the plot scripts make for this study.
-  const fs::path plots = fs::path("plots") / spec.name;
-  report << "Plots: see [`plots/" << spec.name << "/`](plots/" << spec.name << "/).\n";
+  // Plot links: the images plots/make_plots.sh makes from these tables (names fixed there), SVG beside each PNG.
+  const std::string p = "plots/" + spec.name + "/";
+  std::vector<std::pair<std::string, std::string>> images;
+  if (spec.landscape.enabled) {
+    images.emplace_back("landscape_slices", "cost slices through the truth, normalised to [0, 1]");
+    for (const auto& [a, b] : spec.landscape.pairs)
+      images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
+  }
+  if (several_experiments) images.emplace_back("success_vs_modes", "success rate against the modes in the data");
+  if (spec.sweep.elements.size() > 1)
+    for (const auto& k : keys) images.emplace_back("bias_" + k, "RMSE of the relative error in " + k + " against N");
+  if (fs::exists(dir / "spectrum.csv")) {
+    images.emplace_back("spectrum", "data spectrum with the detected spikes and their 20 % supports");
+    images.emplace_back("overlay", "fits at N = " + std::to_string(spec.outputs.overlay_elements) +
+                                       " in time and in frequency");
+  }
+  report << "Plots (PNG; SVG beside each):\n\n";
+  for (const auto& [name, what] : images)
+    report << "- [" << what << "](" << p << name << ".png)\n";
   write_file(dir / "report.md", report.str());
 }
 

@@ -1,0 +1,223 @@
+// The study runner's promises, on a miniature study (256-sample truth, N = 4 fits, a small landscape):
+// the tables do not depend on the thread count; an interrupted run resumes to the same tables; shards merged give the
+// same tables as one run; a case that cannot run is a row with its status, not a crash. And the landscape's
+// smoothness figures on curves whose answer is known.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "model/errors.h"
+#include "study/runner.h"
+#include "study/tables.h"
+
+namespace beamid::study {
+namespace {
+namespace fs = std::filesystem;
+
+const char* kMini = R"([study]
+name = "mini"
+question = "Does the runner keep its promises?"
+seed = 11
+
+[truth]
+beam = "banks-aluminium"
+samples = 256
+force_x_m = 0.32
+pulse_width_s = 0.004
+output = "acceleration"
+
+[fit]
+estimate = ["EI", "rho"]
+spikes = 2
+max_frequency_hz = 120
+max_evaluations = 200
+
+[starts.near]
+EI = 1.02
+rho = 0.99
+
+[methods.direct]
+strategy = "direct"
+
+[sweep]
+elements = [4]
+cost = ["time", "spike-smooth"]
+noise = [0.0, 0.02]
+replicates = 2
+method = ["direct"]
+start = ["near"]
+
+[landscape]
+elements = 4
+cost = ["time", "spike-smooth"]
+points = 9
+pairs = [["EI", "rho"]]
+grid_points = 5
+multistarts = 2
+)";
+
+std::map<std::string, std::string> tables(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    if (rel.rfind("store", 0) == 0 || rel == "timings.csv") continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    files[rel] = text.str();
+  }
+  return files;
+}
+
+class StudyRunner : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / ("beamid-runner-test-" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    spec_ = parse_study(kMini, "mini.toml", ".");
+    RunOptions o;
+    o.output_dir = (root_ / "one").string();
+    o.jobs = 1;
+    std::ostringstream log;
+    const RunSummary s = run_study(spec_, o, log, false);
+    ASSERT_TRUE(s.tables);
+    reference_ = tables(root_ / "one");
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+  static fs::path root_;
+  static StudySpec spec_;
+  static std::map<std::string, std::string> reference_;
+};
+fs::path StudyRunner::root_;
+StudySpec StudyRunner::spec_;
+std::map<std::string, std::string> StudyRunner::reference_;
+
+TEST_F(StudyRunner, WritesTheTablesAndARowPerCase) {
+  for (const char* f : {"manifest.json", "cases.csv", "summary.csv", "summary.md", "convergence.csv", "spread.csv",
+                        "landscape/smoothness.csv", "landscape/slice_time_EI.csv", "landscape/grid_time_EI_rho.dat",
+                        "overlay.csv", "spectrum.csv", "report.md", "provenance.csv"})
+    EXPECT_TRUE(reference_.count(f)) << f;
+  // 2 costs x (1 noise-free + 2 replicates) = 6 cases, plus the header.
+  const std::string& cases = reference_["cases.csv"];
+  EXPECT_EQ(std::count(cases.begin(), cases.end(), '\n'), 7);
+  EXPECT_NE(reference_["report.md"].find("Computed claims"), std::string::npos);
+}
+
+TEST_F(StudyRunner, TablesDoNotDependOnTheThreadCount) {
+  RunOptions o;
+  o.output_dir = (root_ / "two").string();
+  o.jobs = 2;
+  std::ostringstream log;
+  ASSERT_TRUE(run_study(spec_, o, log, false).tables);
+  EXPECT_EQ(tables(root_ / "two"), reference_);
+}
+
+TEST_F(StudyRunner, AnInterruptedRunResumesToTheSameTables) {
+  fs::copy(root_ / "one", root_ / "resumed", fs::copy_options::recursive);
+  // Lose three finished units and every table, as if the run had been killed.
+  int removed = 0;
+  for (const auto& e : fs::directory_iterator(root_ / "resumed" / "store"))
+    if (removed < 3 && e.path().extension() == ".rec" && fs::file_size(e.path()) < 100000) fs::remove(e.path()), ++removed;
+  fs::remove(root_ / "resumed" / "cases.csv");
+  RunOptions o;
+  o.output_dir = (root_ / "resumed").string();
+  std::ostringstream log;
+  const RunSummary s = run_study(spec_, o, log, false);
+  EXPECT_LE(s.computed, 3);  // a removed truth is remade too, but it is not a unit
+  EXPECT_GE(s.reused, s.units - 3);
+  EXPECT_EQ(tables(root_ / "resumed"), reference_);
+}
+
+TEST_F(StudyRunner, ShardsMergeIntoTheTablesOfOneRun) {
+  for (int k = 1; k <= 2; ++k) {
+    RunOptions o;
+    o.output_dir = (root_ / ("shard" + std::to_string(k))).string();
+    o.shard_index = k;
+    o.shard_count = 2;
+    std::ostringstream log;
+    EXPECT_FALSE(run_study(spec_, o, log, false).tables);  // half the units: no tables yet
+  }
+  EXPECT_THROW(write_tables_from_store(spec_, (root_ / "shard1").string()), InputError);
+  fs::create_directories(root_ / "merged" / "store");
+  for (int k = 1; k <= 2; ++k)
+    for (const auto& e : fs::directory_iterator(root_ / ("shard" + std::to_string(k)) / "store"))
+      fs::copy_file(e.path(), root_ / "merged" / "store" / e.path().filename(), fs::copy_options::overwrite_existing);
+  write_tables_from_store(spec_, (root_ / "merged").string());
+  EXPECT_EQ(tables(root_ / "merged"), reference_);
+}
+
+TEST_F(StudyRunner, ACaseThatCannotRunIsARowWithItsStatus) {
+  // 40 spikes do not exist in a 256-sample record: the spike-smooth cases cannot be set up.
+  std::string text = kMini;
+  text.replace(text.find("spikes = 2"), 10, "spikes = 40");
+  text.replace(text.find("[landscape]"), std::string::npos, "");
+  const StudySpec spec = parse_study(text, "mini.toml", ".");
+  RunOptions o;
+  o.output_dir = (root_ / "failing").string();
+  std::ostringstream log;
+  const RunSummary s = run_study(spec, o, log, false);
+  EXPECT_TRUE(s.tables);
+  EXPECT_EQ(s.failed, 3);  // the three spike-smooth cases
+  std::ifstream in(root_ / "failing" / "cases.csv");
+  std::string line;
+  int failed_rows = 0;
+  while (std::getline(in, line))
+    if (line.find(",spike-smooth,") != std::string::npos) {
+      EXPECT_NE(line.find(",failed,0,"), std::string::npos) << line;
+      EXPECT_NE(line.find("spikes"), std::string::npos) << line;  // the reason is in the row
+      ++failed_rows;
+    }
+  EXPECT_EQ(failed_rows, 3);
+}
+
+TEST(LandscapeShape, BowlStaircaseAndRipplesAreToldApart) {
+  std::vector<double> x, bowl, stairs, ripples;
+  for (int j = 0; j <= 100; ++j) {
+    const double r = std::pow(2.0, (j - 50) / 50.0);  // log-spaced ratios 1/2 .. 2, the truth at j = 50
+    x.push_back(r);
+    bowl.push_back(std::pow(std::log(r), 2));
+    stairs.push_back(std::floor(10 * std::abs(std::log(r))));  // a staircase with a flat floor around the truth
+    ripples.push_back(std::pow(std::log(r), 2) + 0.05 * (1 - std::cos(40 * std::log(r))));
+  }
+  const SliceShape b = slice_shape(x, bowl, 1);
+  EXPECT_EQ(b.local_minima, 1);
+  EXPECT_DOUBLE_EQ(b.basin_lower, -0.5);  // the whole range is one basin
+  EXPECT_DOUBLE_EQ(b.basin_upper, 1.0);
+  EXPECT_NEAR(b.total_variation_ratio, 2.0, 1e-12);  // down once and up once
+  EXPECT_EQ(b.flat_share, 0);
+  const SliceShape s = slice_shape(x, stairs, 1);
+  EXPECT_EQ(s.local_minima, 1);   // the floor plateau counts once
+  EXPECT_GT(s.flat_share, 0.8);   // 7 risers in 100 steps
+  const SliceShape w = slice_shape(x, ripples, 1);
+  EXPECT_GE(w.local_minima, 5);   // cos(40 ln r) has about 7 periods over ln r in [-ln 2, ln 2]
+  EXPECT_LT(w.basin_upper - w.basin_lower, 0.3);
+  EXPECT_GT(w.total_variation_ratio, 2.0);
+
+  // A 2-D bowl: one minimum, every point descends to it; a bowl with a second dip: two minima, a shared basin.
+  const int n = 21;
+  std::vector<double> g, two;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double u = (i - 10) / 10.0, v = (j - 10) / 10.0;
+      g.push_back(u * u + 2 * v * v);
+      two.push_back(u * u + 2 * v * v - 0.6 * std::exp(-40 * ((u - 0.7) * (u - 0.7) + v * v)));
+    }
+  const GridShape gb = grid_shape(g, n, n);
+  EXPECT_EQ(gb.local_minima, 1);
+  EXPECT_DOUBLE_EQ(gb.descent_share, 1.0);
+  const GridShape gt = grid_shape(two, n, n);
+  EXPECT_EQ(gt.local_minima, 2);
+  EXPECT_LT(gt.descent_share, 0.9);  // the dip's own basin takes its share of the grid
+  EXPECT_GT(gt.descent_share, 0.0);
+}
+
+}  // namespace
+}  // namespace beamid::study

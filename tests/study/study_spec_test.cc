@@ -1,0 +1,142 @@
+// Study files are strict: every error names file:line, the key, the value and the violated constraint.
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "model/errors.h"
+#include "study/plan.h"
+#include "study/study_spec.h"
+
+namespace beamid::study {
+namespace {
+
+const char* kValid = R"([study]
+name = "mini"
+question = "q"
+seed = 5
+
+[truth]
+beam = "banks-aluminium"
+samples = 256
+force_x_m = 0.32
+pulse_width_s = 0.004
+
+[fit]
+estimate = ["EI", "rho"]
+
+[starts.near]
+EI = 1.05
+rho = 0.95
+
+[methods.direct]
+strategy = "direct"
+
+[sweep]
+elements = [4, 8]
+cost = ["time", "spike-smooth"]
+noise = [0.0, 0.01]
+replicates = 3
+method = ["direct"]
+start = ["near"]
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_study(text, "s.toml", ".");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto p = text.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return text.replace(p, from.size(), to);
+}
+
+TEST(StudySpec, ReadsAValidFile) {
+  const StudySpec s = parse_study(kValid, "s.toml", ".");
+  EXPECT_EQ(s.name, "mini");
+  EXPECT_EQ(s.seed, 5u);
+  EXPECT_EQ(s.truth.elements, 48);  // default N_truth
+  EXPECT_EQ(s.truth.experiment.samples, 256);
+  EXPECT_EQ(s.sweep.elements, (std::vector<int>{4, 8}));
+  EXPECT_EQ(s.start("near").factor.at("rho"), 0.95);
+  EXPECT_EQ(s.fit.damping_tolerance, s.fit.success_tolerance);
+  EXPECT_EQ(s.outputs.overlay_elements, 8);  // largest N by default
+}
+
+TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
+  EXPECT_EQ(error_of(replaced(kValid, "replicates = 3", "replicates = 3\nreplicate = 2")),
+            "s.toml:27: unknown key sweep.replicate: valid keys are elements, cost, noise, replicates, method, start, "
+            "pulse_width_s, samples");
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = -5")), "s.toml:4: study.seed = -5: must be an integer in 0..2^53");
+  EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
+            "s.toml:10: truth.pulse_width_s = -0.004: must be > 0");
+  EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
+            "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth");
+  EXPECT_EQ(error_of(replaced(kValid, "elements = [4, 8]", "elements = [4, 48]")),
+            "s.toml:23: sweep.elements element 48: must be in 1..47");  // coarser than N_truth: no inverse crime
+  EXPECT_EQ(error_of(replaced(kValid, "EI = 1.05", "EI = 2.5")),
+            "s.toml:16: starts.near.EI = 2.5: must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = 2");
+  EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fits]")),
+            "s.toml:12: unknown table [fits]: valid tables are study, truth, fit, starts, methods, sweep, landscape, outputs");
+  EXPECT_EQ(error_of(replaced(kValid, "force_x_m = 0.32", "force_x_m = 0.9")),
+            "s.toml:9: truth.force_x_m = 0.9: must lie on the beam, 0 <= x <= l = 0.4573");
+  EXPECT_EQ(error_of(replaced(kValid, "method = [\"direct\"]", "method = [\"staged\"]")),
+            "s.toml:27: sweep.method element 'staged': must be one of direct");
+  EXPECT_EQ(error_of(replaced(kValid, "estimate = [\"EI\", \"rho\"]", "estimate = [\"EI\", \"stiffness\"]")).substr(0, 60),
+            "s.toml:13: fit.estimate element 'stiffness': must be one of ");
+  EXPECT_EQ(error_of(replaced(kValid, "name = \"mini\"", "name = \"Mini Study\"")),
+            "s.toml:2: study.name = 'Mini Study': must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
+  EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
+  EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
+            "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
+  EXPECT_EQ(error_of("[study\n"), "s.toml:1: TOML syntax error: Error while parsing table header: expected ']', saw '\\n'");
+}
+
+TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
+  const StudySpec s = parse_study(kValid, "s.toml", ".");
+  const Plan plan = make_plan(s);
+  // 2 N x 2 costs x (1 noise-free + 3 noisy replicates): a noise-free case runs once.
+  ASSERT_EQ(plan.units.size(), 16u);
+  ASSERT_EQ(plan.truths.size(), 1u);
+  std::set<std::string> ids;
+  for (const auto& u : plan.units) ids.insert(u.id);
+  EXPECT_EQ(ids.size(), plan.units.size());
+  // Adding a cost and an N leaves every existing id and seed as it was.
+  const Plan bigger = make_plan(parse_study(
+      replaced(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"spike\", \"time\", \"spike-smooth\"]"),
+               "elements = [4, 8]", "elements = [2, 4, 8]"),
+      "s.toml", "."));
+  std::map<std::string, std::uint64_t> seeds;
+  for (const auto& u : bigger.units) seeds[u.id] = u.seed;
+  for (const auto& u : plan.units) {
+    ASSERT_TRUE(seeds.count(u.id)) << u.canonical;
+    EXPECT_EQ(seeds[u.id], u.seed);
+  }
+  // Every cost and N of one (noise, replicate) sees the same noise; replicates see different noise.
+  std::map<std::pair<double, int>, std::set<std::uint64_t>> noise;
+  for (const auto& u : plan.units) noise[{u.noise, u.replicate}].insert(u.noise_seed);
+  for (const auto& [k, v] : noise) EXPECT_EQ(v.size(), 1u);
+  const std::pair<double, int> first{0.01, 0}, second{0.01, 1};
+  EXPECT_NE(*noise[first].begin(), *noise[second].begin());
+  // A different study seed changes seeds but not ids.
+  const Plan reseeded = make_plan(parse_study(replaced(kValid, "seed = 5", "seed = 6"), "s.toml", "."));
+  EXPECT_EQ(reseeded.units[3].id, plan.units[3].id);
+  EXPECT_NE(reseeded.units[3].seed, plan.units[3].seed);
+}
+
+TEST(StudyPlan, ShardsPartitionTheUnits) {
+  const Plan plan = make_plan(parse_study(kValid, "s.toml", "."));
+  std::multiset<std::string> seen;
+  for (int k = 1; k <= 3; ++k)
+    for (const Unit* u : shard(plan.units, k, 3)) seen.insert(u->id);
+  EXPECT_EQ(seen.size(), plan.units.size());
+  for (const auto& u : plan.units) EXPECT_EQ(seen.count(u.id), 1u);
+}
+
+}  // namespace
+}  // namespace beamid::study
