@@ -2,7 +2,6 @@
 // central numeric differences (relative step 1e-6 on coordinates of order one: truncation O(h^2) ~ 1e-12 and
 // round-off ~ eps/h ~ 1e-10, both far below the noise-free recovery target of 1e-6) and box bounds.
 #include <ceres/ceres.h>
-#include <glog/logging.h>
 
 #include "fit/optimizer.h"
 
@@ -100,46 +99,5 @@ OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& st
 }  // namespace beamid::fit::detail
 
 namespace beamid::fit {
-
-Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
-  Covariance c;
-  const int n = problem.dimension();
-  if (problem.residual_count < 1 || !problem.residuals) {
-    c.status = "the cost has no residual vector";
-    return c;
-  }
-  if (problem.residual_count <= n) {
-    c.status = "no degrees of freedom (" + std::to_string(problem.residual_count) + " residuals, " +
-               std::to_string(n) + " parameters)";
-    return c;
-  }
-  // Ceres reports a rank-deficient covariance through glog on stderr as well as through its return value; the
-  // status below says it once, in words, so glog is kept to fatal messages.
-  static const bool quiet = [] { FLAGS_minloglevel = google::GLOG_FATAL; return true; }();
-  (void)quiet;
-  detail::GuardedProblem guarded(problem);
-  Eigen::VectorXd r;
-  if (!guarded.residuals(at, r)) {
-    c.status = "the residual vector is undefined at the estimate";
-    return c;
-  }
-  Eigen::VectorXd x = at;
-  ceres::Problem ceres_problem;
-  ceres_problem.AddResidualBlock(detail::cost_function(guarded), nullptr, x.data());
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::DENSE_SVD;  // reports rank deficiency instead of guessing
-  options.num_threads = 1;
-  ceres::Covariance covariance(options);
-  const std::vector<std::pair<const double*, const double*>> blocks{{x.data(), x.data()}};
-  if (!covariance.Compute(blocks, &ceres_problem)) {
-    c.status = "the information matrix J^T J is singular or too ill-conditioned (parameters not identifiable)";
-    return c;
-  }
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block(n, n);
-  covariance.GetCovarianceBlock(x.data(), x.data(), block.data());
-  // Ceres gives (J^T J)^-1; the residual variance estimate is |r|^2 / (m - n).
-  c.matrix = block * (r.squaredNorm() / (problem.residual_count - n));
-  return c;
-}
 
 }  // namespace beamid::fit

@@ -166,7 +166,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
 
 }  // namespace
 
-FitResult fit(const FitOptions& o, const std::vector<double>& data) {
+void validate(const FitOptions& o) {
   if (o.strategy != "direct" && o.strategy != "staged" && o.strategy != "continuation")
     throw InputError("strategy = '" + o.strategy + "': must be one of direct, staged, continuation");
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
@@ -181,6 +181,14 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
       throw InputError("start " + e.key + " = " + format_value(s) + ": outside its bounds [" + format_value(e.lower) +
                        ", " + format_value(e.upper) + "]");
   }
+  if (auto error = costs::validation_error(o.cost)) throw InputError(*error);
+  if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError(*error);
+  if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
+}
+
+FitResult fit(const FitOptions& o, const std::vector<double>& data) {
+  validate(o);
+  const ParameterMap map(o.start, o.estimate, o.scaling);
   Objective objective(o, data);
 
   const auto begin = std::chrono::steady_clock::now();

@@ -93,6 +93,10 @@ class Objective {
   std::unique_ptr<costs::Cost> cost_;
 };
 
+// Everything about the options that can be checked without data (strategy, optimizer, starts, estimated keys and
+// bounds, the start inside them, cost, experiment and simulator options): InputError naming option, value, constraint.
+void validate(const FitOptions& options);
+
 // Validates everything first (InputError naming the option, value and constraint), then fits.
 FitResult fit(const FitOptions& options, const std::vector<double>& data);
 

@@ -1,5 +1,7 @@
 #include "fit/optimizer.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -124,6 +126,58 @@ std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, 
     }
   }
   return points;
+}
+
+Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
+  // cov = s^2 (J^T J)^-1 with s^2 = |r|^2 / (m - n), J by central differences with steps 1e-6 max(|x_i|, 1) (the
+  // optimizer's coordinates are of order one). Computed here rather than by ceres::Covariance: its dense SVD
+  // crashed (SIGSEGV inside Eigen's BDCSVD) on a Jacobian from a study case, and a non-finite Jacobian must be a
+  // status, not a crash. J^T J is n x n (n <= a dozen), so its symmetric eigen-decomposition is cheap and exact
+  // enough; a reciprocal condition number below 1e-14 (Ceres' DENSE_SVD default) means not identifiable.
+  Covariance c;
+  const int n = problem.dimension();
+  const int m = problem.residual_count;
+  if (m < 1 || !problem.residuals) {
+    c.status = "the cost has no residual vector";
+    return c;
+  }
+  if (m <= n) {
+    c.status = "no degrees of freedom (" + std::to_string(m) + " residuals, " + std::to_string(n) + " parameters)";
+    return c;
+  }
+  detail::GuardedProblem guarded(problem);
+  Eigen::VectorXd r;
+  if (!guarded.residuals(at, r) || r.size() != m || !r.allFinite()) {
+    c.status = "the residual vector is undefined at the estimate";
+    return c;
+  }
+  Eigen::MatrixXd jacobian(m, n);
+  for (int i = 0; i < n; ++i) {
+    const double h = 1e-6 * std::max(std::abs(at(i)), 1.0);
+    Eigen::VectorXd plus = at, minus = at, r_plus, r_minus;
+    plus(i) += h;
+    minus(i) -= h;
+    if (!guarded.residuals(plus, r_plus) || !guarded.residuals(minus, r_minus) || r_plus.size() != m ||
+        r_minus.size() != m) {
+      c.status = "the residual vector is undefined next to the estimate (coordinate " + std::to_string(i) + ")";
+      return c;
+    }
+    jacobian.col(i) = (r_plus - r_minus) / (2 * h);
+  }
+  if (!jacobian.allFinite()) {
+    c.status = "the Jacobian at the estimate is not finite";
+    return c;
+  }
+  const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+  const Eigen::VectorXd lambda = eigen.eigenvalues();  // ascending
+  if (eigen.info() != Eigen::Success || !(lambda(n - 1) > 0) || !(lambda(0) > 1e-14 * lambda(n - 1))) {
+    c.status = "the information matrix J^T J is singular or too ill-conditioned (parameters not identifiable)";
+    return c;
+  }
+  const Eigen::MatrixXd& v = eigen.eigenvectors();
+  c.matrix = v * lambda.cwiseInverse().asDiagonal() * v.transpose() * (r.squaredNorm() / (m - n));
+  return c;
 }
 
 }  // namespace beamid::fit

@@ -3,7 +3,7 @@
 //                                    "direct-l" (GN_DIRECT_L), "crs2-lm" (GN_CRS2_LM, stochastic: seeded by
 //                                    nlopt_srand(seed) before every run);
 //   Ceres (fit/ceres_optimizer.cc):  "lm", Levenberg-Marquardt on the residual vector with central numeric
-//                                    differences and the bounds; also the formal covariance of an estimate.
+//                                    differences and the bounds.
 // Optimizers see dimensionless coordinates of order one (fit/parameter_map.h maps them to physical values).
 // Nothing here throws for what happens during a run: an exception inside the objective, a non-finite cost or an
 // undefined residual vector becomes an infinite cost (or a rejected step), and a run that cannot go on becomes a
@@ -59,7 +59,8 @@ struct OptimizerResult {
 OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options);
 
 // Formal covariance of the least-squares estimate x: (J^T J)^-1 |r|^2 / (m - n), J by central differences
-// (through Ceres). Valid for independent Gaussian residuals of equal variance; status says why when unavailable.
+// (computed here; optimizer.cc says why not by ceres::Covariance). Valid for independent Gaussian residuals of
+// equal variance; status says why when unavailable.
 struct Covariance {
   Eigen::MatrixXd matrix;       // in the optimizer's coordinates
   std::string status = "ok";    // "ok" or why not (no residuals, m <= n, singular information matrix)

@@ -20,12 +20,18 @@ double tolerance(const StudySpec& spec, const std::string& key);
 Record run_truth(const StudySpec& spec, const Unit& truth);
 
 // Number of modes in a clean record: modes of the truth beam below the Nyquist frequency whose DFT magnitude (the
-// largest over the 3 bins around the mode) reaches 1e-3 of the largest such magnitude (60 dB of dynamic range).
+// largest over the 3 bins around the mode) reaches 1 % of the largest such magnitude (40 dB below the strongest
+// mode: what a spectrum of a noisy record shows plainly).
 int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vector<double>& mode_frequency_hz);
+
+// Checks every unit's fit options before anything runs (InputError naming the study file, the unit and the
+// violated constraint), so a bad combination stops the study at once instead of filling it with failed rows.
+void validate_plan(const StudySpec& spec, const Plan& plan);
 
 // One fit (kind "case"). `truth` is the truth unit's record.
 //   fields: status, termination, cost, evaluations, wall_time_s, modes_in_data, spikes, a4, best_start, and for
-//   every estimated key K: estimate.K, standard_error.K, relative_error.K; success (1 or 0)
+//   every estimated key K: estimate.K, standard_error.K, relative_error.K (success is judged by the tables, with
+//   the study's tolerances, which are not part of a case's identity)
 Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth);
 
 // Landscape units: "slice" (fields x, cost), "grid" (x, y, cost row-major in x), "multistart" (start.K, estimate.K,

@@ -48,7 +48,8 @@ std::string fit_text(const StudySpec& spec) {
   os << ";spikes=" << (f.spikes == 0 ? "auto" + std::to_string(f.max_spikes) : std::to_string(f.spikes))
      << ";spike_rule=" << f.spike_rule << ";band_hz=" << num(f.min_frequency_hz) << ":" << num(f.max_frequency_hz)
      << ";window=" << f.window << ";bound_factor=" << num(f.bound_factor) << ";scaling=" << f.scaling
-     << ";max_evaluations=" << f.max_evaluations;  // the tolerances judge a result and do not change it
+     << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << num(f.xtol_rel);
+  // The success tolerances are not part of a unit's identity: they judge a result and do not change it.
   return os.str();
 }
 

@@ -107,6 +107,7 @@ std::optional<std::string> validation_error(const RunOptions& o) {
 RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostream& log, bool terminal) {
   if (auto e = validation_error(options)) throw InputError("beamid study: " + *e);
   const Plan plan = make_plan(spec);
+  validate_plan(spec, plan);
   const Store store(options.output_dir + "/store", io::commit_label());
   const int jobs = job_count(options.jobs);
   const std::vector<const Unit*> mine = shard(plan.units, options.shard_index, options.shard_count);

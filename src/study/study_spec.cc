@@ -292,10 +292,11 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     f.bound_factor = r.number("bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
     f.scaling = r.string("scaling", f.scaling, {"linear", "log"});
     f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, 1000000);
+    f.xtol_rel = r.number("xtol_rel", f.xtol_rel, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
     f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
     f.damping_tolerance = r.number("damping_tolerance", f.success_tolerance, positive, "must be > 0");
     r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window", "bound_factor", "scaling", "max_evaluations",
-              "success_tolerance", "damping_tolerance"});
+              "xtol_rel", "success_tolerance", "damping_tolerance"});
   }
   // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
   if (const toml::table* starts = root["starts"].as_table()) {

@@ -42,7 +42,8 @@ struct FitSpec {
   std::string window = "rectangular";
   double bound_factor = 2;               // bounds [v/F, v F] around the true value v
   std::string scaling = "linear";        // "linear" | "log"
-  int max_evaluations = 3000;
+  int max_evaluations = 3000;            // per stage and start
+  double xtol_rel = 1e-10;               // stop when a step changes every parameter by less than this, relatively
   double success_tolerance = 0.01;       // a fit succeeds when every estimate is within this relative error,
   double damping_tolerance = 0.01;       // or this one for damping parameters (default: success_tolerance)
 };

@@ -178,6 +178,30 @@ TEST_F(StudyRunner, ACaseThatCannotRunIsARowWithItsStatus) {
   EXPECT_EQ(failed_rows, 3);
 }
 
+TEST(StudyValidation, EveryUnitIsCheckedBeforeAnyRuns) {
+  // The beam length cannot be estimated (the Galerkin forms are built for one length): the study file parses, but
+  // the plan is refused before any truth is simulated, naming the file, the unit and the reason.
+  std::string text = kMini;
+  text.replace(text.find("estimate = [\"EI\", \"rho\"]"), 24, "estimate = [\"EI\", \"l\"]");
+  text.replace(text.find("rho = 0.99"), 10, "l = 0.99");
+  text.replace(text.find("pairs = [[\"EI\", \"rho\"]]"), 23, "pairs = [[\"EI\", \"l\"]]");
+  const StudySpec spec = parse_study(text, "mini.toml", ".");
+  RunOptions o;
+  o.output_dir = (fs::temp_directory_path() / ("beamid-validation-" + std::to_string(::getpid()))).string();
+  std::ostringstream log;
+  try {
+    run_study(spec, o, log, false);
+    FAIL() << "an inadmissible plan ran";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("mini.toml: case ", 0), 0u) << m;
+    EXPECT_NE(m.find("(N = 4, cost time, method direct)"), std::string::npos) << m;
+    EXPECT_NE(m.find("l"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "store")) << "nothing may be written before validation";
+  fs::remove_all(o.output_dir);
+}
+
 TEST(LandscapeShape, BowlStaircaseAndRipplesAreToldApart) {
   std::vector<double> x, bowl, stairs, ripples;
   for (int j = 0; j <= 100; ++j) {
