@@ -4,7 +4,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: all deps build test test-sanitize bench verify report clean study study-smoke plots golden
+.PHONY: all deps build binary test test-sanitize bench verify report clean study study-smoke plots golden
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature).
 STUDIES    ?= paper thick modes landscape
@@ -20,6 +20,10 @@ $(BUILD)/CMakeCache.txt: | deps
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
+
+# Only the beamid program (what the studies need; the tests and benchmarks are left for make build / make test).
+binary: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target beamid
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
@@ -49,20 +53,23 @@ report: build
 
 # Every study (each resumes from its results/<study>/store/ if interrupted), then plots and REPORT.md. Tables are
 # byte-identical run to run; only results/*/timings.csv changes.
-study: build
+study: binary
 	@set -e; for s in $(STUDIES); do \
 	  echo "== beamid study studies/$$s.toml"; \
 	  $(BEAMID) study studies/$$s.toml --jobs $(STUDY_JOBS); \
 	done
-	$(MAKE) --no-print-directory plots report
+	@echo "== beamid real studies/real-steel.toml"
+	$(BEAMID) real studies/real-steel.toml
+	$(MAKE) --no-print-directory plots
+	$(BEAMID) report --update REPORT.md --results results
 
-study-smoke: build
+study-smoke: binary
 	$(BEAMID) study studies/smoke.toml --jobs $(STUDY_JOBS)
 	bash plots/make_plots.sh results/smoke plots/smoke
 
 # gnuplot, from the CSVs alone (plots/make_plots.sh), for every study that has results.
 plots: deps
-	@set -e; for s in $(STUDIES) smoke; do \
+	@set -e; for s in $(STUDIES) real-steel smoke; do \
 	  if [ -f results/$$s/provenance.csv ]; then bash plots/make_plots.sh results/$$s plots/$$s; fi; \
 	done
 

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
     if (all[0] == "report") return apps::run_report(rest, std::cout);
     if (all[0] == "study") return apps::run_study(rest, std::cout);
     if (all[0] == "merge") return apps::run_merge(rest, std::cout);
+    if (all[0] == "real") return apps::run_real(rest, std::cout);
     std::cerr << "beamid: unknown command '" << all[0] << "' (commands: modes, simulate, spikes, cost, fit, verify, report)\n";
     return 2;
   } catch (const InputError& error) {

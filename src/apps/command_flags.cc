@@ -24,7 +24,7 @@ std::vector<io::FlagSpec> experiment_flag_specs() {
           {"samples", true, "number of samples Nbar >= 2 (default 4096)"},
           {"sensor-x", true, "sensor position xbar, m (default: the tip)"},
           {"output", true, "displacement | velocity | acceleration (default displacement)"},
-          {"excitation", true, "pulse | pluck (default pulse)"},
+          {"excitation", true, "pulse | pluck | free-decay (fit only: unknown initial state, amplitudes solved) (default pulse)"},
           {"force-x", true, "force position x_f, m (default: the tip)"},
           {"force-amplitude", true, "pulse peak F0, or pluck static load P0, N (default 1)"},
           {"pulse-width", true, "pulse width tau, s (default 0.01; pulse only)"}};

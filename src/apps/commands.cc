@@ -46,7 +46,8 @@ std::string overview() {
          "  verify     forward-model verification tables (Galerkin vs exact, fast vs CVODE)\n"
          "  report     refresh the generated blocks of REPORT.md from results/\n"
          "  study      run a study file (studies/*.toml): cases in parallel, resumable, tables in results/<study>/\n"
-         "  merge      combine the results of a study's shards (--shard K/N) into the tables of one run\n";
+         "  merge      combine the results of a study's shards (--shard K/N) into the tables of one run\n"
+         "  real       fit a measured free-decay record with each cost (studies/real-steel.toml)\n";
 }
 
 int run_modes(const Args& args, std::ostream& out) {

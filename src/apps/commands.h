@@ -31,6 +31,9 @@ int run_study(const Args& args, std::ostream& out);
 // beamid merge STUDY.toml --shards DIR1,DIR2 [--output DIR]: combine shard runs into the tables of one run
 int run_merge(const Args& args, std::ostream& out);
 
+// beamid real STUDY.toml [--output DIR]: fit a measured free-decay record with each cost (study/real_study.h)
+int run_real(const Args& args, std::ostream& out);
+
 // The overview printed by "beamid --help".
 std::string overview();
 

@@ -27,7 +27,32 @@ std::vector<io::FlagSpec> spike_flags() {
           {"exponential-end", true, "exponential window's last weight, in (0, 1) (default 0.01)"},
           {"spike-rule", true, "largest | prominence (default largest: the NM highest local maxima)"},
           {"min-frequency", true, "lowest spike frequency considered, Hz (default 0)"},
-          {"max-frequency", true, "highest spike frequency considered, Hz (default Nyquist)"}};
+          {"max-frequency", true, "highest spike frequency considered, Hz (default Nyquist)"},
+          {"spike-frequencies", true,
+           "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each (pairs model and data by frequency)"}};
+}
+
+// Reading the --data record: CSV or LabVIEW .lvm, a channel, units, a time window (io/time_series.h).
+std::vector<io::FlagSpec> import_flags() {
+  return {{"channel", true, "signal column by name or 1-based index (default: the only one)"},
+          {"units", true, "auto | g | as-is (default auto: records in g are converted to m/s^2)"},
+          {"start", true, "keep samples from this time, s (default: the first)"},
+          {"duration", true, "keep this many seconds from --start (default: to the end)"},
+          {"resample", false, "interpolate a non-uniform time base onto a uniform one instead of refusing it"}};
+}
+
+io::TimeSeries read_data(const io::Arguments& a) {
+  io::ImportOptions o;
+  o.channel = a.text_or("channel", "");
+  o.units = a.text_or("units", o.units);
+  o.start_s = a.optional_number("start");
+  o.duration_s = a.optional_number("duration");
+  o.resample = a.has("resample");
+  try {
+    return io::read_time_series(a.text("data"), o);
+  } catch (const InputError& e) {
+    throw InputError("beamid " + a.command() + ": --data: " + e.what());
+  }
 }
 
 std::vector<io::FlagSpec> cost_flags() {
@@ -48,6 +73,21 @@ signal::SpikeOptions read_spike_options(const io::Arguments& a) {
   o.rule = a.text_or("spike-rule", o.rule);
   o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
   o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
+  if (a.has("spike-frequencies")) {
+    std::stringstream list(a.text("spike-frequencies"));
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      char* end = nullptr;
+      const double f = std::strtod(item.c_str(), &end);
+      a.require(!item.empty() && end == item.c_str() + item.size() && f > 0, "spike-frequencies",
+                "must be a comma-separated list of frequencies > 0 in Hz ('" + item + "' is not)");
+      o.frequencies_hz.push_back(f);
+    }
+    std::sort(o.frequencies_hz.begin(), o.frequencies_hz.end());
+    a.require(!a.has("spikes") || a.integer("spikes") == static_cast<int>(o.frequencies_hz.size()), "spikes",
+              "must equal the number of --spike-frequencies (or be left out)");
+    o.count = static_cast<int>(o.frequencies_hz.size());
+  }
   if (auto error = signal::validation_error(o)) throw InputError("beamid " + a.command() + ": " + *error);
   return o;
 }
@@ -78,9 +118,11 @@ costs::CostOptions read_cost_options(const io::Arguments& a) {
 
 int run_spikes(const Args& args, std::ostream& out) {
   const io::Arguments a("spikes", args,
-                        join_flags({kHelpFlag, {"data", true, "CSV record (t_s, signal) as written by beamid simulate"}}, spike_flags()));
+                        join_flags(join_flags({kHelpFlag, {"data", true, "record: CSV (time, then channels) or LabVIEW .lvm"}},
+                                              spike_flags()),
+                                   import_flags()));
   if (wants_help(a, out, "--data FILE.csv --spikes NM [--window NAME]")) return 0;
-  const io::TimeSeries data = io::read_time_series(a.text("data"));
+  const io::TimeSeries data = read_data(a);
   signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s, read_window(a));
   const signal::Spectrum spectrum = dft.transform(data.values);
   const auto spikes = signal::detect_spikes(spectrum, read_spike_options(a));
@@ -93,12 +135,13 @@ int run_spikes(const Args& args, std::ostream& out) {
 
 int run_cost(const Args& args, std::ostream& out) {
   const io::Arguments a("cost", args,
-                        join_flags({kHelpFlag, {"data", true, "CSV record of the data"},
-                              {"prediction", true, "CSV record of the model prediction, same sampling"}},
-                             cost_flags()));
+                        join_flags(join_flags({kHelpFlag, {"data", true, "record of the data: CSV or LabVIEW .lvm"},
+                                               {"prediction", true, "CSV record of the model prediction, same sampling"}},
+                                              cost_flags()),
+                                   import_flags()));
   if (wants_help(a, out, "--data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]"))
     return 0;
-  const io::TimeSeries data = io::read_time_series(a.text("data"));
+  const io::TimeSeries data = read_data(a);
   const io::TimeSeries prediction = io::read_time_series(a.text("prediction"));
   if (prediction.values.size() != data.values.size() || std::abs(prediction.dt_s - data.dt_s) > 1e-9 * data.dt_s)
     throw InputError("beamid cost: --prediction = '" + prediction.path + "': " +
@@ -121,7 +164,7 @@ int run_fit(const Args& args, std::ostream& out) {
   const io::Arguments a(
       "fit", args,
       join_flags(join_flags({kHelpFlag,
-                 {"data", true, "CSV record (t_s, signal) to fit; its time step and length fix dt and Nbar"},
+                 {"data", true, "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar"},
                  {"beam", true, "preset or TOML file: the known parameters and the start of the estimated ones"},
                  {"elements", true, "Galerkin order N of the fitted model"},
                  {"estimate", true, "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma"},
@@ -137,15 +180,12 @@ int run_fit(const Args& args, std::ostream& out) {
                  {"integrator", true, "fast | cvode model integrator (default fast)"},
                  {"report", true, "write a Markdown fit report to this file"}},
                 experiment_flag_specs()),
-           cost_flags()));
+           join_flags(cost_flags(), import_flags())));
   if (wants_help(a, out,
                  "--data FILE.csv --beam B --elements N --estimate KEYS --cost NAME [--optimizer NAME] "
                  "[--strategy staged|direct|continuation] [--start-scale S] [--seed K] [experiment flags] [--report FILE.md]"))
     return 0;
-  const io::TimeSeries data = io::read_time_series(a.text("data"));
-  if (std::abs(data.t0_s) > 1e-9 * data.dt_s)
-    throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
-                     " s: must be 0 (the experiment starts at t = 0)");
+  const io::TimeSeries data = read_data(a);
   const std::string beam_name = a.text("beam");
   const model::BeamParameters nominal = model::resolve_beam(beam_name);
 
@@ -153,6 +193,11 @@ int run_fit(const Args& args, std::ostream& out) {
   o.elements = a.integer("elements");
   a.require(o.elements >= 1 && o.elements <= 1000, "elements", "must be an integer in 1..1000");
   o.experiment = read_experiment(a, nominal.l);
+  // A forced experiment starts at t = 0; a free decay is timed from its first sample.
+  if (o.experiment.excitation != "free-decay" && std::abs(data.t0_s) > 1e-9 * data.dt_s)
+    throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
+                     " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "
+                     "--excitation free-decay)");
   if (a.has("dt") && std::abs(o.experiment.dt_s - data.dt_s) > 1e-9 * data.dt_s)
     a.require(false, "dt", "must equal the data's time step " + format_value(data.dt_s) + " s");
   if (a.has("samples") && o.experiment.samples != static_cast<int>(data.values.size()))

@@ -9,6 +9,7 @@
 #include "apps/commands.h"
 #include "io/arguments.h"
 #include "model/errors.h"
+#include "study/real_study.h"
 #include "study/runner.h"
 #include "study/store.h"
 #include "io/provenance.h"
@@ -87,6 +88,19 @@ int run_merge(const Args& all, std::ostream& out) {
   study::write_tables_from_store(spec, output);
   out << "study,records_merged,output\n" << spec.name << "," << records << "," << output << "\n";
   return 0;
+}
+
+int run_real(const Args& all, std::ostream& out) {
+  auto [file, args] = split_study_file(all);
+  const io::Arguments a("real", args,
+                        {kHelpFlag, {"output", true, "results folder (default results/<study name>)"}});
+  if (wants_help(a, out, "STUDY.toml [--output DIR]")) return 0;
+  if (file.empty()) throw InputError("beamid real: missing the study file: beamid real STUDY.toml [--output DIR]");
+  const study::RealStudySpec spec = study::load_real_study(file);
+  const std::string output = a.text_or("output", "results/" + spec.name);
+  const int failed = study::run_real_study(spec, output, std::cerr);
+  out << "study,fits,failed,output\n" << spec.name << "," << spec.costs.size() << "," << failed << "," << output << "\n";
+  return failed > 0 ? 3 : 0;
 }
 
 }  // namespace beamid::apps

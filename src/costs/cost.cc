@@ -65,6 +65,17 @@ class SpikeCostBase : public Cost {
         dft_(static_cast<int>(data.size()), dt_s, options_.window) {
     data_ = dft_.transform(data);
     const auto spikes = signal::detect_spikes(data_, options_.spikes);
+    if (static_cast<int>(spikes.size()) < options_.spikes.count && !options_.spikes.frequencies_hz.empty()) {
+      std::string missing;
+      for (double f : options_.spikes.frequencies_hz)
+        if (std::none_of(spikes.begin(), spikes.end(), [&](const signal::Spike& s) {
+              return std::abs(s.frequency_hz - f) <= options_.spikes.frequency_window * f;
+            }))
+          missing += (missing.empty() ? "" : ", ") + format_value(f);
+      throw InputError("cost " + options_.name + ": chosen spike frequencies " + missing +
+                       " Hz: the data spectrum has no local maximum within +-" +
+                       format_value(100 * options_.spikes.frequency_window) + " % of them (or two share one)");
+    }
     if (static_cast<int>(spikes.size()) < options_.spikes.count)
       throw InputError("cost " + options_.name + ": spikes = " + std::to_string(options_.spikes.count) +
                        ": the data spectrum has only " + std::to_string(spikes.size()) +
@@ -120,6 +131,24 @@ class SpikeCostBase : public Cost {
 
   // Model spikes by the data's rule, or the (A4) violation.
   std::optional<std::vector<signal::Spike>> model_spikes(const signal::Spectrum& u, Evaluation& e) const {
+    if (!options_.spikes.frequencies_hz.empty()) {
+      // Chosen spikes are paired by frequency: the model's spike for data spike l is the local maximum of |U|
+      // nearest to k^z_l (however far: a model far off still has its modes, and the frequency term says how far).
+      const auto maxima = signal::local_maxima(u);
+      std::vector<signal::Spike> spikes;
+      for (const auto& p : pairs_) {
+        int best = -1;
+        for (int k : maxima)
+          if (best < 0 || std::abs(k - p.data.bin) < std::abs(best - p.data.bin)) best = k;
+        if (best < 0) break;
+        signal::Spike m;
+        m.bin = best;
+        m.frequency_hz = u.frequency_hz(best);
+        m.magnitude = u.magnitude(best);
+        spikes.push_back(m);
+      }
+      if (spikes.size() == pairs_.size()) return spikes;
+    }
     auto spikes = signal::detect_spikes(u, options_.spikes);
     if (spikes.size() < pairs_.size()) {
       e.status = e.a4 = "(A4) violated: the model spectrum shows " + std::to_string(spikes.size()) +

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "galerkin/modes.h"
+#include "simulation/free_decay.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"
 
@@ -19,6 +20,7 @@ struct Objective::Impl {
   simulation::Experiment experiment;
   std::unique_ptr<simulation::Simulator> simulator;
   bool needs_poles;
+  std::vector<double> data;  // free decay: the amplitudes are solved against it
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
@@ -34,7 +36,8 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
   const galerkin::SplineSpace space(o.elements);
   impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l), o.experiment,
                                       simulation::make_simulator(o.simulator),
-                                      o.cost.name == "spike-smooth" && o.cost.model_poles == "eigenvalues"});
+                                      o.cost.name == "spike-smooth" && o.cost.model_poles == "eigenvalues",
+                                      o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
 }
 
 Objective::~Objective() = default;
@@ -48,6 +51,19 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
   }
   try {
     const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
+    if (impl_->experiment.excitation == "free-decay") {
+      // Unknown initial state: the modal amplitudes are solved in closed form against the data.
+      std::vector<std::complex<double>> all;
+      for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) all.push_back(mode.lambda);
+      simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data);
+      if (decay.status != "ok") {
+        out.evaluation.status = decay.status;
+        return out;
+      }
+      out.y = std::move(decay.y);
+      out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
+      return out;
+    }
     const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {

@@ -1,5 +1,6 @@
 #include "io/time_series.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -10,68 +11,285 @@
 namespace beamid::io {
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
+constexpr double kStandardGravity = 9.80665;  // m/s^2 per g
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r"), last = s.find_last_not_of(" \t\r");
+  return first == std::string::npos ? "" : s.substr(first, last - first + 1);
+}
+
+std::vector<std::string> split(const std::string& line, char separator) {
   std::vector<std::string> fields;
   std::stringstream in(line);
   std::string field;
-  while (std::getline(in, field, ',')) {
-    const auto first = field.find_first_not_of(" \t\r"), last = field.find_last_not_of(" \t\r");
-    fields.push_back(first == std::string::npos ? "" : field.substr(first, last - first + 1));
-  }
-  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  while (std::getline(in, field, separator)) fields.push_back(trim(field));
+  if (!line.empty() && line.back() == separator) fields.emplace_back();
   return fields;
+}
+
+// Decimals printed after the point (0 without one; exponent forms count as many as printed in the mantissa).
+int decimals(const std::string& text) {
+  const auto dot = text.find('.');
+  if (dot == std::string::npos) return 0;
+  const auto end = text.find_first_of("eE", dot);
+  return static_cast<int>((end == std::string::npos ? text.size() : end) - dot - 1);
+}
+
+// The raw table of a file: column names, units and rows of text, with the line number of each row.
+struct Table {
+  std::string format;
+  std::vector<std::string> names;
+  std::vector<std::string> units;       // per column ("" when unknown)
+  int time_column = 0;                  // -1: time from x0 + i delta (LVM X_Columns No)
+  double x0 = 0, delta = 0;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<int> line_of;
+};
+
+Table read_csv(std::istream& in, const std::string& path) {
+  Table t;
+  t.format = "csv";
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(path + ": empty file (expected a header such as t_s,displacement_m)");
+  t.names = split(line, ',');
+  if (t.names.size() < 2)
+    throw InputError(path + ":1: header '" + trim(line) +
+                     "': must name at least two columns (time in s, then one or more signals)");
+  for (const auto& n : t.names) {
+    // A unit in the name, "accel_g" or "accel (g)", is taken as the column's unit.
+    const bool g = n.size() > 2 && (n.substr(n.size() - 2) == "_g" || n.find("(g)") != std::string::npos);
+    t.units.push_back(g ? "g" : "");
+  }
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (trim(line).empty()) continue;
+    t.rows.push_back(split(line, ','));
+    t.line_of.push_back(number);
+  }
+  return t;
+}
+
+// LabVIEW measurement text: a file header and one segment header, each ending in ***End_of_Header***, then a line
+// of column names and the data. Keys read: Separator, Decimal_Separator, X_Columns, Y_Unit_Label, X0, Delta_X.
+Table read_lvm(std::istream& in, const std::string& path) {
+  Table t;
+  t.format = "lvm";
+  std::string line;
+  int number = 0, headers = 0;
+  char separator = '\t';
+  std::string x_columns = "One";
+  std::vector<std::string> y_units;
+  if (!std::getline(in, line) || line.rfind("LabVIEW Measurement", 0) != 0)
+    throw InputError(path + ":1: not a LabVIEW measurement file (the first line must start with 'LabVIEW Measurement')");
+  number = 1;
+  while (headers < 2 && std::getline(in, line)) {
+    ++number;
+    const std::string l = trim(line);
+    if (l.rfind("***End_of_Header***", 0) == 0) {
+      ++headers;
+      continue;
+    }
+    const auto fields = split(l, '\t');
+    if (fields.empty()) continue;
+    const std::string& key = fields[0];
+    const std::string value = fields.size() > 1 ? fields[1] : "";
+    if (key == "Separator") {
+      if (value != "Tab" && value != "Comma")
+        throw InputError(path + ":" + std::to_string(number) + ": Separator = '" + value + "': must be Tab or Comma");
+      separator = value == "Tab" ? '\t' : ',';
+    } else if (key == "Decimal_Separator" && value != ".") {
+      throw InputError(path + ":" + std::to_string(number) + ": Decimal_Separator = '" + value +
+                       "': only '.' is supported (re-export with a point as decimal separator)");
+    } else if (key == "X_Columns") {
+      if (value != "One" && value != "Multi" && value != "No")
+        throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value + "': must be One, Multi or No");
+      x_columns = value;
+    } else if (key == "Y_Unit_Label") {
+      y_units.assign(fields.begin() + 1, fields.end());
+    } else if (key == "X0" || key == "Delta_X") {
+      (key == "X0" ? t.x0 : t.delta) = std::strtod(value.c_str(), nullptr);
+    }
+  }
+  if (headers < 2) throw InputError(path + ": the header does not end (two ***End_of_Header*** lines expected)");
+  // The column-name line.
+  while (std::getline(in, line)) {
+    ++number;
+    if (!trim(line).empty()) break;
+  }
+  auto names = split(line, separator);
+  while (!names.empty() && (names.back().empty() || names.back() == "Comment")) names.pop_back();
+  if (names.empty()) throw InputError(path + ":" + std::to_string(number) + ": expected the column names");
+  // Keep the time column (the first X column) and the Y columns; with X_Columns Multi every Y has its own X column,
+  // and only the first is kept (they are equal for a single-rate task).
+  std::vector<int> keep;
+  for (int c = 0; c < static_cast<int>(names.size()); ++c) {
+    const bool is_x = x_columns == "Multi" ? c % 2 == 0 : (x_columns == "One" && c == 0);
+    if (!is_x || c == 0) keep.push_back(c);
+  }
+  t.time_column = x_columns == "No" ? -1 : 0;
+  if (t.time_column < 0 && !(t.delta > 0))
+    throw InputError(path + ": X_Columns = No needs Delta_X > 0 in the header");
+  std::vector<std::string> kept_names;
+  for (int c : keep) kept_names.push_back(names[static_cast<std::size_t>(c)]);
+  t.names = kept_names;
+  int y = 0;
+  for (std::size_t i = 0; i < t.names.size(); ++i) {
+    const bool time = t.time_column == 0 && i == 0;
+    t.units.push_back(time ? "s" : (y < static_cast<int>(y_units.size()) ? y_units[static_cast<std::size_t>(y)] : ""));
+    if (!time) ++y;
+  }
+  while (std::getline(in, line)) {
+    ++number;
+    if (trim(line).empty()) continue;
+    const auto fields = split(line, separator);
+    std::vector<std::string> row;
+    for (int c : keep) row.push_back(c < static_cast<int>(fields.size()) ? fields[static_cast<std::size_t>(c)] : "");
+    t.rows.push_back(row);
+    t.line_of.push_back(number);
+  }
+  return t;
+}
+
+double parse(const std::string& path, int line, const std::string& column, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = '" + text + "': must be a number");
+  if (!std::isfinite(v)) throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + text + ": must be finite");
+  return v;
 }
 
 }  // namespace
 
-TimeSeries read_time_series(const std::string& path) {
-  std::ifstream in(path);
+TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
+  if (o.units != "auto" && o.units != "g" && o.units != "as-is")
+    throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
+  if (o.duration_s && !(*o.duration_s > 0))
+    throw InputError("duration = " + format_value(*o.duration_s) + ": must be > 0");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read the file");
+  const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
+  const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);
+
   TimeSeries s;
   s.path = path;
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(path + ": empty file (expected a header such as t_s,displacement_m)");
-  const auto header = split(line);
-  if (header.size() != 2)
-    throw InputError(path + ":1: header '" + line + "': must name exactly two columns (time in s, then the signal)");
-  s.time_column = header[0];
-  s.value_column = header[1];
-  std::vector<double> t;
-  std::vector<int> line_of;
-  int number = 1;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto fields = split(line);
-    if (fields.size() != 2)
-      throw InputError(path + ":" + std::to_string(number) + ": " + std::to_string(fields.size()) +
-                       " fields: must be 2 (" + s.time_column + "," + s.value_column + ")");
-    double v[2];
-    for (int c = 0; c < 2; ++c) {
-      const std::string& text = fields[static_cast<std::size_t>(c)];
-      char* end = nullptr;
-      v[c] = std::strtod(text.c_str(), &end);
-      const std::string& column = c == 0 ? s.time_column : s.value_column;
-      if (text.empty() || end != text.c_str() + text.size())
-        throw InputError(path + ":" + std::to_string(number) + ": " + column + " = '" + text + "': must be a number");
-      if (!std::isfinite(v[c]))
-        throw InputError(path + ":" + std::to_string(number) + ": " + column + " = " + text + ": must be finite");
-    }
-    t.push_back(v[0]);
-    s.values.push_back(v[1]);
-    line_of.push_back(number);
+  s.format = table.format;
+  // The channel: by name, or by 1-based index among the signal columns.
+  std::vector<int> signals;
+  for (int c = 0; c < static_cast<int>(table.names.size()); ++c)
+    if (c != table.time_column) signals.push_back(c);
+  std::string list;
+  for (int c : signals) list += (list.empty() ? "" : ", ") + table.names[static_cast<std::size_t>(c)];
+  int column = -1;
+  if (o.channel.empty()) {
+    if (signals.size() != 1)
+      throw InputError(path + ": " + std::to_string(signals.size()) + " signal columns (" + list +
+                       "): choose one with --channel NAME or --channel INDEX");
+    column = signals[0];
+  } else {
+    for (int c : signals)
+      if (table.names[static_cast<std::size_t>(c)] == o.channel) column = c;
+    char* end = nullptr;
+    const long index = std::strtol(o.channel.c_str(), &end, 10);
+    if (column < 0 && end == o.channel.c_str() + o.channel.size() && index >= 1 &&
+        index <= static_cast<long>(signals.size()))
+      column = signals[static_cast<std::size_t>(index - 1)];
+    if (column < 0)
+      throw InputError(path + ": channel = '" + o.channel + "': must be one of " + list + " (or 1.." +
+                       std::to_string(signals.size()) + ")");
   }
-  if (s.values.size() < 8)
-    throw InputError(path + ": " + std::to_string(s.values.size()) + " samples: at least 8 are needed");
-  s.t0_s = t.front();
-  s.dt_s = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-  if (!(s.dt_s > 0)) throw InputError(path + ": time column " + s.time_column + " does not increase");
+  s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
+  s.value_column = table.names[static_cast<std::size_t>(column)];
+  const std::string file_unit = table.units[static_cast<std::size_t>(column)];
+
+  std::vector<double> t, v;
+  int time_decimals = 0;  // the finest printed resolution (trailing zeros may be dropped on some lines)
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& row = table.rows[r];
+    const int line = table.line_of[r];
+    if (static_cast<int>(row.size()) <= column || (table.time_column >= 0 && row.empty()))
+      throw InputError(path + ":" + std::to_string(line) + ": " + std::to_string(row.size()) + " fields: must be " +
+                       std::to_string(table.names.size()) + " (" + s.time_column + ", ..., " + s.value_column + ")");
+    if (table.time_column >= 0) {
+      const std::string& text = row[static_cast<std::size_t>(table.time_column)];
+      t.push_back(parse(path, line, s.time_column, text));
+      time_decimals = std::max(time_decimals, decimals(text));
+    } else {
+      t.push_back(table.x0 + static_cast<double>(r) * table.delta);
+    }
+    v.push_back(parse(path, line, s.value_column, row[static_cast<std::size_t>(column)]));
+  }
+  if (v.size() < 8) throw InputError(path + ": " + std::to_string(v.size()) + " samples: at least 8 are needed");
+
+  // Uniform time base, to the printed resolution of the time column.
+  const double t0 = t.front();
+  const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
+  if (!(dt > 0)) throw InputError(path + ": time column " + s.time_column + " does not increase");
+  const double tolerance = std::max(1e-6 * dt, (table.time_column >= 0 ? std::pow(10.0, -time_decimals) : 0) + 1e-9 * dt);
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const double expected = s.t0_s + static_cast<double>(i) * s.dt_s;
-    if (std::abs(t[i] - expected) > 1e-6 * s.dt_s)
-      throw InputError(path + ":" + std::to_string(line_of[i]) + ": " + s.time_column + " = " + format_value(t[i]) +
-                       ": non-uniform time base (expected " + format_value(expected) + " = t0 + " +
-                       std::to_string(i) + " dt with dt = " + format_value(s.dt_s) + " s)");
+    const double expected = t0 + static_cast<double>(i) * dt;
+    if (std::abs(t[i] - expected) > tolerance) {
+      if (o.resample) break;
+      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.time_column + " = " +
+                       format_value(t[i]) + ": non-uniform time base (expected " + format_value(expected) +
+                       " = t0 + " + std::to_string(i) + " dt with dt = " + format_value(dt) +
+                       " s, to within " + format_value(tolerance) + " s; --resample interpolates instead)");
+    }
+  }
+  if (o.resample) {
+    // Linear interpolation onto t0 + i dt (the time column must increase strictly).
+    for (std::size_t i = 1; i < t.size(); ++i)
+      if (!(t[i] > t[i - 1]))
+        throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.time_column + " = " +
+                         format_value(t[i]) + ": must increase to be resampled");
+    std::vector<double> u(v.size());
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const double ti = t0 + static_cast<double>(i) * dt;
+      while (j + 2 < t.size() && t[j + 1] < ti) ++j;
+      const double w = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+      u[i] = (1 - w) * v[j] + w * v[j + 1];
+    }
+    v = u;
+    s.notes += "resampled linearly onto a uniform " + format_value(dt) + " s grid; ";
+  }
+  // Clipping: the largest |value| held by 3 or more consecutive samples.
+  double peak = 0;
+  for (double x : v) peak = std::max(peak, std::abs(x));
+  const bool constant = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
+  for (std::size_t i = 0; i + 2 < v.size() && peak > 0 && !constant; ++i)
+    if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
+      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.value_column + " = " +
+                       format_value(v[i]) + " on 3 or more consecutive samples at the record's peak: the signal is "
+                       "clipped (the DAQ range was exceeded), so its spectrum is distorted");
+
+  // The window: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
+  // that rounded DAQ times and a start given to a few digits pick the intended sample).
+  const double start = o.start_s.value_or(t0);
+  const double n_total = static_cast<double>(v.size());
+  const double first_d = std::max(0.0, std::round((start - t0) / dt));
+  const double count_d = o.duration_s ? std::round(*o.duration_s / dt) : n_total - first_d;
+  const std::size_t first = static_cast<std::size_t>(std::min(first_d, n_total));
+  const std::size_t last = static_cast<std::size_t>(std::clamp(first_d + count_d, first_d, n_total));
+  if (last - first < 8 || (o.duration_s && first_d + count_d > n_total))
+    throw InputError(path + ": the window of " + format_value(o.duration_s.value_or(n_total * dt)) + " s from " +
+                     format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
+                     " of the requested samples: at least 8 are needed, all inside the record, which spans [" +
+                     format_value(t0) + ", " + format_value(t0 + (n_total - 1) * dt) + "] s");
+  s.values.assign(v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last));
+  s.t0_s = t0 + static_cast<double>(first) * dt;
+  s.dt_s = dt;
+  if (o.start_s || o.duration_s)
+    s.notes += "window of " + std::to_string(s.values.size()) + " samples from t = " + format_value(s.t0_s) + " s; ";
+
+  const bool in_g = o.units == "g" || (o.units == "auto" && file_unit == "g");
+  if (in_g) {
+    for (double& x : s.values) x *= kStandardGravity;
+    s.unit = "m/s^2";
+    s.notes += "converted from g to m/s^2 (x 9.80665); ";
+  } else {
+    s.unit = file_unit;
   }
   return s;
 }

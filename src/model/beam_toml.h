@@ -1,5 +1,6 @@
 // Beam parameters from the [beam] table of a TOML file, strictly: every key of parameter_table() must be present,
-// no other key may be, and each value must be an admissible number. Errors are one line naming file:line, key,
+// no other key may be, and each value must be an admissible number. Or from a [geometry] table (model/geometry.h:
+// length, section, material, shear coefficient, tip body, nominal damping), which gives the lumps. Errors are one line naming file:line, key,
 // value and constraint, e.g. "my_beam.toml:4: beam.EI = -1: must be > 0".
 #pragma once
 

@@ -17,6 +17,13 @@ std::optional<std::string> validation_error(const SpikeOptions& o) {
   if (!(o.max_frequency_hz > o.min_frequency_hz))
     return "max_frequency_hz = " + format_value(o.max_frequency_hz) + ": must be > min_frequency_hz = " +
            format_value(o.min_frequency_hz);
+  for (double f : o.frequencies_hz)
+    if (!(std::isfinite(f) && f > 0)) return "spike frequency = " + format_value(f) + ": must be > 0";
+  if (!o.frequencies_hz.empty() && o.count != static_cast<int>(o.frequencies_hz.size()))
+    return "spikes = " + std::to_string(o.count) + ": must equal the number of chosen spike frequencies (" +
+           std::to_string(o.frequencies_hz.size()) + ")";
+  if (!(o.frequency_window > 0 && o.frequency_window < 0.5))
+    return "spike frequency window = " + format_value(o.frequency_window) + ": must be in (0, 0.5)";
   if (!(o.support_level > 0 && o.support_level < 1))
     return "support_level = " + format_value(o.support_level) + ": must be in (0, 1)";
   return std::nullopt;
@@ -69,7 +76,21 @@ std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options)
   const int lo = static_cast<int>(std::ceil(options.min_frequency_hz / df - 1e-9));
   const int hi = std::min<double>(s.last_bin(), std::floor(options.max_frequency_hz / df + 1e-9)) ;
   std::vector<std::pair<double, int>> ranked;  // (score, bin)
-  for (int k : local_maxima(s)) {
+  if (!options.frequencies_hz.empty()) {
+    // Chosen spikes: for each given frequency, the largest local maximum within +-window of it (so data and model
+    // spikes are paired by frequency, whatever their heights). A frequency with no local maximum near it gives no
+    // spike: for data that is an input error (see costs), for a model an (A4) violation.
+    const auto maxima = local_maxima(s);
+    for (double f : options.frequencies_hz) {
+      int best = -1;
+      for (int k : maxima)
+        if (std::abs(k * df - f) <= options.frequency_window * f && (best < 0 || s.magnitude(k) > s.magnitude(best)))
+          best = k;
+      if (best >= 0 && std::none_of(ranked.begin(), ranked.end(), [&](const auto& r) { return r.second == best; }))
+        ranked.emplace_back(s.magnitude(best), best);
+    }
+  }
+  for (int k : options.frequencies_hz.empty() ? local_maxima(s) : std::vector<int>{}) {
     if (k < lo || k > hi) continue;
     const double score = options.rule == "prominence" ? prominence(s, k, std::max(lo, 0), hi) : s.magnitude(k);
     ranked.emplace_back(score, k);
@@ -77,7 +98,8 @@ std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options)
   // Largest first; ties broken towards the lower bin so that the choice is deterministic.
   std::sort(ranked.begin(), ranked.end(),
             [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
-  if (static_cast<int>(ranked.size()) > options.count) ranked.resize(static_cast<std::size_t>(options.count));
+  if (options.frequencies_hz.empty() && static_cast<int>(ranked.size()) > options.count)
+    ranked.resize(static_cast<std::size_t>(options.count));
   std::vector<Spike> spikes;
   for (const auto& [score, k] : ranked) {
     Spike p;

@@ -25,6 +25,11 @@ struct SpikeOptions {
   double min_frequency_hz = 0;      // candidates restricted to [min, max]
   double max_frequency_hz = std::numeric_limits<double>::infinity();
   double support_level = 0.2;       // the paper's 20 %
+  // Chosen spikes (real records hold modes a model lacks, such as torsion, and mains lines): when not empty, the
+  // spikes are the largest local maxima within +-frequency_window (relative) of each of these frequencies, and
+  // count is their number; `rule` and the band are not used.
+  std::vector<double> frequencies_hz;
+  double frequency_window = 0.05;
 };
 // First violated constraint ("spikes = 0: must be >= 1"), or nothing.
 std::optional<std::string> validation_error(const SpikeOptions& options);

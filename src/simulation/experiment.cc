@@ -11,8 +11,8 @@ std::optional<std::string> validation_error(const Experiment& e, double length_m
   const auto bad = [](const std::string& key, double value, const std::string& constraint) {
     return key + " = " + format_value(value) + ": " + constraint;
   };
-  if (e.excitation != "pulse" && e.excitation != "pluck")
-    return "excitation = '" + e.excitation + "': must be one of pulse, pluck";
+  if (e.excitation != "pulse" && e.excitation != "pluck" && e.excitation != "free-decay")
+    return "excitation = '" + e.excitation + "': must be one of pulse, pluck, free-decay";
   if (e.output != "displacement" && e.output != "velocity" && e.output != "acceleration")
     return "output = '" + e.output + "': must be one of displacement, velocity, acceleration";
   const std::string on_beam = "must lie on the beam, 0 <= x <= l = " + format_value(length_m);

@@ -2,6 +2,8 @@
 //   excitation "pulse": P(t) = F0 sin^2(pi t / tau) for 0 <= t <= tau, 0 after, at x_f; zero initial state.
 //   excitation "pluck": released at t = 0, at rest, from the static deflection K w0 = F0 beta(x_f) (a tip load when
 //                       x_f = l); no force afterwards.
+//   excitation "free-decay": a record that starts after an impact or a release, from an unknown state; it can be
+//                       fitted (simulation/free_decay.h) but not simulated.
 //   sensor at xbar: displacement, velocity or acceleration of u; samples t_i = i dt, i = 0..Nbar-1.
 #pragma once
 
@@ -13,7 +15,7 @@
 namespace beamid::simulation {
 
 struct Experiment {
-  std::string excitation = "pulse";      // "pulse" | "pluck"
+  std::string excitation = "pulse";      // "pulse" | "pluck" | "free-decay"
   std::optional<double> force_x_m;       // x_f; default: the tip (x = l)
   double force_amplitude_N = 1.0;        // F0 (pulse peak) or P0 (pluck static load)
   double pulse_width_s = 0.01;           // tau (pulse only)

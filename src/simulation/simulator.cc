@@ -30,6 +30,9 @@ std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options) {
 ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
                              const Experiment& e) {
   if (auto error = validation_error(e, forms.length_m)) throw InputError(*error);
+  if (e.excitation == "free-decay")
+    throw InputError("excitation = 'free-decay': the initial state is unknown, so it can be fitted but not simulated "
+                     "(use pulse or pluck)");
   ResponseProblem p;
   p.load = galerkin::point_load(forms, e.force_x_m.value_or(forms.length_m));
   p.sensor = galerkin::point_load(forms, e.sensor_x_m.value_or(forms.length_m));

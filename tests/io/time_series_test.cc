@@ -1,4 +1,6 @@
 // Reading data records: each malformed file gives an InputError naming the file, line, column and constraint.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -22,9 +24,9 @@ std::string rows(int n, double dt) {
   return text;
 }
 
-std::string error_of(const std::string& path) {
+std::string error_of(const std::string& path, const ImportOptions& o = {}) {
   try {
-    read_time_series(path);
+    read_time_series(path, o);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -49,8 +51,108 @@ TEST(TimeSeries, MalformedFilesAreLocated) {
       << error_of(write("jitter.csv", jitter));
   EXPECT_NE(error_of(write("short.csv", rows(5, 0.001))).find("5 samples: at least 8 are needed"), std::string::npos);
   EXPECT_NE(error_of(write("word.csv", "t_s,y\n0,1\n0.1,abc\n")).find("word.csv:3: y = 'abc': must be a number"), std::string::npos);
-  EXPECT_NE(error_of(write("three.csv", "t,a,b\n")).find("must name exactly two columns"), std::string::npos);
+  EXPECT_NE(error_of(write("one.csv", "t\n")).find("must name at least two columns"), std::string::npos);
+  EXPECT_NE(error_of(write("three.csv", "t,a,b\n" + std::string(10, ' ') + "\n")).find("2 signal columns (a, b): choose one with --channel"),
+            std::string::npos);
   EXPECT_NE(error_of(testing::TempDir() + "absent.csv").find("cannot read the file"), std::string::npos);
+}
+
+// A LabVIEW export as NI writes it: tab-separated, two header blocks, times rounded to 6 decimals of a step that
+// is not a round number (51200/31 Hz), the unit g, an empty Comment column.
+std::string lvm(int n, const std::string& value_of_8 = "") {
+  std::string text =
+      "LabVIEW Measurement\t\nWriter_Version\t2\nSeparator\tTab\nDecimal_Separator\t.\nMulti_Headings\tYes\n"
+      "X_Columns\tMulti\n***End_of_Header***\t\n\t\nChannels\t1\t\nSamples\t" + std::to_string(n) +
+      "\t\nY_Unit_Label\tg\t\nX_Dimension\tTime\t\nX0\t0.0000000000000000E+0\t\nDelta_X\t0.000605\t\n"
+      "***End_of_Header***\t\t\nX_Value\tAcceleration\tComment\n";
+  const double dt = 31.0 / 51200;
+  for (int i = 0; i < n; ++i) {
+    char line[64];
+    std::snprintf(line, sizeof line, "%.6f\t%.6f\n", i * dt, std::sin(0.3 * i));
+    text += i == 8 && !value_of_8.empty() ? std::string(line).substr(0, std::string(line).find('\t') + 1) + value_of_8 + "\n"
+                                          : std::string(line);
+  }
+  return text;
+}
+
+TEST(TimeSeries, ReadsLabViewTextWithRoundedTimesAndConvertsG) {
+  const auto s = read_time_series(write("rec.lvm", lvm(100)));
+  EXPECT_EQ(s.format, "lvm");
+  EXPECT_EQ(s.value_column, "Acceleration");
+  EXPECT_EQ(s.unit, "m/s^2");
+  ASSERT_EQ(s.values.size(), 100u);
+  // dt from the endpoints: the 6-decimal rounding of the last time (<= 5e-7 s) over 99 steps.
+  EXPECT_NEAR(s.dt_s, 31.0 / 51200, 5e-7 / 99 + 1e-15);
+  EXPECT_NEAR(s.values[3], 9.80665 * std::round(1e6 * std::sin(0.9)) / 1e6, 1e-12);
+  // as-is keeps g; a window keeps t in [start, start + duration).
+  ImportOptions o;
+  o.units = "as-is";
+  o.start_s = 10 * 31.0 / 51200;
+  o.duration_s = 20 * 31.0 / 51200;
+  const auto w = read_time_series(write("rec.lvm", lvm(100)), o);
+  EXPECT_EQ(w.unit, "g");
+  ASSERT_EQ(w.values.size(), 20u);
+  EXPECT_NEAR(w.values[0], std::round(1e6 * std::sin(3.0)) / 1e6, 1e-12);
+  EXPECT_NEAR(w.t0_s, 10 * w.dt_s, 1e-12);
+}
+
+TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
+  // Line 16 is the column-name line; data row 8 (0-based) is line 25.
+  EXPECT_NE(error_of(write("nan.lvm", lvm(50, "NaN"))).find("nan.lvm:25: Acceleration = NaN: must be finite"),
+            std::string::npos)
+      << error_of(write("nan.lvm", lvm(50, "NaN")));
+  EXPECT_NE(error_of(write("word.lvm", lvm(50, "1.2.3"))).find("word.lvm:25: Acceleration = '1.2.3': must be a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("bad.lvm", "LabVIEW Measurement\nSeparator\tSemicolon\n")).find("bad.lvm:2: Separator = 'Semicolon': must be Tab or Comma"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("not.lvm", "time,value\n")).find("not.lvm:1: not a LabVIEW measurement file"), std::string::npos);
+  // A clipped record: the peak held for 3 samples.
+  std::string clipped = "t_s,a\n";
+  for (int i = 0; i < 20; ++i) clipped += std::to_string(0.01 * i) + "," + (i >= 5 && i < 8 ? "2.5" : "0.1") + "\n";
+  EXPECT_NE(error_of(write("clip.csv", clipped)).find("clip.csv:7: a = 2.5 on 3 or more consecutive samples at the record's peak"),
+            std::string::npos);
+  // Channels by name and index; an unknown one lists the choices.
+  const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";
+  ImportOptions o;
+  o.channel = "2";
+  EXPECT_EQ(read_time_series(write("two.csv", two), o).value_column, "ay_g");
+  EXPECT_NEAR(read_time_series(write("two.csv", two), o).values[3], 3 * 9.80665, 1e-12);
+  o.channel = "az";
+  EXPECT_NE(error_of(write("two.csv", two), o).find("channel = 'az': must be one of ax_g, ay_g (or 1..2)"), std::string::npos);
+  // A window outside the record.
+  ImportOptions late;
+  late.channel = "1";
+  late.start_s = 5;
+  EXPECT_NE(error_of(write("two.csv", two), late).find("holds 0 of the requested samples"), std::string::npos)
+      << error_of(write("two.csv", two), late);
+}
+
+TEST(TimeSeries, ResamplingOnRequest) {
+  std::string jitter = "t_s,y\n";
+  for (int i = 0; i < 20; ++i) jitter += std::to_string(0.01 * i + (i == 7 ? 0.003 : 0)) + "," + std::to_string(2.0 * i) + "\n";
+  EXPECT_NE(error_of(write("j.csv", jitter)).find("non-uniform time base"), std::string::npos);
+  ImportOptions o;
+  o.resample = true;
+  const auto s = read_time_series(write("j.csv", jitter), o);
+  // y = 200 t except at the displaced sample, whose neighbours interpolate linearly: y(0.07) lies on the chord
+  // from (0.06, 12) to (0.073, 14).
+  EXPECT_NEAR(s.values[7], 12 + 2 * 0.01 / 0.013, 1e-9);
+  EXPECT_NEAR(s.values[10], 20, 1e-9);
+  EXPECT_NE(s.notes.find("resampled"), std::string::npos);
+}
+
+TEST(TimeSeries, ReadsTheRealArtsRecord) {
+  // ../shared/data/real/arts-steel-cantilever/timeseries_data.lvm (SOURCE.md there): 81 920 samples at
+  // 51200/31 Hz in g, times printed to 6 decimals. Skipped when the shared data are not beside the project.
+  const std::string path = std::string(BEAMID_SOURCE_DIR) + "/../shared/data/real/arts-steel-cantilever/timeseries_data.lvm";
+  if (!std::ifstream(path)) GTEST_SKIP() << "no " << path;
+  const auto s = read_time_series(path);
+  EXPECT_EQ(s.values.size(), 81920u);
+  EXPECT_NEAR(1 / s.dt_s, 51200.0 / 31, 1e-3);  // the endpoints' 5e-7 s rounding over 81919 steps: 2e-5 Hz
+  EXPECT_EQ(s.unit, "m/s^2");
+  double peak = 0;
+  for (double v : s.values) peak = std::max(peak, std::abs(v));
+  EXPECT_NEAR(peak / 9.80665, 1.45, 0.05);  // the impact's peak, 1.45 g (SOURCE.md)
 }
 
 }  // namespace

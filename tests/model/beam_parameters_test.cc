@@ -85,9 +85,9 @@ TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6     # kg m^2   tip body inertia about its centre of mass", "J_o = 5.208e-6\nEA = 1")),
             "beam.toml:15: unknown key beam.EA: valid keys are l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
   EXPECT_EQ(error_of(std::string(kValid) + "[fit]\nx = 1\n"),
-            "beam.toml:15: unknown top-level key 'fit': a beam file holds only a [beam] table");
+            "beam.toml:15: unknown top-level key 'fit': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
   EXPECT_NE(error_of("[beam\nl = 1").find("beam.toml:1: TOML syntax error"), std::string::npos);
-  EXPECT_EQ(error_of("l = 1\n"), "beam.toml:1: unknown top-level key 'l': a beam file holds only a [beam] table");
+  EXPECT_EQ(error_of("l = 1\n"), "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
   EXPECT_EQ(error_of(""), "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
 }
 

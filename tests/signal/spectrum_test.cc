@@ -172,7 +172,9 @@ TEST(ThreeBin, RecoversFrequencyAndDecayOfADampedExponential) {
       for (int i = 0; i < n; ++i) z[static_cast<std::size_t>(i)] = std::exp(-sigma * i * dt) * std::cos(2 * kPi * f * i * dt);
       Dft dft(n, dt);
       const auto s = dft.transform(z);
-      const auto peaks = detect_spikes(s, SpikeOptions{1});
+      SpikeOptions one;
+      one.count = 1;
+      const auto peaks = detect_spikes(s, one);
       ASSERT_EQ(peaks.size(), 1u);
       const auto e = three_bin_estimate(s, peaks[0].bin);
       ASSERT_TRUE(e.ok);

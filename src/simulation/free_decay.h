@@ -1,0 +1,28 @@
+// Free decay with an unknown initial state (a record that starts after an impact or a release): the response is
+//   y(t_i) = c0 + sum_k [a_k e^{sigma_k t_i} cos(omega_k t_i) + b_k e^{sigma_k t_i} sin(omega_k t_i)]
+// over the underdamped modes lambda_k = sigma_k + j omega_k of the model whose frequency lies below the Nyquist
+// frequency, plus a constant c0 (a sensor offset). The amplitudes enter linearly, so for given parameters they are
+// solved in closed form by least squares against the data (Householder QR): only the physical parameters are left
+// to the optimizer, and the sensor's position and quantity (displacement, velocity, acceleration: each multiplies a
+// mode by a constant) do not matter. Time is counted from the first sample (t_0 = 0), which keeps the columns of
+// order one.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace beamid::simulation {
+
+struct FreeDecayFit {
+  std::vector<double> y;                         // the least-squares synthesis at t_i = i dt
+  std::vector<std::complex<double>> poles_rad_s; // the modes used (Im > 0, below Nyquist), ascending frequency
+  std::vector<double> amplitudes;                // c0, then a_k, b_k per mode
+  std::string status = "ok";                     // or why not (no mode below Nyquist, rank-deficient basis)
+};
+
+// InputError for dt <= 0 or empty data.
+FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles_rad_s, double dt_s,
+                            const std::vector<double>& data);
+
+}  // namespace beamid::simulation
