@@ -78,7 +78,7 @@ for p in $(ordered "$known_params" "$found"); do
 done
 
 # success_vs_modes: modes.csv, only when the data have more than one modes count
-if [[ -f $res/modes.csv ]]; then
+if [[ -f $res/modes.csv ]] && head -n 1 "$res/modes.csv" | grep -q "^modes_in_data,"; then  # a synthetic study's table (real-steel's modes.csv lists identified modes)
   n=$(awk -F, 'NR > 1 && NF > 1 {print $1}' "$res/modes.csv" | LC_ALL=C sort -u | wc -l)
   if (( n > 1 )); then
     plot success_vs_modes success_vs_modes
