@@ -1,11 +1,10 @@
 # Run at every build (cmake -P): writes generated/beamid/version.h only when its content changes, so a commit or an
 # edit is reflected without reconfiguring and an unchanged tree triggers no rebuild.
-# BEAMID_GIT_COMMIT is the last commit that changed the code, studies, tests or build files. Excluded: generated
-# outputs (results/, REPORT.md), the plots (pure functions of results/: their scripts draw, they compute nothing)
-# and prose (*.md), so committing regenerated results or editing documentation does not change the provenance
-# stamped into the results, nor invalidate a study's store. BEAMID_GIT_DIRTY is 1 when those paths have
-# uncommitted changes.
-set(spec . ":(exclude)results" ":(exclude)plots" ":(glob,exclude)**/*.md")
+# BEAMID_GIT_COMMIT is the last commit that changed what the programs compute: src/, studies/, cmake/ and
+# CMakeLists.txt. Tests, plot scripts, prose and generated outputs (results/, plots/, REPORT.md) are left out, so
+# committing regenerated results, a new test or an edited README neither changes the provenance stamped into the
+# results nor invalidates a study's store. BEAMID_GIT_DIRTY is 1 when those paths have uncommitted changes.
+set(spec src studies cmake CMakeLists.txt ":(glob,exclude)**/*.md")
 execute_process(COMMAND git log -1 --format=%h --abbrev=12 -- ${spec} WORKING_DIRECTORY ${SOURCE_DIR}
                 OUTPUT_VARIABLE commit OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0 OR NOT commit)
