@@ -16,12 +16,6 @@
 namespace beamid::study {
 namespace fs = std::filesystem;
 
-std::string full(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void write_file(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   const fs::path tmp = path.string() + ".tmp";

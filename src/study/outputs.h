@@ -8,13 +8,12 @@
 #include <vector>
 
 #include "study/execute.h"
+#include "study/text.h"
 
 namespace beamid::study {
 
 // Writes `text` to `path` through a temporary file and a rename (readers never see half a file); creates folders.
 void write_file(const std::filesystem::path& path, const std::string& text);
-// "%.17g": round-trips a double.
-std::string full(double value);
 // A JSON string literal.
 std::string json_string(const std::string& s);
 std::string compiler();

@@ -5,26 +5,15 @@
 
 #include "io/csv.h"
 #include "signal/noise.h"
+#include "study/text.h"
 
 namespace beamid::study {
 namespace {
 
-std::string hex(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
-
-// Shortest exact text of a number for canonical strings (round-trips, so distinct values stay distinct).
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
+// Numbers in canonical strings are written by full() (they round-trip, so distinct values stay distinct).
 void identify(Unit& u, const StudySpec& spec) {
   const std::uint64_t h = signal::fnv1a64(u.canonical);
-  u.id = hex(h);
+  u.id = hex64(h);
   u.seed = signal::mix64(spec.seed ^ h);
 }
 
@@ -32,10 +21,10 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   const auto& t = spec.truth;
   const auto& e = t.experiment;
   std::ostringstream os;
-  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << num(t.rtol) << ";integrator=cvode"
-     << ";dt_s=" << num(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
-     << ";force_x_m=" << (e.force_x_m ? num(*e.force_x_m) : "tip") << ";force_amplitude_N=" << num(e.force_amplitude_N)
-     << ";pulse_width_s=" << num(pulse_width_s) << ";sensor_x_m=" << (e.sensor_x_m ? num(*e.sensor_x_m) : "tip")
+  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << full(t.rtol) << ";integrator=cvode"
+     << ";dt_s=" << full(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
+     << ";force_x_m=" << (e.force_x_m ? full(*e.force_x_m) : "tip") << ";force_amplitude_N=" << full(e.force_amplitude_N)
+     << ";pulse_width_s=" << full(pulse_width_s) << ";sensor_x_m=" << (e.sensor_x_m ? full(*e.sensor_x_m) : "tip")
      << ";output=" << e.output;
   return os.str();
 }
@@ -46,9 +35,9 @@ std::string fit_text(const StudySpec& spec) {
   os << "estimate=";
   for (std::size_t i = 0; i < f.estimate.size(); ++i) os << (i ? "," : "") << f.estimate[i];
   os << ";spikes=" << (f.spikes == 0 ? "auto" + std::to_string(f.max_spikes) : std::to_string(f.spikes))
-     << ";spike_rule=" << f.spike_rule << ";band_hz=" << num(f.min_frequency_hz) << ":" << num(f.max_frequency_hz)
-     << ";window=" << f.window << ";bound_factor=" << num(f.bound_factor) << ";scaling=" << f.scaling
-     << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << num(f.xtol_rel);
+     << ";spike_rule=" << f.spike_rule << ";band_hz=" << full(f.min_frequency_hz) << ":" << full(f.max_frequency_hz)
+     << ";window=" << f.window << ";bound_factor=" << full(f.bound_factor) << ";scaling=" << f.scaling
+     << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << full(f.xtol_rel);
   // The success tolerances are not part of a unit's identity: they judge a result and do not change it.
   return os.str();
 }
@@ -89,16 +78,16 @@ Plan make_plan(const StudySpec& spec) {
                   const MethodSpec& m = spec.method(method_name);
                   const StartSpec& s = spec.start(start_name);
                   std::ostringstream os;
-                  os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples << ";noise=" << num(noise)
+                  os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples << ";noise=" << full(noise)
                      << ";replicate=" << rep << ";N=" << n << ";cost=" << cost << ";" << fit << ";method=" << m.strategy
                      << "/" << m.optimizer << "/" << m.starts << ";start=";
-                  for (const auto& [key, factor] : s.factor) os << key << ":" << num(factor) << ",";
+                  for (const auto& [key, factor] : s.factor) os << key << ":" << full(factor) << ",";
                   u.canonical = os.str();
                   identify(u, spec);
                   // Same record for every cost, N, method and start (common random numbers).
                   u.noise_seed = signal::mix64(
                       spec.seed ^ signal::fnv1a64("noise;" + plan.truths[ti].canonical + ";record_samples=" +
-                                                  std::to_string(samples) + ";noise=" + num(noise) +
+                                                  std::to_string(samples) + ";noise=" + full(noise) +
                                                   ";replicate=" + std::to_string(rep)));
                   plan.units.push_back(u);
                 }
@@ -110,7 +99,7 @@ Plan make_plan(const StudySpec& spec) {
     for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
       for (int samples : spec.sweep.samples) {
         const std::string base = plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) +
-                                 ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + num(l.range_factor);
+                                 ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + full(l.range_factor);
         const auto add = [&](Unit u) {
           u.truth = static_cast<int>(ti);
           u.pulse_width_s = plan.truths[ti].pulse_width_s;

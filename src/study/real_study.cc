@@ -65,9 +65,7 @@ RealStudySpec load_real_study(const std::string& path) {
   const auto relative = [&](const std::string& f) { return fs::path(f).is_absolute() ? f : (dir / f).string(); };
   RealStudySpec s;
   s.path = path;
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(signal::fnv1a64(text.str())));
-  s.file_hash = hash;
+  s.file_hash = hex64(signal::fnv1a64(text.str()));
   const auto positive = [](double v) { return v > 0; };
   {
     TableReader r(table_of(root, "study", path), "study.", path);

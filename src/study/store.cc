@@ -6,17 +6,10 @@
 #include <sstream>
 
 #include "model/errors.h"
+#include "study/text.h"
 
 namespace beamid::study {
 namespace fs = std::filesystem;
-
-namespace {
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-}  // namespace
 
 void Record::set(const std::string& key, const std::string& value) {
   std::string v = value;
@@ -24,10 +17,10 @@ void Record::set(const std::string& key, const std::string& value) {
     if (c == '\n' || c == '\t' || c == '\r') c = ' ';
   fields_[key] = v;
 }
-void Record::set(const std::string& key, double value) { fields_[key] = num(value); }
+void Record::set(const std::string& key, double value) { fields_[key] = full(value); }
 void Record::set(const std::string& key, const std::vector<double>& values) {
   std::string s;
-  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? " " : "") + num(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? " " : "") + full(values[i]);
   fields_[key] = s;
 }
 

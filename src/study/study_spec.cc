@@ -15,6 +15,7 @@
 #include "model/errors.h"
 #include "model/toml_reader.h"
 #include "signal/noise.h"
+#include "study/text.h"
 
 namespace beamid::study {
 namespace {
@@ -44,12 +45,6 @@ void read_experiment(TableReader& r, simulation::Experiment& e) {
   e.pulse_width_s = r.number("pulse_width_s", e.pulse_width_s, positive, "must be > 0");
   if (r.has("sensor_x_m")) e.sensor_x_m = r.number("sensor_x_m", std::nullopt, non_negative, "must be >= 0");
   e.output = r.string("output", e.output, {"displacement", "velocity", "acceleration"});
-}
-
-std::string hex(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
 }
 
 }  // namespace
@@ -82,7 +77,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
 
   StudySpec spec;
   spec.path = source;
-  spec.file_hash = hex(signal::fnv1a64(text));
+  spec.file_hash = hex64(signal::fnv1a64(text));
 
   {  // [study]
     TableReader r(required_table(root, "study", source), "study.", source);
