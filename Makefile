@@ -4,7 +4,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: all deps build binary test test-sanitize bench verify report clean study study-smoke plots golden
+.PHONY: fuzz all deps build binary test test-sanitize bench verify report clean study study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature).
 STUDIES    ?= paper thick modes landscape
@@ -25,8 +25,16 @@ build: deps $(BUILD)/CMakeCache.txt
 binary: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target beamid
 
-test: build
+# Builds only what the tests run (the program and the test suite; not the benchmarks).
+test: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target beamid beamid_tests
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Copies the program to $(PREFIX)/bin (default ~/.local/bin), so that `beamid` runs as the README writes it.
+PREFIX ?= $(HOME)/.local
+install: binary
+	install -D -m 755 $(BEAMID) $(PREFIX)/bin/beamid
+	@echo "installed $(PREFIX)/bin/beamid; make sure $(PREFIX)/bin is on PATH"
 
 # Unit tests once more under AddressSanitizer and UndefinedBehaviorSanitizer (benchmarks not built).
 test-sanitize: deps
@@ -35,8 +43,29 @@ test-sanitize: deps
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
+# libFuzzer on every reader (beam and geometry TOML, study TOML, CSV, LVM, the command line) for FUZZ_SECONDS each,
+# under ASan and UBSan, from the seeds and regressions in tests/fuzz/corpus/<target>/. A finding is written to
+# build-fuzz/crash-<target>-*: add it to the corpus (it then runs in `make test`) and fix the reader.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := beam_file study_file csv_record lvm_record command_line
+fuzz:
+	@bash .ci/deps.sh fuzz
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+	      -DBEAMID_FUZZ=ON -DBEAMID_BENCHMARKS=OFF
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_BUILD)/corpus/$$t; \
+	  echo "== fuzz $$t ($(FUZZ_SECONDS) s)"; \
+	  $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t -max_total_time=$(FUZZ_SECONDS) \
+	    -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=$(FUZZ_BUILD)/crash-$$t- \
+	    2>$(FUZZ_BUILD)/fuzz-$$t.log || { tail -40 $(FUZZ_BUILD)/fuzz-$$t.log; exit 1; }; \
+	  grep -E "stat::number_of_executed_units|Done" $(FUZZ_BUILD)/fuzz-$$t.log | tail -2; \
+	done
+
 # Google Benchmark, JSON under results/benchmarks/ (medians over repetitions).
-bench: build
+bench: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target beamid_bench beamid_identification_bench
 	@mkdir -p results/benchmarks
 	$(BUILD)/beamid_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
 	    --benchmark_out=results/benchmarks/forward_model.json --benchmark_out_format=json
@@ -44,11 +73,11 @@ bench: build
 	    --benchmark_out=results/benchmarks/identification.json --benchmark_out_format=json
 
 # Forward-model verification tables (results/verification/) and the REPORT.md blocks made from them.
-verify: build
+verify: binary
 	$(BEAMID) verify --output results/verification
 	$(BEAMID) report --update REPORT.md --results results
 
-report: build
+report: binary
 	$(BEAMID) report --update REPORT.md --results results
 
 # Every study (each resumes from its results/<study>/store/ if interrupted), then plots and REPORT.md. Tables are
@@ -63,9 +92,11 @@ study: binary
 	$(MAKE) --no-print-directory plots
 	$(BEAMID) report --update REPORT.md --results results
 
+# The smoke study (about 20 s): the whole pipeline in miniature, then whether it matches CI's golden table.
 study-smoke: binary
 	$(BEAMID) study studies/smoke.toml --jobs $(STUDY_JOBS)
 	bash plots/make_plots.sh results/smoke plots/smoke
+	python3 tests/golden/make_golden.py --check results/smoke/cases.csv tests/golden/smoke_cases.csv
 
 # gnuplot, from the CSVs alone (plots/make_plots.sh), for every study that has results.
 plots: deps
@@ -73,7 +104,10 @@ plots: deps
 	  if [ -f results/$$s/provenance.csv ]; then bash plots/make_plots.sh results/$$s plots/$$s; fi; \
 	done
 
-# Regenerates CI's golden table (tests/golden/smoke_cases.csv) from a fresh smoke run. Review the diff before
-# committing: the golden test (ctest GoldenSmoke.*) fails on any estimate that moves by more than 1e-4.
-golden: build
-	BEAMID_UPDATE_GOLDEN=1 $(BUILD)/beamid_tests --gtest_filter='GoldenSmoke.*'
+# Regenerates CI's golden table (tests/golden/smoke_cases.csv) from a fresh smoke run of the beamid program (the test
+# only reads the table). Review the diff before committing: the golden test (ctest GoldenSmoke.*) fails on any
+# estimate that moves by more than 1e-4.
+golden: binary
+	rm -rf $(BUILD)/golden-smoke
+	$(BEAMID) study studies/smoke.toml --output $(BUILD)/golden-smoke
+	python3 tests/golden/make_golden.py $(BUILD)/golden-smoke/cases.csv tests/golden/smoke_cases.csv

@@ -2,15 +2,18 @@
 # Installs the Debian 12 packages beamid needs, and only those that are missing.
 # Quiet and fast (one dpkg-query) when everything is present; uses sudo when not root.
 # The list follows ../shared/docs/toolchain.md, without the packages beamid does not use
-# (matplotlib, MPI, yaml-cpp, nlohmann-json, CLI11, fmt).
+# (matplotlib, MPI, yaml-cpp, nlohmann-json, fmt).
 set -euo pipefail
 
 packages=(
   g++ make cmake pkgconf git
   libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
-  libgtest-dev libbenchmark-dev
+  libcli11-dev libgtest-dev libbenchmark-dev
   gnuplot-nox
 )
+
+# `deps.sh fuzz`: the packages `make fuzz` needs as well (clang with libFuzzer).
+if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do

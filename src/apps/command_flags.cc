@@ -1,36 +1,32 @@
 #include "apps/command_flags.h"
 
+#include <cmath>
 #include <cstdlib>
+#include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 
+#include "io/resources.h"
 #include "model/errors.h"
+#include "model/limits.h"
 
 namespace beamid::apps {
 
-bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis) {
-  if (!a.has("help")) return false;
-  out << "usage: beamid " << a.command() << " " << synopsis << "\n\n" << a.usage();
-  return true;
+std::vector<FlagSpec> experiment_flag_specs() {
+  return {
+      number_flag("dt", "sampling interval, s (default 1e-3)"),
+      integer_flag("samples", "number of samples Nbar (default 4096)", 2, model::kMaxSamples),
+      number_flag("sensor-x", "sensor position xbar, m (default: the tip)"),
+      text_flag("output", simulation::output_names().alternatives() + " (default displacement)"),
+      text_flag("excitation", simulation::excitation_names().alternatives() +
+                                  " (free-decay: fit only, unknown initial state, amplitudes solved) (default pulse)"),
+      number_flag("force-x", "force position x_f, m (default: the tip)"),
+      number_flag("force-amplitude", "pulse peak F0, or pluck static load P0, N (default 1)"),
+      number_flag("pulse-width", "pulse width tau, s (default 0.01; pulse only)")};
 }
 
-std::vector<io::FlagSpec> join_flags(std::vector<io::FlagSpec> a, const std::vector<io::FlagSpec>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
-
-std::vector<io::FlagSpec> experiment_flag_specs() {
-  return {{"dt", true, "sampling interval, s (default 1e-3)"},
-          {"samples", true, "number of samples Nbar >= 2 (default 4096)"},
-          {"sensor-x", true, "sensor position xbar, m (default: the tip)"},
-          {"output", true, "displacement | velocity | acceleration (default displacement)"},
-          {"excitation", true, "pulse | pluck | free-decay (fit only: unknown initial state, amplitudes solved) (default pulse)"},
-          {"force-x", true, "force position x_f, m (default: the tip)"},
-          {"force-amplitude", true, "pulse peak F0, or pluck static load P0, N (default 1)"},
-          {"pulse-width", true, "pulse width tau, s (default 0.01; pulse only)"}};
-}
-
-simulation::Experiment read_experiment(const io::Arguments& a, double length_m) {
+simulation::Experiment read_experiment(const Flags& a, double length_m) {
   simulation::Experiment e;
   e.dt_s = a.optional_number("dt").value_or(e.dt_s);
   e.samples = a.optional_integer("samples").value_or(e.samples);
@@ -40,13 +36,25 @@ simulation::Experiment read_experiment(const io::Arguments& a, double length_m) 
   e.force_x_m = a.optional_number("force-x");
   e.force_amplitude_N = a.optional_number("force-amplitude").value_or(e.force_amplitude_N);
   e.pulse_width_s = a.optional_number("pulse-width").value_or(e.pulse_width_s);
-  if (e.excitation == "pluck" && a.has("pulse-width"))
+  if (e.excitation == simulation::kPluck && a.has("pulse-width"))
     throw InputError("beamid " + a.command() + ": --pulse-width applies to --excitation pulse only");
   if (auto error = simulation::validation_error(e, length_m)) throw InputError("beamid " + a.command() + ": " + *error);
   return e;
 }
 
-std::vector<fit::EstimatedParameter> parse_estimate(const io::Arguments& a, const model::BeamParameters& nominal,
+void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample) {
+  const double n = elements;
+  const double bytes = model::kModelBytesPerElement2 * n * n + bytes_per_sample * samples;
+  io::check_memory("beamid " + a.command() + ": N = " + std::to_string(elements) + " and " +
+                       std::to_string(static_cast<long long>(samples)) + " samples",
+                   bytes, std::cerr);
+  const double seconds = model::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  if (seconds > 10)
+    std::cerr << "beamid " << a.command() << ": N = " << elements << ": one model evaluation takes about "
+              << io::seconds_text(seconds) << " here (it grows as N^3)\n";
+}
+
+std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model::BeamParameters& nominal,
                                                     double factor) {
   const std::string where = "beamid " + a.command() + ": ";
   std::map<std::string, std::pair<double, double>> explicit_bounds;

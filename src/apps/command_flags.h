@@ -1,32 +1,27 @@
-// Flag handling shared by the beamid commands: --help, the experiment flags (simulate, fit) and the
-// estimated-parameter list (fit).
+// Flags shared by the beamid commands: the experiment flags (simulate, fit) and the estimated-parameter list (fit).
 #pragma once
 
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "apps/flags.h"
 #include "fit/parameter_map.h"
-#include "io/arguments.h"
 #include "model/beam_parameters.h"
 #include "simulation/experiment.h"
 
 namespace beamid::apps {
 
-inline const io::FlagSpec kHelpFlag{"help", false, "print this help"};
-
-// With --help: prints "usage: beamid COMMAND synopsis" and the flags to `out`, and returns true.
-bool wants_help(const io::Arguments& a, std::ostream& out, const std::string& synopsis);
-
-// a followed by b.
-std::vector<io::FlagSpec> join_flags(std::vector<io::FlagSpec> a, const std::vector<io::FlagSpec>& b);
-
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width
-std::vector<io::FlagSpec> experiment_flag_specs();
+std::vector<FlagSpec> experiment_flag_specs();
 // The experiment those flags describe (defaults of simulation::Experiment), validated for a beam of length_m.
-simulation::Experiment read_experiment(const io::Arguments& a, double length_m);
+simulation::Experiment read_experiment(const Flags& a, double length_m);
+// Before a run whose size the flags set: refuses it when the model of N elements and `samples` samples at
+// `bytes_per_sample` would not fit in the machine's memory, and warns on stderr with the estimate when one model
+// evaluation would take more than 10 s (model/limits.h has the measured figures).
+void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample);
 // --estimate KEY,... with bounds [v/F, v F] around each nominal value v, or from --bounds KEY=LO:HI,...
-std::vector<fit::EstimatedParameter> parse_estimate(const io::Arguments& a, const model::BeamParameters& nominal,
+std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model::BeamParameters& nominal,
                                                     double factor);
 
 }  // namespace beamid::apps

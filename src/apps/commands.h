@@ -1,40 +1,59 @@
-// The beamid subcommands. Each takes the arguments after its name, writes its result to `out`, and throws
-// InputError / NumericalError with a one-line message on failure (beamid_main.cc prints it and exits non-zero).
+// The beamid commands: one registry (name, summary, flags, the function that runs it) from which the command line
+// (cli.h) builds its subcommands, its --help and the list of commands an unknown name is answered with. Each
+// function writes its result to `out` and throws InputError / NumericalError with a one-line message on failure.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "apps/flags.h"
+
 namespace beamid::apps {
 
-using Args = std::vector<std::string>;
+struct Command {
+  std::string name;
+  std::string summary;  // one line for the overview
+  std::vector<FlagSpec> flags;
+  std::vector<std::pair<std::string, std::string>> excludes;  // flags that may not be given together
+  std::function<int(const Flags&, std::ostream&)> run;
+};
 
-// beamid modes --beam <preset|file.toml> (--elements N [--undamped] | --exact) [--count K]
-int run_modes(const Args& args, std::ostream& out);
-// beamid simulate --beam B --elements N [experiment flags] [--integrator fast|cvode] [--rtol R --atol A]
-int run_simulate(const Args& args, std::ostream& out);
-// beamid spikes --data FILE.csv --spikes NM [--window NAME]: CSV spike,bin,frequency_hz,magnitude,n_left,n_right
-int run_spikes(const Args& args, std::ostream& out);
-// beamid cost --data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]
-int run_cost(const Args& args, std::ostream& out);
-// beamid fit --data FILE.csv --beam B --elements N --estimate KEYS --cost NAME [...]: CSV
-// parameter,estimate,standard_error,start,lower,upper; exit 3 when the fit failed
-int run_fit(const Args& args, std::ostream& out);
-// beamid verify --output DIR: forward-model verification tables (see verification.h)
-int run_verify(const Args& args, std::ostream& out);
-// beamid report --update REPORT.md [--results DIR]: refresh the generated blocks
-int run_report(const Args& args, std::ostream& out);
-
-// beamid study STUDY.toml [--jobs J] [--output DIR] [--shard K/N]: run a study (tables in results/<study>/)
-int run_study(const Args& args, std::ostream& out);
-// beamid merge STUDY.toml --shards DIR1,DIR2 [--output DIR]: combine shard runs into the tables of one run
-int run_merge(const Args& args, std::ostream& out);
-
-// beamid real STUDY.toml [--output DIR]: fit a measured free-decay record with each cost (study/real_study.h)
-int run_real(const Args& args, std::ostream& out);
-
-// The overview printed by "beamid --help".
+// Every command, in the order of the overview.
+const std::vector<Command>& commands();
+// The overview printed by "beamid --help" (and by "beamid" alone).
 std::string overview();
+
+// beamid modes --beam B (--elements N [--undamped] | --exact) [--count K]: mode,frequency_hz[,damping_ratio]
+int run_modes(const Flags& flags, std::ostream& out);
+// beamid simulate --beam B --elements N [experiment flags] [--integrator fast|cvode]: t_s,<output>
+int run_simulate(const Flags& flags, std::ostream& out);
+// beamid spikes --data FILE --spikes NM: spike,bin,frequency_hz,magnitude,n_left,n_right
+int run_spikes(const Flags& flags, std::ostream& out);
+// beamid cost --data FILE --prediction FILE --cost NAME: the cost value
+int run_cost(const Flags& flags, std::ostream& out);
+// beamid fit --data FILE --beam B --elements N --estimate KEYS --cost NAME: parameter,estimate,standard_error,...;
+// exit 3 when the fit failed
+int run_fit(const Flags& flags, std::ostream& out);
+// beamid verify --output DIR: forward-model verification tables (see verification.h)
+int run_verify(const Flags& flags, std::ostream& out);
+// beamid report --update REPORT.md [--results DIR]: refresh the generated blocks
+int run_report(const Flags& flags, std::ostream& out);
+// beamid study STUDY.toml [--jobs J] [--output DIR] [--shard K/N]: run a study (tables in results/<study>/)
+int run_study(const Flags& flags, std::ostream& out);
+// beamid merge STUDY.toml --shards DIR1,DIR2 [--output DIR]: combine shard runs into the tables of one run
+int run_merge(const Flags& flags, std::ostream& out);
+// beamid real STUDY.toml [--output DIR]: fit a measured free-decay record with each cost (study/real_study.h)
+int run_real(const Flags& flags, std::ostream& out);
+
+// The flags of the commands that share them.
+std::vector<FlagSpec> spike_flags();
+std::vector<FlagSpec> import_flags();
+std::vector<FlagSpec> cost_flags(bool required);
+std::vector<FlagSpec> fit_flags();
+std::vector<FlagSpec> study_flags();
+std::vector<FlagSpec> merge_flags();
+std::vector<FlagSpec> real_flags();
 
 }  // namespace beamid::apps

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "io/provenance.h"
-#include "io/csv.h"
+#include "io/text.h"
 #include "model/errors.h"
 #include "signal/spectrum.h"
 
@@ -38,7 +38,8 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   if (costs::is_spike_cost(o.cost.name))
     md << ", NM = " << o.cost.spikes.count << " spikes (rule " << o.cost.spikes.rule << "), window "
        << o.cost.window.name;
-  if (o.cost.unknown_amplitude) md << ", unknown excitation amplitude (scale " << g(r.final_evaluation.amplitude_scale) << ")";
+  if (o.cost.unknown_amplitude)
+    md << ", unknown excitation amplitude (scale " << g(r.final_evaluation.amplitude_scale) << ")";
   md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
      << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
 
@@ -47,8 +48,9 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
      << " model evaluations; " << g(r.wall_time_s, 3) << " s.\n\n";
   md << "| parameter | estimate | standard error | start | lower | upper |\n|---|---|---|---|---|---|\n";
   for (const auto& p : r.parameters)
-    md << "| " << p.key << " | " << g(p.estimate, 10) << " | " << (std::isnan(p.standard_error) ? "-" : g(p.standard_error, 3))
-       << " | " << g(p.start) << " | " << g(p.lower) << " | " << g(p.upper) << " |\n";
+    md << "| " << p.key << " | " << g(p.estimate, 10) << " | "
+       << (std::isnan(p.standard_error) ? "-" : g(p.standard_error, 3)) << " | " << g(p.start) << " | " << g(p.lower)
+       << " | " << g(p.upper) << " |\n";
   md << "\nStandard errors and correlations are formal: (J^T J)^-1 |r|^2/(m - n) at the estimate, valid only if the "
         "residuals are independent Gaussian noise of equal variance, which is not so for the spike costs' mixed "
         "terms nor for model error. Covariance: "
@@ -83,7 +85,8 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   const auto& pairs = r.final_evaluation.pairs;
   if (!pairs.empty()) {
     md << "\n## Spikes and (A4)\n\n(A4) check at the estimate: " << r.final_evaluation.a4 << ".\n\n";
-    md << "| spike | data bin | data f (Hz) | data sigma (1/s) | n_l | N_l | model bin | model f (Hz) | model sigma (1/s) | data abs Z | model abs U | jumps |\n"
+    md << "| spike | data bin | data f (Hz) | data sigma (1/s) | n_l | N_l | model bin | model f (Hz) | model sigma "
+          "(1/s) | data abs Z | model abs U | jumps |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t l = 0; l < pairs.size(); ++l) {
       const auto& p = pairs[l];

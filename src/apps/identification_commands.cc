@@ -4,44 +4,46 @@
 #include <iostream>
 #include <sstream>
 
-#include "apps/commands.h"
 #include "apps/command_flags.h"
+#include "apps/commands.h"
 #include "apps/fit_report.h"
-#include "io/provenance.h"
+#include "apps/flags.h"
+#include "config/beam_file.h"
 #include "costs/cost.h"
 #include "fit/identification.h"
-#include "io/arguments.h"
-#include "io/csv.h"
+#include "io/provenance.h"
+#include "io/text.h"
 #include "io/time_series.h"
-#include "model/beam_toml.h"
 #include "model/errors.h"
+#include "model/limits.h"
 #include "signal/spikes.h"
 
 namespace beamid::apps {
-namespace {
 
-
-std::vector<io::FlagSpec> spike_flags() {
-  return {{"spikes", true, "number of spikes NM >= 1 (default 4)"},
-          {"window", true, "rectangular | hann | exponential (default rectangular)"},
-          {"exponential-end", true, "exponential window's last weight, in (0, 1) (default 0.01)"},
-          {"spike-rule", true, "largest | prominence (default largest: the NM highest local maxima)"},
-          {"min-frequency", true, "lowest spike frequency considered, Hz (default 0)"},
-          {"max-frequency", true, "highest spike frequency considered, Hz (default Nyquist)"},
-          {"spike-frequencies", true,
-           "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each (pairs model and data by frequency)"}};
+std::vector<FlagSpec> spike_flags() {
+  return {integer_flag("spikes", "number of spikes NM (default 4)", 1, model::kMaxSpikes),
+          text_flag("window", "rectangular | hann | exponential (default rectangular)"),
+          number_flag("exponential-end", "exponential window's last weight, in (0, 1) (default 0.01)"),
+          text_flag("spike-rule", "largest | prominence (default largest: the NM highest local maxima)"),
+          number_flag("min-frequency", "lowest spike frequency considered, Hz (default 0)"),
+          number_flag("max-frequency", "highest spike frequency considered, Hz (default Nyquist)"),
+          text_flag("spike-frequencies",
+                    "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each "
+                    "(pairs model and data by frequency)")};
 }
 
 // Reading the --data record: CSV or LabVIEW .lvm, a channel, units, a time window (io/time_series.h).
-std::vector<io::FlagSpec> import_flags() {
-  return {{"channel", true, "signal column by name or 1-based index (default: the only one)"},
-          {"units", true, "auto | g | as-is (default auto: records in g are converted to m/s^2)"},
-          {"start", true, "keep samples from this time, s (default: the first)"},
-          {"duration", true, "keep this many seconds from --start (default: to the end)"},
-          {"resample", false, "interpolate a non-uniform time base onto a uniform one instead of refusing it"}};
+std::vector<FlagSpec> import_flags() {
+  return {text_flag("channel", "signal column by name or 1-based index (default: the only one)"),
+          text_flag("units", "auto | g | as-is (default auto: records in g are converted to m/s^2)"),
+          number_flag("start", "keep samples from this time, s (default: the first)"),
+          number_flag("duration", "keep this many seconds from --start (default: to the end)"),
+          switch_flag("resample", "interpolate a non-uniform time base onto a uniform one instead of refusing it")};
 }
 
-io::TimeSeries read_data(const io::Arguments& a) {
+namespace {
+
+io::TimeSeries read_data(const Flags& a) {
   io::ImportOptions o;
   o.channel = a.text_or("channel", "");
   o.units = a.text_or("units", o.units);
@@ -55,19 +57,24 @@ io::TimeSeries read_data(const io::Arguments& a) {
   }
 }
 
-std::vector<io::FlagSpec> cost_flags() {
+}  // namespace
+
+std::vector<FlagSpec> cost_flags(bool required) {
   auto flags = spike_flags();
-  flags.push_back({"cost", true, "time | spike | spike-smooth"});
-  flags.push_back({"eps1", true, "weight of squared frequency errors, 1/Hz^2 (default 1/df^2)"});
-  flags.push_back({"eps2", true, "weight of squared magnitude errors (default 1 / sum of |Z|^2 on the supports)"});
-  flags.push_back({"eps3", true, "spike-smooth: weight of squared decay-rate errors, s^2 (default (T/2pi)^2)"});
-  flags.push_back({"unknown-amplitude", false,
-                   "excitation amplitude unknown: solved in closed form (time), scale-free magnitudes (spike costs)"});
-  flags.push_back({"model-poles", true, "spike-smooth: dft | eigenvalues (default dft)"});
+  flags.push_back(text_flag("cost", costs::cost_names().alternatives(), required));
+  flags.push_back(number_flag("eps1", "weight of squared frequency errors, 1/Hz^2 (default 1/df^2)"));
+  flags.push_back(number_flag("eps2", "weight of squared magnitude errors (default 1 / sum of |Z|^2 on the supports)"));
+  flags.push_back(number_flag("eps3", "spike-smooth: weight of squared decay-rate errors, s^2 (default (T/2pi)^2)"));
+  flags.push_back(switch_flag("unknown-amplitude",
+                              "excitation amplitude unknown: solved in closed form (time), scale-free magnitudes "
+                              "(spike costs)"));
+  flags.push_back(text_flag("model-poles", "spike-smooth: dft | eigenvalues (default dft)"));
   return flags;
 }
 
-signal::SpikeOptions read_spike_options(const io::Arguments& a) {
+namespace {
+
+signal::SpikeOptions read_spike_options(const Flags& a) {
   signal::SpikeOptions o;
   o.count = a.optional_integer("spikes").value_or(o.count);
   o.rule = a.text_or("spike-rule", o.rule);
@@ -92,7 +99,7 @@ signal::SpikeOptions read_spike_options(const io::Arguments& a) {
   return o;
 }
 
-signal::WindowOptions read_window(const io::Arguments& a) {
+signal::WindowOptions read_window(const Flags& a) {
   signal::WindowOptions w;
   w.name = a.text_or("window", w.name);
   w.exponential_end = a.optional_number("exponential-end").value_or(w.exponential_end);
@@ -100,7 +107,7 @@ signal::WindowOptions read_window(const io::Arguments& a) {
   return w;
 }
 
-costs::CostOptions read_cost_options(const io::Arguments& a) {
+costs::CostOptions read_cost_options(const Flags& a) {
   costs::CostOptions o;
   o.name = a.text("cost");
   o.spikes = read_spike_options(a);
@@ -116,16 +123,15 @@ costs::CostOptions read_cost_options(const io::Arguments& a) {
 
 }  // namespace
 
-int run_spikes(const Args& args, std::ostream& out) {
-  const io::Arguments a("spikes", args,
-                        join_flags(join_flags({kHelpFlag, {"data", true, "record: CSV (time, then channels) or LabVIEW .lvm"}},
-                                              spike_flags()),
-                                   import_flags()));
-  if (wants_help(a, out, "--data FILE.csv --spikes NM [--window NAME]")) return 0;
+int run_spikes(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s, read_window(a));
   const signal::Spectrum spectrum = dft.transform(data.values);
-  const auto spikes = signal::detect_spikes(spectrum, read_spike_options(a));
+  const signal::SpikeOptions options = read_spike_options(a);
+  const auto spikes = signal::detect_spikes(spectrum, options);
+  if (static_cast<int>(spikes.size()) < options.count)
+    std::cerr << "beamid spikes: --spikes " << options.count << ": the record shows only " << spikes.size()
+              << " spike(s) (local maxima of |Z| in the band): " << spikes.size() << " printed\n";
   out << "spike,bin,frequency_hz,magnitude,n_left,n_right\n";
   for (std::size_t l = 0; l < spikes.size(); ++l)
     out << l + 1 << "," << spikes[l].bin << "," << io::full_precision(spikes[l].frequency_hz) << ","
@@ -133,21 +139,14 @@ int run_spikes(const Args& args, std::ostream& out) {
   return 0;
 }
 
-int run_cost(const Args& args, std::ostream& out) {
-  const io::Arguments a("cost", args,
-                        join_flags(join_flags({kHelpFlag, {"data", true, "record of the data: CSV or LabVIEW .lvm"},
-                                               {"prediction", true, "CSV record of the model prediction, same sampling"}},
-                                              cost_flags()),
-                                   import_flags()));
-  if (wants_help(a, out, "--data FILE.csv --prediction FILE.csv --cost time|spike|spike-smooth --spikes NM [--eps1 X --eps2 Y]"))
-    return 0;
+int run_cost(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   const io::TimeSeries prediction = io::read_time_series(a.text("prediction"));
   if (prediction.values.size() != data.values.size() || std::abs(prediction.dt_s - data.dt_s) > 1e-9 * data.dt_s)
-    throw InputError("beamid cost: --prediction = '" + prediction.path + "': " +
-                     std::to_string(prediction.values.size()) + " samples at dt = " + format_value(prediction.dt_s) +
-                     " s: must match the data's " + std::to_string(data.values.size()) + " at " +
-                     format_value(data.dt_s) + " s");
+    throw InputError("beamid cost: --prediction = '" + prediction.path +
+                     "': " + std::to_string(prediction.values.size()) +
+                     " samples at dt = " + format_value(prediction.dt_s) + " s: must match the data's " +
+                     std::to_string(data.values.size()) + " at " + format_value(data.dt_s) + " s");
   const costs::CostOptions options = read_cost_options(a);
   if (options.model_poles == "eigenvalues")
     throw InputError("beamid cost: --model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
@@ -155,46 +154,22 @@ int run_cost(const Args& args, std::ostream& out) {
   const std::vector<std::complex<double>> none;
   const costs::Evaluation e = cost->evaluate(costs::ModelResponse{prediction.values, none});
   if (!e.ok()) throw NumericalError("beamid cost: " + e.status);
-  out << io::full_precision(e.value) << "\n";
+  out << "cost,value\n" << options.name << "," << io::full_precision(e.value) << "\n";
   if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";
   return 0;
 }
 
-int run_fit(const Args& args, std::ostream& out) {
-  const io::Arguments a(
-      "fit", args,
-      join_flags(join_flags({kHelpFlag,
-                 {"data", true, "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar"},
-                 {"beam", true, "preset or TOML file: the known parameters and the start of the estimated ones"},
-                 {"elements", true, "Galerkin order N of the fitted model"},
-                 {"estimate", true, "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma"},
-                 {"optimizer", true, "lm | bobyqa | nelder-mead | sbplx | direct-l | crs2-lm (default: lm, nelder-mead for spike)"},
-                 {"strategy", true, "direct | staged | continuation (default direct)"},
-                 {"start-scale", true, "start of every estimated parameter = S x its --beam value (default 1)"},
-                 {"bound-factor", true, "bounds [v/F, v F] around each --beam value v (default 2)"},
-                 {"bounds", true, "explicit bounds KEY=LO:HI,... (override --bound-factor)"},
-                 {"scaling", true, "linear | log optimizer coordinates (default linear)"},
-                 {"starts", true, "number of starts: the given one plus space-filling starts in the bounds (default 1)"},
-                 {"seed", true, "seed of the extra starts and of stochastic optimizers (default 1)"},
-                 {"max-evaluations", true, "model evaluations per optimizer run (default 3000)"},
-                 {"integrator", true, "fast | cvode model integrator (default fast)"},
-                 {"report", true, "write a Markdown fit report to this file"}},
-                experiment_flag_specs()),
-           join_flags(cost_flags(), import_flags())));
-  if (wants_help(a, out,
-                 "--data FILE.csv --beam B --elements N --estimate KEYS --cost NAME [--optimizer NAME] "
-                 "[--strategy staged|direct|continuation] [--start-scale S] [--seed K] [experiment flags] [--report FILE.md]"))
-    return 0;
+int run_fit(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   const std::string beam_name = a.text("beam");
-  const model::BeamParameters nominal = model::resolve_beam(beam_name);
+  const model::BeamParameters nominal = config::resolve_beam(beam_name);
 
   fit::FitOptions o;
   o.elements = a.integer("elements");
-  a.require(o.elements >= 1 && o.elements <= 1000, "elements", "must be an integer in 1..1000");
   o.experiment = read_experiment(a, nominal.l);
+  guard_run_size(a, o.elements, static_cast<double>(data.values.size()), model::kRecordBytesPerSample);
   // A forced experiment starts at t = 0; a free decay is timed from its first sample.
-  if (o.experiment.excitation != "free-decay" && std::abs(data.t0_s) > 1e-9 * data.dt_s)
+  if (o.experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
     throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
                      " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "
                      "--excitation free-decay)");
@@ -228,16 +203,40 @@ int run_fit(const Args& args, std::ostream& out) {
     out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
         << io::full_precision(p.start) << "," << io::full_precision(p.lower) << "," << io::full_precision(p.upper)
         << "\n";
-  std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name << ", N = "
-            << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method << ", strategy "
-            << o.strategy << ": " << result.status << " (" << result.termination << "), cost "
+  std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
+            << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method
+            << ", strategy " << o.strategy << ": " << result.status << " (" << result.termination << "), cost "
             << result.cost << ", " << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
   if (a.has("report")) {
-    FitReportInput input{o, result, data, beam_name, args};
+    FitReportInput input{o, result, data, beam_name, a.arguments()};
     write_fit_report(a.text("report"), input);
   }
   return result.status == "failed" ? 3 : 0;
+}
+
+std::vector<FlagSpec> fit_flags() {
+  std::vector<FlagSpec> flags = {
+      text_flag("data", "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar", true),
+      text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),
+      integer_flag("elements", "Galerkin order N of the fitted model", model::kMinElements, model::kMaxElements, true),
+      text_flag("estimate", "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma", true),
+      text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
+      text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
+      number_flag("start-scale", "start of every estimated parameter = S x its --beam value (default 1)"),
+      number_flag("bound-factor", "bounds [v/F, v F] around each --beam value v (default 2)"),
+      text_flag("bounds", "explicit bounds KEY=LO:HI,... (override --bound-factor)"),
+      text_flag("scaling", "linear | log optimizer coordinates (default linear)"),
+      integer_flag("starts", "number of starts: the given one plus space-filling starts in the bounds (default 1)", 1,
+                   model::kMaxStarts),
+      integer_flag("seed", "seed of the extra starts and of stochastic optimizers (default 1)", 0,
+                   std::numeric_limits<int>::max()),
+      integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, model::kMaxEvaluations),
+      text_flag("integrator", "fast | cvode model integrator (default fast)"),
+      text_flag("report", "write a Markdown fit report to this file")};
+  for (const auto& more : {experiment_flag_specs(), cost_flags(true), import_flags()})
+    flags.insert(flags.end(), more.begin(), more.end());
+  return flags;
 }
 
 }  // namespace beamid::apps

@@ -8,9 +8,10 @@
 #include <numbers>
 #include <sstream>
 
-#include "io/provenance.h"
 #include "galerkin/modes.h"
-#include "io/csv.h"
+#include "io/files.h"
+#include "io/provenance.h"
+#include "io/text.h"
 #include "model/errors.h"
 #include "model/exact_frequencies.h"
 #include "simulation/simulator.h"
@@ -30,12 +31,6 @@ std::string fixed(double value, int digits) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
   return buffer;
-}
-
-void write_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw InputError("cannot write " + path.string());
 }
 
 // The experiment each preset is checked with: model.md's suggested sampling, a sin^2 pulse at 0.7 l short enough
@@ -94,8 +89,8 @@ void write_verification(const std::string& folder, std::ostream& log) {
     }
     md << "\n";
   }
-  write_file(std::filesystem::path(folder) / "frequencies.csv", csv.str());
-  write_file(std::filesystem::path(folder) / "frequencies.md", md.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "frequencies.csv", csv.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "frequencies.md", md.str());
   log << "verify: wrote " << folder << "/frequencies.{csv,md}\n";
 
   // 2. The exact modal propagator against CVODE.
@@ -114,7 +109,7 @@ void write_verification(const std::string& folder, std::ostream& log) {
     const model::BeamParameters beam = model::preset(name);
     const galerkin::SplineSpace space(16);
     const galerkin::BeamForms forms(space, beam.l);
-    for (const std::string output : {"displacement", "velocity", "acceleration"}) {
+    for (const std::string& output : simulation::output_names().names()) {
       simulation::Experiment e = experiment_for(name, beam.l);
       e.output = output;
       simulation::SimulatorOptions fast_options;
@@ -133,17 +128,17 @@ void write_verification(const std::string& folder, std::ostream& log) {
         }
         csv2 << name << ",16," << output << "," << sci(rtol, 0) << "," << io::full_precision(max_diff) << ","
              << io::full_precision(max_y) << "," << io::full_precision(max_diff / max_y) << "," << cvode.stats.steps
-             << "," << cvode.stats.rhs_evaluations << "," << cvode.stats.error_test_failures << ","
-             << fast.stats.modes << "," << sci(fast.stats.eigenvector_rcond) << "\n";
+             << "," << cvode.stats.rhs_evaluations << "," << cvode.stats.error_test_failures << "," << fast.stats.modes
+             << "," << sci(fast.stats.eigenvector_rcond) << "\n";
         md2 << "| " << name << " | " << output << " | " << sci(rtol, 0) << " | " << sci(max_diff / max_y) << " | "
             << cvode.stats.steps << " | " << cvode.stats.error_test_failures << " |\n";
-        log << "verify: " << name << " " << output << " rtol " << rtol << ": relative difference "
-            << max_diff / max_y << ", " << cvode.stats.steps << " steps\n";
+        log << "verify: " << name << " " << output << " rtol " << rtol << ": relative difference " << max_diff / max_y
+            << ", " << cvode.stats.steps << " steps\n";
       }
     }
   }
-  write_file(std::filesystem::path(folder) / "fast_vs_cvode.csv", csv2.str());
-  write_file(std::filesystem::path(folder) / "fast_vs_cvode.md", md2.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "fast_vs_cvode.csv", csv2.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "fast_vs_cvode.md", md2.str());
   log << "verify: wrote " << folder << "/fast_vs_cvode.{csv,md}\n";
 }
 

@@ -61,7 +61,8 @@ class TimeCost final : public Cost {
 class SpikeCostBase : public Cost {
  public:
   SpikeCostBase(CostOptions options, std::vector<double> data, double dt_s)
-      : options_(std::move(options)), samples_(data.size()),
+      : options_(std::move(options)),
+        samples_(data.size()),
         dft_(static_cast<int>(data.size()), dt_s, options_.window) {
     data_ = dft_.transform(data);
     const auto spikes = signal::detect_spikes(data_, options_.spikes);
@@ -80,7 +81,7 @@ class SpikeCostBase : public Cost {
       throw InputError("cost " + options_.name + ": spikes = " + std::to_string(options_.spikes.count) +
                        ": the data spectrum has only " + std::to_string(spikes.size()) +
                        " local maxima under the peak rule and band");
-    const bool smooth = options_.name == "spike-smooth";
+    const bool smooth = options_.name == kSpikeSmoothCost;
     double support_energy = 0;
     for (const auto& s : spikes) {
       SpikePair p;
@@ -111,7 +112,7 @@ class SpikeCostBase : public Cost {
     std::ostringstream out;
     out.precision(6);
     out << "eps1 = " << eps1_ << " 1/Hz^2, eps2 = " << eps2_ << " 1/(signal unit)^2";
-    if (options_.name == "spike-smooth") out << ", eps3 = " << eps3_ << " s^2";
+    if (options_.name == kSpikeSmoothCost) out << ", eps3 = " << eps3_ << " s^2";
     return out.str();
   }
 
@@ -312,7 +313,8 @@ class SmoothSpikeCost final : public SpikeCostBase {
     }
     const double fs = 1.0 / u.dt_s;
     const double record_s = u.samples * u.dt_s;
-    const double added = options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
+    const double added =
+        options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
     std::vector<int> chosen;
     for (std::size_t l = 0; l < pairs_.size(); ++l) {
       int best = -1;
@@ -337,11 +339,18 @@ class SmoothSpikeCost final : public SpikeCostBase {
 
 }  // namespace
 
-bool is_spike_cost(const std::string& name) { return name == "spike" || name == "spike-smooth"; }
+const model::NameSet& cost_names() {
+  static const model::NameSet names(
+      {{kTimeCost, "least squares on the sampled time history"},
+       {kSpikeCost, "the paper's DFT spike cost (3.5), as written"},
+       {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"}});
+  return names;
+}
+
+bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
 
 std::optional<std::string> validation_error(const CostOptions& o) {
-  if (o.name != "time" && !is_spike_cost(o.name))
-    return "cost = '" + o.name + "': must be one of time, spike, spike-smooth";
+  if (auto error = cost_names().violation("cost", o.name)) return error;
   if (auto error = signal::validation_error(o.spikes)) return error;
   if (auto error = signal::validation_error(o.window)) return error;
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
@@ -357,9 +366,10 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
   if (auto error = validation_error(options)) throw InputError(*error);
   if (data.size() < 8) throw InputError("data: " + std::to_string(data.size()) + " samples: at least 8 are needed");
   for (std::size_t i = 0; i < data.size(); ++i)
-    if (!std::isfinite(data[i])) throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
-  if (options.name == "time") return std::make_unique<TimeCost>(options, std::move(data));
-  if (options.name == "spike") return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
+    if (!std::isfinite(data[i]))
+      throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
+  if (options.name == kTimeCost) return std::make_unique<TimeCost>(options, std::move(data));
+  if (options.name == kSpikeCost) return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
   return std::make_unique<SmoothSpikeCost>(options, std::move(data), dt_s);
 }
 

@@ -3,7 +3,8 @@
 //   "time"          J_T = sum_i (a y_i - z_i)^2                      (C2 = identity; a = 1, or the closed-form
 //                                                                     amplitude a = <y, z>/<y, y> when unknown)
 //   "spike"         the paper's (3.5) exactly as written:
-//                   J_F = sum_l eps1 |f_{k^u_l} - f_{k^z_l}|^2 + eps2 sum_{j=-n_l..N_l} (s |U(k^u_l + j)| - |Z(k^z_l + j)|)^2
+//                   J_F = sum_l eps1 |f_{k^u_l} - f_{k^z_l}|^2 + eps2 sum_{j=-n_l..N_l} (s |U(k^u_l + j)| - |Z(k^z_l +
+//                   j)|)^2
 //   "spike-smooth"  J_S = sum_l [eps1 (f^u_l - f^z_l)^2 + eps3 (sigma^u_l - sigma^z_l)^2
 //                                + eps2 sum_j (s |U(k^z_l + j)| - |Z(k^z_l + j)|)^2]
 //                   with sub-bin frequencies and decay rates from the 3-bin estimator (signal/spikes.h) on both, or
@@ -11,18 +12,19 @@
 //                   peak paired with data spike l is the local maximum of |U| nearest to k^z_l, so pairs do not
 //                   swap when model peaks trade heights.
 // Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
-// are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside 0..Nbar/2 is read from the
-// full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|).
-// s = 1, or with an unknown excitation amplitude ("scale-free") s = sum |U||Z| / sum |U|^2 over the compared bins,
-// the least-squares scale of the model's magnitudes (frequencies and decay rates do not depend on it).
-// Default weights make every term dimensionless and of order one: eps1 = 1/df^2 (frequency errors in bins),
-// eps3 = (T/(2 pi))^2 (decay-rate errors in bins, T = Nbar dt), eps2 = 1 / sum_l sum_j |Z(k^z_l + j)|^2.
-// Every cost is a sum of squares: value = |r|^2 with a residual vector r of fixed length, for Ceres.
-// (A4) (the model shows as many spikes as the data, paired with the right ones) is checked at every evaluation: too
-// few model spikes makes the cost undefined (infinite, with the reason in the status); a pairing in which a model
-// spike lies nearer to another data spike than to its partner ("jumps modes") is reported but still evaluated.
+// are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside
+// 0..Nbar/2 is read from the full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|). s = 1, or with an unknown excitation
+// amplitude ("scale-free") s = sum |U||Z| / sum |U|^2 over the compared bins, the least-squares scale of the model's
+// magnitudes (frequencies and decay rates do not depend on it). Default weights make every term dimensionless and of
+// order one: eps1 = 1/df^2 (frequency errors in bins), eps3 = (T/(2 pi))^2 (decay-rate errors in bins, T = Nbar dt),
+// eps2 = 1 / sum_l sum_j |Z(k^z_l + j)|^2. Every cost is a sum of squares: value = |r|^2 with a residual vector r of
+// fixed length, for Ceres. (A4) (the model shows as many spikes as the data, paired with the right ones) is checked at
+// every evaluation: too few model spikes makes the cost undefined (infinite, with the reason in the status); a pairing
+// in which a model spike lies nearer to another data spike than to its partner ("jumps modes") is reported but still
+// evaluated.
 #pragma once
 
+#include <Eigen/Dense>
 #include <complex>
 #include <limits>
 #include <memory>
@@ -30,20 +32,25 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-
+#include "model/names.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
 namespace beamid::costs {
 
+// The costs by name (the registry every reader of a cost name uses).
+inline const std::string kTimeCost = "time";
+inline const std::string kSpikeCost = "spike";
+inline const std::string kSpikeSmoothCost = "spike-smooth";
+const model::NameSet& cost_names();
+
 struct CostOptions {
-  std::string name = "time";          // "time" | "spike" | "spike-smooth"
-  signal::SpikeOptions spikes;        // NM, peak rule, band, support level
-  signal::WindowOptions window;       // applied to data and model alike
+  std::string name = "time";               // "time" | "spike" | "spike-smooth"
+  signal::SpikeOptions spikes;             // NM, peak rule, band, support level
+  signal::WindowOptions window;            // applied to data and model alike
   std::optional<double> eps1, eps2, eps3;  // nothing: the defaults above
-  bool unknown_amplitude = false;     // time: solve a in closed form; spike costs: scale-free magnitudes
-  std::string model_poles = "dft";    // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
+  bool unknown_amplitude = false;          // time: solve a in closed form; spike costs: scale-free magnitudes
+  std::string model_poles = "dft";         // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);
@@ -58,23 +65,23 @@ struct ModelResponse {
 // One data spike beside its model partner (a row of the spike table in a fit report).
 struct SpikePair {
   signal::Spike data;
-  double data_frequency_hz = 0;      // f^z_l: k^z df (spike) or the 3-bin estimate (spike-smooth)
+  double data_frequency_hz = 0;  // f^z_l: k^z df (spike) or the 3-bin estimate (spike-smooth)
   double data_decay_rate_1_s = std::numeric_limits<double>::quiet_NaN();
   bool has_model = false;
-  int model_bin = -1;                // k^u_l (-1 with "eigenvalues")
+  int model_bin = -1;  // k^u_l (-1 with "eigenvalues")
   double model_frequency_hz = std::numeric_limits<double>::quiet_NaN();
   double model_decay_rate_1_s = std::numeric_limits<double>::quiet_NaN();
   double model_magnitude = std::numeric_limits<double>::quiet_NaN();  // s |U| at the compared peak bin
-  bool jumps = false;                // the model spike is nearer to another data spike
+  bool jumps = false;                                                 // the model spike is nearer to another data spike
 };
 
 struct Evaluation {
   double value = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd residuals;         // value = residuals.squaredNorm() when ok
-  std::string status = "ok";         // "ok", or why the cost is undefined here
-  double amplitude_scale = 1;        // a (time) or s (spike costs)
-  std::vector<SpikePair> pairs;      // spike costs
-  std::string a4 = "ok";             // "ok" or the (A4) violation in words
+  Eigen::VectorXd residuals;     // value = residuals.squaredNorm() when ok
+  std::string status = "ok";     // "ok", or why the cost is undefined here
+  double amplitude_scale = 1;    // a (time) or s (spike costs)
+  std::vector<SpikePair> pairs;  // spike costs
+  std::string a4 = "ok";         // "ok" or the (A4) violation in words
   bool ok() const { return status == "ok"; }
 };
 

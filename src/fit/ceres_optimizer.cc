@@ -2,6 +2,7 @@
 // central numeric differences (relative step 1e-6 on coordinates of order one: truncation O(h^2) ~ 1e-12 and
 // round-off ~ eps/h ~ 1e-10, both far below the noise-free recovery target of 1e-6) and box bounds.
 #include <ceres/ceres.h>
+#include <ceres/version.h>
 
 #include "fit/optimizer.h"
 
@@ -99,5 +100,6 @@ OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& st
 }  // namespace beamid::fit::detail
 
 namespace beamid::fit {
+std::string ceres_library_version() { return CERES_VERSION_STRING; }
 
 }  // namespace beamid::fit

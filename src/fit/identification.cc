@@ -1,18 +1,25 @@
 #include "fit/identification.h"
 
 #include <algorithm>
-
 #include <chrono>
 #include <cmath>
 
 #include "galerkin/modes.h"
-#include "simulation/free_decay.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"
+#include "model/limits.h"
+#include "simulation/free_decay.h"
 
 namespace beamid::fit {
 
-std::string default_optimizer(const std::string& cost) { return cost == "spike" ? "nelder-mead" : "lm"; }
+const model::NameSet& strategy_names() {
+  static const model::NameSet names({{kDirect, "all estimated parameters at once"},
+                                     {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
+                                     {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"}});
+  return names;
+}
+
+std::string default_optimizer(const std::string& cost) { return cost == costs::kSpikeCost ? "nelder-mead" : "lm"; }
 
 struct Objective::Impl {
   galerkin::SplineSpace space;
@@ -24,8 +31,9 @@ struct Objective::Impl {
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
-  if (o.elements < 1 || o.elements > 1000)
-    throw InputError("elements = " + std::to_string(o.elements) + ": must be an integer in 1..1000");
+  if (o.elements < model::kMinElements || o.elements > model::kMaxElements)
+    throw InputError("elements = " + std::to_string(o.elements) + ": must be an integer in " +
+                     std::to_string(model::kMinElements) + ".." + std::to_string(model::kMaxElements));
   if (auto error = model::validation_error(o.start)) throw InputError("start beam: " + *error);
   if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError("experiment: " + *error);
   if (static_cast<int>(data.size()) != o.experiment.samples)
@@ -36,7 +44,7 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
   const galerkin::SplineSpace space(o.elements);
   impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l), o.experiment,
                                       simulation::make_simulator(o.simulator),
-                                      o.cost.name == "spike-smooth" && o.cost.model_poles == "eigenvalues",
+                                      o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues",
                                       o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
 }
 
@@ -92,7 +100,8 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
   p.lower.resize(n);
   p.upper.resize(n);
   const Eigen::VectorXd lo = map.lower(), hi = map.upper();
-  for (Eigen::Index i = 0; i < n; ++i) p.lower(i) = lo(active[static_cast<std::size_t>(i)]), p.upper(i) = hi(active[static_cast<std::size_t>(i)]);
+  for (Eigen::Index i = 0; i < n; ++i)
+    p.lower(i) = lo(active[static_cast<std::size_t>(i)]), p.upper(i) = hi(active[static_cast<std::size_t>(i)]);
   auto full = [&map, active, x_fixed](const Eigen::VectorXd& x) {
     Eigen::VectorXd all = x_fixed;
     for (std::size_t i = 0; i < active.size(); ++i) all(active[i]) = x(static_cast<Eigen::Index>(i));
@@ -123,7 +132,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
   for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
   StrategyRun run;
   run.x = x;
-  if (o.strategy == "continuation") {
+  if (o.strategy == kContinuation) {
     // Record-length continuation: all parameters on the first Nbar/16, Nbar/8, Nbar/4, Nbar/2 samples (at least
     // 64), each from the previous estimate; the full record follows as the final stage below. A record of length T
     // has a basin about 1/(2 f T) wide in relative frequency for a lightly damped mode at f (model.md section 4),
@@ -144,7 +153,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
       run.stages.push_back(std::move(stage));
     }
   }
-  if (o.strategy == "staged") {
+  if (o.strategy == kStaged) {
     const auto structural = map.with_roles({"stiffness", "inertia", "geometry"});
     const auto damping = map.with_roles({"damping"});
     if (!structural.empty() && !damping.empty()) {
@@ -153,7 +162,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
     }
     plan.emplace_back("all", all);
   } else {
-    plan.emplace_back(o.strategy == "continuation" ? "full record" : "direct", all);
+    plan.emplace_back(o.strategy == kContinuation ? "full record" : kDirect, all);
   }
   for (const auto& [name, active] : plan) {
     const Problem p = subproblem(objective, map, active, run.x);
@@ -183,8 +192,7 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
 }  // namespace
 
 void validate(const FitOptions& o) {
-  if (o.strategy != "direct" && o.strategy != "staged" && o.strategy != "continuation")
-    throw InputError("strategy = '" + o.strategy + "': must be one of direct, staged, continuation");
+  if (auto error = strategy_names().violation("strategy", o.strategy)) throw InputError(*error);
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
   if (o.starts < 1) throw InputError("starts = " + std::to_string(o.starts) + ": must be >= 1");
   if (o.start_design != "lhs" && o.start_design != "random")
@@ -210,7 +218,8 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   const auto begin = std::chrono::steady_clock::now();
   std::vector<Eigen::VectorXd> starts{map.coordinates(o.start)};
   if (o.starts > 1)
-    for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed)) starts.push_back(x);
+    for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed))
+      starts.push_back(x);
   FitResult result;
   StrategyRun best;
   for (std::size_t s = 0; s < starts.size(); ++s) {
@@ -227,7 +236,7 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   result.stages = best.stages;
   result.status = best.stages.empty() ? "failed" : best.stages.back().result.status;
   result.termination = best.stages.empty() ? "no stage ran" : best.stages.back().result.termination;
-  result.beam = map.beam(best.x);
+  result.beam = map.estimate(best.x);  // inside the bounds, always
   result.cost = best.cost;
 
   const Objective::Output final_output = objective.evaluate(result.beam);
@@ -255,7 +264,7 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   }
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
-    result.parameters.push_back({e.key, map.value(i, best.x(i)), standard_error(i),
+    result.parameters.push_back({e.key, result.beam.*(model::find_parameter(e.key)->member), standard_error(i),
                                  o.start.*(model::find_parameter(e.key)->member), e.lower, e.upper});
   }
   return result;

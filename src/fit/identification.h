@@ -22,24 +22,31 @@
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
 #include "model/beam_parameters.h"
+#include "model/names.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 
 namespace beamid::fit {
 
+// The fitting strategies by name (see above).
+inline const std::string kDirect = "direct";
+inline const std::string kStaged = "staged";
+inline const std::string kContinuation = "continuation";
+const model::NameSet& strategy_names();
+
 struct FitOptions {
-  model::BeamParameters start;            // the fixed parameters, and the start of the estimated ones
-  int elements = 16;                      // Galerkin order N
-  simulation::Experiment experiment;      // dt_s and samples must match the data
-  simulation::SimulatorOptions simulator; // "fast" by default
+  model::BeamParameters start;             // the fixed parameters, and the start of the estimated ones
+  int elements = 16;                       // Galerkin order N
+  simulation::Experiment experiment;       // dt_s and samples must match the data
+  simulation::SimulatorOptions simulator;  // "fast" by default
   costs::CostOptions cost;
   std::vector<EstimatedParameter> estimate;
-  std::string scaling = "linear";         // "linear" | "log"
-  std::string strategy = "direct";        // "direct" | "staged" | "continuation"
+  std::string scaling = "linear";   // "linear" | "log"
+  std::string strategy = "direct";  // "direct" | "staged" | "continuation"
   OptimizerOptions optimizer;
-  int starts = 1;                         // 1: the given start only; more: plus space-filling starts
-  std::string start_design = "lhs";       // "lhs" | "random"
-  std::uint64_t seed = 1;                 // for the extra starts and stochastic optimizers
+  int starts = 1;                    // 1: the given start only; more: plus space-filling starts
+  std::string start_design = "lhs";  // "lhs" | "random"
+  std::uint64_t seed = 1;            // for the extra starts and stochastic optimizers
 };
 
 // The default optimizer for a cost: "lm" for the sums of squares with a usable Jacobian (time, spike-smooth),
@@ -52,25 +59,25 @@ struct ParameterEstimate {
 };
 
 struct StageResult {
-  std::string name;                 // "direct", "stiffness and inertia", "damping", "all"
+  std::string name;  // "direct", "stiffness and inertia", "damping", "all"
   std::vector<std::string> keys;
   OptimizerResult result;
 };
 
 struct FitResult {
   std::vector<ParameterEstimate> parameters;
-  model::BeamParameters beam;           // the estimate with the fixed parameters
-  Eigen::MatrixXd correlation;          // of the estimates (empty when the covariance is unavailable)
+  model::BeamParameters beam;   // the estimate with the fixed parameters
+  Eigen::MatrixXd correlation;  // of the estimates (empty when the covariance is unavailable)
   std::string covariance_status = "not computed";
   double cost = 0;
-  long evaluations = 0;                 // over all starts and stages
+  long evaluations = 0;  // over all starts and stages
   double wall_time_s = 0;
-  std::string status = "failed";        // of the final stage of the best start: converged | max-evaluations | failed
+  std::string status = "failed";  // of the final stage of the best start: converged | max-evaluations | failed
   std::string termination;
-  int best_start = 0;                   // 0: the given start
-  std::vector<StageResult> stages;      // of the best start
-  costs::Evaluation final_evaluation;   // at the estimate (spike table, (A4), amplitude scale)
-  std::vector<double> model_output;     // y at the estimate
+  int best_start = 0;                  // 0: the given start
+  std::vector<StageResult> stages;     // of the best start
+  costs::Evaluation final_evaluation;  // at the estimate (spike table, (A4), amplitude scale)
+  std::vector<double> model_output;    // y at the estimate
 };
 
 // Model output and cost of one parameter set against fixed data, with the forms, simulator and DFT plans built once.

@@ -16,15 +16,24 @@ nlopt::algorithm algorithm_of(const std::string& method) {
 
 std::string words(nlopt::result r) {
   switch (r) {
-    case nlopt::SUCCESS: return "success";
-    case nlopt::STOPVAL_REACHED: return "cost reached the stop value";
-    case nlopt::FTOL_REACHED: return "relative cost change below ftol_rel";
-    case nlopt::XTOL_REACHED: return "relative parameter change below xtol_rel";
-    case nlopt::MAXEVAL_REACHED: return "evaluation budget exhausted";
-    case nlopt::MAXTIME_REACHED: return "time budget exhausted";
-    case nlopt::ROUNDOFF_LIMITED: return "progress limited by round-off";
-    case nlopt::FORCED_STOP: return "stopped";
-    default: return "failure";
+    case nlopt::SUCCESS:
+      return "success";
+    case nlopt::STOPVAL_REACHED:
+      return "cost reached the stop value";
+    case nlopt::FTOL_REACHED:
+      return "relative cost change below ftol_rel";
+    case nlopt::XTOL_REACHED:
+      return "relative parameter change below xtol_rel";
+    case nlopt::MAXEVAL_REACHED:
+      return "evaluation budget exhausted";
+    case nlopt::MAXTIME_REACHED:
+      return "time budget exhausted";
+    case nlopt::ROUNDOFF_LIMITED:
+      return "progress limited by round-off";
+    case nlopt::FORCED_STOP:
+      return "stopped";
+    default:
+      return "failure";
   }
 }
 
@@ -85,3 +94,13 @@ OptimizerResult minimize_nlopt(const Problem& problem, const Eigen::VectorXd& st
 }
 
 }  // namespace beamid::fit::detail
+
+namespace beamid::fit {
+
+std::string nlopt_library_version() {
+  int major = 0, minor = 0, bugfix = 0;
+  nlopt_version(&major, &minor, &bugfix);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(bugfix);
+}
+
+}  // namespace beamid::fit

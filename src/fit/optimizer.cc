@@ -1,7 +1,6 @@
 #include "fit/optimizer.h"
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,17 +10,25 @@
 
 namespace beamid::fit {
 
-std::vector<std::string> optimizer_names() { return {"lm", "bobyqa", "nelder-mead", "sbplx", "direct-l", "crs2-lm"}; }
+const model::NameSet& optimizer_names() {
+  static const model::NameSet names({{"lm", "Ceres Levenberg-Marquardt on the residual vector"},
+                                     {"bobyqa", "NLopt BOBYQA (quadratic models, derivative-free)"},
+                                     {"nelder-mead", "NLopt Nelder-Mead simplex"},
+                                     {"sbplx", "NLopt Subplex"},
+                                     {"direct-l", "NLopt DIRECT-L (global)"},
+                                     {"crs2-lm", "NLopt controlled random search (global)"}});
+  return names;
+}
 
 bool needs_residuals(const std::string& method) { return method == "lm"; }
 
 std::optional<std::string> validation_error(const OptimizerOptions& o) {
-  const auto names = optimizer_names();
-  if (std::find(names.begin(), names.end(), o.method) == names.end())
-    return "optimizer = '" + o.method + "': must be one of lm, bobyqa, nelder-mead, sbplx, direct-l, crs2-lm";
+  if (auto error = optimizer_names().violation("optimizer", o.method)) return error;
   if (o.max_evaluations < 1) return "max_evaluations = " + std::to_string(o.max_evaluations) + ": must be >= 1";
-  if (!(std::isfinite(o.xtol_rel) && o.xtol_rel >= 0)) return "xtol_rel = " + format_value(o.xtol_rel) + ": must be >= 0";
-  if (!(std::isfinite(o.ftol_rel) && o.ftol_rel >= 0)) return "ftol_rel = " + format_value(o.ftol_rel) + ": must be >= 0";
+  if (!(std::isfinite(o.xtol_rel) && o.xtol_rel >= 0))
+    return "xtol_rel = " + format_value(o.xtol_rel) + ": must be >= 0";
+  if (!(std::isfinite(o.ftol_rel) && o.ftol_rel >= 0))
+    return "ftol_rel = " + format_value(o.ftol_rel) + ": must be >= 0";
   if (!(o.initial_step > 0 && o.initial_step <= 1))
     return "initial_step = " + format_value(o.initial_step) + ": must be in (0, 1]";
   return std::nullopt;
@@ -107,8 +114,8 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
   return result;
 }
 
-std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                                                  int count, const std::string& design, std::uint64_t seed) {
+std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, int count,
+                                                  const std::string& design, std::uint64_t seed) {
   if (design != "lhs" && design != "random")
     throw InputError("start_design = '" + design + "': must be one of lhs, random");
   std::mt19937_64 engine(seed);

@@ -10,6 +10,7 @@
 // result with status "failed" and the reason in words.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -17,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include "model/names.h"
 
 namespace beamid::fit {
 
@@ -33,22 +34,22 @@ struct Problem {
 
 struct OptimizerOptions {
   std::string method = "bobyqa";
-  int max_evaluations = 3000;   // cost or residual evaluations (a central-difference Jacobian costs 2n)
-  double xtol_rel = 1e-10;      // stop when a step changes every coordinate by less than this, relatively
-  double ftol_rel = 0;          // stop when the cost changes by less than this, relatively (0: off)
-  double initial_step = 0.02;   // NLopt local methods: first step, as a fraction of each bound range
-  std::uint64_t seed = 1;       // stochastic methods
+  int max_evaluations = 3000;  // cost or residual evaluations (a central-difference Jacobian costs 2n)
+  double xtol_rel = 1e-10;     // stop when a step changes every coordinate by less than this, relatively
+  double ftol_rel = 0;         // stop when the cost changes by less than this, relatively (0: off)
+  double initial_step = 0.02;  // NLopt local methods: first step, as a fraction of each bound range
+  std::uint64_t seed = 1;      // stochastic methods
 };
-std::vector<std::string> optimizer_names();
+const model::NameSet& optimizer_names();
 // First violated constraint ("optimizer = 'x': must be one of ..."), or nothing.
 std::optional<std::string> validation_error(const OptimizerOptions& options);
 // Whether the method needs Problem::residuals.
 bool needs_residuals(const std::string& method);
 
 struct OptimizerResult {
-  Eigen::VectorXd x;            // the best point seen
+  Eigen::VectorXd x;  // the best point seen
   double cost = std::numeric_limits<double>::infinity();
-  long evaluations = 0;         // calls of cost or residuals
+  long evaluations = 0;  // calls of cost or residuals
   double wall_time_s = 0;
   std::string status = "failed";  // "converged" | "max-evaluations" | "failed"
   std::string termination;        // the reason in words
@@ -62,8 +63,8 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
 // (computed here; optimizer.cc says why not by ceres::Covariance). Valid for independent Gaussian residuals of
 // equal variance; status says why when unavailable.
 struct Covariance {
-  Eigen::MatrixXd matrix;       // in the optimizer's coordinates
-  std::string status = "ok";    // "ok" or why not (no residuals, m <= n, singular information matrix)
+  Eigen::MatrixXd matrix;     // in the optimizer's coordinates
+  std::string status = "ok";  // "ok" or why not (no residuals, m <= n, singular information matrix)
   bool ok() const { return status == "ok"; }
 };
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x);
@@ -71,8 +72,8 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x);
 // Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
 // independent uniform points ("random"). Uniforms are drawn as (engine() >> 11) 2^-53 over std::mt19937_64 and the
 // shuffle is a Fisher-Yates on the same draws, so a seed gives the same points with any standard library.
-std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                                                  int count, const std::string& design, std::uint64_t seed);
+std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, int count,
+                                                  const std::string& design, std::uint64_t seed);
 
 namespace detail {
 // Adapter entry points (one per library), called by minimize() after the common checks.
@@ -94,5 +95,9 @@ struct GuardedProblem {
   void finish(OptimizerResult& result, const std::string& what, const std::string& detail) const;
 };
 }  // namespace detail
+
+// The optimisation libraries' versions, for provenance (from their adapters).
+std::string ceres_library_version();
+std::string nlopt_library_version();
 
 }  // namespace beamid::fit

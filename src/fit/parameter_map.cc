@@ -15,7 +15,8 @@ ParameterMap::ParameterMap(const model::BeamParameters& beam, std::vector<Estima
   if (estimated_.empty()) throw InputError("estimate: no parameter to estimate");
   for (const auto& e : estimated_) {
     const model::ParameterInfo* info = model::find_parameter(e.key);
-    if (!info) throw InputError("estimate: '" + e.key + "' is not a beam parameter (valid: " + model::parameter_keys() + ")");
+    if (!info)
+      throw InputError("estimate: '" + e.key + "' is not a beam parameter (valid: " + model::parameter_keys() + ")");
     if (e.key == "l") throw InputError("estimate: l cannot be estimated (the Galerkin forms are built for one length)");
     if (std::count_if(estimated_.begin(), estimated_.end(), [&](const auto& o) { return o.key == e.key; }) > 1)
       throw InputError("estimate: '" + e.key + "' is listed twice");
@@ -37,14 +38,21 @@ double ParameterMap::value(int i, double x) const {
   return scaling_ == "log" ? r * std::exp(x) : r * x;
 }
 
+model::BeamParameters ParameterMap::estimate(const Eigen::VectorXd& x) const {
+  model::BeamParameters b = base_;
+  for (int i = 0; i < size(); ++i) {
+    const auto& e = estimated_[static_cast<std::size_t>(i)];
+    b.*(info_[static_cast<std::size_t>(i)]->member) = std::clamp(value(i, x(i)), e.lower, e.upper);
+  }
+  return b;
+}
+
 double ParameterMap::coordinate(int i, double p) const {
   const double r = reference(i);
   return scaling_ == "log" ? std::log(p / r) : p / r;
 }
 
-double ParameterMap::derivative(int i, double x) const {
-  return scaling_ == "log" ? value(i, x) : reference(i);
-}
+double ParameterMap::derivative(int i, double x) const { return scaling_ == "log" ? value(i, x) : reference(i); }
 
 model::BeamParameters ParameterMap::beam(const Eigen::VectorXd& x) const {
   model::BeamParameters b = base_;

@@ -5,19 +5,18 @@
 // Parameters that are not estimated keep the given beam's values.
 #pragma once
 
+#include <Eigen/Dense>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "model/beam_parameters.h"
 
 namespace beamid::fit {
 
 struct EstimatedParameter {
-  std::string key;  // a beam key other than l (the Galerkin forms are built for one length)
-  double lower = 0; // physical bounds: 0 <= lower < upper (lower > 0 for log scaling and for > 0 keys)
+  std::string key;   // a beam key other than l (the Galerkin forms are built for one length)
+  double lower = 0;  // physical bounds: 0 <= lower < upper (lower > 0 for log scaling and for > 0 keys)
   double upper = 0;
 };
 
@@ -34,6 +33,10 @@ class ParameterMap {
 
   // Physical beam for coordinates x (the fixed parameters as given).
   model::BeamParameters beam(const Eigen::VectorXd& x) const;
+  // The same, with every estimated value clamped into its bounds: what a fit reports. The optimizers keep their
+  // coordinates inside the coordinate bounds, but the map back (r x, r e^x) and a bounded optimizer's last step can
+  // land a few ulps (LM: slightly more) outside; the reported estimate never does.
+  model::BeamParameters estimate(const Eigen::VectorXd& x) const;
   // Coordinates of a beam's estimated values.
   Eigen::VectorXd coordinates(const model::BeamParameters& beam) const;
   double value(int i, double x) const;       // p_i(x_i)

@@ -61,7 +61,8 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
   lu_.compute(vectors_);
   rcond_ = lu_.rcond();
   if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
-    throw NumericalError("state-space modes are (nearly) defective: eigenvector matrix rcond = " + format_value(rcond_));
+    throw NumericalError("state-space modes are (nearly) defective: eigenvector matrix rcond = " +
+                         format_value(rcond_));
 }
 
 void StateSpaceModes::refine_eigenvalues(const SecondOrderSystem& s) {
@@ -119,9 +120,9 @@ Eigen::VectorXcd StateSpaceModes::output_coefficients(const Eigen::VectorXd& sen
   if (derivative == 0) {
     row.head(n) = scale_.cwiseInverse().asDiagonal() * pc;  // q = D^-1 z1
   } else if (derivative == 1) {
-    row.tail(n) = pc;                                       // q' = z2
+    row.tail(n) = pc;  // q' = z2
   } else {
-    row = a_.bottomRows(n).transpose() * pc;                // q'' = (A z)_2 + load term
+    row = a_.bottomRows(n).transpose() * pc;  // q'' = (A z)_2 + load term
   }
   return vectors_.transpose() * row.cast<std::complex<double>>();
 }

@@ -9,13 +9,13 @@
 //     A = [ 0                 D          ]      b = [ 0             ]
 //         [ -M~^-1 K~ D^-1    -M~^-1 C~  ],         [ M~^-1 Phi^T f ],
 // whose entries are all of the size of the modal frequencies and damping rates (in the raw form [0 I; -M^-1K -M^-1C]
-// they span ~20 orders of magnitude). A = V Lambda V^-1 then decouples it: eta = V^-1 z, eta_k' = lambda_k eta_k + g_k P.
+// they span ~20 orders of magnitude). A = V Lambda V^-1 then decouples it: eta = V^-1 z, eta_k' = lambda_k eta_k + g_k
+// P.
 #pragma once
 
+#include <Eigen/Dense>
 #include <complex>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "galerkin/second_order_system.h"
 
@@ -29,9 +29,9 @@ struct UndampedModes {
 UndampedModes undamped_modes(const SecondOrderSystem& system);
 
 struct DampedMode {
-  double frequency_hz;         // natural frequency |lambda| / (2 pi)
-  double damping_ratio;        // -Re(lambda) / |lambda|
-  std::complex<double> lambda; // eigenvalue with Im(lambda) > 0, rad/s
+  double frequency_hz;          // natural frequency |lambda| / (2 pi)
+  double damping_ratio;         // -Re(lambda) / |lambda|
+  std::complex<double> lambda;  // eigenvalue with Im(lambda) > 0, rad/s
 };
 
 class StateSpaceModes {
@@ -59,11 +59,11 @@ class StateSpaceModes {
  private:
   void refine_eigenvalues(const SecondOrderSystem& system);
 
-  Eigen::MatrixXd shapes_;          // Phi
+  Eigen::MatrixXd shapes_;            // Phi
   Eigen::LLT<Eigen::MatrixXd> mass_;  // M~ = Phi^T M Phi
-  Eigen::MatrixXd phi_t_mass_;      // Phi^T M, for Phi^-1 w = M~^-1 Phi^T M w
-  Eigen::VectorXd scale_;           // D
-  Eigen::MatrixXd a_;               // A
+  Eigen::MatrixXd phi_t_mass_;        // Phi^T M, for Phi^-1 w = M~^-1 Phi^T M w
+  Eigen::VectorXd scale_;             // D
+  Eigen::MatrixXd a_;                 // A
   Eigen::VectorXcd lambda_;
   Eigen::MatrixXcd vectors_;
   Eigen::PartialPivLU<Eigen::MatrixXcd> lu_;

@@ -16,9 +16,9 @@ double checked_length(double length_m) {
 
 BeamForms::BeamForms(const SplineSpace& s, double l) : space(s), length_m(checked_length(l)) {
   const int n = space.dimension();
-  const Eigen::MatrixXd g0 = length_m * space.G0();     // int_0^l beta_i beta_j dx
-  const Eigen::MatrixXd g11 = space.G11() / length_m;   // int_0^l beta_i' beta_j' dx
-  const Eigen::MatrixXd& g10 = space.G10();             // int_0^l beta_i' beta_j dx (scale-free)
+  const Eigen::MatrixXd g0 = length_m * space.G0();    // int_0^l beta_i beta_j dx
+  const Eigen::MatrixXd g11 = space.G11() / length_m;  // int_0^l beta_i' beta_j' dx
+  const Eigen::MatrixXd& g10 = space.G10();            // int_0^l beta_i' beta_j dx (scale-free)
   const Eigen::VectorXd& nu = space.tip_trace();
   const Eigen::MatrixXd nnt = nu * nu.transpose();
   const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
@@ -41,15 +41,15 @@ BeamForms::BeamForms(const SplineSpace& s, double l) : space(s), length_m(checke
 
 Eigen::VectorXd BeamForms::values_at(double x_m) const {
   if (!(x_m >= 0 && x_m <= length_m))
-    throw InputError("position x = " + format_value(x_m) + " m: must lie on the beam, 0 <= x <= l = " +
-                     format_value(length_m));
+    throw InputError("position x = " + format_value(x_m) +
+                     " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
   return space.values(x_m / length_m);
 }
 
 SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
   if (p.l != f.length_m)
-    throw InputError("beam length l = " + format_value(p.l) + " differs from the length the Galerkin forms were made for (" +
-                     format_value(f.length_m) + ")");
+    throw InputError("beam length l = " + format_value(p.l) +
+                     " differs from the length the Galerkin forms were made for (" + format_value(f.length_m) + ")");
   // Tip inertia Lambda = [[m, m c], [m c, m c^2 + J_o]] acting on (u(l), alpha(l)).
   SecondOrderSystem s;
   s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + (p.m * p.c) * f.tip_ua +

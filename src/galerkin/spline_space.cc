@@ -28,9 +28,9 @@ namespace {
 // Column c holds B_{c-1}.
 Eigen::MatrixXd clamping_matrix(int n) {
   Eigen::MatrixXd t = Eigen::MatrixXd::Zero(n + 2, n + 3);
-  t(0, 1) = 1;   // beta_0 = B_0 - 4 B_{-1}: value 2/3 - 4/6 = 0 at xi = 0
+  t(0, 1) = 1;  // beta_0 = B_0 - 4 B_{-1}: value 2/3 - 4/6 = 0 at xi = 0
   t(0, 0) = -4;
-  t(1, 2) = 1;   // beta_1 = B_1 - B_{-1}: value 1/6 - 1/6 = 0 at xi = 0, slope free (Timoshenko)
+  t(1, 2) = 1;  // beta_1 = B_1 - B_{-1}: value 1/6 - 1/6 = 0 at xi = 0, slope free (Timoshenko)
   t(1, 0) = -1;
   for (int j = 2; j <= n + 1; ++j) t(j, j + 1) = 1;
   return t;
@@ -39,15 +39,14 @@ Eigen::MatrixXd clamping_matrix(int n) {
 }  // namespace
 
 SplineSpace::SplineSpace(int elements) : elements_(elements) {
-  if (elements < 1)
-    throw InputError("elements N = " + std::to_string(elements) + ": must be >= 1");
+  if (elements < 1) throw InputError("elements N = " + std::to_string(elements) + ": must be >= 1");
   const int n = elements;
   const double h = 1.0 / n;
 
   // 4-point Gauss-Legendre on [-1, 1]: nodes +-sqrt(3/7 -+ (2/7) sqrt(6/5)), weights (18 +- sqrt 30)/36.
   const double r = 2.0 / 7.0 * std::sqrt(6.0 / 5.0);
-  const std::array<double, 4> nodes = {-std::sqrt(3.0 / 7.0 + r), -std::sqrt(3.0 / 7.0 - r),
-                                       std::sqrt(3.0 / 7.0 - r), std::sqrt(3.0 / 7.0 + r)};
+  const std::array<double, 4> nodes = {-std::sqrt(3.0 / 7.0 + r), -std::sqrt(3.0 / 7.0 - r), std::sqrt(3.0 / 7.0 - r),
+                                       std::sqrt(3.0 / 7.0 + r)};
   const std::array<double, 4> weights = {(18 - std::sqrt(30.0)) / 36, (18 + std::sqrt(30.0)) / 36,
                                          (18 + std::sqrt(30.0)) / 36, (18 - std::sqrt(30.0)) / 36};
 
@@ -57,8 +56,8 @@ SplineSpace::SplineSpace(int elements) : elements_(elements) {
   Eigen::MatrixXd g11 = g0, g10 = g0;
   for (int e = 0; e < n; ++e) {
     for (int q = 0; q < 4; ++q) {
-      const double s = (e + 0.5 * (nodes[q] + 1)) ;  // position in knot units, xi / h
-      const double w = weights[q] * 0.5 * h;          // d xi = (h/2) d node
+      const double s = (e + 0.5 * (nodes[q] + 1));  // position in knot units, xi / h
+      const double w = weights[q] * 0.5 * h;        // d xi = (h/2) d node
       std::array<double, 4> value{}, slope{};
       for (int a = 0; a < 4; ++a) {
         const int j = e - 1 + a;

@@ -3,9 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <iterator>
 #include <sstream>
 
+#include "io/files.h"
+#include "io/resources.h"
 #include "model/errors.h"
 
 namespace beamid::io {
@@ -27,6 +32,23 @@ std::vector<std::string> split(const std::string& line, char separator) {
   return fields;
 }
 
+// A field as an error message shows it: at most 40 characters (a 2 MB field is not echoed whole).
+std::string shown(const std::string& text) {
+  if (text.size() <= 40) return text;
+  return text.substr(0, 40) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+// The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
+// about 50 million samples), checked against the memory that parsing it takes before it is parsed.
+std::string read_text(const std::string& path) {
+  std::string text = read_file(path, "cannot read the file (expected a CSV or LabVIEW .lvm record)");
+  // Parsing holds the text, a table of fields and the numbers: about 5 bytes per byte of file (measured: 800 MB
+  // for a 186 MB CSV of 4e6 samples).
+  check_memory(path + ": reading " + bytes_text(static_cast<double>(text.size())),
+               5.0 * static_cast<double>(text.size()), std::cerr);
+  return text;
+}
+
 // Decimals printed after the point (0 without one; exponent forms count as many as printed in the mantissa).
 int decimals(const std::string& text) {
   const auto dot = text.find('.');
@@ -39,11 +61,12 @@ int decimals(const std::string& text) {
 struct Table {
   std::string format;
   std::vector<std::string> names;
-  std::vector<std::string> units;       // per column ("" when unknown)
-  int time_column = 0;                  // -1: time from x0 + i delta (LVM X_Columns No)
+  std::vector<std::string> units;  // per column ("" when unknown)
+  int time_column = 0;             // -1: time from x0 + i delta (LVM X_Columns No)
   double x0 = 0, delta = 0;
   std::vector<std::vector<std::string>> rows;
   std::vector<int> line_of;
+  long declared_samples = 0;  // LVM "Samples" of the segment header (0: not given)
 };
 
 Table read_csv(std::istream& in, const std::string& path) {
@@ -53,8 +76,8 @@ Table read_csv(std::istream& in, const std::string& path) {
   if (!std::getline(in, line)) throw InputError(path + ": empty file (expected a header such as t_s,displacement_m)");
   t.names = split(line, ',');
   if (t.names.size() < 2)
-    throw InputError(path + ":1: header '" + trim(line) +
-                     "': must name at least two columns (time in s, then one or more signals)");
+    throw InputError(path + ":1: header '" + shown(trim(line)) +
+                     "': must name at least two columns separated by commas (time in s, then one or more signals)");
   for (const auto& n : t.names) {
     // A unit in the name, "accel_g" or "accel (g)", is taken as the column's unit.
     const bool g = n.size() > 2 && (n.substr(n.size() - 2) == "_g" || n.find("(g)") != std::string::npos);
@@ -81,7 +104,8 @@ Table read_lvm(std::istream& in, const std::string& path) {
   std::string x_columns = "One";
   std::vector<std::string> y_units;
   if (!std::getline(in, line) || line.rfind("LabVIEW Measurement", 0) != 0)
-    throw InputError(path + ":1: not a LabVIEW measurement file (the first line must start with 'LabVIEW Measurement')");
+    throw InputError(path +
+                     ":1: not a LabVIEW measurement file (the first line must start with 'LabVIEW Measurement')");
   number = 1;
   while (headers < 2 && std::getline(in, line)) {
     ++number;
@@ -103,12 +127,22 @@ Table read_lvm(std::istream& in, const std::string& path) {
                        "': only '.' is supported (re-export with a point as decimal separator)");
     } else if (key == "X_Columns") {
       if (value != "One" && value != "Multi" && value != "No")
-        throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value + "': must be One, Multi or No");
+        throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value +
+                         "': must be One, Multi or No");
       x_columns = value;
     } else if (key == "Y_Unit_Label") {
       y_units.assign(fields.begin() + 1, fields.end());
     } else if (key == "X0" || key == "Delta_X") {
-      (key == "X0" ? t.x0 : t.delta) = std::strtod(value.c_str(), nullptr);
+      char* end = nullptr;
+      const double v = std::strtod(value.c_str(), &end);
+      if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v))
+        throw InputError(path + ":" + std::to_string(number) + ": " + key + " = '" + shown(value) +
+                         "': must be a finite number");
+      (key == "X0" ? t.x0 : t.delta) = v;
+    } else if (key == "Samples" && !value.empty()) {
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() + value.size() && n > 0) t.declared_samples = n;
     }
   }
   if (headers < 2) throw InputError(path + ": the header does not end (two ***End_of_Header*** lines expected)");
@@ -120,6 +154,10 @@ Table read_lvm(std::istream& in, const std::string& path) {
   auto names = split(line, separator);
   while (!names.empty() && (names.back().empty() || names.back() == "Comment")) names.pop_back();
   if (names.empty()) throw InputError(path + ":" + std::to_string(number) + ": expected the column names");
+  if (names.size() < 2 && x_columns != "No")
+    throw InputError(path + ":" + std::to_string(number) + ": column names '" + shown(trim(line)) +
+                     "': 1 column with " + (separator == ',' ? "Separator Comma" : "Separator Tab") +
+                     ": must be a time column and at least one signal (does the header's Separator match the data?)");
   // Keep the time column (the first X column) and the Y columns; with X_Columns Multi every Y has its own X column,
   // and only the first is kept (they are equal for a single-rate task).
   std::vector<int> keep;
@@ -128,8 +166,7 @@ Table read_lvm(std::istream& in, const std::string& path) {
     if (!is_x || c == 0) keep.push_back(c);
   }
   t.time_column = x_columns == "No" ? -1 : 0;
-  if (t.time_column < 0 && !(t.delta > 0))
-    throw InputError(path + ": X_Columns = No needs Delta_X > 0 in the header");
+  if (t.time_column < 0 && !(t.delta > 0)) throw InputError(path + ": X_Columns = No needs Delta_X > 0 in the header");
   std::vector<std::string> kept_names;
   for (int c : keep) kept_names.push_back(names[static_cast<std::size_t>(c)]);
   t.names = kept_names;
@@ -155,20 +192,34 @@ double parse(const std::string& path, int line, const std::string& column, const
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size())
-    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = '" + text + "': must be a number");
-  if (!std::isfinite(v)) throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + text + ": must be finite");
+    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = '" + shown(text) + "': must be a number");
+  if (!std::isfinite(v))
+    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + text + ": must be finite");
   return v;
 }
 
 }  // namespace
 
 TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
+  return parse_time_series(read_text(path), path, o);
+}
+
+TimeSeries parse_time_series(const std::string& text, const std::string& path, const ImportOptions& o) {
   if (o.units != "auto" && o.units != "g" && o.units != "as-is")
     throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
   if (o.duration_s && !(*o.duration_s > 0))
     throw InputError("duration = " + format_value(*o.duration_s) + ": must be > 0");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the file");
+  // Text holds no control characters but tab, line feed and carriage return (and form feed, harmlessly).
+  const auto binary = std::find_if(text.begin(), text.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f';
+  });
+  if (binary != text.end())
+    throw InputError(path + ": byte " + std::to_string(binary - text.begin()) + " is 0x" +
+                     "0123456789abcdef"[(static_cast<unsigned char>(*binary) >> 4) & 15] +
+                     "0123456789abcdef"[static_cast<unsigned char>(*binary) & 15] +
+                     ": a binary file, not CSV or LabVIEW .lvm text (export the record as text)");
+  std::istringstream in(text);
   const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
   const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);
 
@@ -208,7 +259,8 @@ TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const int line = table.line_of[r];
-    if (static_cast<int>(row.size()) <= column || (table.time_column >= 0 && row.empty()))
+    if ((table.format == "csv" && row.size() != table.names.size()) || static_cast<int>(row.size()) <= column ||
+        (table.time_column >= 0 && row.empty()))
       throw InputError(path + ":" + std::to_string(line) + ": " + std::to_string(row.size()) + " fields: must be " +
                        std::to_string(table.names.size()) + " (" + s.time_column + ", ..., " + s.value_column + ")");
     if (table.time_column >= 0) {
@@ -220,21 +272,25 @@ TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
     }
     v.push_back(parse(path, line, s.value_column, row[static_cast<std::size_t>(column)]));
   }
+  if (table.declared_samples > 0 && static_cast<long>(v.size()) < table.declared_samples)
+    throw InputError(path + ": " + std::to_string(v.size()) + " samples, but the header says Samples = " +
+                     std::to_string(table.declared_samples) + ": the file is cut short");
   if (v.size() < 8) throw InputError(path + ": " + std::to_string(v.size()) + " samples: at least 8 are needed");
 
   // Uniform time base, to the printed resolution of the time column.
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
   if (!(dt > 0)) throw InputError(path + ": time column " + s.time_column + " does not increase");
-  const double tolerance = std::max(1e-6 * dt, (table.time_column >= 0 ? std::pow(10.0, -time_decimals) : 0) + 1e-9 * dt);
+  const double tolerance =
+      std::max(1e-6 * dt, (table.time_column >= 0 ? std::pow(10.0, -time_decimals) : 0) + 1e-9 * dt);
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double expected = t0 + static_cast<double>(i) * dt;
     if (std::abs(t[i] - expected) > tolerance) {
       if (o.resample) break;
       throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.time_column + " = " +
-                       format_value(t[i]) + ": non-uniform time base (expected " + format_value(expected) +
-                       " = t0 + " + std::to_string(i) + " dt with dt = " + format_value(dt) +
-                       " s, to within " + format_value(tolerance) + " s; --resample interpolates instead)");
+                       format_value(t[i]) + ": non-uniform time base (expected " + format_value(expected) + " = t0 + " +
+                       std::to_string(i) + " dt with dt = " + format_value(dt) + " s, to within " +
+                       format_value(tolerance) + " s; --resample interpolates instead)");
     }
   }
   if (o.resample) {
@@ -257,16 +313,25 @@ TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
   // Clipping: the largest |value| held by 3 or more consecutive samples.
   double peak = 0;
   for (double x : v) peak = std::max(peak, std::abs(x));
+  if (peak == 0) throw InputError(path + ": " + s.value_column + " is 0 in every sample: there is nothing to analyse");
+  if (peak > 1e150)
+    throw InputError(path + ": " + s.value_column + " reaches " + format_value(peak) +
+                     ": beyond 1e150, its spectrum would overflow (rescale the record)");
   const bool constant = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
   for (std::size_t i = 0; i + 2 < v.size() && peak > 0 && !constant; ++i)
     if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
       throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.value_column + " = " +
-                       format_value(v[i]) + " on 3 or more consecutive samples at the record's peak: the signal is "
+                       format_value(v[i]) +
+                       " on 3 or more consecutive samples at the record's peak: the signal is "
                        "clipped (the DAQ range was exceeded), so its spectrum is distorted");
 
   // The window: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
   // that rounded DAQ times and a start given to a few digits pick the intended sample).
   const double start = o.start_s.value_or(t0);
+  const double t_end = t0 + static_cast<double>(v.size() - 1) * dt;
+  if (!(start >= t0 - 0.5 * dt && start <= t_end))
+    throw InputError(path + ": start = " + format_value(start) + " s: must lie inside the record, [" +
+                     format_value(t0) + ", " + format_value(t_end) + "] s");
   const double n_total = static_cast<double>(v.size());
   const double first_d = std::max(0.0, std::round((start - t0) / dt));
   const double count_d = o.duration_s ? std::round(*o.duration_s / dt) : n_total - first_d;

@@ -3,15 +3,17 @@
 // blocks, tab- or comma-separated, X_Columns One, Multi or No; the channel names from the column header line, units
 // from Y_Unit_Label).
 //
+// The file must be a regular text file of at most 1 GiB (a folder, a device such as /dev/zero, or a binary file is
+// named as such at once, before anything large is read).
 // Checked, each violation an InputError naming the file, line, column, value and constraint:
 //   every field of the chosen channel and of the time column a finite number (NaN, "inf" or an empty field stop it);
 //   at least 8 samples; a uniform time base t_i = t_0 + i dt with dt = (t_last - t_0)/(n - 1), to within one unit
 //   of the last printed decimal of the time column (DAQ exports round or truncate times: the ARTS record prints 6
-//   decimals of a 605.47 us step, and 0.0096875 appears as 0.009687) or 1e-6 dt, whichever is larger; unless `resample` is set, which instead interpolates the
-//   record linearly onto the uniform grid with the mean step (and says so in `notes`);
-//   no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was exceeded.
-// Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples) and, for records in g, values are converted to m/s^2
-// (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3).
+//   decimals of a 605.47 us step, and 0.0096875 appears as 0.009687) or 1e-6 dt, whichever is larger; unless `resample`
+//   is set, which instead interpolates the record linearly onto the uniform grid with the mean step (and says so in
+//   `notes`); no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was exceeded.
+// Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples) and, for records in
+// g, values are converted to m/s^2 (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3).
 #pragma once
 
 #include <optional>
@@ -21,11 +23,11 @@
 namespace beamid::io {
 
 struct ImportOptions {
-  std::string channel;              // name or 1-based index among the signal columns; "": the only one
-  std::string units = "auto";       // "auto": convert when the file says g; "g": the values are in g; "as-is"
-  std::optional<double> start_s;    // first sample: the one nearest to this time (default: the first)
-  std::optional<double> duration_s; // round(duration / dt) samples from there (default: to the last)
-  bool resample = false;            // interpolate a non-uniform time base instead of refusing it
+  std::string channel;               // name or 1-based index among the signal columns; "": the only one
+  std::string units = "auto";        // "auto": convert when the file says g; "g": the values are in g; "as-is"
+  std::optional<double> start_s;     // first sample: the one nearest to this time (default: the first)
+  std::optional<double> duration_s;  // round(duration / dt) samples from there (default: to the last)
+  bool resample = false;             // interpolate a non-uniform time base instead of refusing it
 };
 
 struct TimeSeries {
@@ -36,10 +38,12 @@ struct TimeSeries {
   double t0_s = 0;                        // time of values[0]
   double dt_s = 0;
   std::vector<double> values;
-  std::string notes;                      // what was done to the record (window, conversion, resampling)
+  std::string notes;  // what was done to the record (window, conversion, resampling)
 };
 
 // Format from the extension (".lvm", else CSV).
 TimeSeries read_time_series(const std::string& path, const ImportOptions& options = {});
+// The same from text in memory; `path` names it in messages and its ending (.lvm) chooses the format.
+TimeSeries parse_time_series(const std::string& text, const std::string& path, const ImportOptions& options = {});
 
 }  // namespace beamid::io

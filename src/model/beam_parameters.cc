@@ -15,6 +15,29 @@ std::string format_value(double value) {
   return ec == std::errc() ? std::string(buffer, end) : std::string("?");
 }
 
+std::string one_line(const std::string& message) {
+  std::string out;
+  out.reserve(message.size());
+  for (char c : message) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\r')
+      out += "\\r";
+    else if (c == '\t')
+      out += "\\t";
+    else if (u < 0x20 || u == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 }  // namespace beamid
 
 namespace beamid::model {
@@ -55,6 +78,9 @@ std::optional<std::string> constraint_violation(const ParameterInfo& info, doubl
   if (!std::isfinite(value)) return "must be finite";
   if (info.strictly_positive && !(value > 0)) return "must be > 0";
   if (!info.strictly_positive && !(value >= 0)) return "must be >= 0";
+  // No real beam comes near it (a steel I-beam has EI ~ 1e8 N m^2 and kAG ~ 1e10 N), and beyond it the Galerkin
+  // matrices lose every digit or overflow.
+  if (value > 1e20) return "must be <= 1e20 (far beyond any real beam, in " + std::string(info.unit) + ")";
   return std::nullopt;
 }
 
@@ -64,6 +90,9 @@ std::optional<std::string> validation_error(const BeamParameters& beam) {
     if (auto violation = constraint_violation(info, value))
       return std::string(info.key) + " = " + format_value(value) + ": " + *violation;
   }
+  if (beam.c > beam.l)
+    return "c = " + format_value(beam.c) + ": must be <= l = " + format_value(beam.l) +
+           ": the tip body's centre lies within a beam length of the tip";
   return std::nullopt;
 }
 
@@ -98,14 +127,14 @@ BeamParameters thick_steel() {
   const double block = 0.04;                            // tip body: a 40 mm cube of mass m (J_o = m (a^2 + a^2)/12)
   BeamParameters p;
   p.l = 0.30;
-  p.rho = density * area;          // 2.94375 kg/m
-  p.rho_r2 = density * inertia;    // 5.5195e-5 kg m
-  p.EI = E * inertia;              // 1406.25 N m^2
+  p.rho = density * area;                     // 2.94375 kg/m
+  p.rho_r2 = density * inertia;               // 5.5195e-5 kg m
+  p.EI = E * inertia;                         // 1406.25 N m^2
   p.kAG = kappa * area * E / (2 * (1 + nu));  // 2.45098e7 N
   p.m = 0.314;
   p.c = 0.02;
   p.J_o = p.m * (block * block + block * block) / 12;  // 8.3733e-5 kg m^2
-  p.cDI = 2.81e-3;   // shear retardation time kAcs/kAG = 10 x cDI/EI
+  p.cDI = 2.81e-3;                                     // shear retardation time kAcs/kAG = 10 x cDI/EI
   p.kAcs = 490.0;
   p.gamma = 2.0;
   return p;

@@ -1,6 +1,7 @@
 // The two kinds of failure a program reports.
-// InputError: caused by what a user gave (a file, a flag, a value). The message is one line that names where (file:line or flag), the key, the value and the violated constraint,
-// for example: "beam.toml:7: beam.EI = -1: must be > 0". Programs print it and exit non-zero.
+// InputError: caused by what a user gave (a file, a flag, a value). The message is one line that names where (file:line
+// or flag), the key, the value and the violated constraint, for example: "beam.toml:7: beam.EI = -1: must be > 0".
+// Programs print it and exit non-zero.
 #pragma once
 
 #include <stdexcept>
@@ -8,16 +9,21 @@
 
 namespace beamid {
 
+// The message as one line of printable text: a line break, a tab or another control character that came in with a
+// user's input (a key, a field, a library's parse message quoting the input) is written as an escape ("\\n", "\\x01"),
+// so that an error is always exactly one line.
+std::string one_line(const std::string& message);
+
 class InputError : public std::runtime_error {
  public:
-  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  explicit InputError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 // NumericalError: a computation that could not be carried out for admissible input (a singular matrix, an
 // eigensolver or integrator that did not converge). Inside a study it becomes a row with a status, never a crash.
 class NumericalError : public std::runtime_error {
  public:
-  explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
+  explicit NumericalError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
 // Shortest round-trip text of a double, for error messages ("-1", "0.491", "1e-300", "nan").

@@ -181,8 +181,8 @@ std::vector<double> timoshenko_frequencies_rad_s(const BeamParameters& beam, int
   require_valid(beam);
   const double omega_last = shear_cutoff_rad_s(beam) * (1 - kCutoffMargin);
   // Low-frequency b = (rho omega^2/EI)^(1/4) gives the start for b l = kStartBl.
-  const double omega_start = std::min(kStartBl * kStartBl / (beam.l * beam.l) * std::sqrt(beam.EI / beam.rho),
-                                      omega_last / 2);
+  const double omega_start =
+      std::min(kStartBl * kStartBl / (beam.l * beam.l) * std::sqrt(beam.EI / beam.rho), omega_last / 2);
   // b/omega decreases with omega (b^2/omega^2 = (p + sqrt(X^2 + Y))/(2 omega^2) and Y/omega^2 is constant), so
   // db/domega <= b/omega and the step domega = f pi omega / (b l) advances b l by at most f pi.
   const auto next = [&](double omega) {

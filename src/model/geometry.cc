@@ -35,10 +35,12 @@ BeamParameters lumped_parameters(const Geometry& g) {
   if (g.tip_block_m) {
     const auto& a = *g.tip_block_m;
     if (a.size() != 3 || !(a[0] > 0 && a[1] > 0 && a[2] > 0))
-      throw InputError("geometry.tip_block_m: must be three sizes > 0, [along the beam, across, in the plane of vibration]");
+      throw InputError(
+          "geometry.tip_block_m: must be three sizes > 0, [along the beam, across, in the plane of vibration]");
     positive("tip_block_density_kg_m3", g.tip_block_density_kg_m3);
     if (g.tip_mass_kg != 0 || g.tip_offset_m != 0 || g.tip_inertia_kg_m2 != 0)
-      throw InputError("geometry: give the tip body either as tip_block_m or as tip_mass_kg, tip_offset_m, tip_inertia_kg_m2");
+      throw InputError(
+          "geometry: give the tip body either as tip_block_m or as tip_mass_kg, tip_offset_m, tip_inertia_kg_m2");
     p.m = g.tip_block_density_kg_m3 * a[0] * a[1] * a[2];
     p.c = a[0] / 2;
     p.J_o = p.m * (a[0] * a[0] + a[2] * a[2]) / 12;

@@ -22,7 +22,7 @@ struct Geometry {
   std::optional<double> poisson_ratio, shear_modulus_Pa;  // one of them (nu also sets Cowper's kappa)
   std::optional<double> shear_coefficient;                // kappa; nothing: Cowper's rectangle (needs nu)
   double tip_mass_kg = 0, tip_offset_m = 0, tip_inertia_kg_m2 = 0;
-  std::optional<std::vector<double>> tip_block_m;          // a_x, a_y, a_z
+  std::optional<std::vector<double>> tip_block_m;  // a_x, a_y, a_z
   double tip_block_density_kg_m3 = 0;
   double cDI = 0, kAcs = 0, gamma = 0;
 };

@@ -1,11 +1,11 @@
 #include "signal/spectrum.h"
 
+#include <fftw3.h>
+
 #include <cmath>
 #include <cstring>
 #include <mutex>
 #include <numbers>
-
-#include <fftw3.h>
 
 #include "model/errors.h"
 
@@ -82,7 +82,8 @@ Spectrum Dft::transform(const std::vector<double>& z) {
   if (static_cast<int>(z.size()) != samples_)
     throw InputError("DFT: record of " + std::to_string(z.size()) + " samples given to a transform of " +
                      std::to_string(samples_));
-  for (int i = 0; i < samples_; ++i) plan_->in[i] = weights_[static_cast<std::size_t>(i)] * z[static_cast<std::size_t>(i)];
+  for (int i = 0; i < samples_; ++i)
+    plan_->in[i] = weights_[static_cast<std::size_t>(i)] * z[static_cast<std::size_t>(i)];
   fftw_execute(plan_->plan);
   Spectrum s;
   s.samples = samples_;
@@ -106,5 +107,7 @@ double fourier_least_squares(const Spectrum& model, const Spectrum& data) {
   }
   return sum;
 }
+
+std::string fftw_library_version() { return fftw_version; }
 
 }  // namespace beamid::signal

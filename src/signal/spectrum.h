@@ -30,8 +30,8 @@ std::optional<std::string> validation_error(const WindowOptions& options);
 std::vector<double> window_weights(const WindowOptions& options, int samples);
 
 struct Spectrum {
-  int samples = 0;                       // Nbar
-  double dt_s = 0;                       // sampling interval
+  int samples = 0;                         // Nbar
+  double dt_s = 0;                         // sampling interval
   std::vector<std::complex<double>> half;  // Z(0..Nbar/2)
 
   double df_hz() const { return 1.0 / (samples * dt_s); }
@@ -70,5 +70,8 @@ class Dft {
 // (k = 0 and, for even Nbar, k = Nbar/2 once, the others twice). With the rectangular window it equals
 // sum_i (y_i - z_i)^2 / Nbar (Parseval), i.e. the time-domain cost over Nbar.
 double fourier_least_squares(const Spectrum& model, const Spectrum& data);
+
+// FFTW's version string, for provenance.
+std::string fftw_library_version();
 
 }  // namespace beamid::signal

@@ -15,8 +15,8 @@ std::optional<std::string> validation_error(const SpikeOptions& o) {
   if (!(std::isfinite(o.min_frequency_hz) && o.min_frequency_hz >= 0))
     return "min_frequency_hz = " + format_value(o.min_frequency_hz) + ": must be finite and >= 0";
   if (!(o.max_frequency_hz > o.min_frequency_hz))
-    return "max_frequency_hz = " + format_value(o.max_frequency_hz) + ": must be > min_frequency_hz = " +
-           format_value(o.min_frequency_hz);
+    return "max_frequency_hz = " + format_value(o.max_frequency_hz) +
+           ": must be > min_frequency_hz = " + format_value(o.min_frequency_hz);
   for (double f : o.frequencies_hz)
     if (!(std::isfinite(f) && f > 0)) return "spike frequency = " + format_value(f) + ": must be > 0";
   if (!o.frequencies_hz.empty() && o.count != static_cast<int>(o.frequencies_hz.size()))
@@ -74,7 +74,7 @@ std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options)
   if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
   const double df = s.df_hz();
   const int lo = static_cast<int>(std::ceil(options.min_frequency_hz / df - 1e-9));
-  const int hi = std::min<double>(s.last_bin(), std::floor(options.max_frequency_hz / df + 1e-9)) ;
+  const int hi = std::min<double>(s.last_bin(), std::floor(options.max_frequency_hz / df + 1e-9));
   std::vector<std::pair<double, int>> ranked;  // (score, bin)
   if (!options.frequencies_hz.empty()) {
     // Chosen spikes: for each given frequency, the largest local maximum within +-window of it (so data and model

@@ -20,11 +20,11 @@
 namespace beamid::signal {
 
 struct SpikeOptions {
-  int count = 4;                    // NM
-  std::string rule = "largest";     // "largest" | "prominence"
-  double min_frequency_hz = 0;      // candidates restricted to [min, max]
+  int count = 4;                 // NM
+  std::string rule = "largest";  // "largest" | "prominence"
+  double min_frequency_hz = 0;   // candidates restricted to [min, max]
   double max_frequency_hz = std::numeric_limits<double>::infinity();
-  double support_level = 0.2;       // the paper's 20 %
+  double support_level = 0.2;  // the paper's 20 %
   // Chosen spikes (real records hold modes a model lacks, such as torsion, and mains lines): when not empty, the
   // spikes are the largest local maxima within +-frequency_window (relative) of each of these frequencies, and
   // count is their number; `rule` and the band are not used.
@@ -35,11 +35,11 @@ struct SpikeOptions {
 std::optional<std::string> validation_error(const SpikeOptions& options);
 
 struct Spike {
-  int bin = 0;             // k
-  double frequency_hz = 0; // f_k = k df
-  double magnitude = 0;    // |Z(k)|
-  int n_left = 0;          // n_l
-  int n_right = 0;         // N_l
+  int bin = 0;              // k
+  double frequency_hz = 0;  // f_k = k df
+  double magnitude = 0;     // |Z(k)|
+  int n_left = 0;           // n_l
+  int n_right = 0;          // N_l
 };
 
 // All local maxima of |Z| in 1..Nbar/2 (ascending bins).
@@ -50,9 +50,9 @@ std::pair<int, int> support(const Spectrum& spectrum, int bin, double level);
 std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& options);
 
 // Sub-bin pole estimate from the complex 3-bin ratio (Jacobsen), R = (Z(k-1) - Z(k+1)) / (2 Z(k) - Z(k-1) - Z(k+1)):
-// for a sampled damped exponential e^{(j 2 pi f - sigma) t} on the rectangular window, Z(k) ~ 1/(f/df - k + j sigma T/(2 pi))
-// near the pole, which makes R = (f/df - k) + j sigma T / (2 pi) exactly in that approximation; Candan's factor
-// tan(pi/Nbar)/(pi/Nbar) on Re R removes most of the bias of the small-angle step. With another window the
+// for a sampled damped exponential e^{(j 2 pi f - sigma) t} on the rectangular window, Z(k) ~ 1/(f/df - k + j sigma
+// T/(2 pi)) near the pole, which makes R = (f/df - k) + j sigma T / (2 pi) exactly in that approximation; Candan's
+// factor tan(pi/Nbar)/(pi/Nbar) on Re R removes most of the bias of the small-angle step. With another window the
 // estimates are still a smooth, consistent feature (the same on data and model) but biased by the window.
 struct PoleEstimate {
   double frequency_hz = 0;

@@ -1,15 +1,16 @@
 #include "simulation/cvode_simulator.h"
 
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_config.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
-
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include "model/errors.h"
 
@@ -54,8 +55,7 @@ int rhs_trampoline(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   return 0;
 }
 
-int jacobian_trampoline(sunrealtype, N_Vector, N_Vector, SUNMatrix jac, void* user_data, N_Vector, N_Vector,
-                        N_Vector) {
+int jacobian_trampoline(sunrealtype, N_Vector, N_Vector, SUNMatrix jac, void* user_data, N_Vector, N_Vector, N_Vector) {
   const auto* rhs = static_cast<const Rhs*>(user_data);
   const int n = rhs->n;
   // SUNDIALS dense matrices are column-major like Eigen's default: map and fill [[0, I], [-M^-1 K, -M^-1 C]].
@@ -171,7 +171,8 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   Session s;
   std::string cvode_message;
   const auto failed = [&](const std::string& what, int flag) {
-    trace.status = "cvode: " + what + " returned " + flag_name(flag) + (cvode_message.empty() ? "" : " (" + cvode_message + ")");
+    trace.status =
+        "cvode: " + what + " returned " + flag_name(flag) + (cvode_message.empty() ? "" : " (" + cvode_message + ")");
     return trace;
   };
   if (SUNContext_Create(BEAMID_SUN_COMM_NULL, &s.context) != 0) {
@@ -191,8 +192,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
       // 1e-3 on the first block (transverse displacement, what sensors see); 1 on the rotations, whose thin-beam
       // equations carry round-off noise (a huge shear balance cancelling) that a tighter tolerance would chase.
       const double factor = start == 0 ? 1e-3 : 1.0;
-      const double size =
-          std::max(tiny, factor * options_.rtol * w_scale.segment(start, block).cwiseAbs().maxCoeff());
+      const double size = std::max(tiny, factor * options_.rtol * w_scale.segment(start, block).cwiseAbs().maxCoeff());
       atol.segment(start, block).setConstant(size);
       atol.segment(n + start, block).setConstant(std::max(tiny, size * rayleigh_rad_s));
     }
@@ -233,7 +233,8 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     CVodeGetNumSteps(s.cvode, &value), trace.stats.steps += value;
     CVodeGetNumRhsEvals(s.cvode, &value), trace.stats.rhs_evaluations += value;
     CVodeGetNumJacEvals(s.cvode, &value), trace.stats.jacobian_evaluations += value;
-    if (options_.linear_solver == "dense") CVodeGetNumLinSolvSetups(s.cvode, &value), trace.stats.linear_solver_setups += value;
+    if (options_.linear_solver == "dense")
+      CVodeGetNumLinSolvSetups(s.cvode, &value), trace.stats.linear_solver_setups += value;
     CVodeGetNumErrTestFails(s.cvode, &value), trace.stats.error_test_failures += value;
     CVodeGetNumNonlinSolvConvFails(s.cvode, &value), trace.stats.nonlinear_convergence_failures += value;
   };
@@ -274,5 +275,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   trace.stats.linear_solver_setups += structured.factorizations;
   return trace;
 }
+
+std::string sundials_library_version() { return SUNDIALS_VERSION; }
 
 }  // namespace beamid::simulation

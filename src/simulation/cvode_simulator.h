@@ -19,4 +19,7 @@ class CvodeSimulator final : public Simulator {
   CvodeOptions options_;
 };
 
+// "6.4.1": the SUNDIALS version, for provenance.
+std::string sundials_library_version();
+
 }  // namespace beamid::simulation

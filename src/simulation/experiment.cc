@@ -7,38 +7,56 @@
 
 namespace beamid::simulation {
 
+const model::NameSet& excitation_names() {
+  static const model::NameSet names({{kPulse, "F0 sin^2(pi t/tau) on [0, tau] at x_f, from rest"},
+                                     {kPluck, "released at rest from the static deflection under F0 at x_f"},
+                                     {kFreeDecay, "a record from an unknown state (fit only)"}});
+  return names;
+}
+
+const model::NameSet& output_names() {
+  static const model::NameSet names({{kDisplacement, "m"}, {kVelocity, "m/s"}, {kAcceleration, "m/s^2"}});
+  return names;
+}
+
 std::optional<std::string> validation_error(const Experiment& e, double length_m) {
   const auto bad = [](const std::string& key, double value, const std::string& constraint) {
     return key + " = " + format_value(value) + ": " + constraint;
   };
-  if (e.excitation != "pulse" && e.excitation != "pluck" && e.excitation != "free-decay")
-    return "excitation = '" + e.excitation + "': must be one of pulse, pluck, free-decay";
-  if (e.output != "displacement" && e.output != "velocity" && e.output != "acceleration")
-    return "output = '" + e.output + "': must be one of displacement, velocity, acceleration";
+  if (auto error = excitation_names().violation("excitation", e.excitation)) return error;
+  if (auto error = output_names().violation("output", e.output)) return error;
   const std::string on_beam = "must lie on the beam, 0 <= x <= l = " + format_value(length_m);
   if (e.force_x_m && !(*e.force_x_m >= 0 && *e.force_x_m <= length_m)) return bad("force_x_m", *e.force_x_m, on_beam);
   if (e.sensor_x_m && !(*e.sensor_x_m >= 0 && *e.sensor_x_m <= length_m))
     return bad("sensor_x_m", *e.sensor_x_m, on_beam);
   if (!std::isfinite(e.force_amplitude_N)) return bad("force_amplitude_N", e.force_amplitude_N, "must be finite");
-  if (e.excitation == "pulse" && !(e.pulse_width_s > 0 && std::isfinite(e.pulse_width_s)))
+  if (e.excitation == kPulse && !(e.pulse_width_s > 0 && std::isfinite(e.pulse_width_s)))
     return bad("pulse_width_s", e.pulse_width_s, "must be finite and > 0");
   if (!(e.dt_s > 0 && std::isfinite(e.dt_s))) return bad("dt_s", e.dt_s, "must be finite and > 0");
   if (e.samples < 2) return "samples = " + std::to_string(e.samples) + ": must be >= 2";
+  // A beam's free vibration dies out in minutes; a record of more than 1e6 s (11 days) is a unit mistake.
+  if (e.dt_s * e.samples > 1e6)
+    return bad("dt_s", e.dt_s,
+               "the record, dt x samples = " + format_value(e.dt_s * e.samples) +
+                   " s, must last at most 1e6 s (is dt in seconds?)");
   return std::nullopt;
 }
 
 int output_derivative(const std::string& output) {
-  if (output == "displacement") return 0;
-  if (output == "velocity") return 1;
-  if (output == "acceleration") return 2;
+  if (output == kDisplacement) return 0;
+  if (output == kVelocity) return 1;
+  if (output == kAcceleration) return 2;
   throw InputError("output = '" + output + "': must be one of displacement, velocity, acceleration");
 }
 
 std::string output_column(const std::string& output) {
   switch (output_derivative(output)) {
-    case 0: return "displacement_m";
-    case 1: return "velocity_m_s";
-    default: return "acceleration_m_s2";
+    case 0:
+      return "displacement_m";
+    case 1:
+      return "velocity_m_s";
+    default:
+      return "acceleration_m_s2";
   }
 }
 

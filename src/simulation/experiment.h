@@ -7,22 +7,33 @@
 //   sensor at xbar: displacement, velocity or acceleration of u; samples t_i = i dt, i = 0..Nbar-1.
 #pragma once
 
+#include <Eigen/Dense>
 #include <optional>
 #include <string>
 
-#include <Eigen/Dense>
+#include "model/names.h"
 
 namespace beamid::simulation {
 
+// Excitations and sensor outputs by name (the registries every reader of these names uses).
+inline const std::string kPulse = "pulse";
+inline const std::string kPluck = "pluck";
+inline const std::string kFreeDecay = "free-decay";
+const model::NameSet& excitation_names();
+inline const std::string kDisplacement = "displacement";
+inline const std::string kVelocity = "velocity";
+inline const std::string kAcceleration = "acceleration";
+const model::NameSet& output_names();
+
 struct Experiment {
-  std::string excitation = "pulse";      // "pulse" | "pluck" | "free-decay"
-  std::optional<double> force_x_m;       // x_f; default: the tip (x = l)
-  double force_amplitude_N = 1.0;        // F0 (pulse peak) or P0 (pluck static load)
-  double pulse_width_s = 0.01;           // tau (pulse only)
-  std::optional<double> sensor_x_m;      // xbar; default: the tip
-  std::string output = "displacement";   // "displacement" | "velocity" | "acceleration"
-  double dt_s = 1e-3;                    // sampling interval
-  int samples = 4096;                    // Nbar
+  std::string excitation = "pulse";     // "pulse" | "pluck" | "free-decay"
+  std::optional<double> force_x_m;      // x_f; default: the tip (x = l)
+  double force_amplitude_N = 1.0;       // F0 (pulse peak) or P0 (pluck static load)
+  double pulse_width_s = 0.01;          // tau (pulse only)
+  std::optional<double> sensor_x_m;     // xbar; default: the tip
+  std::string output = "displacement";  // "displacement" | "velocity" | "acceleration"
+  double dt_s = 1e-3;                   // sampling interval
+  int samples = 4096;                   // Nbar
 };
 
 // First violated constraint as "key = value: constraint", e.g. "pulse_width_s = -1: must be > 0", or nothing.
@@ -38,11 +49,11 @@ std::string output_column(const std::string& output);
 //   M w'' + C w' + K w = load * P(t),  P(t) = amplitude sin^2(pi t / tau) on [0, tau] (none when tau = 0),
 //   w(0) = w0, w'(0) = 0,  y_i = sensor^T (d/dt)^derivative w (t_i).
 struct ResponseProblem {
-  Eigen::VectorXd load;        // generalised load of a unit force at x_f
-  double amplitude_N = 0;      // F0 of the pulse (0 for a pluck)
-  double pulse_width_s = 0;    // tau (0 for a pluck)
-  Eigen::VectorXd w0;          // initial displacement state
-  Eigen::VectorXd sensor;      // [beta(xbar); 0]
+  Eigen::VectorXd load;      // generalised load of a unit force at x_f
+  double amplitude_N = 0;    // F0 of the pulse (0 for a pluck)
+  double pulse_width_s = 0;  // tau (0 for a pluck)
+  Eigen::VectorXd w0;        // initial displacement state
+  Eigen::VectorXd sensor;    // [beta(xbar); 0]
   int derivative = 0;
   double dt_s = 0;
   int samples = 0;

@@ -1,16 +1,16 @@
 #include "simulation/free_decay.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
-#include <Eigen/Dense>
 
 #include "model/errors.h"
 
 namespace beamid::simulation {
 
-FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt, const std::vector<double>& data) {
+FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt,
+                            const std::vector<double>& data) {
   if (!(dt > 0)) throw InputError("free decay: dt = " + format_value(dt) + ": must be > 0");
   if (data.empty()) throw InputError("free decay: no data");
   FreeDecayFit out;

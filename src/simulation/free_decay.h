@@ -15,10 +15,10 @@
 namespace beamid::simulation {
 
 struct FreeDecayFit {
-  std::vector<double> y;                         // the least-squares synthesis at t_i = i dt
-  std::vector<std::complex<double>> poles_rad_s; // the modes used (Im > 0, below Nyquist), ascending frequency
-  std::vector<double> amplitudes;                // c0, then a_k, b_k per mode
-  std::string status = "ok";                     // or why not (no mode below Nyquist, rank-deficient basis)
+  std::vector<double> y;                          // the least-squares synthesis at t_i = i dt
+  std::vector<std::complex<double>> poles_rad_s;  // the modes used (Im > 0, below Nyquist), ascending frequency
+  std::vector<double> amplitudes;                 // c0, then a_k, b_k per mode
+  std::string status = "ok";                      // or why not (no mode below Nyquist, rank-deficient basis)
 };
 
 // InputError for dt <= 0 or empty data.

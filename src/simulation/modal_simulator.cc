@@ -1,5 +1,6 @@
 #include "simulation/modal_simulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -50,12 +51,11 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     const Eigen::VectorXcd& lambda = modes.eigenvalues();
     const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
     const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
-    const Eigen::VectorXcd g =
-        pulse ? Eigen::VectorXcd(p.amplitude_N * modes.input_coefficients(p.load)) : Eigen::VectorXcd::Zero(lambda.size());
+    const Eigen::VectorXcd g = pulse ? Eigen::VectorXcd(p.amplitude_N * modes.input_coefficients(p.load))
+                                     : Eigen::VectorXcd::Zero(lambda.size());
     // Modal initial state: only a pluck has one (a pulse starts at rest), so the pulse path skips the solve.
-    const Eigen::VectorXcd e0 = p.w0.isZero(0.0)
-                                    ? Eigen::VectorXcd::Zero(lambda.size())
-                                    : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
+    const Eigen::VectorXcd e0 = p.w0.isZero(0.0) ? Eigen::VectorXcd::Zero(lambda.size())
+                                                 : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
     const double direct = (p.derivative == 2 && pulse) ? modes.feedthrough(p.sensor, p.load) : 0.0;
     trace.stats.eigenvector_rcond = modes.eigenvector_rcond();
     for (int k = 0; k < lambda.size(); ++k)
@@ -63,7 +63,8 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
 
     const double tau = pulse ? p.pulse_width_s : 0.0;
     // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
-    const int first_free = std::min(p.samples, pulse ? static_cast<int>(std::floor(tau / p.dt_s)) + 1 : 0);
+    // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
+    const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
     double bound = 0;  // sum of |mode amplitudes| at tau: no later output can exceed it
     std::vector<int> kept;
     std::vector<complex> at_tau;
@@ -97,7 +98,8 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
       int last = p.samples - 1;
       if (l.real() < 0) {
         const double t_end = tau + std::log(negligible / std::abs(amplitude)) / l.real();
-        last = static_cast<int>(std::min<double>(p.samples - 1, std::ceil(t_end / p.dt_s)));
+        const double c = std::ceil(t_end / p.dt_s);
+        if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, first_free - 1.0, p.samples - 1.0));
       }
       complex value;
       for (int i = first_free; i <= last; ++i) {
@@ -112,8 +114,7 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     // w(0) = w0, w'(0) = 0, w''(0) = M^-1 (f P(0) - K w0).
     if (p.derivative == 0) trace.y[0] = p.sensor.dot(p.w0);
     if (p.derivative == 1) trace.y[0] = 0.0;
-    if (p.derivative == 2)
-      trace.y[0] = p.sensor.dot(system.M.llt().solve(p.force_N(0.0) * p.load - system.K * p.w0));
+    if (p.derivative == 2) trace.y[0] = p.sensor.dot(system.M.llt().solve(p.force_N(0.0) * p.load - system.K * p.w0));
   } catch (const NumericalError& error) {
     trace.status = std::string("fast: ") + error.what();
   }

@@ -9,7 +9,8 @@ namespace beamid::simulation {
 std::optional<std::string> validation_error(const SimulatorOptions& o) {
   if (o.integrator != "fast" && o.integrator != "cvode")
     return "integrator = '" + o.integrator + "': must be one of fast, cvode";
-  if (!(o.cvode.rtol > 0 && o.cvode.rtol < 1)) return "cvode.rtol = " + format_value(o.cvode.rtol) + ": must be in (0, 1)";
+  if (!(o.cvode.rtol > 0 && o.cvode.rtol < 1))
+    return "cvode.rtol = " + format_value(o.cvode.rtol) + ": must be in (0, 1)";
   if (!(o.cvode.atol >= 0 && std::isfinite(o.cvode.atol)))
     return "cvode.atol = " + format_value(o.cvode.atol) + ": must be finite and >= 0";
   if (o.cvode.linear_solver != "structured" && o.cvode.linear_solver != "dense")
@@ -30,16 +31,17 @@ std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options) {
 ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
                              const Experiment& e) {
   if (auto error = validation_error(e, forms.length_m)) throw InputError(*error);
-  if (e.excitation == "free-decay")
-    throw InputError("excitation = 'free-decay': the initial state is unknown, so it can be fitted but not simulated "
-                     "(use pulse or pluck)");
+  if (e.excitation == kFreeDecay)
+    throw InputError(
+        "excitation = 'free-decay': the initial state is unknown, so it can be fitted but not simulated "
+        "(use pulse or pluck)");
   ResponseProblem p;
   p.load = galerkin::point_load(forms, e.force_x_m.value_or(forms.length_m));
   p.sensor = galerkin::point_load(forms, e.sensor_x_m.value_or(forms.length_m));
   p.derivative = output_derivative(e.output);
   p.dt_s = e.dt_s;
   p.samples = e.samples;
-  if (e.excitation == "pulse") {
+  if (e.excitation == kPulse) {
     p.amplitude_N = e.force_amplitude_N;
     p.pulse_width_s = e.pulse_width_s;
     p.w0 = Eigen::VectorXd::Zero(p.load.size());

@@ -19,12 +19,12 @@ namespace beamid::simulation {
 struct CvodeOptions {
   double rtol = 1e-10;
   // Absolute tolerance per state component. 0 (default): rtol times the natural size of that block of the
-  // state (times 1e-3 for the displacement block, see below), i.e. the largest |w| of the static deflection under the load (or of the pluck's w0) for displacements and
-  // rotations, times the lowest-mode Rayleigh frequency for velocities. The 1e-3 on displacements is there because a
-  // short pulse's response is far below its static deflection (16x for the thick-steel check, whose agreement with
-  // `fast` at rtol 1e-10 goes from 5e-7 to 2e-8 with it); the rotations keep 1 because the thin beam's rotation
-  // equations carry round-off noise that a tighter tolerance would chase (CVODE then stalls).
-  // A positive value: this absolute tolerance for all components.
+  // state (times 1e-3 for the displacement block, see below), i.e. the largest |w| of the static deflection under the
+  // load (or of the pluck's w0) for displacements and rotations, times the lowest-mode Rayleigh frequency for
+  // velocities. The 1e-3 on displacements is there because a short pulse's response is far below its static deflection
+  // (16x for the thick-steel check, whose agreement with `fast` at rtol 1e-10 goes from 5e-7 to 2e-8 with it); the
+  // rotations keep 1 because the thin beam's rotation equations carry round-off noise that a tighter tolerance would
+  // chase (CVODE then stalls). A positive value: this absolute tolerance for all components.
   double atol = 0;
   long max_steps_per_sample = 100000;  // CVodeSetMaxNumSteps between two output times
   int max_order = 5;                   // BDF order limit, 1..5 (orders 1-2 are A-stable)
@@ -56,8 +56,8 @@ struct SimulationStats {
 };
 
 struct Trace {
-  std::vector<double> y;     // y_i at t_i = i dt
-  std::string status = "ok"; // "ok", or what failed
+  std::vector<double> y;      // y_i at t_i = i dt
+  std::string status = "ok";  // "ok", or what failed
   SimulationStats stats;
   // fast only: the underdamped state-space eigenvalues (Im > 0), rad/s, as computed for this run (the spike-smooth
   // cost can compare them with the data's poles without a second eigen-decomposition). Empty for cvode.

@@ -8,11 +8,12 @@
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
-#include "model/beam_toml.h"
 #include "model/errors.h"
+#include "model/exact_frequencies.h"
 #include "signal/noise.h"
 #include "signal/spectrum.h"
 #include "simulation/simulator.h"
+#include "study/overlay.h"
 
 namespace beamid::study {
 namespace {
@@ -43,7 +44,7 @@ std::vector<double> clean_record(const Record& truth, int samples) {
 // for landscape units, the start; a case adds its method and its start factors. The optimizer is the cost's default
 // unless the method names one.
 fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes) {
-  const model::BeamParameters beam = truth_beam(spec);
+  const model::BeamParameters beam = spec.truth.parameters;
   fit::FitOptions o;
   o.start = beam;
   o.elements = unit.elements;
@@ -86,21 +87,26 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
+  const std::vector<double> clean = clean_record(truth, unit.samples);
+  const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+  int modes = 0, spikes = 0;
+  fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+  model::BeamParameters estimate = spec.truth.parameters;
+  for (const auto& key : spec.fit.estimate) {
+    const double v = result.number("estimate." + key);
+    if (std::isfinite(v)) member(estimate, key) = v;
+  }
+  return compute_overlay(o, data, estimate);
+}
+
 }  // namespace
-
-double tolerance(const StudySpec& spec, const std::string& key) {
-  return model::find_parameter(key)->role == "damping" ? spec.fit.damping_tolerance : spec.fit.success_tolerance;
-}
-
-model::BeamParameters truth_beam(const StudySpec& spec) {
-  return spec.truth.beam_path.empty() ? model::preset(spec.truth.beam) : model::load_beam_toml(spec.truth.beam_path);
-}
 
 Record run_truth(const StudySpec& spec, const Unit& truth) {
   Record r;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const model::BeamParameters beam = truth_beam(spec);
+    const model::BeamParameters beam = spec.truth.parameters;
     const galerkin::SplineSpace space(spec.truth.elements);
     const galerkin::BeamForms forms(space, beam.l);
     simulation::SimulatorOptions options;
@@ -141,6 +147,7 @@ int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vect
 
 void validate_plan(const StudySpec& spec, const Plan& plan) {
   for (const Unit& u : plan.units) {
+    if (u.kind == "frequencies") continue;  // no fit
     try {
       fit::validate(unit_options(spec, u, spec.fit.spikes > 0 ? spec.fit.spikes : spec.fit.max_spikes));
     } catch (const InputError& e) {
@@ -158,7 +165,7 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
   r.set("cost", std::numeric_limits<double>::infinity());
   r.set("evaluations", 0.0);
   r.set("a4", std::string("-"));
-  const model::BeamParameters beam = truth_beam(spec);
+  const model::BeamParameters beam = spec.truth.parameters;
   for (const auto& key : spec.fit.estimate) {
     r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
     r.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
@@ -185,6 +192,13 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
       r.set("standard_error." + p.key, p.standard_error);
       r.set("relative_error." + p.key, (p.estimate - t) / t);
     }
+    if (unit.overlay) {  // the fit in time and frequency, for the overlay plots
+      try {
+        store_overlay(r, case_overlay(spec, unit, truth, r));
+      } catch (const std::exception& e) {
+        r.set("overlay.status", std::string("failed: ") + e.what());
+      }
+    }
   } catch (const std::exception& e) {
     r.set("status", std::string("failed"));
     r.set("termination", e.what());
@@ -203,7 +217,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
     int modes = 0, spikes = 0;
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("modes_in_data", static_cast<double>(modes));
-    const model::BeamParameters beam = truth_beam(spec);
+    const model::BeamParameters beam = spec.truth.parameters;
     const double F = spec.landscape.range_factor;
     // Log-spaced axis v F^(2j/(P-1) - 1), j = 0..P-1: the middle point (P odd) is the true value.
     const auto axis = [&](const std::string& key, int points) {
@@ -251,10 +265,11 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
           upper[static_cast<int>(i)] = std::log(o.estimate[i].upper);
         }
         // One Latin hypercube (in log coordinates) per cost, shared by its multistart units; this unit takes point k.
-        const auto points = fit::space_filling_starts(
-            lower, upper, spec.landscape.multistarts, "lhs", signal::derive_seed(spec.seed, "multistart;" + unit.cost));
+        const auto points = fit::space_filling_starts(lower, upper, spec.landscape.multistarts, "lhs",
+                                                      signal::derive_seed(spec.seed, "multistart;" + unit.cost));
         for (std::size_t i = 0; i < o.estimate.size(); ++i)
-          member(o.start, o.estimate[i].key) = std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]);
+          member(o.start, o.estimate[i].key) =
+              std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]);
       }
       for (const auto& e : o.estimate) r.set("start." + e.key, value(o.start, e.key));
       const fit::FitResult result = fit::fit(o, clean);
@@ -270,40 +285,41 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
   return r;
 }
 
-Overlay overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
-  Overlay out;
-  const std::vector<double> clean = clean_record(truth, unit.samples);
-  const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
-  int modes = 0, spikes = 0;
-  fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
-  model::BeamParameters estimate = truth_beam(spec);
-  for (const auto& key : spec.fit.estimate) {
-    const double v = result.number("estimate." + key);
-    if (std::isfinite(v)) member(estimate, key) = v;
+Record run_frequencies(const StudySpec& spec, int elements) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("ok"));
+  const model::BeamParameters& beam = spec.truth.parameters;
+  std::vector<double> exact;
+  try {
+    for (double w : model::timoshenko_frequencies_rad_s(beam, 4)) exact.push_back(w / (2 * M_PI));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: exact frequencies: ") + e.what());
   }
-  fit::Objective objective(o, data);
-  const auto model = objective.evaluate(estimate);
-  const double dt = o.experiment.dt_s;
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    out.t_s.push_back(static_cast<double>(i) * dt);
-    out.data.push_back(data[i]);
-    out.model.push_back(i < model.y.size() ? model.y[i] : std::numeric_limits<double>::quiet_NaN());
+  r.set("exact_hz", exact);
+  {
+    const int n = elements;
+    std::vector<double> f;
+    try {
+      const galerkin::SplineSpace space(n);
+      const auto modes = galerkin::undamped_modes(galerkin::assemble(space, beam));
+      for (std::size_t m = 0; m < exact.size() && static_cast<int>(m) < modes.omega_rad_s.size(); ++m)
+        f.push_back(modes.omega_rad_s[static_cast<int>(m)] / (2 * M_PI));
+    } catch (const std::exception& e) {
+      r.set("status", "failed: N = " + std::to_string(n) + ": " + e.what());
+    }
+    r.set("galerkin_hz", f);
   }
-  signal::Dft dft(static_cast<int>(data.size()), dt);
-  const signal::Spectrum zs = dft.transform(data);
-  const signal::Spectrum us = model.y.size() == data.size() ? dft.transform(model.y) : zs;
-  for (int k = 0; k <= zs.last_bin(); ++k) {
-    out.frequency_hz.push_back(zs.frequency_hz(k));
-    out.data_magnitude.push_back(zs.magnitude(k));
-    out.model_magnitude.push_back(model.y.size() == data.size() ? us.magnitude(k)
-                                                                 : std::numeric_limits<double>::quiet_NaN());
-  }
-  for (const auto& p : objective.cost().data_spikes()) {
-    out.spike_bins.push_back(p.data.bin);
-    out.support_left.push_back(p.data.n_left);
-    out.support_right.push_back(p.data.n_right);
-  }
-  return out;
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r = unit.kind == "case"          ? run_case(spec, unit, truth)
+             : unit.kind == "frequencies" ? run_frequencies(spec, unit.elements)
+                                          : run_landscape(spec, unit, truth);
+  r.set("kind", unit.kind);
+  return r;
 }
 
 }  // namespace beamid::study

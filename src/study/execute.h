@@ -11,10 +11,6 @@
 
 namespace beamid::study {
 
-model::BeamParameters truth_beam(const StudySpec& spec);
-// The success tolerance of a parameter: fit.damping_tolerance for damping parameters, fit.success_tolerance else.
-double tolerance(const StudySpec& spec, const std::string& key);
-
 // The clean record of a truth unit: CVODE at N_truth and truth.rtol; also the Galerkin modes of the truth beam.
 //   fields: status, y (the samples), mode_frequency_hz, mode_damping_ratio, steps, wall_time_s
 Record run_truth(const StudySpec& spec, const Unit& truth);
@@ -29,21 +25,21 @@ int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vect
 void validate_plan(const StudySpec& spec, const Plan& plan);
 
 // One fit (kind "case"). `truth` is the truth unit's record.
-//   fields: status, termination, cost, evaluations, wall_time_s, modes_in_data, spikes, a4, best_start, and for
+//   fields: status, termination, cost, evaluations, wall_time_s, modes_in_data, spikes, a4, best_start, the overlay
+//   fields of study/overlay.h when unit.overlay, and for
 //   every estimated key K: estimate.K, standard_error.K, relative_error.K (success is judged by the tables, with
 //   the study's tolerances, which are not part of a case's identity)
 Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth);
 
+// The Galerkin frequencies of the truth beam at N = elements (kind "frequencies"): fields exact_hz (the first four
+// from the frequency determinant) and galerkin_hz (as many).
+Record run_frequencies(const StudySpec& spec, int elements);
+
+// Any unit of plan.units (the record's field "kind" says which).
+Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth);
+
 // Landscape units: "slice" (fields x, cost), "grid" (x, y, cost row-major in x), "multistart" (start.K, estimate.K,
 // status, cost, evaluations; index -1 is the fit started at the truth, the reference minimum).
 Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& truth);
-
-// The fit overlay and spectra for one case (for the plots): data, model at the estimate, and their DFT magnitudes.
-struct Overlay {
-  std::vector<double> t_s, data, model;
-  std::vector<double> frequency_hz, data_magnitude, model_magnitude;
-  std::vector<int> spike_bins, support_left, support_right;  // of the data
-};
-Overlay overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result);
 
 }  // namespace beamid::study

@@ -3,17 +3,16 @@
 #include <cstdio>
 #include <sstream>
 
-#include "io/csv.h"
+#include "io/text.h"
 #include "signal/noise.h"
-#include "study/text.h"
 
 namespace beamid::study {
 namespace {
 
-// Numbers in canonical strings are written by full() (they round-trip, so distinct values stay distinct).
+// Numbers in canonical strings are written by io::round_trip() (they round-trip, so distinct values stay distinct).
 void identify(Unit& u, const StudySpec& spec) {
   const std::uint64_t h = signal::fnv1a64(u.canonical);
-  u.id = hex64(h);
+  u.id = io::hex64(h);
   u.seed = signal::mix64(spec.seed ^ h);
 }
 
@@ -21,11 +20,12 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   const auto& t = spec.truth;
   const auto& e = t.experiment;
   std::ostringstream os;
-  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << full(t.rtol) << ";integrator=cvode"
-     << ";dt_s=" << full(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
-     << ";force_x_m=" << (e.force_x_m ? full(*e.force_x_m) : "tip") << ";force_amplitude_N=" << full(e.force_amplitude_N)
-     << ";pulse_width_s=" << full(pulse_width_s) << ";sensor_x_m=" << (e.sensor_x_m ? full(*e.sensor_x_m) : "tip")
-     << ";output=" << e.output;
+  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << io::round_trip(t.rtol) << ";integrator=cvode"
+     << ";dt_s=" << io::round_trip(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
+     << ";force_x_m=" << (e.force_x_m ? io::round_trip(*e.force_x_m) : "tip")
+     << ";force_amplitude_N=" << io::round_trip(e.force_amplitude_N)
+     << ";pulse_width_s=" << io::round_trip(pulse_width_s)
+     << ";sensor_x_m=" << (e.sensor_x_m ? io::round_trip(*e.sensor_x_m) : "tip") << ";output=" << e.output;
   return os.str();
 }
 
@@ -35,9 +35,10 @@ std::string fit_text(const StudySpec& spec) {
   os << "estimate=";
   for (std::size_t i = 0; i < f.estimate.size(); ++i) os << (i ? "," : "") << f.estimate[i];
   os << ";spikes=" << (f.spikes == 0 ? "auto" + std::to_string(f.max_spikes) : std::to_string(f.spikes))
-     << ";spike_rule=" << f.spike_rule << ";band_hz=" << full(f.min_frequency_hz) << ":" << full(f.max_frequency_hz)
-     << ";window=" << f.window << ";bound_factor=" << full(f.bound_factor) << ";scaling=" << f.scaling
-     << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << full(f.xtol_rel);
+     << ";spike_rule=" << f.spike_rule << ";band_hz=" << io::round_trip(f.min_frequency_hz) << ":"
+     << io::round_trip(f.max_frequency_hz) << ";window=" << f.window
+     << ";bound_factor=" << io::round_trip(f.bound_factor) << ";scaling=" << f.scaling
+     << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << io::round_trip(f.xtol_rel);
   // The success tolerances are not part of a unit's identity: they judge a result and do not change it.
   return os.str();
 }
@@ -78,17 +79,18 @@ Plan make_plan(const StudySpec& spec) {
                   const MethodSpec& m = spec.method(method_name);
                   const StartSpec& s = spec.start(start_name);
                   std::ostringstream os;
-                  os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples << ";noise=" << full(noise)
-                     << ";replicate=" << rep << ";N=" << n << ";cost=" << cost << ";" << fit << ";method=" << m.strategy
-                     << "/" << m.optimizer << "/" << m.starts << ";start=";
-                  for (const auto& [key, factor] : s.factor) os << key << ":" << full(factor) << ",";
+                  os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples
+                     << ";noise=" << io::round_trip(noise) << ";replicate=" << rep << ";N=" << n << ";cost=" << cost
+                     << ";" << fit << ";method=" << m.strategy << "/" << m.optimizer << "/" << m.starts << ";start=";
+                  for (const auto& [key, factor] : s.factor) os << key << ":" << io::round_trip(factor) << ",";
                   u.canonical = os.str();
                   identify(u, spec);
                   // Same record for every cost, N, method and start (common random numbers).
-                  u.noise_seed = signal::mix64(
-                      spec.seed ^ signal::fnv1a64("noise;" + plan.truths[ti].canonical + ";record_samples=" +
-                                                  std::to_string(samples) + ";noise=" + full(noise) +
-                                                  ";replicate=" + std::to_string(rep)));
+                  u.noise_seed =
+                      signal::mix64(spec.seed ^ signal::fnv1a64("noise;" + plan.truths[ti].canonical +
+                                                                ";record_samples=" + std::to_string(samples) +
+                                                                ";noise=" + io::round_trip(noise) +
+                                                                ";replicate=" + std::to_string(rep)));
                   plan.units.push_back(u);
                 }
   if (spec.landscape.enabled) {
@@ -99,7 +101,8 @@ Plan make_plan(const StudySpec& spec) {
     for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
       for (int samples : spec.sweep.samples) {
         const std::string base = plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) +
-                                 ";N=" + std::to_string(l.elements) + ";" + fit + ";range_factor=" + full(l.range_factor);
+                                 ";N=" + std::to_string(l.elements) + ";" + fit +
+                                 ";range_factor=" + io::round_trip(l.range_factor);
         const auto add = [&](Unit u) {
           u.truth = static_cast<int>(ti);
           u.pulse_width_s = plan.truths[ti].pulse_width_s;
@@ -114,7 +117,8 @@ Plan make_plan(const StudySpec& spec) {
             u.kind = "slice";
             u.cost = cost;
             u.parameters = {key};
-            u.canonical = "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
+            u.canonical =
+                "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
             add(u);
           }
           if (!first) continue;
@@ -127,18 +131,38 @@ Plan make_plan(const StudySpec& spec) {
                           ";points=" + std::to_string(l.grid_points);
             add(u);
           }
-          for (int k = 0; k < l.multistarts; ++k) {
+          // Index -1 starts at the truth: with the random starts it gives the reference minimum of the cost.
+          for (int k = l.multistarts > 0 ? -1 : 0; k < l.multistarts; ++k) {
             Unit u;
             u.kind = "multistart";
             u.cost = cost;
             u.index = k;
-            u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" + std::to_string(k) + "/" +
-                          std::to_string(l.multistarts);
+            u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" +
+                          (k < 0 ? std::string("truth") : std::to_string(k) + "/" + std::to_string(l.multistarts));
             add(u);
           }
         }
         first = false;
       }
+  }
+  // The overlay case of each cost: its fit is also shown in time and frequency (overlay.csv, spectrum.csv).
+  for (const auto& cost : spec.sweep.cost)
+    for (Unit& u : plan.units)
+      if (u.kind == "case" && u.cost == cost && u.elements == spec.outputs.overlay_elements &&
+          u.noise == spec.outputs.overlay_noise && u.replicate == 0 && u.method == spec.sweep.method.front() &&
+          u.start == spec.sweep.start.front() && u.pulse_width_s == spec.sweep.pulse_width_s.front() &&
+          u.samples == spec.sweep.samples.front()) {
+        u.overlay = true;
+        break;
+      }
+  // The Galerkin frequencies of the truth beam at each N of the sweep, beside the exact ones.
+  for (int n : spec.sweep.elements) {
+    Unit u;
+    u.kind = "frequencies";
+    u.elements = n;
+    u.canonical = "frequencies;beam=" + spec.truth.beam + ";N=" + std::to_string(n);
+    identify(u, spec);
+    plan.units.push_back(u);
   }
   return plan;
 }

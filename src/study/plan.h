@@ -3,7 +3,8 @@
 //   case        one fit: the Cartesian product of the sweep (N, cost, noise, replicate, method, start, pulse width,
 //               record length); a noise-free case is run once (replicate 0), since its replicates would be identical;
 //   slice/grid  a cost evaluated along one parameter axis, or on a grid of two, through the truth (landscape);
-//   multistart  one local fit of the landscape cost from a random start in the bounds.
+//   multistart  one local fit of the landscape cost from a random start in the bounds, or from the truth (index -1);
+//   frequencies the Galerkin frequencies of the truth beam at one N of the sweep, and the exact ones.
 // A unit's id is the FNV-1a hash of its canonical text (every setting that affects its result, written out), so
 // adding a unit changes no other id, and its seed derives from (study seed, id), not from its position. The noise
 // realisation of a case derives from (study seed, truth, noise level, replicate) only, so every cost, N and method
@@ -19,12 +20,12 @@
 namespace beamid::study {
 
 struct Unit {
-  std::string kind;        // "truth" | "case" | "slice" | "grid" | "multistart"
-  std::string id;          // 16 hex digits
-  std::string canonical;   // "key=value;..." of everything that determines the result
+  std::string kind;       // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies"
+  std::string id;         // 16 hex digits
+  std::string canonical;  // "key=value;..." of everything that determines the result
   std::uint64_t seed = 0;
   // The settings (those that apply to the kind).
-  int truth = 0;           // index of the truth unit this one reads
+  int truth = 0;  // index of the truth unit this one reads
   double pulse_width_s = 0;
   int samples = 0;
   int elements = 0;
@@ -34,13 +35,14 @@ struct Unit {
   std::string method;
   std::string start;
   std::vector<std::string> parameters;  // slice: 1, grid: 2
-  int index = 0;           // multistart: which random start
+  int index = 0;                        // multistart: which random start (-1: the truth)
+  bool overlay = false;                 // case: also compute the fit overlay and spectra (one case per cost)
   std::uint64_t noise_seed = 0;
 };
 
 struct Plan {
-  std::vector<Unit> truths;   // run first: every other unit needs one
-  std::vector<Unit> units;    // cases, then landscape units, in sweep order
+  std::vector<Unit> truths;  // run first: every other unit needs one
+  std::vector<Unit> units;   // cases, then landscape units, in sweep order
 };
 
 Plan make_plan(const StudySpec& spec);

@@ -15,12 +15,19 @@
 // spectrum.csv, spikes.csv, manifest.json, provenance.csv, report.md (the REPORT.md block) and timings.csv.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "fit/identification.h"
+#include "io/time_series.h"
+#include "model/beam_parameters.h"
+#include "study/overlay.h"
+#include "study/rendered.h"
 
 namespace beamid::study {
 
@@ -41,7 +48,29 @@ struct RealStudySpec {
 // Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).
 RealStudySpec load_real_study(const std::string& path);
 
-// Runs every fit and writes the tables to `output_dir`. Returns the number of failed fits.
+// One cost's fit of the record (a failed fit has its status and nothing else).
+struct RealFit {
+  std::string cost, status;
+  double cost_value = std::numeric_limits<double>::infinity();
+  long evaluations = 0;
+  double wall_time_s = 0;
+  std::vector<fit::ParameterEstimate> parameters;
+  std::vector<double> identified_hz, zeta;  // the model's modes paired with each measured peak
+  std::optional<Overlay> overlay;
+};
+
+struct RealResults {
+  io::TimeSeries record;
+  model::BeamParameters nominal;
+  std::vector<double> measured_hz, measured_zeta;  // 3-bin estimates at the record's peaks near peaks_hz
+  std::vector<RealFit> fits;                       // in the order of fit.costs
+};
+
+// Imports the record and fits it with each cost (real_execute.cc); progress on `log`.
+RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log);
+// Every table of the study (real_tables.cc), from its results alone.
+RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results);
+// Computes, renders and writes the tables to `output_dir`. Returns the number of failed fits.
 int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std::ostream& log);
 
 }  // namespace beamid::study

@@ -12,10 +12,10 @@
 namespace beamid::study {
 
 struct RunOptions {
-  std::string output_dir;   // results/<study>
-  int jobs = 0;             // 0: all cores
-  int shard_index = 1;      // K of --shard K/N
-  int shard_count = 1;      // N
+  std::string output_dir;  // results/<study>
+  int jobs = 0;            // 0: all cores
+  int shard_index = 1;     // K of --shard K/N
+  int shard_count = 1;     // N
 };
 // First violated constraint ("jobs = -1: must be >= 0"), or nothing.
 std::optional<std::string> validation_error(const RunOptions& options);

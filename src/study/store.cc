@@ -1,12 +1,18 @@
 #include "study/store.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <limits>
+#include <mutex>
 #include <sstream>
 
+#include "io/files.h"
+#include "io/text.h"
 #include "model/errors.h"
-#include "study/text.h"
+#include "signal/noise.h"
 
 namespace beamid::study {
 namespace fs = std::filesystem;
@@ -17,10 +23,10 @@ void Record::set(const std::string& key, const std::string& value) {
     if (c == '\n' || c == '\t' || c == '\r') c = ' ';
   fields_[key] = v;
 }
-void Record::set(const std::string& key, double value) { fields_[key] = full(value); }
+void Record::set(const std::string& key, double value) { fields_[key] = io::round_trip(value); }
 void Record::set(const std::string& key, const std::vector<double>& values) {
   std::string s;
-  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? " " : "") + full(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? " " : "") + io::round_trip(values[i]);
   fields_[key] = s;
 }
 
@@ -30,24 +36,31 @@ const std::string& Record::text(const std::string& key) const {
   return it->second;
 }
 
-double Record::number(const std::string& key) const {
-  const std::string& t = text(key);
-  if (t == "inf") return std::numeric_limits<double>::infinity();
-  if (t == "-inf") return -std::numeric_limits<double>::infinity();
-  if (t == "nan" || t == "-nan") return std::numeric_limits<double>::quiet_NaN();
-  return std::stod(t);
+namespace {
+
+// A number as written by io::round_trip (including inf, -inf and nan). strtod, not stod: stod throws on the
+// subnormal numbers that round_trip writes exactly. Anything else is an InputError naming the field, so that a
+// damaged record is recomputed, never half read.
+double parse_number(const std::string& token, const std::string& key) {
+  if (token == "inf") return std::numeric_limits<double>::infinity();
+  if (token == "-inf") return -std::numeric_limits<double>::infinity();
+  if (token == "nan" || token == "-nan") return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  const double v = std::strtod(token.c_str(), &end);
+  if (token.empty() || end != token.c_str() + token.size())
+    throw InputError("study record: field '" + key + "' = '" + token.substr(0, 40) + "': must be a number");
+  return v;
 }
+
+}  // namespace
+
+double Record::number(const std::string& key) const { return parse_number(text(key), key); }
 
 std::vector<double> Record::numbers(const std::string& key) const {
   std::vector<double> out;
   std::istringstream in(text(key));
   std::string token;
-  while (in >> token) {
-    if (token == "inf") out.push_back(std::numeric_limits<double>::infinity());
-    else if (token == "-inf") out.push_back(-std::numeric_limits<double>::infinity());
-    else if (token == "nan" || token == "-nan") out.push_back(std::numeric_limits<double>::quiet_NaN());
-    else out.push_back(std::stod(token));
-  }
+  while (in >> token) out.push_back(parse_number(token, key));
   return out;
 }
 
@@ -73,8 +86,40 @@ Record Record::parse(const std::string& text, const std::string& source) {
   return r;
 }
 
-Store::Store(std::string directory, std::string code_version)
-    : directory_(std::move(directory)), code_version_(std::move(code_version)) {
+namespace {
+
+constexpr const char* kCheck = "#check\t";
+// Records larger than this are not records (the largest, a truth of 2^22 samples, is about 100 MB).
+constexpr std::uintmax_t kMaxRecordBytes = std::uintmax_t{512} << 20;
+
+std::string check_line(const std::string& body) {
+  return kCheck + std::to_string(body.size()) + "\t" + io::hex64(signal::fnv1a64(body)) + "\n";
+}
+
+// The body of a stored file when its check line matches; otherwise why not.
+std::optional<std::string> checked_body(const std::string& text, std::string& why) {
+  const auto at = text.rfind(kCheck);
+  if (at == std::string::npos) {
+    why = "no check line (cut short, or not a record)";
+    return std::nullopt;
+  }
+  const std::string body = text.substr(0, at);
+  if (text.substr(at) != check_line(body)) {
+    why = "check line does not match the record (cut short or altered)";
+    return std::nullopt;
+  }
+  return body;
+}
+
+std::mutex& log_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+}  // namespace
+
+Store::Store(std::string directory, std::string code_version, std::ostream* log)
+    : directory_(std::move(directory)), code_version_(std::move(code_version)), log_(log) {
   std::error_code ec;
   fs::create_directories(directory_, ec);
   if (ec) throw InputError(directory_ + ": cannot create the study store folder: " + ec.message());
@@ -82,41 +127,56 @@ Store::Store(std::string directory, std::string code_version)
 
 std::optional<Record> Store::load(const std::string& id) const {
   const fs::path path = fs::path(directory_) / (id + ".rec");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  std::string why;
   try {
-    Record r = Record::parse(text.str(), path.string());
-    if (!r.has("code") || r.text("code") != code_version_) return std::nullopt;
-    return r;
-  } catch (const InputError&) {
-    return std::nullopt;  // a damaged record is recomputed
+    const std::string text = io::read_file(path, "cannot read the study record", kMaxRecordBytes);
+    if (const auto body = checked_body(text, why)) {
+      Record r = Record::parse(*body, path.string());
+      if (r.has("code") && r.text("code") == code_version_) return r;
+      if (r.has("code")) return std::nullopt;  // another build's: recomputed
+      why = "no code version";
+    } else if (text.find(kCheck) == std::string::npos) {
+      // A record of an earlier build, written before records had check lines: not damage, just not ours.
+      try {
+        const Record r = Record::parse(text, path.string());
+        if (r.has("code") && r.text("code") != code_version_) return std::nullopt;
+      } catch (const InputError&) {
+      }
+    }
+  } catch (const InputError& e) {
+    why = e.what();
   }
+  // Damaged: moved aside (kept for inspection) and recomputed.
+  const fs::path aside_dir = fs::path(directory_) / "damaged";
+  fs::create_directories(aside_dir, ec);
+  fs::path aside = aside_dir / (id + ".rec");
+  for (int k = 1; fs::exists(aside, ec); ++k) aside = aside_dir / (id + ".rec." + std::to_string(k));
+  fs::rename(path, aside, ec);
+  if (ec) fs::remove_all(path, ec);
+  std::lock_guard<std::mutex> lock(log_mutex());
+  (log_ ? *log_ : std::cerr) << "beamid: study store: " << path.string() << ": " << why << ": moved to "
+                             << aside.string() << "; the unit is recomputed\n";
+  return std::nullopt;
 }
 
 void Store::save(const std::string& id, Record record) const {
   record.set("code", code_version_);
-  const fs::path final_path = fs::path(directory_) / (id + ".rec");
-  const fs::path tmp = fs::path(directory_) / (id + ".rec.tmp");
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << record.serialise();
-    out.flush();
-    if (!out) throw InputError(tmp.string() + ": cannot write a study record");
-  }
-  fs::rename(tmp, final_path);
+  const std::string body = record.serialise();
+  io::write_file_atomic(fs::path(directory_) / (id + ".rec"), body + check_line(body));
 }
 
 int Store::absorb(const std::string& other) const {
   if (!fs::is_directory(other)) throw InputError(other + ": not a study store folder");
   int count = 0;
   for (const auto& entry : fs::directory_iterator(other)) {
-    if (entry.path().extension() != ".rec") continue;
+    if (entry.path().extension() != ".rec" || !entry.is_regular_file()) continue;
     const fs::path target = fs::path(directory_) / entry.path().filename();
-    const fs::path tmp = fs::path(directory_) / (entry.path().filename().string() + ".tmp");
-    fs::copy_file(entry.path(), tmp, fs::copy_options::overwrite_existing);
-    fs::rename(tmp, target);
+    const std::string text = io::read_file(entry.path(), "a study record");
+    std::string why;
+    if (!checked_body(text, why)) continue;  // a damaged shard record is left behind: the merge names it missing
+    io::write_file_atomic(target, text);
     ++count;
   }
   return count;

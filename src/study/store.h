@@ -3,10 +3,14 @@
 // resumed one skips everything already stored. A record is "key<TAB>value" lines; lists of numbers are space
 // separated in 17 significant digits. Each record carries the code version that made it; a record from another
 // build is ignored (recomputed), so a resumed study never mixes results of different code.
+// Every record checks itself: its last line is "#check<TAB><length of the lines before><TAB><their FNV-1a 64 hash>".
+// A record that is cut short, altered or unreadable fails the check; it is named on the log, moved aside to
+// store/damaged/ and recomputed, so no damage to the store can crash or stop a study.
 #pragma once
 
 #include <map>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -18,12 +22,12 @@ class Record {
   void set(const std::string& key, double value);
   void set(const std::string& key, const std::vector<double>& values);
   bool has(const std::string& key) const { return fields_.count(key) != 0; }
-  const std::string& text(const std::string& key) const;           // InputError naming the key when absent
+  const std::string& text(const std::string& key) const;  // InputError naming the key when absent
   double number(const std::string& key) const;
   std::vector<double> numbers(const std::string& key) const;
   const std::map<std::string, std::string>& fields() const { return fields_; }
 
-  std::string serialise() const;
+  std::string serialise() const;  // the lines, without the check line (Store adds it)
   // InputError naming source:line for a malformed line.
   static Record parse(const std::string& text, const std::string& source);
 
@@ -33,10 +37,11 @@ class Record {
 
 class Store {
  public:
-  // Creates the folder if needed.
-  Store(std::string directory, std::string code_version);
+  // Creates the folder if needed. Damaged records are reported on `log` (one line each; std::cerr when null).
+  Store(std::string directory, std::string code_version, std::ostream* log = nullptr);
   const std::string& directory() const { return directory_; }
-  // The stored record of unit `id`, if there is one made by this code version.
+  // The stored record of unit `id`, if there is one made by this code version that passes its check (a damaged
+  // one is moved aside and reported).
   std::optional<Record> load(const std::string& id) const;
   // Stamps the code version and writes atomically.
   void save(const std::string& id, Record record) const;
@@ -46,6 +51,7 @@ class Store {
  private:
   std::string directory_;
   std::string code_version_;
+  std::ostream* log_;
 };
 
 }  // namespace beamid::study

@@ -7,44 +7,40 @@
 #include <functional>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
+#include "config/beam_file.h"
+#include "config/document.h"
+#include "costs/cost.h"
+#include "fit/identification.h"
 #include "fit/optimizer.h"
+#include "io/files.h"
+#include "io/text.h"
 #include "model/beam_parameters.h"
-#include "model/beam_toml.h"
 #include "model/errors.h"
-#include "model/toml_reader.h"
+#include "model/limits.h"
 #include "signal/noise.h"
-#include "study/text.h"
 
 namespace beamid::study {
 namespace {
 
-using model::TableReader;
-
-const toml::table& required_table(const toml::table& root, const std::string& name, const std::string& source) {
-  const toml::node* node = root.get(name);
-  if (node == nullptr) throw InputError(source + ":1: missing table [" + name + "]");
-  if (!node->is_table()) throw InputError(source + ":" + std::to_string(node->source().begin.line) + ": " + name +
-                                          " must be a table ([" + name + "])");
-  return *node->as_table();
-}
+using config::Node;
+using config::Table;
 
 const auto positive = [](double v) { return v > 0; };
 const auto non_negative = [](double v) { return v >= 0; };
 constexpr int kMaxInt = std::numeric_limits<int>::max();
 
-std::vector<std::string> cost_names() { return {"time", "spike", "spike-smooth"}; }
+std::vector<std::string> cost_names() { return costs::cost_names().names(); }
 
-void read_experiment(TableReader& r, simulation::Experiment& e) {
+void read_experiment(Table& r, simulation::Experiment& e) {
   e.dt_s = r.number("dt_s", e.dt_s, positive, "must be > 0");
-  e.samples = r.integer("samples", e.samples, 16, 1 << 22);
-  e.excitation = r.string("excitation", e.excitation, {"pulse", "pluck"});
+  e.samples = r.integer("samples", e.samples, model::kMinStudySamples, model::kMaxStudySamples);
+  e.excitation = r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck});  // simulable
   if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, non_negative, "must be >= 0");
   e.force_amplitude_N = r.number("force_amplitude_N", e.force_amplitude_N, positive, "must be > 0");
   e.pulse_width_s = r.number("pulse_width_s", e.pulse_width_s, positive, "must be > 0");
   if (r.has("sensor_x_m")) e.sensor_x_m = r.number("sensor_x_m", std::nullopt, non_negative, "must be >= 0");
-  e.output = r.string("output", e.output, {"displacement", "velocity", "acceleration"});
+  e.output = r.string("output", e.output, simulation::output_names().names());
 }
 
 }  // namespace
@@ -62,36 +58,29 @@ const MethodSpec& StudySpec::method(const std::string& n) const {
 }
 
 StudySpec parse_study(const std::string& text, const std::string& source, const std::string& directory) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& error) {
-    throw InputError(source + ":" + std::to_string(error.source().begin.line) +
-                     ": TOML syntax error: " + std::string(error.description()));
-  }
-  const std::vector<std::string> top = {"study", "truth", "fit", "starts", "methods", "sweep", "landscape", "outputs"};
-  for (auto&& [key, node] : root)
-    if (std::find(top.begin(), top.end(), std::string(key.str())) == top.end())
-      throw InputError(source + ":" + std::to_string(key.source().begin.line) + ": unknown table [" +
-                       std::string(key.str()) + "]: valid tables are " + TableReader::join(top));
+  const config::Document document = config::Document::parse(text, source);
+  const Table root = document.root();
+  root.only_tables({"study", "truth", "fit", "starts", "methods", "sweep", "landscape", "outputs"});
 
   StudySpec spec;
   spec.path = source;
-  spec.file_hash = hex64(signal::fnv1a64(text));
+  spec.file_hash = io::hex64(signal::fnv1a64(text));
 
   {  // [study]
-    TableReader r(required_table(root, "study", source), "study.", source);
+    Table r = document.required("study");
     spec.name = r.string("name", std::nullopt);
     if (spec.name.empty() || spec.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
-      r.fail("name", "'" + spec.name + "'", "must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
+      r.fail("name", "'" + spec.name + "'",
+             "must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
     spec.question = r.string("question", std::nullopt);
-    const double seed = r.number("seed", std::nullopt, [](double v) { return v >= 0 && v < 9.007199254740992e15 && v == std::floor(v); },
-                                 "must be an integer in 0..2^53");
+    const double seed = r.number(
+        "seed", std::nullopt, [](double v) { return v >= 0 && v < 9.007199254740992e15 && v == std::floor(v); },
+        "must be an integer in 0..2^53");
     spec.seed = static_cast<std::uint64_t>(seed);
     r.finish({"name", "question", "seed"});
   }
   {  // [truth]
-    TableReader r(required_table(root, "truth", source), "truth.", source);
+    Table r = document.required("truth");
     TruthSpec& t = spec.truth;
     t.beam = r.string("beam", std::nullopt);
     if (!model::is_preset(t.beam)) {
@@ -99,102 +88,97 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       if (p.is_relative()) p = std::filesystem::path(directory) / p;
       t.beam_path = p.string();
       if (!std::filesystem::exists(p))
-        r.fail("beam", "'" + t.beam + "'", "must be a preset (" + TableReader::join(model::preset_names()) +
-                                               ") or an existing beam TOML file");
+        r.fail("beam", "'" + t.beam + "'",
+               "must be a preset (" + Table::join(model::preset_names()) + ") or an existing beam TOML file");
     }
-    t.elements = r.integer("elements", 48, 48, 400);
-    t.rtol = r.number("rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
+    t.elements = r.integer("elements", 48, model::kMinTruthElements, model::kMaxTruthElements);
+    t.rtol = r.number(
+        "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
     read_experiment(r, t.experiment);
     r.finish({"beam", "elements", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
               "pulse_width_s", "sensor_x_m", "output"});
-    const model::BeamParameters beam = t.beam_path.empty() ? model::preset(t.beam) : model::load_beam_toml(t.beam_path);
+    t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
+    const model::BeamParameters& beam = t.parameters;
     if (auto e = simulation::validation_error(t.experiment, beam.l)) {
       // The message starts with the offending key ("force_x_m = 0.9: ..."): point at its line.
       const std::string key = e->substr(0, e->find(' '));
-      throw InputError(r.where(r.get(key)) + ": truth." + *e);
+      throw InputError(r.where(key) + ": truth." + *e);
     }
   }
   {  // [fit]
-    TableReader r(required_table(root, "fit", source), "fit.", source);
+    Table r = document.required("fit");
     FitSpec& f = spec.fit;
     std::vector<std::string> keys;
     for (const auto& info : model::parameter_table()) keys.emplace_back(info.key);
     f.estimate = r.strings("estimate", true, keys);
-    if (const toml::node* n = r.get("spikes")) {
+    if (const auto n = r.get("spikes")) {
       if (n->is_string()) {
-        if (*n->value<std::string>() != "auto") r.fail("spikes", TableReader::text(*n), "must be an integer >= 1 or 'auto'");
+        if (*n->string() != "auto") r.fail("spikes", n->text(), "must be an integer >= 1 or 'auto'");
         f.spikes = 0;
       } else {
-        f.spikes = r.integer("spikes", 3, 1, 64);
+        f.spikes = r.integer("spikes", 3, 1, model::kMaxSpikes);
       }
     }
-    f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, 64);
+    f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, model::kMaxSpikes);
     f.spike_rule = r.string("spike_rule", f.spike_rule, {"largest", "prominence"});
     f.min_frequency_hz = r.number("min_frequency_hz", 0.0, non_negative, "must be >= 0");
     f.max_frequency_hz = r.number("max_frequency_hz", 0.0, non_negative, "must be >= 0 (0: up to Nyquist)");
     if (f.max_frequency_hz > 0 && f.max_frequency_hz <= f.min_frequency_hz)
       r.fail("max_frequency_hz", format_value(f.max_frequency_hz), "must exceed fit.min_frequency_hz");
     f.window = r.string("window", f.window, {"rectangular", "hann", "exponential"});
-    f.bound_factor = r.number("bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
+    f.bound_factor = r.number(
+        "bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
     f.scaling = r.string("scaling", f.scaling, {"linear", "log"});
-    f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, 1000000);
-    f.xtol_rel = r.number("xtol_rel", f.xtol_rel, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, model::kMaxEvaluations);
+    f.xtol_rel = r.number(
+        "xtol_rel", f.xtol_rel, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
     f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
     f.damping_tolerance = r.number("damping_tolerance", f.success_tolerance, positive, "must be > 0");
-    r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window", "bound_factor", "scaling", "max_evaluations",
-              "xtol_rel", "success_tolerance", "damping_tolerance"});
+    r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window",
+              "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance", "damping_tolerance"});
   }
   // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
-  if (const toml::table* starts = root["starts"].as_table()) {
-    for (auto&& [name, node] : *starts) {
-      const toml::table* t = node.as_table();
-      const std::string n(name.str());
-      if (t == nullptr) throw InputError(source + ":" + std::to_string(node.source().begin.line) + ": starts." + n +
-                                         " must be a table ([starts." + n + "])");
-      TableReader r(*t, "starts." + n + ".", source);
+  if (const auto starts = document.table("starts", false)) {
+    for (const auto& [n, node] : starts->entries()) {
+      Table r = node.table("starts." + n + ".", "starts." + n);
       StartSpec s{n, {}};
       for (const auto& key : spec.fit.estimate)
-        s.factor[key] = r.number(key, std::nullopt, [&](double v) { return v > 1 / spec.fit.bound_factor && v < spec.fit.bound_factor; },
-                                 "must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = " +
-                                     format_value(spec.fit.bound_factor));
+        s.factor[key] = r.number(
+            key, std::nullopt, [&](double v) { return v > 1 / spec.fit.bound_factor && v < spec.fit.bound_factor; },
+            "must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = " +
+                format_value(spec.fit.bound_factor));
       r.finish(spec.fit.estimate);
       spec.starts.push_back(s);
     }
-  } else if (root.contains("starts")) {
-    throw InputError(source + ":" + std::to_string(root.get("starts")->source().begin.line) + ": starts must be tables [starts.NAME]");
   }
-  if (const toml::table* methods = root["methods"].as_table()) {
-    std::vector<std::string> optimizers = fit::optimizer_names();
+  if (const auto methods = document.table("methods", false)) {
+    std::vector<std::string> optimizers = fit::optimizer_names().names();
     optimizers.insert(optimizers.begin(), "default");
-    for (auto&& [name, node] : *methods) {
-      const toml::table* t = node.as_table();
-      const std::string n(name.str());
-      if (t == nullptr) throw InputError(source + ":" + std::to_string(node.source().begin.line) + ": methods." + n +
-                                         " must be a table ([methods." + n + "])");
-      TableReader r(*t, "methods." + n + ".", source);
+    for (const auto& [n, node] : methods->entries()) {
+      Table r = node.table("methods." + n + ".", "methods." + n);
       MethodSpec m;
       m.name = n;
-      m.strategy = r.string("strategy", m.strategy, {"direct", "staged", "continuation"});
+      m.strategy = r.string("strategy", m.strategy, fit::strategy_names().names());
       m.optimizer = r.string("optimizer", m.optimizer, optimizers);
-      m.starts = r.integer("starts", 1, 1, 1000);
+      m.starts = r.integer("starts", 1, 1, model::kMaxStarts);
       r.finish({"strategy", "optimizer", "starts"});
       spec.methods.push_back(m);
     }
-  } else if (root.contains("methods")) {
-    throw InputError(source + ":" + std::to_string(root.get("methods")->source().begin.line) + ": methods must be tables [methods.NAME]");
   }
   {  // [sweep]
-    TableReader r(required_table(root, "sweep", source), "sweep.", source);
+    Table r = document.required("sweep");
     SweepSpec& s = spec.sweep;
     s.elements = r.integers("elements", true, 1, spec.truth.elements - 1);
     s.cost = r.strings("cost", true, cost_names());
-    s.noise = r.numbers("noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    s.noise = r.numbers(
+        "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
     if (s.noise.empty()) s.noise = {0.0};
     s.replicates = r.integer("replicates", 1, 1, 100000);
     std::vector<std::string> method_names, start_names;
     for (const auto& m : spec.methods) method_names.push_back(m.name);
     for (const auto& st : spec.starts) start_names.push_back(st.name);
-    if (method_names.empty()) throw InputError(source + ":1: no [methods.NAME] table: a study needs at least one method");
+    if (method_names.empty())
+      throw InputError(source + ":1: no [methods.NAME] table: a study needs at least one method");
     if (start_names.empty()) throw InputError(source + ":1: no [starts.NAME] table: a study needs at least one start");
     s.method = r.strings("method", true, method_names);
     s.start = r.strings("start", true, start_names);
@@ -204,27 +188,24 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     if (s.samples.empty()) s.samples = {spec.truth.experiment.samples};
     r.finish({"elements", "cost", "noise", "replicates", "method", "start", "pulse_width_s", "samples"});
   }
-  if (const toml::node* node = root.get("landscape")) {
-    if (!node->is_table()) throw InputError(source + ":" + std::to_string(node->source().begin.line) + ": landscape must be a table");
-    TableReader r(*node->as_table(), "landscape.", source);
+  if (auto landscape = document.table("landscape", false)) {
+    Table& r = *landscape;
     LandscapeSpec& l = spec.landscape;
     l.enabled = true;
     l.elements = r.integer("elements", l.elements, 1, spec.truth.elements - 1);
     l.cost = r.strings("cost", true, cost_names());
-    l.range_factor = r.number("range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
+    l.range_factor = r.number(
+        "range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
     l.points = r.integer("points", l.points, 5, 4001);
     l.grid_points = r.integer("grid_points", l.grid_points, 3, 401);
     l.multistarts = r.integer("multistarts", l.multistarts, 0, 10000);
-    if (const toml::array* pairs = r.array("pairs", false)) {
-      for (const toml::node& item : *pairs) {
-        const toml::array* p = item.as_array();
-        const auto bad = [&](const std::string& why) {
-          throw InputError(source + ":" + std::to_string(item.source().begin.line) + ": landscape.pairs element " +
-                           TableReader::text(item) + ": " + why);
-        };
-        if (p == nullptr || p->size() != 2 || !(*p)[0].is_string() || !(*p)[1].is_string())
+    if (const auto pairs = r.array("pairs", false)) {
+      for (const Node& item : *pairs) {
+        const std::vector<Node> p = item.elements();
+        const auto bad = [&](const std::string& why) { r.element_fail("pairs", item, item.text(), why); };
+        if (!item.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string())
           bad("must be a pair of parameter names, [\"EI\", \"rho\"]");
-        const std::string a = *(*p)[0].value<std::string>(), b = *(*p)[1].value<std::string>();
+        const std::string a = *p[0].string(), b = *p[1].string();
         for (const auto& k : {a, b})
           if (std::find(spec.fit.estimate.begin(), spec.fit.estimate.end(), k) == spec.fit.estimate.end())
             bad("'" + k + "' is not in fit.estimate");
@@ -234,13 +215,12 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     }
     r.finish({"elements", "cost", "range_factor", "points", "pairs", "grid_points", "multistarts"});
   }
-  if (const toml::node* node = root.get("outputs")) {
-    if (!node->is_table()) throw InputError(source + ":" + std::to_string(node->source().begin.line) + ": outputs must be a table");
-    TableReader r(*node->as_table(), "outputs.", source);
+  if (auto outputs = document.table("outputs", false)) {
+    Table& r = *outputs;
     OutputsSpec& o = spec.outputs;
     o.overlay_elements = r.integer("overlay_elements", 0, 0, kMaxInt);
-    if (o.overlay_elements != 0 &&
-        std::find(spec.sweep.elements.begin(), spec.sweep.elements.end(), o.overlay_elements) == spec.sweep.elements.end())
+    if (o.overlay_elements != 0 && std::find(spec.sweep.elements.begin(), spec.sweep.elements.end(),
+                                             o.overlay_elements) == spec.sweep.elements.end())
       r.fail("overlay_elements", std::to_string(o.overlay_elements), "must be one of sweep.elements");
     o.overlay_noise = r.number("overlay_noise", 0.0, non_negative, "must be >= 0");
     if (std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), o.overlay_noise) == spec.sweep.noise.end())
@@ -253,12 +233,9 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
 }
 
 StudySpec load_study(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = io::read_file(path, "cannot read the study file", config::kMaxFileBytes);
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return parse_study(text.str(), path, dir.empty() ? "." : dir);
+  return parse_study(text, path, dir.empty() ? "." : dir);
 }
 
 }  // namespace beamid::study

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/beam_parameters.h"
 #include "simulation/experiment.h"
 
 namespace beamid::study {
@@ -27,25 +28,26 @@ namespace beamid::study {
 struct TruthSpec {
   std::string beam = "banks-aluminium";  // preset, or a beam TOML file (relative paths: to the study file)
   std::string beam_path;                 // resolved path of a beam file ("" for a preset)
+  model::BeamParameters parameters;      // the beam itself, read once with the study file
   int elements = 48;                     // N_truth: finer than any fitted N (no inverse crime)
   double rtol = 1e-10;                   // CVODE relative tolerance
   simulation::Experiment experiment;
 };
 
 struct FitSpec {
-  std::vector<std::string> estimate;     // beam keys
-  int spikes = 3;                        // NM for the spike costs; 0: "auto", every mode the data show (see cases.h)
-  int max_spikes = 6;                    // cap for "auto"
-  std::string spike_rule = "largest";    // "largest" (the paper's) | "prominence"
-  double min_frequency_hz = 0;           // spikes are sought in [min, max] Hz
-  double max_frequency_hz = 0;           // 0: up to the Nyquist frequency
+  std::vector<std::string> estimate;   // beam keys
+  int spikes = 3;                      // NM for the spike costs; 0: "auto", every mode the data show (see cases.h)
+  int max_spikes = 6;                  // cap for "auto"
+  std::string spike_rule = "largest";  // "largest" (the paper's) | "prominence"
+  double min_frequency_hz = 0;         // spikes are sought in [min, max] Hz
+  double max_frequency_hz = 0;         // 0: up to the Nyquist frequency
   std::string window = "rectangular";
-  double bound_factor = 2;               // bounds [v/F, v F] around the true value v
-  std::string scaling = "linear";        // "linear" | "log"
-  int max_evaluations = 3000;            // per stage and start
-  double xtol_rel = 1e-10;               // stop when a step changes every parameter by less than this, relatively
-  double success_tolerance = 0.01;       // a fit succeeds when every estimate is within this relative error,
-  double damping_tolerance = 0.01;       // or this one for damping parameters (default: success_tolerance)
+  double bound_factor = 2;          // bounds [v/F, v F] around the true value v
+  std::string scaling = "linear";   // "linear" | "log"
+  int max_evaluations = 3000;       // per stage and start
+  double xtol_rel = 1e-10;          // stop when a step changes every parameter by less than this, relatively
+  double success_tolerance = 0.01;  // a fit succeeds when every estimate is within this relative error,
+  double damping_tolerance = 0.01;  // or this one for damping parameters (default: success_tolerance)
 };
 
 struct StartSpec {
@@ -55,51 +57,51 @@ struct StartSpec {
 
 struct MethodSpec {
   std::string name;
-  std::string strategy = "direct";       // "direct" | "staged" | "continuation"
-  std::string optimizer = "default";     // "default" (lm, or nelder-mead for spike) or an optimizer name
-  int starts = 1;                        // > 1: the start plus Latin-hypercube starts in the bounds
+  std::string strategy = "direct";    // "direct" | "staged" | "continuation"
+  std::string optimizer = "default";  // "default" (lm, or nelder-mead for spike) or an optimizer name
+  int starts = 1;                     // > 1: the start plus Latin-hypercube starts in the bounds
 };
 
 struct SweepSpec {
   std::vector<int> elements;
   std::vector<std::string> cost;
-  std::vector<double> noise;             // noise standard deviation / clean RMS
-  int replicates = 1;                    // per noise level > 0 (a noise-free case is run once)
+  std::vector<double> noise;  // noise standard deviation / clean RMS
+  int replicates = 1;         // per noise level > 0 (a noise-free case is run once)
   std::vector<std::string> method;
   std::vector<std::string> start;
-  std::vector<double> pulse_width_s;     // default: [truth.pulse_width_s]
-  std::vector<int> samples;              // record lengths Nbar; default: [truth.samples]
+  std::vector<double> pulse_width_s;  // default: [truth.pulse_width_s]
+  std::vector<int> samples;           // record lengths Nbar; default: [truth.samples]
 };
 
 struct LandscapeSpec {
   bool enabled = false;
   int elements = 16;
   std::vector<std::string> cost;
-  double range_factor = 2;               // slices and grids span [v/F, v F] (log-spaced)
-  int points = 121;                      // per slice
+  double range_factor = 2;                                 // slices and grids span [v/F, v F] (log-spaced)
+  int points = 121;                                        // per slice
   std::vector<std::pair<std::string, std::string>> pairs;  // 2-D grids
-  int grid_points = 41;                  // per grid axis
-  int multistarts = 12;                  // local fits from random starts in the bounds, per cost
+  int grid_points = 41;                                    // per grid axis
+  int multistarts = 12;                                    // local fits from random starts in the bounds, per cost
 };
 
 struct OutputsSpec {
-  int overlay_elements = 0;              // 0: the largest N of the sweep
-  double overlay_noise = 0;              // noise level of the overlay case (must be in the sweep)
+  int overlay_elements = 0;  // 0: the largest N of the sweep
+  double overlay_noise = 0;  // noise level of the overlay case (must be in the sweep)
 };
 
 struct StudySpec {
-  std::string path;                      // as given
+  std::string path;  // as given
   std::string name;
   std::string question;
   std::uint64_t seed = 1;
   TruthSpec truth;
   FitSpec fit;
-  std::vector<StartSpec> starts;         // in file order
+  std::vector<StartSpec> starts;  // in file order
   std::vector<MethodSpec> methods;
   SweepSpec sweep;
   LandscapeSpec landscape;
   OutputsSpec outputs;
-  std::string file_hash;                 // FNV-1a 64 of the file's bytes, hex
+  std::string file_hash;  // FNV-1a 64 of the file's bytes, hex
 
   const StartSpec& start(const std::string& name) const;
   const MethodSpec& method(const std::string& name) const;

@@ -1,11 +1,12 @@
 // The three costs on signals whose spectra are known exactly: hand-computed values of (3.5), the closed-form
 // amplitude, the (A4) checks, and the staircase of (3.5) against the continuity of the smooth variant.
-#include <cmath>
-#include <numbers>
+#include "costs/cost.h"
 
 #include <gtest/gtest.h>
 
-#include "costs/cost.h"
+#include <cmath>
+#include <numbers>
+
 #include "model/errors.h"
 
 namespace beamid::costs {
@@ -19,7 +20,8 @@ std::vector<double> tones(const std::vector<std::array<double, 3>>& parts) {
   std::vector<double> y(kSamples, 0.0);
   for (int i = 0; i < kSamples; ++i)
     for (const auto& [amplitude, bin, sigma] : parts)
-      y[static_cast<std::size_t>(i)] += amplitude * std::exp(-sigma * i * kDt) * std::cos(2 * std::numbers::pi * bin * i * kDt);
+      y[static_cast<std::size_t>(i)] +=
+          amplitude * std::exp(-sigma * i * kDt) * std::cos(2 * std::numbers::pi * bin * i * kDt);
   return y;
 }
 
@@ -32,7 +34,8 @@ TEST(TimeCost, IsTheSumOfSquaresAndSolvesTheAmplitude) {
   const auto z = tones({{1.0, 10.3, 0.5}});
   const auto y = tones({{1.0, 10.5, 0.4}});
   double expected = 0;
-  for (int i = 0; i < kSamples; ++i) expected += std::pow(y[static_cast<std::size_t>(i)] - z[static_cast<std::size_t>(i)], 2);
+  for (int i = 0; i < kSamples; ++i)
+    expected += std::pow(y[static_cast<std::size_t>(i)] - z[static_cast<std::size_t>(i)], 2);
   CostOptions o;
   auto cost = make_cost(o, z, kDt);
   const auto e = evaluate(*cost, y);

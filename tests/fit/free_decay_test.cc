@@ -1,16 +1,17 @@
 // Free decay with an unknown initial state: the closed-form amplitudes reproduce a sum of damped modes exactly, and
 // a fit over physical parameters alone recovers them from a record cut after the excitation.
+#include "simulation/free_decay.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <complex>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "fit/identification.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
 #include "model/errors.h"
-#include "simulation/free_decay.h"
 #include "simulation/simulator.h"
 
 namespace beamid {
@@ -18,7 +19,8 @@ namespace {
 
 TEST(FreeDecay, ClosedFormAmplitudesReproduceDampedModes) {
   const double dt = 1e-3;
-  const std::vector<std::complex<double>> poles{{-0.3, 2 * std::numbers::pi * 5}, {-1.5, 2 * std::numbers::pi * 40},
+  const std::vector<std::complex<double>> poles{{-0.3, 2 * std::numbers::pi * 5},
+                                                {-1.5, 2 * std::numbers::pi * 40},
                                                 {-2.0, 2 * std::numbers::pi * 700}};  // the last is above Nyquist
   std::vector<double> z(2000);
   for (std::size_t i = 0; i < z.size(); ++i) {
@@ -33,8 +35,8 @@ TEST(FreeDecay, ClosedFormAmplitudesReproduceDampedModes) {
   for (std::size_t i = 0; i < z.size(); ++i) worst = std::max(worst, std::abs(fit.y[i] - z[i]));
   // An exact model: the least-squares residual is round-off (columns of order one, 2000 rows).
   EXPECT_LT(worst, 1e-11);
-  EXPECT_NEAR(fit.amplitudes[0], 0.01, 1e-12);                // offset
-  EXPECT_NEAR(fit.amplitudes[1], 2 * std::cos(0.4), 1e-11);   // a_1 = 2 cos(phase), b_1 = -2 sin(phase)
+  EXPECT_NEAR(fit.amplitudes[0], 0.01, 1e-12);               // offset
+  EXPECT_NEAR(fit.amplitudes[1], 2 * std::cos(0.4), 1e-11);  // a_1 = 2 cos(phase), b_1 = -2 sin(phase)
   EXPECT_NEAR(fit.amplitudes[2], -2 * std::sin(0.4), 1e-11);
   EXPECT_THROW(simulation::fit_free_decay(poles, 0, z), InputError);
   EXPECT_NE(simulation::fit_free_decay({{-1, 2 * std::numbers::pi * 900}}, dt, z).status, "ok");

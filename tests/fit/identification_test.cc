@@ -2,6 +2,9 @@
 // BDF at rtol 1e-12, the model from the exact modal propagator, at the same N = 8). The data then agree with the
 // model at the truth to ~1e-10 of their size, which bounds the recovery error well below the 1e-6 asked for
 // (measured: 1e-7 or better for every parameter). Starts are 5 % off the truth.
+#include "fit/identification.h"
+
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -10,11 +13,11 @@
 #include <fstream>
 #include <map>
 
-#include <gtest/gtest.h>
-
-#include "fit/identification.h"
 #include "galerkin/modes.h"
+#include "io/provenance.h"
+#include "io/text.h"
 #include "model/errors.h"
+#include "signal/noise.h"
 
 namespace beamid::fit {
 namespace {
@@ -31,8 +34,10 @@ simulation::Experiment experiment_for(const std::string& preset, double length_m
 }
 
 // CVODE at rtol 1e-12 takes ~40 s for banks-aluminium (4.5 M steps: its kHz modes at N = 8 are barely damped),
-// so the record is made once per build tree and kept in a file that the test processes share (written to a
-// temporary name and renamed, so a concurrent reader never sees half a file). At rtol 1e-11 the data are only
+// so the record is kept in a file that the test processes share (written to a temporary name and renamed, so a
+// concurrent reader never sees half a file). The file is named by a hash of everything that produced it: every beam
+// parameter, the experiment, N, the integrator settings and the code version, so a change to any of them makes a
+// new record instead of reusing a stale one. At rtol 1e-11 the data are only
 // good enough for 1.2e-6 in gamma with spike-smooth.
 const std::vector<double>& cvode_data(const std::string& preset) {
   static std::map<std::string, std::vector<double>> cache;
@@ -40,13 +45,23 @@ const std::vector<double>& cvode_data(const std::string& preset) {
   if (!y.empty()) return y;
   const auto truth = model::preset(preset);
   const auto e = experiment_for(preset, truth.l);
-  const std::string path = std::string(BEAMID_BINARY_DIR) + "/test-data-" + preset + "-N8-cvode-1e-12.bin";
-  std::ifstream in(path, std::ios::binary);
-  y.resize(static_cast<std::size_t>(e.samples));
-  if (in.read(reinterpret_cast<char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)))) return y;
   simulation::SimulatorOptions s;
   s.integrator = "cvode";
   s.cvode.rtol = 1e-12;
+  std::string recipe = "code=" + io::commit_label() + ";N=" + std::to_string(kElements) +
+                       ";integrator=cvode;rtol=" + io::round_trip(s.cvode.rtol) +
+                       ";max_order=" + std::to_string(s.cvode.max_order) + ";dt=" + io::round_trip(e.dt_s) +
+                       ";samples=" + std::to_string(e.samples) + ";excitation=" + e.excitation +
+                       ";pulse=" + io::round_trip(e.pulse_width_s) + ";F0=" + io::round_trip(e.force_amplitude_N) +
+                       ";force_x=" + (e.force_x_m ? io::round_trip(*e.force_x_m) : "tip") +
+                       ";sensor_x=" + (e.sensor_x_m ? io::round_trip(*e.sensor_x_m) : "tip") + ";output=" + e.output;
+  for (const auto& info : model::parameter_table())
+    recipe += ";" + std::string(info.key) + "=" + io::round_trip(truth.*info.member);
+  const std::string path =
+      std::string(BEAMID_BINARY_DIR) + "/test-data-" + preset + "-" + io::hex64(signal::fnv1a64(recipe)) + ".bin";
+  std::ifstream in(path, std::ios::binary);
+  y.resize(static_cast<std::size_t>(e.samples));
+  if (in.read(reinterpret_cast<char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)))) return y;
   const galerkin::SplineSpace space(kElements);
   const auto trace = simulation::simulate(galerkin::BeamForms(space, truth.l), truth, e, s);
   EXPECT_TRUE(trace.ok()) << trace.status;
@@ -70,9 +85,9 @@ FitOptions options_for(const std::string& preset, const std::string& cost, const
   o.cost.name = cost;
   o.cost.spikes.count = spikes;
   o.optimizer.method = default_optimizer(cost);
-  const std::map<std::string, double> scale = start == "up"
-      ? std::map<std::string, double>{{"EI", 1.05}, {"rho", 1.05}, {"cDI", 1.05}, {"gamma", 1.05}}
-      : std::map<std::string, double>{{"EI", 1.05}, {"rho", 0.95}, {"cDI", 1.05}, {"gamma", 0.95}};
+  const std::map<std::string, double> scale =
+      start == "up" ? std::map<std::string, double>{{"EI", 1.05}, {"rho", 1.05}, {"cDI", 1.05}, {"gamma", 1.05}}
+                    : std::map<std::string, double>{{"EI", 1.05}, {"rho", 0.95}, {"cDI", 1.05}, {"gamma", 0.95}};
   for (const auto& [key, factor] : scale) {
     double& v = o.start.*(model::find_parameter(key)->member);
     o.estimate.push_back({key, v / 2, v * 2});
@@ -130,9 +145,11 @@ TEST(Identification, PapersSpikeCostRecoversFrequenciesToWithinABin) {
   ASSERT_NE(r.status, "failed") << r.termination;
   const galerkin::SplineSpace space(kElements);
   const auto fitted = galerkin::StateSpaceModes(galerkin::assemble(space, r.beam)).underdamped_modes();
-  const auto truth = galerkin::StateSpaceModes(galerkin::assemble(space, model::preset("banks-aluminium"))).underdamped_modes();
+  const auto truth =
+      galerkin::StateSpaceModes(galerkin::assemble(space, model::preset("banks-aluminium"))).underdamped_modes();
   const double df = 1 / (o.experiment.samples * o.experiment.dt_s);
-  for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(fitted[k].frequency_hz - truth[k].frequency_hz), df) << "mode " << k + 1;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_LT(std::abs(fitted[k].frequency_hz - truth[k].frequency_hz), df) << "mode " << k + 1;
 }
 
 TEST(Identification, ThickSteelWithTheSmoothSpikeCostAndWithContinuedTimeFits) {

@@ -1,11 +1,12 @@
 // The optimizer adapters on Rosenbrock's function, and the failure paths: a throwing callback, a NaN cost, a start
 // outside the bounds, a method that needs residuals; reproducible space-filling starts.
-#include <cmath>
-#include <stdexcept>
+#include "fit/optimizer.h"
 
 #include <gtest/gtest.h>
 
-#include "fit/optimizer.h"
+#include <cmath>
+#include <stdexcept>
+
 #include "model/errors.h"
 
 namespace beamid::fit {
@@ -57,7 +58,11 @@ TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
     for (int t = 0; t < 10; ++t) r(t) = x(0) + x(1) * t - (1 + 2 * t + e(t));
     return true;
   };
-  p.cost = [p](const Eigen::VectorXd& x) { Eigen::VectorXd r; p.residuals(x, r); return r.squaredNorm(); };
+  p.cost = [p](const Eigen::VectorXd& x) {
+    Eigen::VectorXd r;
+    p.residuals(x, r);
+    return r.squaredNorm();
+  };
   OptimizerOptions o;
   o.method = "lm";
   const auto fit = minimize(p, Eigen::Vector2d(0, 0), o);
@@ -76,7 +81,9 @@ TEST(Optimizers, FailuresBecomeStatusesNotCrashes) {
   OptimizerOptions o;
   Problem throwing = rosenbrock();
   throwing.cost = [](const Eigen::VectorXd&) -> double { throw std::runtime_error("model exploded"); };
-  throwing.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd&) -> bool { throw std::runtime_error("model exploded"); };
+  throwing.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd&) -> bool {
+    throw std::runtime_error("model exploded");
+  };
   for (const std::string method : {"bobyqa", "lm"}) {
     o.method = method;
     const auto r = minimize(throwing, Eigen::Vector2d(0, 0), o);
@@ -85,7 +92,10 @@ TEST(Optimizers, FailuresBecomeStatusesNotCrashes) {
   }
   Problem nan = rosenbrock();
   nan.cost = [](const Eigen::VectorXd&) { return std::nan(""); };
-  nan.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd& r) { r = Eigen::Vector2d(std::nan(""), 0); return true; };
+  nan.residuals = [](const Eigen::VectorXd&, Eigen::VectorXd& r) {
+    r = Eigen::Vector2d(std::nan(""), 0);
+    return true;
+  };
   for (const std::string method : {"nelder-mead", "lm"}) {
     o.method = method;
     o.max_evaluations = 200;
@@ -100,7 +110,8 @@ TEST(Optimizers, FailuresBecomeStatusesNotCrashes) {
   Problem scalar_only = rosenbrock();
   scalar_only.residual_count = 0;
   o.method = "lm";
-  EXPECT_NE(minimize(scalar_only, Eigen::Vector2d(0, 0), o).termination.find("needs a residual vector"), std::string::npos);
+  EXPECT_NE(minimize(scalar_only, Eigen::Vector2d(0, 0), o).termination.find("needs a residual vector"),
+            std::string::npos);
   o.method = "newton";
   EXPECT_THROW(minimize(rosenbrock(), Eigen::Vector2d(0, 0), o), InputError);
 }

@@ -2,10 +2,10 @@
 // undamped frequencies to the exact Timoshenko ones (model.md sections 2 and 6).
 #include "galerkin/second_order_system.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "galerkin/modes.h"
 #include "model/errors.h"
@@ -16,7 +16,9 @@ namespace {
 
 using model::BeamParameters;
 
-double asymmetry(const Eigen::MatrixXd& a) { return (a - a.transpose()).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff(); }
+double asymmetry(const Eigen::MatrixXd& a) {
+  return (a - a.transpose()).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff();
+}
 
 TEST(SecondOrderSystem, SymmetricAndDefinite) {
   for (const auto& name : model::preset_names()) {

@@ -67,7 +67,8 @@ TEST(SplineSpace, GramIdentities) {
   const SplineSpace space(7);
   const int m = space.dimension();
   // G10 + G10^T = nu nu^T (integration by parts: int (beta_i beta_j)' = beta_i(1) beta_j(1) - 0).
-  const Eigen::MatrixXd parts = space.G10() + space.G10().transpose() - space.tip_trace() * space.tip_trace().transpose();
+  const Eigen::MatrixXd parts =
+      space.G10() + space.G10().transpose() - space.tip_trace() * space.tip_trace().transpose();
   EXPECT_LT(parts.cwiseAbs().maxCoeff(), 1e-13);
   // sum_ij G0_ij c_i c_j = int (sum c_j beta_j)^2: for c with sum c_j beta_j = x (representable: cubic splines
   // contain linears), int_0^1 x^2 = 1/3 and int_0^1 1 = 1 for its slope.

@@ -1,12 +1,13 @@
 // Reading data records: each malformed file gives an InputError naming the file, line, column and constraint.
+#include "io/time_series.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
-#include <gtest/gtest.h>
-
-#include "io/time_series.h"
 #include "model/errors.h"
 
 namespace beamid::io {
@@ -43,16 +44,20 @@ TEST(TimeSeries, ReadsAUniformRecord) {
 TEST(TimeSeries, MalformedFilesAreLocated) {
   std::string text = rows(10, 0.001);
   const std::string with_nan = text.replace(text.find("0.003000,0.300000"), 17, "0.003000,nan");
-  EXPECT_NE(error_of(write("nan.csv", with_nan)).find("nan.csv:5: displacement_m = nan: must be finite"), std::string::npos)
+  EXPECT_NE(error_of(write("nan.csv", with_nan)).find("nan.csv:5: displacement_m = nan: must be finite"),
+            std::string::npos)
       << error_of(write("nan.csv", with_nan));
   text = rows(10, 0.001);
   const std::string jitter = text.replace(text.find("0.004000,"), 9, "0.004100,");
-  EXPECT_NE(error_of(write("jitter.csv", jitter)).find("jitter.csv:6: t_s = 0.0041: non-uniform time base"), std::string::npos)
+  EXPECT_NE(error_of(write("jitter.csv", jitter)).find("jitter.csv:6: t_s = 0.0041: non-uniform time base"),
+            std::string::npos)
       << error_of(write("jitter.csv", jitter));
   EXPECT_NE(error_of(write("short.csv", rows(5, 0.001))).find("5 samples: at least 8 are needed"), std::string::npos);
-  EXPECT_NE(error_of(write("word.csv", "t_s,y\n0,1\n0.1,abc\n")).find("word.csv:3: y = 'abc': must be a number"), std::string::npos);
+  EXPECT_NE(error_of(write("word.csv", "t_s,y\n0,1\n0.1,abc\n")).find("word.csv:3: y = 'abc': must be a number"),
+            std::string::npos);
   EXPECT_NE(error_of(write("one.csv", "t\n")).find("must name at least two columns"), std::string::npos);
-  EXPECT_NE(error_of(write("three.csv", "t,a,b\n" + std::string(10, ' ') + "\n")).find("2 signal columns (a, b): choose one with --channel"),
+  EXPECT_NE(error_of(write("three.csv", "t,a,b\n" + std::string(10, ' ') + "\n"))
+                .find("2 signal columns (a, b): choose one with --channel"),
             std::string::npos);
   EXPECT_NE(error_of(testing::TempDir() + "absent.csv").find("cannot read the file"), std::string::npos);
 }
@@ -62,15 +67,17 @@ TEST(TimeSeries, MalformedFilesAreLocated) {
 std::string lvm(int n, const std::string& value_of_8 = "") {
   std::string text =
       "LabVIEW Measurement\t\nWriter_Version\t2\nSeparator\tTab\nDecimal_Separator\t.\nMulti_Headings\tYes\n"
-      "X_Columns\tMulti\n***End_of_Header***\t\n\t\nChannels\t1\t\nSamples\t" + std::to_string(n) +
+      "X_Columns\tMulti\n***End_of_Header***\t\n\t\nChannels\t1\t\nSamples\t" +
+      std::to_string(n) +
       "\t\nY_Unit_Label\tg\t\nX_Dimension\tTime\t\nX0\t0.0000000000000000E+0\t\nDelta_X\t0.000605\t\n"
       "***End_of_Header***\t\t\nX_Value\tAcceleration\tComment\n";
   const double dt = 31.0 / 51200;
   for (int i = 0; i < n; ++i) {
     char line[64];
     std::snprintf(line, sizeof line, "%.6f\t%.6f\n", i * dt, std::sin(0.3 * i));
-    text += i == 8 && !value_of_8.empty() ? std::string(line).substr(0, std::string(line).find('\t') + 1) + value_of_8 + "\n"
-                                          : std::string(line);
+    text += i == 8 && !value_of_8.empty()
+                ? std::string(line).substr(0, std::string(line).find('\t') + 1) + value_of_8 + "\n"
+                : std::string(line);
   }
   return text;
 }
@@ -103,13 +110,16 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
       << error_of(write("nan.lvm", lvm(50, "NaN")));
   EXPECT_NE(error_of(write("word.lvm", lvm(50, "1.2.3"))).find("word.lvm:25: Acceleration = '1.2.3': must be a number"),
             std::string::npos);
-  EXPECT_NE(error_of(write("bad.lvm", "LabVIEW Measurement\nSeparator\tSemicolon\n")).find("bad.lvm:2: Separator = 'Semicolon': must be Tab or Comma"),
+  EXPECT_NE(error_of(write("bad.lvm", "LabVIEW Measurement\nSeparator\tSemicolon\n"))
+                .find("bad.lvm:2: Separator = 'Semicolon': must be Tab or Comma"),
             std::string::npos);
-  EXPECT_NE(error_of(write("not.lvm", "time,value\n")).find("not.lvm:1: not a LabVIEW measurement file"), std::string::npos);
+  EXPECT_NE(error_of(write("not.lvm", "time,value\n")).find("not.lvm:1: not a LabVIEW measurement file"),
+            std::string::npos);
   // A clipped record: the peak held for 3 samples.
   std::string clipped = "t_s,a\n";
   for (int i = 0; i < 20; ++i) clipped += std::to_string(0.01 * i) + "," + (i >= 5 && i < 8 ? "2.5" : "0.1") + "\n";
-  EXPECT_NE(error_of(write("clip.csv", clipped)).find("clip.csv:7: a = 2.5 on 3 or more consecutive samples at the record's peak"),
+  EXPECT_NE(error_of(write("clip.csv", clipped))
+                .find("clip.csv:7: a = 2.5 on 3 or more consecutive samples at the record's peak"),
             std::string::npos);
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";
@@ -118,18 +128,28 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   EXPECT_EQ(read_time_series(write("two.csv", two), o).value_column, "ay_g");
   EXPECT_NEAR(read_time_series(write("two.csv", two), o).values[3], 3 * 9.80665, 1e-12);
   o.channel = "az";
-  EXPECT_NE(error_of(write("two.csv", two), o).find("channel = 'az': must be one of ax_g, ay_g (or 1..2)"), std::string::npos);
+  EXPECT_NE(error_of(write("two.csv", two), o).find("channel = 'az': must be one of ax_g, ay_g (or 1..2)"),
+            std::string::npos);
   // A window outside the record.
   ImportOptions late;
   late.channel = "1";
   late.start_s = 5;
-  EXPECT_NE(error_of(write("two.csv", two), late).find("holds 0 of the requested samples"), std::string::npos)
+  EXPECT_NE(error_of(write("two.csv", two), late).find("start = 5 s: must lie inside the record, [0, 0.7] s"),
+            std::string::npos)
       << error_of(write("two.csv", two), late);
+  // A window that starts inside and runs past the end.
+  ImportOptions long_window;
+  long_window.channel = "1";
+  long_window.start_s = 0.5;
+  long_window.duration_s = 10;
+  EXPECT_NE(error_of(write("two.csv", two), long_window).find("of the requested samples"), std::string::npos)
+      << error_of(write("two.csv", two), long_window);
 }
 
 TEST(TimeSeries, ResamplingOnRequest) {
   std::string jitter = "t_s,y\n";
-  for (int i = 0; i < 20; ++i) jitter += std::to_string(0.01 * i + (i == 7 ? 0.003 : 0)) + "," + std::to_string(2.0 * i) + "\n";
+  for (int i = 0; i < 20; ++i)
+    jitter += std::to_string(0.01 * i + (i == 7 ? 0.003 : 0)) + "," + std::to_string(2.0 * i) + "\n";
   EXPECT_NE(error_of(write("j.csv", jitter)).find("non-uniform time base"), std::string::npos);
   ImportOptions o;
   o.resample = true;

@@ -1,13 +1,13 @@
 // Beam parameters: presets, validation, and strict TOML loading with located errors.
 #include "model/beam_parameters.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include <gtest/gtest.h>
-
-#include "model/beam_toml.h"
+#include "config/beam_file.h"
 #include "model/errors.h"
 
 namespace beamid::model {
@@ -23,7 +23,7 @@ const std::string kValid = [] {
 
 std::string error_of(const std::string& text) {
   try {
-    parse_beam_toml(text, "beam.toml");
+    config::parse_beam_toml(text, "beam.toml");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -68,11 +68,11 @@ TEST(BeamParameters, ValidationNamesKeyValueAndConstraint) {
 }
 
 TEST(BeamToml, ReadsAllKeysMatchingThePreset) {
-  const BeamParameters p = parse_beam_toml(kValid, "beam.toml");
+  const BeamParameters p = config::parse_beam_toml(kValid, "beam.toml");
   const BeamParameters q = preset("banks-aluminium");
   for (const auto& info : parameter_table()) EXPECT_DOUBLE_EQ(p.*info.member, q.*info.member) << info.key;
   // Integers are accepted as numbers.
-  EXPECT_DOUBLE_EQ(parse_beam_toml(replace(kValid, "kAcs = 9.73", "kAcs = 10"), "b").kAcs, 10.0);
+  EXPECT_DOUBLE_EQ(config::parse_beam_toml(replace(kValid, "kAcs = 9.73", "kAcs = 10"), "b").kAcs, 10.0);
 }
 
 TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
@@ -82,19 +82,24 @@ TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replace(kValid, "m = 0.050", "m = \"heavy\"")), "beam.toml:12: beam.m must be a number in kg");
   EXPECT_EQ(error_of(replace(kValid, "c = 0.0125         # m        tip body offset beyond the tip\n", "")),
             "beam.toml:3: [beam] is missing key 'c' (tip body offset beyond the tip, m)");
-  EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6     # kg m^2   tip body inertia about its centre of mass", "J_o = 5.208e-6\nEA = 1")),
+  EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6     # kg m^2   tip body inertia about its centre of mass",
+                             "J_o = 5.208e-6\nEA = 1")),
             "beam.toml:15: unknown key beam.EA: valid keys are l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
   EXPECT_EQ(error_of(std::string(kValid) + "[fit]\nx = 1\n"),
-            "beam.toml:15: unknown top-level key 'fit': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
+            "beam.toml:15: unknown top-level key 'fit': a beam file holds one table, [beam] (lumped parameters) or "
+            "[geometry]");
   EXPECT_NE(error_of("[beam\nl = 1").find("beam.toml:1: TOML syntax error"), std::string::npos);
-  EXPECT_EQ(error_of("l = 1\n"), "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
-  EXPECT_EQ(error_of(""), "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
+  EXPECT_EQ(
+      error_of("l = 1\n"),
+      "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
+  EXPECT_EQ(error_of(""),
+            "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
 }
 
 TEST(BeamToml, ResolvesPresetsAndFiles) {
-  EXPECT_DOUBLE_EQ(resolve_beam("thick-steel").EI, 1406.25);
+  EXPECT_DOUBLE_EQ(config::resolve_beam("thick-steel").EI, 1406.25);
   try {
-    resolve_beam("/nonexistent/beam.toml");
+    config::resolve_beam("/nonexistent/beam.toml");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/beam.toml: cannot open beam file"), std::string::npos);

@@ -109,9 +109,9 @@ TEST(EulerBernoulliFrequencies, UsesLumpedTipBodyAndScale) {
   beam.rho_r2 = 1e-3;
   beam.kAG = 1e6;
   beam.EI = 5;
-  beam.m = 6;       // mu = 6 / (3 * 2) = 1
-  beam.c = 0.5;     // m c^2 = 1.5
-  beam.J_o = 0.9;   // eta = (0.9 + 1.5) / (3 * 8) = 0.1
+  beam.m = 6;      // mu = 6 / (3 * 2) = 1
+  beam.c = 0.5;    // m c^2 = 1.5
+  beam.J_o = 0.9;  // eta = (0.9 + 1.5) / (3 * 8) = 0.1
   const std::vector<double> omegas = euler_bernoulli_frequencies_rad_s(beam, 4);
   const std::vector<double> roots = euler_bernoulli_tip_body_roots(1, 0.1, 4);
   ASSERT_EQ(omegas.size(), 4u);
@@ -123,12 +123,12 @@ TEST(EulerBernoulliFrequencies, UsesLumpedTipBodyAndScale) {
 TEST(TimoshenkoFrequencies, NondimensionalTableOfModelMd) {
   // Omega = omega for rho = EI = l = 1; 4 decimals given, half-unit 5e-5.
   const std::vector<double> half_unit(4, 5e-5);
-  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(10), 4),
-                       {3.2271, 14.4689, 31.5025, 47.9090}, half_unit, "l/r = 10");
-  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(20), 4),
-                       {3.4353, 19.1036, 46.6031, 78.9022}, half_unit, "l/r = 20");
-  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(100), 4),
-                       {3.5127, 21.8889, 60.7409, 117.5161}, half_unit, "l/r = 100");
+  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(10), 4), {3.2271, 14.4689, 31.5025, 47.9090},
+                       half_unit, "l/r = 10");
+  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(20), 4), {3.4353, 19.1036, 46.6031, 78.9022},
+                       half_unit, "l/r = 20");
+  expect_rounded_match(timoshenko_frequencies_rad_s(nondimensional_beam(100), 4), {3.5127, 21.8889, 60.7409, 117.5161},
+                       half_unit, "l/r = 100");
 }
 
 TEST(TimoshenkoFrequencies, NondimensionalWithTipBody) {

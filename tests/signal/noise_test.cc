@@ -1,12 +1,12 @@
 // The synthetic-data noise: portable (the engine's sequence is fixed by the C++ standard, the transform is ours),
 // standard normal in distribution, and scaled to the requested fraction of the clean RMS.
-#include <algorithm>
-#include <cmath>
-#include <random>
+#include "signal/noise.h"
 
 #include <gtest/gtest.h>
 
-#include "signal/noise.h"
+#include <algorithm>
+#include <cmath>
+#include <random>
 
 namespace beamid::signal {
 namespace {
@@ -37,7 +37,8 @@ TEST(Noise, DeviatesAreStandardNormalAndReproducible) {
   EXPECT_NEAR(var, 1, 0.016);
   EXPECT_NEAR(fourth, 3, 0.11);
   // Tail share beyond 2: 4.55 % for a normal (sd of the share 4.7e-4).
-  const double tail = static_cast<double>(std::count_if(g.begin(), g.end(), [](double x) { return std::abs(x) > 2; })) / n;
+  const double tail =
+      static_cast<double>(std::count_if(g.begin(), g.end(), [](double x) { return std::abs(x) > 2; })) / n;
   EXPECT_NEAR(tail, 0.0455, 0.0025);
   // Prefixes agree: the first k deviates do not depend on how many are drawn.
   const auto head = gaussian_deviates(7, 11);
@@ -57,8 +58,8 @@ TEST(Noise, LevelIsAFractionOfTheCleanRms) {
 
 TEST(Noise, SeedsAreMixedAndNamedStreamsDiffer) {
   EXPECT_NE(mix64(1), mix64(2));
-  EXPECT_EQ(fnv1a64(""), 0xcbf29ce484222325ULL);      // the FNV-1a offset basis
-  EXPECT_EQ(fnv1a64("a"), 0xaf63dc4c8601ec8cULL);     // published FNV-1a test vector
+  EXPECT_EQ(fnv1a64(""), 0xcbf29ce484222325ULL);   // the FNV-1a offset basis
+  EXPECT_EQ(fnv1a64("a"), 0xaf63dc4c8601ec8cULL);  // published FNV-1a test vector
   EXPECT_NE(derive_seed(1, "noise"), derive_seed(1, "start"));
   EXPECT_EQ(derive_seed(5, "x"), derive_seed(5, "x"));
 }

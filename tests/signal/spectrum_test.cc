@@ -1,13 +1,14 @@
 // DFT scaling, windows, Parseval, spike detection, 20 % supports and the 3-bin pole estimator, on signals whose
 // spectra are known in closed form.
+#include "signal/spectrum.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include <gtest/gtest.h>
-
 #include "model/errors.h"
-#include "signal/spectrum.h"
 #include "signal/spikes.h"
 
 namespace beamid::signal {
@@ -23,8 +24,8 @@ std::vector<double> damped_sinusoids(const std::vector<Mode>& modes, int samples
   std::vector<double> z(static_cast<std::size_t>(samples), 0.0);
   for (int i = 0; i < samples; ++i)
     for (const Mode& m : modes)
-      z[static_cast<std::size_t>(i)] += m.amplitude * std::exp(-m.decay_1_s * i * dt) *
-                                          std::cos(2 * kPi * m.frequency_hz * i * dt + m.phase);
+      z[static_cast<std::size_t>(i)] +=
+          m.amplitude * std::exp(-m.decay_1_s * i * dt) * std::cos(2 * kPi * m.frequency_hz * i * dt + m.phase);
   return z;
 }
 
@@ -169,7 +170,8 @@ TEST(ThreeBin, RecoversFrequencyAndDecayOfADampedExponential) {
       const double f = (200 + offset) * df;
       // Real damped cosine far from 0 and Nyquist: the mirror pole adds a leakage of order 1/(2 f / df) bins.
       std::vector<double> z(static_cast<std::size_t>(n));
-      for (int i = 0; i < n; ++i) z[static_cast<std::size_t>(i)] = std::exp(-sigma * i * dt) * std::cos(2 * kPi * f * i * dt);
+      for (int i = 0; i < n; ++i)
+        z[static_cast<std::size_t>(i)] = std::exp(-sigma * i * dt) * std::cos(2 * kPi * f * i * dt);
       Dft dft(n, dt);
       const auto s = dft.transform(z);
       SpikeOptions one;
@@ -181,7 +183,8 @@ TEST(ThreeBin, RecoversFrequencyAndDecayOfADampedExponential) {
       // Tolerance: the mirror pole at -f contributes ~ (width in bins)/(400 bins) relative leakage, so 5e-3 bins
       // in frequency and 5e-3 bins (2 pi df per bin) in sigma T/(2 pi).
       EXPECT_NEAR(e.frequency_hz, f, 5e-3 * df) << "offset " << offset << " sigma " << sigma;
-      EXPECT_NEAR(e.decay_rate_1_s * T / (2 * kPi), sigma * T / (2 * kPi), 5e-3) << "offset " << offset << " sigma " << sigma;
+      EXPECT_NEAR(e.decay_rate_1_s * T / (2 * kPi), sigma * T / (2 * kPi), 5e-3)
+          << "offset " << offset << " sigma " << sigma;
     }
   }
 }

@@ -2,9 +2,9 @@
 // and failures reported as a status rather than thrown.
 #include "simulation/cvode_simulator.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "test_systems.h"
 
@@ -60,7 +60,8 @@ TEST(CvodeSimulator, StructuredAndDenseNewtonSolversAgree) {
   EXPECT_EQ(b.stats.integrator, "cvode.dense");
   EXPECT_GE(b.stats.jacobian_evaluations, 1);
   double diff = 0, scale = 0;
-  for (std::size_t i = 0; i < a.y.size(); ++i) diff = std::max(diff, std::abs(a.y[i] - b.y[i])), scale = std::max(scale, std::abs(b.y[i]));
+  for (std::size_t i = 0; i < a.y.size(); ++i)
+    diff = std::max(diff, std::abs(a.y[i] - b.y[i])), scale = std::max(scale, std::abs(b.y[i]));
   EXPECT_LT(diff, 1e-6 * scale);
 }
 

@@ -2,11 +2,11 @@
 // and agreement with converged CVODE on both presets, all outputs, pulse and pluck, stiff and overdamped cases.
 #include "simulation/modal_simulator.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <complex>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "galerkin/modes.h"
 #include "model/beam_parameters.h"

@@ -1,16 +1,15 @@
 // The study runner's promises, on a miniature study (256-sample truth, N = 4 fits, a small landscape):
 // the tables do not depend on the thread count; an interrupted run resumes to the same tables; shards merged give the
-// same tables as one run; a case that cannot run is a row with its status, not a crash. And the landscape's
-// smoothness figures on curves whose answer is known.
+// same tables as one run; a case that cannot run is a row with its status, not a crash.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include "model/errors.h"
 #include "study/runner.h"
@@ -125,7 +124,8 @@ TEST_F(StudyRunner, AnInterruptedRunResumesToTheSameTables) {
   // Lose three finished units and every table, as if the run had been killed.
   int removed = 0;
   for (const auto& e : fs::directory_iterator(root_ / "resumed" / "store"))
-    if (removed < 3 && e.path().extension() == ".rec" && fs::file_size(e.path()) < 100000) fs::remove(e.path()), ++removed;
+    if (removed < 3 && e.path().extension() == ".rec" && fs::file_size(e.path()) < 100000)
+      fs::remove(e.path()), ++removed;
   fs::remove(root_ / "resumed" / "cases.csv");
   RunOptions o;
   o.output_dir = (root_ / "resumed").string();
@@ -200,47 +200,6 @@ TEST(StudyValidation, EveryUnitIsCheckedBeforeAnyRuns) {
   }
   EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "store")) << "nothing may be written before validation";
   fs::remove_all(o.output_dir);
-}
-
-TEST(LandscapeShape, BowlStaircaseAndRipplesAreToldApart) {
-  std::vector<double> x, bowl, stairs, ripples;
-  for (int j = 0; j <= 100; ++j) {
-    const double r = std::pow(2.0, (j - 50) / 50.0);  // log-spaced ratios 1/2 .. 2, the truth at j = 50
-    x.push_back(r);
-    bowl.push_back(std::pow(std::log(r), 2));
-    stairs.push_back(std::floor(10 * std::abs(std::log(r))));  // a staircase with a flat floor around the truth
-    ripples.push_back(std::pow(std::log(r), 2) + 0.05 * (1 - std::cos(40 * std::log(r))));
-  }
-  const SliceShape b = slice_shape(x, bowl, 1);
-  EXPECT_EQ(b.local_minima, 1);
-  EXPECT_DOUBLE_EQ(b.basin_lower, -0.5);  // the whole range is one basin
-  EXPECT_DOUBLE_EQ(b.basin_upper, 1.0);
-  EXPECT_NEAR(b.total_variation_ratio, 2.0, 1e-12);  // down once and up once
-  EXPECT_EQ(b.flat_share, 0);
-  const SliceShape s = slice_shape(x, stairs, 1);
-  EXPECT_EQ(s.local_minima, 1);   // the floor plateau counts once
-  EXPECT_GT(s.flat_share, 0.8);   // 7 risers in 100 steps
-  const SliceShape w = slice_shape(x, ripples, 1);
-  EXPECT_GE(w.local_minima, 5);   // cos(40 ln r) has about 7 periods over ln r in [-ln 2, ln 2]
-  EXPECT_LT(w.basin_upper - w.basin_lower, 0.3);
-  EXPECT_GT(w.total_variation_ratio, 2.0);
-
-  // A 2-D bowl: one minimum, every point descends to it; a bowl with a second dip: two minima, a shared basin.
-  const int n = 21;
-  std::vector<double> g, two;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double u = (i - 10) / 10.0, v = (j - 10) / 10.0;
-      g.push_back(u * u + 2 * v * v);
-      two.push_back(u * u + 2 * v * v - 0.6 * std::exp(-40 * ((u - 0.7) * (u - 0.7) + v * v)));
-    }
-  const GridShape gb = grid_shape(g, n, n);
-  EXPECT_EQ(gb.local_minima, 1);
-  EXPECT_DOUBLE_EQ(gb.descent_share, 1.0);
-  const GridShape gt = grid_shape(two, n, n);
-  EXPECT_EQ(gt.local_minima, 2);
-  EXPECT_LT(gt.descent_share, 0.9);  // the dip's own basin takes its share of the grid
-  EXPECT_GT(gt.descent_share, 0.0);
 }
 
 }  // namespace

@@ -1,12 +1,13 @@
 // Study files are strict: every error names file:line, the key, the value and the violated constraint.
-#include <map>
-#include <set>
+#include "study/study_spec.h"
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <set>
+
 #include "model/errors.h"
 #include "study/plan.h"
-#include "study/study_spec.h"
 
 namespace beamid::study {
 namespace {
@@ -72,45 +73,53 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replaced(kValid, "replicates = 3", "replicates = 3\nreplicate = 2")),
             "s.toml:27: unknown key sweep.replicate: valid keys are elements, cost, noise, replicates, method, start, "
             "pulse_width_s, samples");
-  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = -5")), "s.toml:4: study.seed = -5: must be an integer in 0..2^53");
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = -5")),
+            "s.toml:4: study.seed = -5: must be an integer in 0..2^53");
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
             "s.toml:10: truth.pulse_width_s = -0.004: must be > 0");
   EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
             "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth");
   EXPECT_EQ(error_of(replaced(kValid, "elements = [4, 8]", "elements = [4, 48]")),
             "s.toml:23: sweep.elements element 48: must be in 1..47");  // coarser than N_truth: no inverse crime
-  EXPECT_EQ(error_of(replaced(kValid, "EI = 1.05", "EI = 2.5")),
-            "s.toml:16: starts.near.EI = 2.5: must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = 2");
+  EXPECT_EQ(
+      error_of(replaced(kValid, "EI = 1.05", "EI = 2.5")),
+      "s.toml:16: starts.near.EI = 2.5: must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = 2");
   EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fits]")),
-            "s.toml:12: unknown table [fits]: valid tables are study, truth, fit, starts, methods, sweep, landscape, outputs");
+            "s.toml:12: unknown table [fits]: valid tables are study, truth, fit, starts, methods, sweep, landscape, "
+            "outputs");
   EXPECT_EQ(error_of(replaced(kValid, "force_x_m = 0.32", "force_x_m = 0.9")),
             "s.toml:9: truth.force_x_m = 0.9: must lie on the beam, 0 <= x <= l = 0.4573");
   EXPECT_EQ(error_of(replaced(kValid, "method = [\"direct\"]", "method = [\"staged\"]")),
             "s.toml:27: sweep.method element 'staged': must be one of direct");
-  EXPECT_EQ(error_of(replaced(kValid, "estimate = [\"EI\", \"rho\"]", "estimate = [\"EI\", \"stiffness\"]")).substr(0, 60),
-            "s.toml:13: fit.estimate element 'stiffness': must be one of ");
-  EXPECT_EQ(error_of(replaced(kValid, "name = \"mini\"", "name = \"Mini Study\"")),
-            "s.toml:2: study.name = 'Mini Study': must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
+  EXPECT_EQ(
+      error_of(replaced(kValid, "estimate = [\"EI\", \"rho\"]", "estimate = [\"EI\", \"stiffness\"]")).substr(0, 60),
+      "s.toml:13: fit.estimate element 'stiffness': must be one of ");
+  EXPECT_EQ(
+      error_of(replaced(kValid, "name = \"mini\"", "name = \"Mini Study\"")),
+      "s.toml:2: study.name = 'Mini Study': must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
             "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
-  EXPECT_EQ(error_of("[study\n"), "s.toml:1: TOML syntax error: Error while parsing table header: expected ']', saw '\\n'");
+  EXPECT_EQ(error_of("[study\n"),
+            "s.toml:1: TOML syntax error: Error while parsing table header: expected ']', saw '\\n'");
 }
 
 TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   const StudySpec s = parse_study(kValid, "s.toml", ".");
   const Plan plan = make_plan(s);
-  // 2 N x 2 costs x (1 noise-free + 3 noisy replicates): a noise-free case runs once.
-  ASSERT_EQ(plan.units.size(), 16u);
+  // 2 N x 2 costs x (1 noise-free + 3 noisy replicates): a noise-free case runs once; plus a unit per N that
+  // computes the Galerkin frequencies of the truth beam.
+  ASSERT_EQ(plan.units.size(), 18u);
+  EXPECT_EQ(plan.units.back().kind, "frequencies");
   ASSERT_EQ(plan.truths.size(), 1u);
   std::set<std::string> ids;
   for (const auto& u : plan.units) ids.insert(u.id);
   EXPECT_EQ(ids.size(), plan.units.size());
   // Adding a cost and an N leaves every existing id and seed as it was.
-  const Plan bigger = make_plan(parse_study(
-      replaced(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"spike\", \"time\", \"spike-smooth\"]"),
-               "elements = [4, 8]", "elements = [2, 4, 8]"),
-      "s.toml", "."));
+  const Plan bigger = make_plan(parse_study(replaced(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]",
+                                                              "cost = [\"spike\", \"time\", \"spike-smooth\"]"),
+                                                     "elements = [4, 8]", "elements = [2, 4, 8]"),
+                                            "s.toml", "."));
   std::map<std::string, std::uint64_t> seeds;
   for (const auto& u : bigger.units) seeds[u.id] = u.seed;
   for (const auto& u : plan.units) {
@@ -119,7 +128,8 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   }
   // Every cost and N of one (noise, replicate) sees the same noise; replicates see different noise.
   std::map<std::pair<double, int>, std::set<std::uint64_t>> noise;
-  for (const auto& u : plan.units) noise[{u.noise, u.replicate}].insert(u.noise_seed);
+  for (const auto& u : plan.units)
+    if (u.kind == "case") noise[{u.noise, u.replicate}].insert(u.noise_seed);
   for (const auto& [k, v] : noise) EXPECT_EQ(v.size(), 1u);
   const std::pair<double, int> first{0.01, 0}, second{0.01, 1};
   EXPECT_NE(*noise[first].begin(), *noise[second].begin());

@@ -1,23 +1,22 @@
 // Beam parameters from the [beam] table of a TOML file, strictly: every key of parameter_table() must be present,
 // no other key may be, and each value must be an admissible number. Or from a [geometry] table (model/geometry.h:
-// length, section, material, shear coefficient, tip body, nominal damping), which gives the lumps. Errors are one line naming file:line, key,
-// value and constraint, e.g. "my_beam.toml:4: beam.EI = -1: must be > 0".
+// length, section, material, shear coefficient, tip body, nominal damping), which gives the lumps. Errors are one
+// line naming file:line, key, value and constraint, e.g. "my_beam.toml:4: beam.EI = -1: must be > 0".
 #pragma once
 
 #include <string>
-#include <string_view>
 
 #include "model/beam_parameters.h"
 
-namespace beamid::model {
+namespace beamid::config {
 
 // Parses a TOML file; throws InputError on any problem (unreadable file, TOML syntax, missing, unknown or bad key).
-BeamParameters load_beam_toml(const std::string& path);
+model::BeamParameters load_beam_toml(const std::string& path);
 
 // Same, from text already in memory; `source_name` stands for the file name in messages.
-BeamParameters parse_beam_toml(std::string_view text, const std::string& source_name);
+model::BeamParameters parse_beam_toml(const std::string& text, const std::string& source_name);
 
 // "banks-aluminium" or "thick-steel" give the preset; anything else is read as a TOML file path.
-BeamParameters resolve_beam(const std::string& preset_or_file);
+model::BeamParameters resolve_beam(const std::string& preset_or_file);
 
-}  // namespace beamid::model
+}  // namespace beamid::config

@@ -2,7 +2,7 @@
 // file with its dimensions must give its lumps exactly; the tip block's lumps follow from the solid's formulas.
 #include <gtest/gtest.h>
 
-#include "model/beam_toml.h"
+#include "config/beam_file.h"
 #include "model/errors.h"
 
 namespace beamid::model {
@@ -26,7 +26,7 @@ gamma = 2
 
 std::string error_of(const std::string& text) {
   try {
-    parse_beam_toml(text, "g.toml");
+    config::parse_beam_toml(text, "g.toml");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -38,7 +38,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 TEST(Geometry, ThickSteelFromItsGeometryIsThePreset) {
-  const BeamParameters g = parse_beam_toml(kThick, "g.toml");
+  const BeamParameters g = config::parse_beam_toml(kThick, "g.toml");
   const BeamParameters p = preset("thick-steel");
   // Same formulas and inputs: equal to round-off (a few ulp from the order of operations).
   for (const auto& info : parameter_table())
@@ -47,22 +47,24 @@ TEST(Geometry, ThickSteelFromItsGeometryIsThePreset) {
 
 TEST(Geometry, TipBlockGivesMassOffsetAndInertia) {
   // A 40 mm cube whose density makes m = 0.314 kg: c = 20 mm, J_o = m (a^2 + a^2)/12, as in the preset.
-  const std::string block = replaced(
-      replaced(replaced(kThick, "tip_mass_kg = 0.314\n", ""), "tip_offset_m = 0.02\n", ""),
-      "tip_inertia_kg_m2 = 8.373333333333333e-5\n",
-      "tip_block_m = [0.04, 0.04, 0.04]\ntip_block_density_kg_m3 = 4906.25\n");
-  const BeamParameters g = parse_beam_toml(block, "g.toml");
+  const std::string block =
+      replaced(replaced(replaced(kThick, "tip_mass_kg = 0.314\n", ""), "tip_offset_m = 0.02\n", ""),
+               "tip_inertia_kg_m2 = 8.373333333333333e-5\n",
+               "tip_block_m = [0.04, 0.04, 0.04]\ntip_block_density_kg_m3 = 4906.25\n");
+  const BeamParameters g = config::parse_beam_toml(block, "g.toml");
   EXPECT_NEAR(g.m, 0.314, 1e-15);
   EXPECT_NEAR(g.c, 0.02, 1e-16);
   EXPECT_NEAR(g.J_o, 0.314 * 2 * 0.04 * 0.04 / 12, 1e-18);
   // Shear modulus instead of Poisson's ratio: G = E / (2 (1 + nu)) gives the same kAG (kappa from nu = E/2G - 1).
   const std::string with_g = replaced(kThick, "poisson_ratio = 0.3", "shear_modulus_Pa = 76923076923.07692");
-  EXPECT_NEAR(parse_beam_toml(with_g, "g.toml").kAG, preset("thick-steel").kAG, 1e-9 * preset("thick-steel").kAG);
+  EXPECT_NEAR(config::parse_beam_toml(with_g, "g.toml").kAG, preset("thick-steel").kAG,
+              1e-9 * preset("thick-steel").kAG);
 }
 
 TEST(Geometry, ErrorsNameLineKeyAndConstraint) {
   EXPECT_EQ(error_of(replaced(kThick, "thickness_m = 0.015", "thickness_m = -0.015")),
-            "g.toml:4: geometry.thickness_m = -0.015: must be > 0");
+            "g.toml:4: geometry.thickness_m = -0.015: must be in (0, length_m / 2]: a beam is at least twice as long as it "
+            "is thick (length_m = 0.3)");
   EXPECT_EQ(error_of(replaced(kThick, "density_kg_m3 = 7850", "density_kg_m3 = 7850\ncolour = 'grey'")),
             "g.toml:8: unknown key geometry.colour: valid keys are length_m, width_m, thickness_m, youngs_modulus_Pa, "
             "density_kg_m3, poisson_ratio, shear_modulus_Pa, shear_coefficient, tip_mass_kg, tip_offset_m, "

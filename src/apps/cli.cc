@@ -1,0 +1,129 @@
+#include "apps/cli.h"
+
+#include <CLI/CLI.hpp>
+
+#include "apps/commands.h"
+#include "io/provenance.h"
+#include "model/errors.h"
+
+namespace beamid::apps {
+namespace {
+
+std::string command_list() {
+  std::string s;
+  for (const Command& c : commands()) s += (s.empty() ? "" : ", ") + c.name;
+  return s;
+}
+
+// The words CLI11 lists after "...not expected: " (it joins them in reverse order).
+std::vector<std::string> extras_of(const std::string& message) {
+  std::vector<std::string> words;
+  const auto colon = message.find(": ");
+  std::string rest = colon == std::string::npos ? message : message.substr(colon + 2);
+  std::size_t start = 0;
+  while (start < rest.size()) {
+    const auto space = rest.find(' ', start);
+    words.push_back(rest.substr(start, space == std::string::npos ? std::string::npos : space - start));
+    if (space == std::string::npos) break;
+    start = space + 1;
+  }
+  return {words.rbegin(), words.rend()};
+}
+
+// CLI11's error as the project's one-line message (without the "beamid: " prefix).
+std::string message_of(const CLI::ParseError& e, const std::string& command) {
+  const std::string what = e.what();
+  const std::string where = command.empty() ? "" : command + ": ";
+  const auto name_end = what.find(": ");
+  const std::string name = name_end == std::string::npos ? "" : what.substr(0, name_end);
+  if (dynamic_cast<const CLI::ValidationError*>(&e) && name_end != std::string::npos)
+    return where + name + " = " + what.substr(name_end + 2);  // "--dt = 'fast': must be a finite number"
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && name_end != std::string::npos)
+    return where + name + (what.find("received") != std::string::npos ? " given twice" : " needs a value");
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    const std::vector<std::string> extras = extras_of(what);
+    if (command.empty())
+      return "unknown command '" + (extras.empty() ? std::string() : extras.front()) +
+             "' (commands: " + command_list() + ")";
+    for (const auto& x : extras)
+      if (x.rfind("-", 0) == 0) return where + "unknown flag " + x + " (" + command + " --help lists them)";
+    return where + "unexpected argument '" + (extras.empty() ? std::string() : extras.front()) + "'";
+  }
+  return where + what;
+}
+
+}  // namespace
+
+namespace {
+
+// Parses and, when `run`, runs the command: the one body of run_command_line and check_command_line.
+int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool run) {
+  if (args.size() <= 1) {
+    out << overview();
+    return 2;
+  }
+  CLI::App app{overview(), "beamid"};
+  app.set_help_flag("-h,--help", "print the commands (or, after a command, its flags)");
+  bool version = false;
+  app.add_flag("--version", version, "print the version and the commit");
+  app.require_subcommand(0, 1);
+  std::vector<std::pair<const Command*, CLI::App*>> subcommands;
+  for (const Command& c : commands()) {
+    CLI::App* sub = app.add_subcommand(c.name, c.summary);
+    add_flags(*sub, c.flags);
+    for (const auto& [a, b] : c.excludes) sub->get_option("--" + a)->excludes(sub->get_option("--" + b));
+    subcommands.emplace_back(&c, sub);
+  }
+  const auto active = [&]() -> std::pair<const Command*, CLI::App*> {
+    for (const auto& [c, sub] : subcommands)
+      if (sub->parsed()) return {c, sub};
+    return {nullptr, nullptr};
+  };
+  std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes the arguments reversed
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    const auto [c, sub] = active();
+    out << (sub ? sub->help("beamid") : overview());
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    const auto [c, sub] = active();
+    err << "beamid: " << one_line(message_of(e, c ? "beamid " + c->name : "")) << "\n";
+    return 2;
+  }
+  if (version) {
+    out << "beamid " << io::version() << " (commit " << io::commit_label() << ")\n";
+    return 0;
+  }
+  const auto [command, sub] = active();
+  if (command == nullptr) {
+    out << overview();
+    return 2;
+  }
+  try {
+    const std::vector<std::string> rest(args.begin() + 2, args.end());
+    const Flags flags(command->name, *sub, command->flags, rest);
+    return run ? command->run(flags, out) : 0;
+  } catch (const InputError& error) {
+    err << "beamid: " << error.what() << "\n";
+    return 2;
+  } catch (const NumericalError& error) {
+    err << "beamid: " << error.what() << "\n";
+    return 3;
+  } catch (const std::exception& error) {
+    err << "beamid: internal error: " << error.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace
+
+int run_command_line(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  return dispatch(args, out, err, true);
+}
+
+int check_command_line(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  return dispatch(args, out, err, false);
+}
+
+}  // namespace beamid::apps

@@ -1,0 +1,152 @@
+#include "config/beam_file.h"
+
+#include <array>
+#include <fstream>
+
+#include "config/document.h"
+#include "io/files.h"
+#include "model/errors.h"
+#include "model/geometry.h"
+
+namespace beamid::config {
+namespace {
+
+using model::BeamParameters;
+
+// [geometry]: see model/geometry.h. Every key is checked where it is read, so an error names its line.
+BeamParameters parse_geometry_table(Table r) {
+  const auto positive = [](double v) { return v > 0; };
+  const auto non_negative = [](double v) { return v >= 0; };
+  model::Geometry g;
+  // Ranges of real beams and materials: a beam is at least twice as long as it is thick (below that no beam theory
+  // holds), no wider than long; moduli from soft rubber (1e5 Pa) to diamond (1.2e12 Pa); densities from aerogels
+  // (1 kg/m^3) to osmium (22 590 kg/m^3), with margin.
+  g.length_m = r.number(
+      "length_m", std::nullopt, [](double v) { return v > 0 && v <= 1e3; }, "must be in (0, 1000] m");
+  const double l = g.length_m;
+  const std::string of_length = " (length_m = " + format_value(l) + ")";
+  g.width_m = r.number(
+      "width_m", std::nullopt, [&](double v) { return v > 0 && v <= l; }, "must be in (0, length_m]" + of_length);
+  g.thickness_m = r.number(
+      "thickness_m", std::nullopt, [&](double v) { return v > 0 && v <= l / 2; },
+      "must be in (0, length_m / 2]: a beam is at least twice as long as it is thick" + of_length);
+  g.youngs_modulus_Pa = r.number(
+      "youngs_modulus_Pa", std::nullopt, [](double v) { return v >= 1e5 && v <= 2e12; },
+      "must be in [1e5, 2e12] Pa (soft rubber to diamond)");
+  g.density_kg_m3 = r.number(
+      "density_kg_m3", std::nullopt, [](double v) { return v >= 1 && v <= 1e5; },
+      "must be in [1, 1e5] kg/m^3 (aerogels to osmium, 22 590 kg/m^3)");
+  if (r.has("poisson_ratio"))
+    g.poisson_ratio = r.number(
+        "poisson_ratio", std::nullopt, [](double v) { return v > -1 && v < 0.5; }, "must be in (-1, 0.5)");
+  if (r.has("shear_modulus_Pa"))
+    g.shear_modulus_Pa = r.number("shear_modulus_Pa", std::nullopt, positive, "must be > 0");
+  if (g.poisson_ratio.has_value() == g.shear_modulus_Pa.has_value())
+    throw InputError(r.where() + ": [geometry] needs exactly one of poisson_ratio and shear_modulus_Pa");
+  if (const auto k = r.get("shear_coefficient")) {
+    if (k->is_string()) {
+      if (*k->string() != "cowper") r.fail("shear_coefficient", k->text(), "must be 'cowper' or a number in (0, 1]");
+    } else {
+      g.shear_coefficient = r.number(
+          "shear_coefficient", std::nullopt, [](double v) { return v > 0 && v <= 1; },
+          "must be 'cowper' or a number in (0, 1]");
+    }
+  }
+  g.tip_mass_kg = r.number("tip_mass_kg", 0.0, non_negative, "must be >= 0");
+  g.tip_offset_m = r.number(
+      "tip_offset_m", 0.0, [&](double v) { return v >= 0 && v <= l; },
+      "must be in [0, length_m]: the tip body's centre lies within a beam length of the tip" + of_length);
+  g.tip_inertia_kg_m2 = r.number("tip_inertia_kg_m2", 0.0, non_negative, "must be >= 0");
+  if (r.has("tip_block_m")) {
+    std::vector<double> a;
+    const std::vector<Node> items = *r.array("tip_block_m", true);
+    for (const Node& item : items) a.push_back(item.number().value_or(-1));
+    if (a.size() != 3 || !(a[0] > 0 && a[1] > 0 && a[2] > 0) || a[0] > 2 * l || a[1] > 2 * l || a[2] > 2 * l)
+      r.fail("tip_block_m", "[...]",
+             "must be three sizes in (0, 2 length_m] m: [along the beam, across, in the plane of vibration]");
+    if (g.tip_mass_kg != 0 || g.tip_offset_m != 0 || g.tip_inertia_kg_m2 != 0)
+      r.fail("tip_block_m", "[...]",
+             "give the tip body either as tip_block_m or as tip_mass_kg, tip_offset_m, tip_inertia_kg_m2");
+    g.tip_block_m = a;
+    g.tip_block_density_kg_m3 = r.number(
+        "tip_block_density_kg_m3", std::nullopt, [](double v) { return v >= 1 && v <= 1e5; },
+        "must be in [1, 1e5] kg/m^3 (aerogels to osmium)");
+  }
+  g.cDI =
+      r.number("cDI", std::nullopt, non_negative, "must be >= 0 (N m^2 s, a nominal value: damping has no geometry)");
+  g.kAcs = r.number("kAcs", std::nullopt, non_negative, "must be >= 0 (N s)");
+  g.gamma = r.number("gamma", std::nullopt, non_negative, "must be >= 0 (N s/m^2)");
+  r.finish({"length_m", "width_m", "thickness_m", "youngs_modulus_Pa", "density_kg_m3", "poisson_ratio",
+            "shear_modulus_Pa", "shear_coefficient", "tip_mass_kg", "tip_offset_m", "tip_inertia_kg_m2", "tip_block_m",
+            "tip_block_density_kg_m3", "cDI", "kAcs", "gamma"});
+  try {
+    return model::lumped_parameters(g);
+  } catch (const InputError& e) {
+    throw InputError(r.where() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+BeamParameters parse_beam_toml(const std::string& text, const std::string& source_name) {
+  const Document document = Document::parse(text, source_name);
+  const Table root = document.root();
+  const auto at = [&](int line) { return source_name + ":" + std::to_string(line); };
+  for (const auto& [key, node] : root.entries())
+    if (key != "beam" && key != "geometry")
+      throw InputError(at(root.key_line(key)) + ": unknown top-level key '" + key +
+                       "': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
+  if (root.has("geometry")) {
+    if (root.has("beam"))
+      throw InputError(at(root.key_line("geometry")) +
+                       ": give either [beam] (lumped parameters) or [geometry], not both");
+    return parse_geometry_table(document.required("geometry"));
+  }
+  if (!root.has("beam"))
+    throw InputError(source_name + ":1: missing table [beam] with keys " + model::parameter_keys());
+  const Table table = document.required("beam");
+
+  BeamParameters beam;
+  std::array<bool, model::kParameterCount> seen{};
+  for (const auto& [name, node] : table.entries()) {
+    const model::ParameterInfo* info = model::find_parameter(name);
+    if (info == nullptr)
+      throw InputError(at(table.key_line(name)) + ": unknown key beam." + name + ": valid keys are " +
+                       model::parameter_keys());
+    const std::optional<double> value = node.number();  // integers convert exactly
+    if (!value)
+      throw InputError(at(node.line()) + ": beam." + name + " must be a number in " + std::string(info->unit));
+    if (auto violation = model::constraint_violation(*info, *value))
+      throw InputError(at(node.line()) + ": beam." + name + " = " + format_value(*value) + ": " + *violation);
+    beam.*info->member = *value;
+    seen[static_cast<std::size_t>(info - model::parameter_table().data())] = true;
+  }
+  for (std::size_t i = 0; i < model::kParameterCount; ++i) {
+    const model::ParameterInfo& info = model::parameter_table()[i];
+    if (!seen[i])
+      throw InputError(table.where() + ": [beam] is missing key '" + std::string(info.key) + "' (" +
+                       std::string(info.meaning) + ", " + std::string(info.unit) + ")");
+  }
+  // Constraints between parameters (each one alone was checked where it was read).
+  if (auto e = model::validation_error(beam)) throw InputError(at(table.key_line("c")) + ": beam." + *e);
+  return beam;
+}
+
+BeamParameters load_beam_toml(const std::string& path) {
+  return parse_beam_toml(io::read_file(path,
+                                       "cannot open beam file (give a preset name: " +
+                                           Table::join(model::preset_names()) + ", or a readable .toml file)",
+                                       kMaxFileBytes),
+                         path);
+}
+
+BeamParameters resolve_beam(const std::string& preset_or_file) {
+  if (model::is_preset(preset_or_file)) return model::preset(preset_or_file);
+  // A bare word that is no file is a mistyped preset name, and is reported as one.
+  const bool looks_like_path =
+      preset_or_file.find('/') != std::string::npos || preset_or_file.find('.') != std::string::npos;
+  if (!looks_like_path && !std::ifstream(preset_or_file)) model::preset(preset_or_file);  // throws, listing presets
+  return load_beam_toml(preset_or_file);
+}
+
+}  // namespace beamid::config

@@ -1,0 +1,29 @@
+// The admissible ranges of the sizes a user chooses, stated once: the command line (apps/) and the study files
+// (study/) check against these, so a range cannot differ between two places that accept the same quantity. Beside
+// them, the measured resource figures that guard a run before it starts.
+#pragma once
+
+namespace beamid::model {
+
+// Galerkin order N of a fitted or simulated model. One model evaluation costs about 3 s at N = 200 and grows as N^3
+// (measured on this 2-core machine: 0.07 s at N = 50, 0.44 s at 100, 3.2 s at 200), so N = 400 takes about 25 s
+// and 1000 would take minutes per evaluation: 400 is the largest N a single command finishes in reasonable time.
+inline constexpr int kMinElements = 1;
+inline constexpr int kMaxElements = 400;
+inline constexpr int kMinTruthElements = 48;  // N_truth of a synthetic study: finer than any fitted N
+inline constexpr int kMaxTruthElements = 400;
+inline constexpr int kMinStudySamples = 16;  // record length Nbar in a study
+inline constexpr int kMaxStudySamples = 1 << 22;
+inline constexpr int kMaxSamples = 1 << 28;      // Nbar of a command (memory is checked against the machine too)
+inline constexpr int kMaxSpikes = 64;            // NM
+inline constexpr int kMaxStarts = 1000;          // starts of a multi-start fit
+inline constexpr int kMaxEvaluations = 1000000;  // per optimizer run
+
+// Measured resource use (peak RSS and wall time on this machine, `/usr/bin/time`), for the estimates that guard a
+// run before it starts (apps/command_flags.cc, study/runner.cc):
+inline constexpr double kSecondsPerEvaluationAtN200 = 3.2;  // one model evaluation, growing as N^3
+inline constexpr double kModelBytesPerElement2 = 2.7e3;     // the model's matrices: 106 MB at N = 200, as N^2
+inline constexpr double kSimulateBytesPerSample = 110;      // simulate: 108 MB at 1e6 samples, 404 MB at 4e6
+inline constexpr double kRecordBytesPerSample = 210;        // reading a CSV record and fitting it: 206/797 MB
+
+}  // namespace beamid::model

@@ -1,0 +1,153 @@
+#include "study/claims.h"
+
+#include <algorithm>
+#include <map>
+#include <tuple>
+
+#include "costs/cost.h"
+#include "model/beam_parameters.h"
+#include "study/format.h"
+
+namespace beamid::study {
+namespace {
+
+// The costs the claims compare (their names from the cost registry).
+const std::string& kTime = costs::kTimeCost;
+const std::string& kSpike = costs::kSpikeCost;
+const std::string& kSmooth = costs::kSpikeSmoothCost;
+
+}  // namespace
+
+Findings study_findings(const StudyResults& results, const Groups& groups, const LandscapeMetrics& landscape) {
+  const StudySpec& spec = *results.spec;
+  const bool several = spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1;
+  Findings f;
+  const auto claim = [&](bool holds, int count, int total, const std::string& text) {
+    f.claims.push_back({holds, text, count, total});
+  };
+  auto by_cost = success_by_cost(results.cases, 0.01);
+  for (const auto& cost : spec.sweep.cost)
+    if (by_cost.count(cost))
+      f.counts.push_back({cost + " succeeds in " + std::to_string(by_cost[cost].successes) + "/" +
+                              std::to_string(by_cost[cost].cases) + " fits with noise <= 1 %",
+                          by_cost[cost].successes, by_cost[cost].cases});
+  std::vector<SliceRow> slice_rows;  // the first experiment's
+  for (const auto& s : landscape.slices)
+    if (s.first_experiment) slice_rows.push_back(s);
+  const auto rate = [&](const std::string& c) { return by_cost.count(c) ? by_cost[c].rate() : -1.0; };
+  if (by_cost.count(kTime) && (by_cost.count(kSpike) || by_cost.count(kSmooth))) {
+    const double best_freq = std::max(rate(kSpike), rate(kSmooth));
+    claim(best_freq > rate(kTime), -1, -1,
+          "a frequency-domain cost succeeds more often than the time-domain cost "
+          "(noise <= 1 %: best spike cost " +
+              pct(best_freq) + " against time " + pct(rate(kTime)) + ")");
+    // Paired per group: where spike-smooth >= time.
+    int holds = 0, total = 0;
+    std::map<std::tuple<double, int, std::string, std::string, int, double>, std::map<std::string, double>> cmp;
+    for (const auto& [k, members] : groups) {
+      int s = 0;
+      for (const CaseRow* r : members) s += r->success ? 1 : 0;
+      cmp[{k.pulse_width_s, k.samples, k.method, k.start, k.elements, k.noise}][k.cost] =
+          static_cast<double>(s) / members.size();
+    }
+    for (const auto& [k, m] : cmp)
+      if (m.count(kTime) && m.count(kSmooth)) {
+        ++total;
+        holds += m.at(kSmooth) >= m.at(kTime) ? 1 : 0;
+      }
+    if (total > 0)
+      claim(holds == total, holds, total,
+            "spike-smooth succeeds at least as often as time in every setting (" + std::to_string(holds) + "/" +
+                std::to_string(total) + " settings)");
+  }
+  if (several) {
+    for (const auto& cost : spec.sweep.cost) {
+      std::map<int, std::pair<int, int>> by_modes;
+      for (const CaseRow& r : results.cases)
+        if (r.unit->cost == cost) {
+          by_modes[r.modes()].first += r.success ? 1 : 0;
+          by_modes[r.modes()].second += 1;
+        }
+      if (by_modes.size() < 2) continue;
+      const auto& lo = by_modes.begin()->second;
+      const auto& hi = by_modes.rbegin()->second;
+      const double rlo = static_cast<double>(lo.first) / lo.second, rhi = static_cast<double>(hi.first) / hi.second;
+      claim(rhi < rlo, -1, -1,
+            cost + "'s success rate falls from " + std::to_string(lo.first) + "/" + std::to_string(lo.second) +
+                " with " + std::to_string(by_modes.begin()->first) + " mode(s) in the data to " +
+                std::to_string(hi.first) + "/" + std::to_string(hi.second) + " with " +
+                std::to_string(by_modes.rbegin()->first));
+    }
+  }
+  if (several && !landscape.slices.empty()) {
+    // Median basin width (over the estimated parameters) at the fewest and the most modes, per cost.
+    for (const auto& cost : spec.landscape.cost) {
+      std::map<int, std::vector<double>> widths;
+      for (const auto& b : landscape.slices)
+        if (b.cost == cost) widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
+      if (widths.size() < 2) continue;
+      const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);
+      claim(hi < lo, -1, -1,
+            cost + "'s median basin width narrows from " + pct(lo) + " with " + std::to_string(widths.begin()->first) +
+                " mode(s) in the data to " + pct(hi) + " with " + std::to_string(widths.rbegin()->first));
+    }
+  }
+  if (!slice_rows.empty()) {
+    const auto count = [&](const std::string& a, const std::string& b, auto better) {
+      int holds = 0, total = 0;
+      for (const auto& s : slice_rows)
+        if (s.cost == a)
+          for (const auto& t : slice_rows)
+            if (t.cost == b && t.parameter == s.parameter) ++total, holds += better(s.shape, t.shape) ? 1 : 0;
+      return std::make_pair(holds, total);
+    };
+    for (const std::string& freq : {kSmooth, kSpike}) {
+      const auto wider = count(freq, kTime, [](const SliceShape& f, const SliceShape& t) {
+        return f.basin_upper - f.basin_lower > t.basin_upper - t.basin_lower;
+      });
+      if (wider.second > 0)
+        claim(wider.first == wider.second, wider.first, wider.second,
+              "the " + freq + " basin is wider than time's along every axis (" + std::to_string(wider.first) + "/" +
+                  std::to_string(wider.second) + ")");
+    }
+    const auto fewer = count(kSmooth, kTime,
+                             [](const SliceShape& f, const SliceShape& t) { return f.local_minima <= t.local_minima; });
+    if (fewer.second > 0)
+      claim(fewer.first == fewer.second, fewer.first, fewer.second,
+            "spike-smooth has no more local minima than time along every axis (" + std::to_string(fewer.first) + "/" +
+                std::to_string(fewer.second) + ")");
+    // The staircase of (3.5) lives on the axes that move frequencies (stiffness and inertia); damping moves only
+    // magnitudes, which (3.5) compares continuously.
+    int flat_holds = 0, flat_total = 0;
+    for (const auto& s : slice_rows)
+      if (s.cost == kSpike && model::find_parameter(s.parameter)->role != "damping")
+        for (const auto& t : slice_rows)
+          if (t.cost == kSmooth && t.parameter == s.parameter)
+            ++flat_total, flat_holds += s.shape.flat_share > t.shape.flat_share ? 1 : 0;
+    if (flat_total > 0)
+      claim(flat_holds == flat_total, flat_holds, flat_total,
+            "the paper's spike cost (3.5) has more flat steps (its staircase) than "
+            "spike-smooth along every stiffness and mass axis (" +
+                std::to_string(flat_holds) + "/" + std::to_string(flat_total) + ")");
+  }
+  for (const auto& s : landscape.multistarts)
+    f.counts.push_back({s.cost + ": " + std::to_string(s.reached) + "/" + std::to_string(s.started) +
+                            " local fits from random starts reach the reference minimum (the best of all its fits, "
+                            "the truth start's included)",
+                        s.reached, s.started});
+  const auto reach = [&](const std::string& cost) -> const MultistartSummary* {
+    for (const auto& s : landscape.multistarts)
+      if (s.cost == cost) return &s;
+    return nullptr;
+  };
+  if (const MultistartSummary* t = reach(kTime))
+    for (const std::string& freq : {kSmooth, kSpike})
+      if (const MultistartSummary* q = reach(freq))
+        claim(q->reached * t->started > t->reached * q->started, -1, -1,
+              "more random starts reach the minimum with " + freq + " than with time (" + std::to_string(q->reached) +
+                  "/" + std::to_string(q->started) + " against " + std::to_string(t->reached) + "/" +
+                  std::to_string(t->started) + ")");
+  return f;
+}
+
+}  // namespace beamid::study

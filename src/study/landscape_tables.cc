@@ -1,0 +1,170 @@
+#include "study/landscape_tables.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "io/text.h"
+#include "model/beam_parameters.h"
+#include "study/format.h"
+
+namespace beamid::study {
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double true_value(const StudySpec& spec, const std::string& key) {
+  return spec.truth.parameters.*(model::find_parameter(key)->member);
+}
+
+// (min, max) of the finite values.
+std::pair<double, double> finite_range(const std::vector<double>& c) {
+  double mn = INFINITY, mx = -INFINITY;
+  for (double y : c)
+    if (std::isfinite(y)) mn = std::min(mn, y), mx = std::max(mx, y);
+  return {mn, mx};
+}
+
+Rendered slice_file(const LandscapeRow& l, double v) {
+  const Unit& u = *l.unit;
+  const std::vector<double> x = l.record.has("x") ? l.record.numbers("x") : std::vector<double>{};
+  const std::vector<double> c = l.record.has("cost") ? l.record.numbers("cost") : std::vector<double>{};
+  const auto [mn, mx] = finite_range(c);
+  std::ostringstream os;
+  os << "ratio,value,cost,normalised_cost\n";
+  for (std::size_t j = 0; j < c.size() && j < x.size(); ++j)
+    os << io::round_trip(x[j] / v) << "," << io::round_trip(x[j]) << "," << io::round_trip(c[j]) << ","
+       << io::round_trip(std::isfinite(c[j]) && mx > mn ? (c[j] - mn) / (mx - mn) : kNaN) << "\n";
+  return {"landscape/slice_" + u.cost + "_" + u.parameters[0] + ".csv", os.str()};
+}
+
+// gnuplot pm3d blocks (a blank line after each x row); the height is log10 of the normalised cost, which shows the
+// floor of a basin as well as its walls.
+Rendered grid_file(const LandscapeRow& l, double va, double vb) {
+  const Unit& u = *l.unit;
+  const std::vector<double> x = l.record.numbers("x"), y = l.record.numbers("y"), c = l.record.numbers("cost");
+  const auto [mn, mx] = finite_range(c);
+  std::ostringstream os;
+  os << "# ratio_" << u.parameters[0] << " ratio_" << u.parameters[1] << " cost log10_normalised_cost\n";
+  const std::size_t ny = y.size();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (std::size_t j = 0; j < ny; ++j) {
+      const double z = c[i * ny + j];
+      const double norm = std::isfinite(z) && mx > mn ? (z - mn) / (mx - mn) : kNaN;
+      os << io::round_trip(x[i] / va) << " " << io::round_trip(y[j] / vb) << " " << io::round_trip(z) << " "
+         << io::round_trip(std::isfinite(norm) ? std::log10(std::max(norm, 1e-12)) : kNaN) << "\n";
+    }
+    os << "\n";
+  }
+  return {"landscape/grid_" + u.cost + "_" + u.parameters[0] + "_" + u.parameters[1] + ".dat", os.str()};
+}
+
+std::string start_label(int index) { return index < 0 ? "truth" : std::to_string(index); }
+
+RenderedFiles multistart_files(const StudySpec& spec, const std::vector<MultistartSummary>& summaries) {
+  const auto& keys = spec.fit.estimate;
+  std::ostringstream ms, md;
+  ms << "cost,start,status,cost_value,cost_gap,evaluations,reached";
+  for (const auto& k : keys) ms << ",start_" << k << ",estimate_" << k;
+  ms << "\n";
+  for (const auto& s : summaries)
+    for (const auto& f : s.fits) {
+      const Record& rec = f.row->record;
+      ms << s.cost << "," << start_label(f.row->unit->index) << "," << io::csv_quoted(rec.text("status")) << ","
+         << (rec.has("cost") ? rec.text("cost") : "inf") << "," << io::round_trip(f.cost_gap) << ","
+         << (rec.has("evaluations") ? rec.text("evaluations") : "0") << "," << (f.reached ? 1 : 0);
+      for (const auto& k : keys)
+        ms << "," << (rec.has("start." + k) ? rec.text("start." + k) : "nan") << ","
+           << (rec.has("estimate." + k) ? rec.text("estimate." + k) : "nan");
+      ms << "\n";
+    }
+  // Markdown: one row per start, one column per cost: the final cost's gap to the reference minimum, and whether
+  // the fit reached it (every estimate within the success tolerance of the reference's).
+  md << "| start |";
+  for (const auto& s : summaries) md << " " << s.cost << ": cost gap |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < summaries.size(); ++i) md << "---|";
+  md << "\n";
+  std::size_t rows = 0;
+  for (const auto& s : summaries) rows = std::max(rows, s.fits.size());
+  for (std::size_t r = 0; r < rows; ++r) {
+    md << "| " << (summaries.front().fits.size() > r ? start_label(summaries.front().fits[r].row->unit->index) : "-")
+       << " |";
+    for (const auto& s : summaries) {
+      if (r >= s.fits.size()) {
+        md << " - |";
+        continue;
+      }
+      const auto& f = s.fits[r];
+      const std::string status = f.row->record.text("status");
+      md << " " << (status.rfind("failed", 0) == 0 ? "failed" : g3(f.cost_gap) + (f.reached ? " (reached)" : ""))
+         << " |";
+    }
+    md << "\n";
+  }
+  if (summaries.empty()) return {{"landscape/multistart.csv", ms.str()}};  // no multi-start in this study
+  return {{"landscape/multistart.csv", ms.str()}, {"landscape/multistart.md", md.str()}};
+}
+
+}  // namespace
+
+RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetrics& metrics) {
+  const StudySpec& spec = *results.spec;
+  RenderedFiles files;
+  if (!spec.landscape.enabled) return files;
+  for (const LandscapeRow& l : results.landscape) {
+    const Unit& u = *l.unit;
+    const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
+    if (u.kind == "slice" && first) files.push_back(slice_file(l, true_value(spec, u.parameters[0])));
+  }
+  for (const GridRow& g : metrics.grids)  // the grids whose lists agree in size (metrics.h)
+    files.push_back(grid_file(*g.row, true_value(spec, g.a), true_value(spec, g.b)));
+  const RenderedFiles ms = multistart_files(spec, metrics.multistarts);
+  files.insert(files.end(), ms.begin(), ms.end());
+
+  std::ostringstream basin;
+  basin << "modes_in_data,pulse_width_s,samples,cost,parameter,local_minima,basin_lower,basin_upper,basin_width\n";
+  for (const auto& s : metrics.slices) {
+    const Record& rec = s.row->record;
+    basin << (rec.has("modes_in_data") ? rec.text("modes_in_data") : "nan") << ","
+          << io::round_trip(s.row->unit->pulse_width_s) << "," << s.row->unit->samples << "," << s.cost << ","
+          << s.parameter << "," << s.shape.local_minima << "," << io::round_trip(s.shape.basin_lower) << ","
+          << io::round_trip(s.shape.basin_upper) << "," << io::round_trip(s.shape.basin_upper - s.shape.basin_lower)
+          << "\n";
+  }
+  files.push_back({"landscape/basin.csv", basin.str()});
+
+  std::ostringstream csv, md;
+  csv << "cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,descent_share\n";
+  md << "| cost | slice or grid | local minima | basin around the minimum | TV / range | flat steps | "
+        "grid points descending to the minimum |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& s : metrics.slices) {
+    if (!s.first_experiment) continue;
+    csv << s.cost << ",slice," << s.parameter << "," << s.shape.local_minima << ","
+        << io::round_trip(s.shape.basin_lower) << "," << io::round_trip(s.shape.basin_upper) << ","
+        << io::round_trip(s.shape.total_variation_ratio) << "," << io::round_trip(s.shape.flat_share) << ",nan\n";
+    md << "| " << s.cost << " | " << s.parameter << " | " << s.shape.local_minima << " | "
+       << signed_pct(s.shape.basin_lower) << " .. " << signed_pct(s.shape.basin_upper) << " | "
+       << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share) << " | - |\n";
+  }
+  for (const auto& g : metrics.grids) {
+    csv << g.cost << ",grid," << g.a << "+" << g.b << "," << g.shape.local_minima << ",nan,nan,nan,"
+        << io::round_trip(g.shape.flat_share) << "," << io::round_trip(g.shape.descent_share) << "\n";
+    md << "| " << g.cost << " | " << g.a << " x " << g.b << " | " << g.shape.local_minima << " | - | - | "
+       << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share) << " |\n";
+  }
+  if (!metrics.multistarts.empty()) {
+    md << "\nLocal fits from " << spec.landscape.multistarts
+       << " Latin-hypercube starts in the bounds that reach the reference minimum (the lowest final cost of all the "
+          "cost's fits, the fit started at the truth included; every parameter within the success tolerance of "
+          "it):";
+    for (const auto& s : metrics.multistarts) md << " " << s.cost << " " << s.reached << "/" << s.started << ";";
+    md << "\n";
+  }
+  files.push_back({"landscape/smoothness.csv", csv.str()});
+  files.push_back({"smoothness.md", md.str()});
+  return files;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,108 @@
+// The numbers a study's tables and claims are made of, as pure functions of its results (results.h): statistics of
+// relative errors per setting, landscape shapes, multi-start reach. Nothing here reads or writes a file.
+#pragma once
+
+#include <map>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "study/results.h"
+
+namespace beamid::study {
+
+// Median of the finite values (NaN when there is none).
+double median(std::vector<double> values);
+
+struct Stats {
+  int count = 0;                   // finite values
+  double mean, std, rmse, median;  // NaN when undefined (std needs two values)
+};
+Stats stats(const std::vector<double>& values);
+
+// The settings that define a group of replicates.
+struct GroupKey {
+  double pulse_width_s;
+  int samples;
+  std::string cost, method, start;
+  int elements;
+  double noise;
+  auto tie() const { return std::tie(pulse_width_s, samples, cost, method, start, elements, noise); }
+  bool operator<(const GroupKey& o) const { return tie() < o.tie(); }
+  bool operator==(const GroupKey& o) const { return tie() == o.tie(); }
+};
+GroupKey key_of(const Unit& unit);
+using Groups = std::vector<std::pair<GroupKey, std::vector<const CaseRow*>>>;
+// Groups in plan order of first appearance.
+Groups group_cases(const std::vector<CaseRow>& cases);
+
+struct SuccessCount {
+  int successes = 0, cases = 0;
+  double rate() const { return cases > 0 ? static_cast<double>(successes) / cases : -1.0; }
+};
+// Per cost, over the cases with noise <= max_noise.
+std::map<std::string, SuccessCount> success_by_cost(const std::vector<CaseRow>& cases, double max_noise);
+
+// Smoothness of a sampled 1-D cost curve.
+struct SliceShape {
+  int local_minima = 0;    // interior strict local minima, a plateau counting once
+  double basin_lower = 0;  // relative offsets x/v - 1 of the monotone basin around the lowest point
+  double basin_upper = 0;
+  double total_variation_ratio = 0;  // sum |c_{j+1} - c_j| / (max - min): 1 for a monotone, 2 for a clean bowl
+  double flat_share = 0;             // share of steps changing the cost by less than 1 % of the mean absolute step
+};
+SliceShape slice_shape(const std::vector<double>& x, const std::vector<double>& cost, double truth);
+
+struct GridShape {
+  int local_minima = 0;      // strict 8-neighbour minima
+  double descent_share = 0;  // share of grid points whose steepest-descent walk on the grid ends at the lowest point
+  double flat_share = 0;     // as for slices, over all row and column steps
+};
+GridShape grid_shape(const std::vector<double>& cost, int nx, int ny);
+
+struct SliceRow {
+  const LandscapeRow* row;
+  int modes;  // in the data of the slice's experiment
+  std::string cost, parameter;
+  SliceShape shape;
+  bool first_experiment;  // the experiment of the tables (grids, multi-starts, slices plots)
+};
+struct GridRow {
+  const LandscapeRow* row;
+  std::string cost, a, b;
+  GridShape shape;
+};
+
+// Local fits from the truth (start -1) and from random starts. The reference minimum of a cost is the lowest final
+// cost over all its fits that did not fail, the truth start's included; a start "reaches" it when every estimate lies
+// within the success tolerance of the reference's. The reach count is over the random starts only.
+struct MultistartFit {
+  const LandscapeRow* row;
+  double cost_gap;  // final cost minus the reference's (NaN when either is missing)
+  bool reached;
+};
+struct MultistartSummary {
+  std::string cost;
+  int reached = 0, started = 0;  // random starts
+  double reference_cost;         // NaN when every fit failed
+  int reference_start = 0;       // -1: the truth start
+  std::vector<MultistartFit> fits;
+};
+
+struct LandscapeMetrics {
+  std::vector<SliceRow> slices;  // every experiment, plan order
+  std::vector<GridRow> grids;
+  std::vector<MultistartSummary> multistarts;  // in the order of landscape.cost
+};
+LandscapeMetrics landscape_metrics(const StudyResults& results);
+
+// Success and errors against the number of modes in the data, per (modes, pulse width, Nbar, cost, method).
+struct ModeCell {
+  int successes = 0, cases = 0;
+  std::vector<double> errors;  // max |relative error| of each case
+};
+using ModeKey = std::tuple<int, double, int, std::string, std::string>;
+std::map<ModeKey, ModeCell> mode_cells(const StudyResults& results);
+
+}  // namespace beamid::study

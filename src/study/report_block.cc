@@ -1,0 +1,87 @@
+#include "study/report_block.h"
+
+#include <sstream>
+
+#include "io/provenance.h"
+#include "study/format.h"
+
+namespace beamid::study {
+namespace {
+
+bool has(const RenderedFiles& files, const std::string& path) {
+  for (const auto& f : files)
+    if (f.path == path) return true;
+  return false;
+}
+std::string read(const RenderedFiles& files, const std::string& path) {
+  for (const auto& f : files)
+    if (f.path == path) return f.text;
+  return "";
+}
+
+}  // namespace
+
+std::string render_report_block(const StudyResults& results, const Findings& findings, const RenderedFiles& tables) {
+  const StudySpec& spec = *results.spec;
+  const auto& keys = spec.fit.estimate;
+  std::ostringstream report;
+  report << "*Study `" << spec.name << "` (`" << spec.path << "`), " << results.cases.size() << " fits";
+  if (!results.landscape.empty()) report << " and " << results.landscape.size() << " landscape units";
+  report << ", seed " << spec.seed << ", commit " << io::commit_label() << "; truth: `" << spec.truth.beam
+         << "` by CVODE at N = " << spec.truth.elements << ", rtol " << g3(spec.truth.rtol)
+         << "; success = every one of ";
+  for (std::size_t i = 0; i < keys.size(); ++i) report << (i ? ", " : "") << keys[i];
+  report << " within " << pct(spec.fit.success_tolerance) << " of the truth";
+  if (spec.fit.damping_tolerance != spec.fit.success_tolerance)
+    report << " (damping parameters within " << pct(spec.fit.damping_tolerance) << ")";
+  report << ".*\n\n";
+  if (!findings.counts.empty()) {
+    report << "Counts:\n\n";
+    for (const auto& c : findings.counts) report << "- " << c.text << "\n";
+    report << "\n";
+  }
+  report << "Computed claims:\n\n";
+  for (const auto& c : findings.claims) report << "- `[" << (c.holds ? "true" : "false") << "]` " << c.text << "\n";
+  report << "\n";
+  if (!results.cases.empty()) {
+    report << "Summary (relative bias ± standard deviation over replicates; `summary.csv` has RMSE and medians):\n\n"
+           << read(tables, "summary.md") << "\n";
+    if (spec.sweep.noise.front() == 0 && spec.sweep.elements.size() > 1)
+      report << "Noise-free estimates against N (largest relative error over the estimated parameters) beside the "
+                "Galerkin error of the first frequencies:\n\n"
+             << read(tables, "convergence.md") << "\n";
+    if (spec.sweep.replicates >= 3)
+      report << "Monte-Carlo spread of the estimates against the median standard error the fits report (1 = the "
+                "formal errors are right; they assume independent Gaussian residuals):\n\n"
+             << read(tables, "spread.md") << "\n";
+  }
+  if (spec.landscape.enabled)
+    report << "Landscape smoothness at N = " << spec.landscape.elements << ":\n\n"
+           << read(tables, "smoothness.md") << "\n";
+  if (has(tables, "landscape/multistart.md"))
+    report << "Each local fit's final cost minus the reference minimum (the lowest over the cost's fits; \"reached\": "
+              "every estimate within the success tolerance of the reference's):\n\n"
+           << read(tables, "landscape/multistart.md") << "\n";
+  // Plot links: the images plots/make_plots.sh makes from these tables (names fixed there), SVG beside each PNG.
+  const std::string p = "plots/" + spec.name + "/";
+  std::vector<std::pair<std::string, std::string>> images;
+  if (spec.landscape.enabled) {
+    images.emplace_back("landscape_slices", "cost slices through the truth, normalised to [0, 1]");
+    for (const auto& [a, b] : spec.landscape.pairs)
+      images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
+  }
+  if (spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1)
+    images.emplace_back("success_vs_modes", "success rate against the modes in the data");
+  if (spec.sweep.elements.size() > 1)
+    for (const auto& k : keys) images.emplace_back("bias_" + k, "RMSE of the relative error in " + k + " against N");
+  if (has(tables, "spectrum.csv")) {
+    images.emplace_back("spectrum", "data spectrum with the detected spikes and their 20 % supports");
+    images.emplace_back("overlay",
+                        "fits at N = " + std::to_string(spec.outputs.overlay_elements) + " in time and in frequency");
+  }
+  report << "Plots (PNG; SVG beside each):\n\n";
+  for (const auto& [name, what] : images) report << "- [" << what << "](" << p << name << ".png)\n";
+  return report.str();
+}
+
+}  // namespace beamid::study

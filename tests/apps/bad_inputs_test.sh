@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# The bad inputs of issue 12, as a user gives them: each ends in one line on stderr that names the file, line, key or
+# flag, the value and the constraint, with exit status 2, or in a correct result with a notice; none crashes, hangs
+# or reads gigabytes. Needs BEAMID (the binary) and SRC (the source tree) in the environment.
+set -u
+fail=0; passed=0
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+ok() { passed=$((passed + 1)); }
+bad() { echo "FAIL: $1"; fail=$((fail + 1)); }
+# expect_error NAME TEXT ARGS...: exit 2, one stderr line containing TEXT, within 60 s.
+expect_error() {
+  local name=$1 text=$2; shift 2
+  timeout 60 "$BEAMID" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  if [ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -qF -- "$text" "$tmp/err" &&
+     [ "$(wc -c <"$tmp/err")" -lt 400 ]; then ok; else bad "$name (exit $rc): $(head -c 300 "$tmp/err")"; fi
+}
+# expect_notice NAME TEXT ARGS...: exit 0 with a result on stdout and TEXT on stderr.
+expect_notice() {
+  local name=$1 text=$2; shift 2
+  timeout 60 "$BEAMID" "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  if [ $rc -eq 0 ] && [ -s "$tmp/out" ] && grep -qF -- "$text" "$tmp/err"; then ok; else bad "$name (exit $rc): $(head -c 300 "$tmp/err")"; fi
+}
+S=(--beam banks-aluminium --elements 8)
+
+# Crash: a pulse of 2^31 and more samples at dt = 1e-12 (the pulse's sample count overflowed an int).
+if timeout 60 "$BEAMID" simulate "${S[@]}" --dt 1e-12 --samples 16 >"$tmp/out" 2>"$tmp/err" &&
+   [ "$(wc -l <"$tmp/out")" -eq 17 ]; then ok; else bad "dt 1e-12: $(cat "$tmp/err")"; fi
+
+# Sizes: N beyond what finishes, samples beyond the memory or the range, starts beyond the range.
+expect_error "elements 1000" "--elements = '1000': must be an integer in 1..400" simulate --beam banks-aluminium --elements 1000
+# 1.1 times the available memory at simulate's measured 110 bytes per sample (when that is within the flag's range).
+avail_kb=$(awk '/^MemAvailable:/ { print $2 }' /proc/meminfo)
+n=$(awk -v kb="$avail_kb" 'BEGIN { printf "%d", 1.1 * kb * 1024 / 110 }')
+if [ "$n" -le 268435456 ]; then
+  expect_error "samples beyond memory" "of memory; this machine has" simulate "${S[@]}" --samples "$n"
+else
+  echo "note: $((avail_kb / 1048576)) GB available: more than --samples can ask for; the memory refusal is not reachable"
+fi
+expect_error "samples 2e9" "--samples = '2000000000': must be an integer in 2..268435456" simulate "${S[@]}" --samples 2000000000
+"$BEAMID" simulate "${S[@]}" --pulse-width 0.004 >"$tmp/z.csv"
+expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..1000" fit --data "$tmp/z.csv" "${S[@]}" \
+  --estimate EI --cost time --starts 1000000000
+
+# Files that are not records or beams: devices, folders, binary, huge fields.
+expect_error "data /dev/zero" "not a regular file" spikes --data /dev/zero
+expect_error "beam /dev/zero" "(not a regular file)" modes --beam /dev/zero --elements 4
+expect_error "data folder" "is a folder" spikes --data "$tmp"
+head -c 4096 /dev/urandom >"$tmp/random.csv"
+printf '\001' >>"$tmp/random.csv"
+expect_error "random bytes" "a binary file, not CSV" spikes --data "$tmp/random.csv"
+{ printf 't_s,y\n0,'; head -c 2000000 /dev/zero | tr '\0' '7'; printf 'x\n'; } >"$tmp/wide.csv"
+for i in $(seq 1 9); do echo "0.00$i,1" >>"$tmp/wide.csv"; done
+expect_error "2 MB field" "(2000001 characters)" spikes --data "$tmp/wide.csv"
+
+# Absurd parameters.
+sed 's/^EI = .*/EI = 1e308/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/ei.toml"
+expect_error "EI 1e308" "beam.EI = 1e+308: must be <= 1e20" modes --beam "$tmp/ei.toml" --elements 4
+G="$SRC/studies/data/arts-steel-cantilever/steel_cantilever.toml"
+sed 's/^density_kg_m3 = .*/density_kg_m3 = 1e308/' "$G" >"$tmp/dens.toml"
+expect_error "density 1e308" "must be in [1, 1e5] kg/m^3" modes --beam "$tmp/dens.toml" --elements 4
+sed 's/^thickness_m = .*/thickness_m = 1.0/' "$G" >"$tmp/thick.toml"
+expect_error "thickness 1 m" "a beam is at least twice as long as it is thick" modes --beam "$tmp/thick.toml" --elements 4
+sed 's/^c = .*/c = 10/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/tip.toml"
+expect_error "tip offset 10 m" "beam.c = 10: must be <= l = 0.4573" modes --beam "$tmp/tip.toml" --elements 4
+expect_error "dt 1e300" "must last at most 1e6 s" simulate "${S[@]}" --dt 1e300
+
+# Counts beyond what exists are stated.
+expect_notice "spikes 1000" "the record shows only" spikes --data "$tmp/z.csv" --spikes 64
+expect_notice "count 1000" "printed" modes --beam banks-aluminium --elements 2 --count 1000
+
+# Records that read as nonsense.
+awk 'BEGIN { print "t_s,y"; for (i = 0; i < 16; i++) printf "%.3f,0\n", i / 1000 }' >"$tmp/zero.csv"
+expect_error "all-zero signal" "is 0 in every sample" spikes --data "$tmp/zero.csv"
+printf 't_s,y\n0,1\n0.001,2,3,4\n' >"$tmp/four.csv"; for i in $(seq 2 9); do echo "0.00$i,1" >>"$tmp/four.csv"; done
+expect_error "4 fields under 2" "four.csv:3: 4 fields: must be 2" spikes --data "$tmp/four.csv"
+awk 'BEGIN { print "t_s,y"; for (i = 0; i < 16; i++) printf "%.3f,%s\n", i / 1000, (i % 2 ? "1e300" : "-1e300") }' \
+  >"$tmp/huge.csv"
+expect_error "magnitudes inf" "beyond 1e150" spikes --data "$tmp/huge.csv"
+L="$SRC/studies/data/arts-steel-cantilever/timeseries_data.lvm"
+head -c 200000 "$L" >"$tmp/cut.lvm"
+expect_error "LVM cut short" "the file is cut short" spikes --data "$tmp/cut.lvm"
+sed 's/^Separator\tTab/Separator\tComma/' "$L" | head -c 200000 >"$tmp/comma.lvm"
+expect_error "LVM separator" "does the header's Separator match the data?" spikes --data "$tmp/comma.lvm"
+sed 's/^X0\t.*/X0\tgarbage\t/' "$L" | head -c 200000 >"$tmp/x0.lvm"
+expect_error "LVM X0 garbage" "X0 = 'garbage': must be a finite number" spikes --data "$tmp/x0.lvm"
+expect_error "start 1e308" "start = 1e+308 s: must lie inside the record" spikes --data "$tmp/z.csv" --start 1e308
+
+# A study of 200 000 units says what it is in for before it starts (stopped here once it has said it).
+sed 's/^replicates = 2/replicates = 100000/' "$SRC/tests/data/mini_study.toml" >"$tmp/big.toml"
+"$BEAMID" study "$tmp/big.toml" --output "$tmp/big" >/dev/null 2>"$tmp/err" &
+pid=$!
+for _ in $(seq 1 100); do grep -q "units: at about 1 s each" "$tmp/err" && break; sleep 0.2; done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+if grep -q "units: at about 1 s each" "$tmp/err"; then ok; else bad "study of 200000 units: $(head -c 300 "$tmp/err")"; fi
+
+# Killed at random points and restarted, a study ends with the tables of an undisturbed run.
+cp "$SRC/tests/data/mini_study.toml" "$tmp/mini.toml"
+"$BEAMID" study "$tmp/mini.toml" --output "$tmp/clean" >/dev/null 2>&1
+for t in 0.3 0.8 1.5; do (timeout -s KILL $t "$BEAMID" study "$tmp/mini.toml" --output "$tmp/killed" >/dev/null 2>&1) 2>/dev/null; done
+"$BEAMID" study "$tmp/mini.toml" --output "$tmp/killed" >/dev/null 2>&1
+if diff -r -x store -x timings.csv "$tmp/clean" "$tmp/killed" >/dev/null; then ok; else bad "killed and resumed study differs"; fi
+
+# Damage to a finished study's store (records cut in half, altered, replaced by garbage, emptied), chosen at random:
+# the rerun names each, recomputes it, and writes the tables of the undisturbed run.
+cp -r "$tmp/clean" "$tmp/damaged"
+mapfile -t records < <(ls "$tmp/damaged/store"/*.rec | shuf -n 8 --random-source=<(yes))
+for i in "${!records[@]}"; do
+  r=${records[$i]}
+  case $((i % 4)) in
+    0) head -c $(($(wc -c <"$r") / 2)) "$r" >"$r.cut" && mv "$r.cut" "$r" ;;
+    1) sed -i '1s/./9/' "$r" ;;
+    2) head -c 300 /dev/urandom >"$r" ;;
+    3) : >"$r" ;;
+  esac
+done
+"$BEAMID" study "$tmp/mini.toml" --output "$tmp/damaged" >/dev/null 2>"$tmp/err"
+named=$(grep -c "study store: .*moved to" "$tmp/err")
+if [ "$named" -eq 8 ] && diff -r -x store -x timings.csv "$tmp/clean" "$tmp/damaged" >/dev/null; then ok
+else bad "damaged store: $named of 8 records named; $(diff -rq -x store -x timings.csv "$tmp/clean" "$tmp/damaged" | head -3)"; fi
+
+echo "bad inputs: $passed passed, $fail failed"
+[ $fail -eq 0 ]

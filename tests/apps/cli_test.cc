@@ -1,0 +1,95 @@
+// The command line as a user meets it: every malformed command line is one line on stderr naming the command, the
+// flag, the value and the constraint, with exit status 2; --help is generated from the registry; an unknown command
+// is answered with every command the registry holds.
+#include "apps/cli.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "apps/commands.h"
+
+namespace beamid::apps {
+namespace {
+
+struct Outcome {
+  int status;
+  std::string out, err;
+};
+
+Outcome run(std::vector<std::string> args) {
+  args.insert(args.begin(), "beamid");
+  std::ostringstream out, err;
+  const int status = run_command_line(args, out, err);
+  return {status, out.str(), err.str()};
+}
+
+void expect_error(const std::vector<std::string>& args, const std::string& line) {
+  const Outcome o = run(args);
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(o.err, "beamid: " + line + "\n");
+  EXPECT_TRUE(o.out.empty()) << o.out;
+}
+
+const std::vector<std::string> kSimulate = {"simulate", "--beam", "thick-steel", "--elements", "4", "--samples", "8"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(CommandLine, ParsesValuesAndSwitches) {
+  const Outcome o = run(with(kSimulate, {"--dt", "1e-4", "--output", "velocity"}));
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(o.out.substr(0, o.out.find('\n')), "t_s,velocity_m_s");
+  EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 9);  // header and 8 samples
+  const Outcome m = run({"modes", "--beam", "thick-steel", "--exact", "--count", "2"});
+  ASSERT_EQ(m.status, 0) << m.err;
+  EXPECT_EQ(std::count(m.out.begin(), m.out.end(), '\n'), 3);
+}
+
+TEST(CommandLine, ErrorsNameCommandFlagValueAndConstraint) {
+  expect_error(with(kSimulate, {"--dt", "fast"}), "beamid simulate: --dt = 'fast': must be a finite number");
+  expect_error(with(kSimulate, {"--dt", "1e-3x"}), "beamid simulate: --dt = '1e-3x': must be a finite number");
+  expect_error(with(kSimulate, {"--dt", "inf"}), "beamid simulate: --dt = 'inf': must be a finite number");
+  expect_error({"simulate", "--beam", "thick-steel", "--elements", "0"},
+               "beamid simulate: --elements = '0': must be an integer in 1..400");
+  expect_error({"simulate", "--beam", "thick-steel", "--elements", "4.5"},
+               "beamid simulate: --elements = '4.5': must be an integer in 1..400");
+  expect_error(with(kSimulate, {"--dt"}), "beamid simulate: --dt needs a value");
+  expect_error(with(kSimulate, {"--dt", "1", "--dt", "2"}), "beamid simulate: --dt given twice");
+  expect_error(with(kSimulate, {"--dtt", "1"}),
+               "beamid simulate: unknown flag --dtt (beamid simulate --help lists them)");
+  expect_error(with(kSimulate, {"dt"}), "beamid simulate: unexpected argument 'dt'");
+  expect_error({"simulate", "--elements", "4"}, "beamid simulate: --beam is required");
+  expect_error({"modes", "--beam", "thick-steel", "--exact", "--elements", "4"},
+               "beamid modes: --elements excludes --exact");
+  expect_error({"study"}, "beamid study: STUDY.toml is required");
+  // Values that parse but violate the physics are refused by the option structs' validation, with the key.
+  expect_error(with(kSimulate, {"--output", "strain"}),
+               "beamid simulate: output = 'strain': must be one of displacement, velocity, acceleration");
+}
+
+TEST(CommandLine, UnknownCommandListsEveryCommandOfTheRegistry) {
+  const Outcome o = run({"bogus"});
+  EXPECT_EQ(o.status, 2);
+  for (const Command& c : commands()) EXPECT_NE(o.err.find(c.name), std::string::npos) << c.name;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1);
+}
+
+TEST(CommandLine, HelpIsGeneratedForEveryCommand) {
+  const Outcome top = run({"--help"});
+  EXPECT_EQ(top.status, 0);
+  for (const Command& c : commands()) {
+    EXPECT_NE(top.out.find(c.name), std::string::npos) << c.name;
+    const Outcome h = run({c.name, "--help"});
+    EXPECT_EQ(h.status, 0) << c.name;
+    for (const FlagSpec& f : c.flags)
+      EXPECT_NE(h.out.find(f.kind == FlagKind::Positional ? f.name : "--" + f.name), std::string::npos)
+          << c.name << " --help omits " << f.name;
+  }
+  EXPECT_EQ(run({}).status, 2);  // no command: the overview, and a non-zero status
+}
+
+}  // namespace
+}  // namespace beamid::apps

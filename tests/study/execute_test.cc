@@ -1,0 +1,63 @@
+// Units of work that compute: the Galerkin frequencies of the truth beam against the exact ones (Rayleigh-Ritz: from
+// above, closer as N grows), and the overlay a case keeps in its record, read back exactly.
+#include "study/execute.h"
+
+#include <gtest/gtest.h>
+
+#include "study/overlay.h"
+
+namespace beamid::study {
+namespace {
+
+TEST(Execute, GalerkinFrequenciesBoundTheExactOnesFromAbove) {
+  StudySpec spec;
+  spec.truth.parameters = model::preset("banks-aluminium");
+  const Record coarse = run_frequencies(spec, 8), fine = run_frequencies(spec, 16);
+  ASSERT_EQ(fine.text("status"), "ok");
+  const std::vector<double> exact = fine.numbers("exact_hz"), f8 = coarse.numbers("galerkin_hz"),
+                            f16 = fine.numbers("galerkin_hz");
+  ASSERT_EQ(exact.size(), 4u);
+  ASSERT_EQ(f16.size(), 4u);
+  EXPECT_NEAR(exact[0], 2.4636574, 1e-6);  // model.md's verification value for set A, mode 1
+  for (std::size_t m = 0; m < 4; ++m) {
+    // Rayleigh-Ritz: every Galerkin frequency lies above the exact one (up to the thin beam's round-off, 1e-8), and
+    // the space of order 16 contains that of order 8, so f_16 <= f_8.
+    EXPECT_GE(f16[m], exact[m] * (1 - 1e-8)) << m;
+    EXPECT_LE(f16[m], f8[m] * (1 + 1e-8)) << m;
+    // At N = 16 the first four modes are within 0.5 % (the verification table gives 3e-3 for mode 4).
+    EXPECT_LT(f16[m] / exact[m] - 1, 5e-3) << m;
+  }
+}
+
+TEST(Execute, OverlayKeptInARecordReadsBackExactly) {
+  Overlay o;
+  o.t_s = {0, 1e-3, 2e-3};
+  o.data = {0.1, -0.2, 1.0 / 3.0};
+  o.model = {0.1, -0.25, std::numeric_limits<double>::quiet_NaN()};
+  o.frequency_hz = {0, 333.3};
+  o.data_magnitude = {1, 2};
+  o.model_magnitude = {1.5, 2.5};
+  o.spike_bins = {1};
+  o.support_left = {0};
+  o.support_right = {1};
+  Record r;
+  store_overlay(r, o);
+  const auto back = stored_overlay(Record::parse(r.serialise(), "case"));
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->data, o.data);
+  EXPECT_TRUE(std::isnan(back->model[2]));
+  EXPECT_EQ(back->spike_bins, o.spike_bins);
+  EXPECT_EQ(back->support_right, o.support_right);
+  EXPECT_FALSE(stored_overlay(Record{}));  // a case without an overlay
+  // The rendered files: one row per sample and per bin, and the spike's 20 % support in Hz.
+  const RenderedFiles files = render_overlay_files({{"time", *back}});
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_EQ(files[0].path, "overlay.csv");
+  EXPECT_EQ(std::count(files[0].text.begin(), files[0].text.end(), '\n'), 4);
+  EXPECT_EQ(files[2].text,
+            "spike,bin,frequency_hz,magnitude,support_low_hz,support_high_hz\n"
+            "1,1,333.30000000000001,2,166.65000000000001,833.25\n");
+}
+
+}  // namespace
+}  // namespace beamid::study

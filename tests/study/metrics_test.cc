@@ -1,0 +1,147 @@
+// The study metrics on cases whose answer is known by hand: statistics of relative errors, landscape shapes, and the
+// multi-start reach count with its reference minimum (the best of all fits of a cost, the truth start included).
+#include "study/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "model/beam_parameters.h"
+#include "study/claims.h"
+#include "study/study_spec.h"
+
+namespace beamid::study {
+namespace {
+
+TEST(Metrics, StatisticsOfRelativeErrors) {
+  // Values 1, 2, 3, 4 and a NaN (a failed fit): the NaN is left out of every statistic.
+  const Stats s = stats({1, 2, 3, 4, std::numeric_limits<double>::quiet_NaN()});
+  EXPECT_EQ(s.count, 4);
+  EXPECT_DOUBLE_EQ(s.mean, 2.5);
+  EXPECT_DOUBLE_EQ(s.median, 2.5);
+  EXPECT_DOUBLE_EQ(s.std, std::sqrt(5.0 / 3.0));    // sum of squared deviations 5, over n - 1 = 3
+  EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(30.0 / 4.0));  // 1 + 4 + 9 + 16 = 30
+  EXPECT_TRUE(std::isnan(stats({1}).std));          // one value has no spread
+  EXPECT_TRUE(std::isnan(median({})));
+  EXPECT_DOUBLE_EQ(median({3, 1, 2}), 2);
+}
+
+TEST(LandscapeShape, BowlStaircaseAndRipplesAreToldApart) {
+  std::vector<double> x, bowl, stairs, ripples;
+  for (int j = 0; j <= 100; ++j) {
+    const double r = std::pow(2.0, (j - 50) / 50.0);  // log-spaced ratios 1/2 .. 2, the truth at j = 50
+    x.push_back(r);
+    bowl.push_back(std::pow(std::log(r), 2));
+    stairs.push_back(std::floor(10 * std::abs(std::log(r))));  // a staircase with a flat floor around the truth
+    ripples.push_back(std::pow(std::log(r), 2) + 0.05 * (1 - std::cos(40 * std::log(r))));
+  }
+  const SliceShape b = slice_shape(x, bowl, 1);
+  EXPECT_EQ(b.local_minima, 1);
+  EXPECT_DOUBLE_EQ(b.basin_lower, -0.5);  // the whole range is one basin
+  EXPECT_DOUBLE_EQ(b.basin_upper, 1.0);
+  EXPECT_NEAR(b.total_variation_ratio, 2.0, 1e-12);  // down once and up once
+  EXPECT_EQ(b.flat_share, 0);
+  const SliceShape s = slice_shape(x, stairs, 1);
+  EXPECT_EQ(s.local_minima, 1);  // the floor plateau counts once
+  EXPECT_GT(s.flat_share, 0.8);  // 7 risers in 100 steps
+  const SliceShape w = slice_shape(x, ripples, 1);
+  EXPECT_GE(w.local_minima, 5);  // cos(40 ln r) has about 7 periods over ln r in [-ln 2, ln 2]
+  EXPECT_LT(w.basin_upper - w.basin_lower, 0.3);
+  EXPECT_GT(w.total_variation_ratio, 2.0);
+
+  // A 2-D bowl: one minimum, every point descends to it; a bowl with a second dip: two minima, a shared basin.
+  const int n = 21;
+  std::vector<double> g, two;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double u = (i - 10) / 10.0, v = (j - 10) / 10.0;
+      g.push_back(u * u + 2 * v * v);
+      two.push_back(u * u + 2 * v * v - 0.6 * std::exp(-40 * ((u - 0.7) * (u - 0.7) + v * v)));
+    }
+  const GridShape gb = grid_shape(g, n, n);
+  EXPECT_EQ(gb.local_minima, 1);
+  EXPECT_DOUBLE_EQ(gb.descent_share, 1.0);
+  const GridShape gt = grid_shape(two, n, n);
+  EXPECT_EQ(gt.local_minima, 2);
+  EXPECT_LT(gt.descent_share, 0.9);  // the dip's own basin takes its share of the grid
+  EXPECT_GT(gt.descent_share, 0.0);
+}
+
+// A landscape study of one cost with a truth start and three random starts, with results made by hand.
+struct MultistartCase {
+  StudySpec spec;
+  Plan plan;
+  StudyResults results;
+
+  // fits: (index, status, final cost, EI estimate)
+  explicit MultistartCase(const std::vector<std::tuple<int, std::string, double, double>>& fits) {
+    spec.truth.parameters = model::preset("banks-aluminium");
+    spec.fit.estimate = {"EI"};
+    spec.fit.success_tolerance = spec.fit.damping_tolerance = 0.01;
+    spec.landscape.enabled = true;
+    spec.landscape.cost = {"time"};
+    spec.sweep.pulse_width_s = {0.004};
+    spec.sweep.samples = {256};
+    for (const auto& [index, status, cost, ei] : fits) {
+      Unit u;
+      u.kind = "multistart";
+      u.cost = "time";
+      u.index = index;
+      plan.units.push_back(u);
+    }
+    results.spec = &spec;
+    results.plan = &plan;
+    for (std::size_t i = 0; i < fits.size(); ++i) {
+      Record r;
+      r.set("status", std::get<1>(fits[i]));
+      r.set("cost", std::get<2>(fits[i]));
+      r.set("estimate.EI", std::get<3>(fits[i]));
+      results.landscape.push_back({&plan.units[i], r});
+    }
+  }
+};
+
+TEST(Metrics, ReachCountsTakeTheReferenceFromEveryFitTheTruthStartIncluded) {
+  // The truth start finds the global minimum (cost 1e-20 at EI = 0.491); one random start gets within 0.5 % of it
+  // (inside the 1 % tolerance), two stop in a spurious minimum (EI = 0.6, cost 1e-6): 1/3 reach the reference.
+  const MultistartCase one({{-1, "converged", 1e-20, 0.491},
+                            {0, "converged", 1e-6, 0.6},
+                            {1, "converged", 2e-20, 0.4935},
+                            {2, "converged", 1e-6, 0.6}});
+  const LandscapeMetrics m = landscape_metrics(one.results);
+  ASSERT_EQ(m.multistarts.size(), 1u);
+  const MultistartSummary& s = m.multistarts[0];
+  EXPECT_EQ(s.started, 3);
+  EXPECT_EQ(s.reached, 1);
+  EXPECT_EQ(s.reference_start, -1);
+  EXPECT_DOUBLE_EQ(s.reference_cost, 1e-20);
+  ASSERT_EQ(s.fits.size(), 4u);
+  EXPECT_DOUBLE_EQ(s.fits[1].cost_gap, 1e-6 - 1e-20);
+  EXPECT_TRUE(s.fits[0].reached);  // the reference reaches itself, but is not a random start
+
+  // Every random start spurious or failed: 0/3. Were the reference the best random start (start 0, cost 1e-6), that
+  // start would reach itself and the count would read 1/3 (the defect this metric had).
+  const MultistartCase none({{-1, "converged", 1e-20, 0.491},
+                             {0, "converged", 1e-6, 0.6},
+                             {1, "failed: no finite evaluation", 0, 0.491},
+                             {2, "converged", 3e-6, 0.7}});
+  const LandscapeMetrics n = landscape_metrics(none.results);
+  const MultistartSummary& t = n.multistarts[0];
+  EXPECT_EQ(t.reached, 0) << "a failed fit never reaches, and spurious minima do not count themselves";
+  EXPECT_EQ(t.started, 3);
+}
+
+TEST(Metrics, ReachCountIsAFindingWithItsEvidence) {
+  const MultistartCase c({{-1, "converged", 1e-20, 0.491}, {0, "converged", 1e-6, 0.6}});
+  const LandscapeMetrics m = landscape_metrics(c.results);
+  const Findings f = study_findings(c.results, {}, m);
+  ASSERT_EQ(f.counts.size(), 1u);
+  EXPECT_EQ(f.counts[0].count, 0);
+  EXPECT_EQ(f.counts[0].total, 1);
+  for (const Claim& claim : f.claims) EXPECT_FALSE(claim.text.empty());
+}
+
+}  // namespace
+}  // namespace beamid::study

@@ -1,0 +1,122 @@
+// The study store: a record reads back exactly as written (every double round-trips, lists and text included), a
+// record made by another build is not reused, and absorbing a shard's store copies its records (what
+// `beamid merge` does).
+#include "study/store.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "io/files.h"
+#include "model/errors.h"
+
+namespace beamid::study {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("beamid-store-test-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(p);
+  return p;
+}
+
+TEST(Store, RecordsRoundTripEveryDouble) {
+  Record r;
+  // Values that a shorter format would round: 0.1, 1/3, the smallest normal and subnormal numbers, and the
+  // non-finite values a failed fit stores.
+  const std::vector<double> values = {
+      0.1, 1.0 / 3.0, std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(), -2.5e300, 0.0};
+  r.set("values", values);
+  r.set("empty", std::vector<double>{});
+  r.set("nan", std::numeric_limits<double>::quiet_NaN());
+  r.set("inf", std::numeric_limits<double>::infinity());
+  r.set("status", std::string("failed: a reason, with commas"));
+  const Record back = Record::parse(r.serialise(), "test");
+  EXPECT_EQ(back.numbers("values"), values);  // bit for bit
+  EXPECT_TRUE(back.numbers("empty").empty());
+  EXPECT_TRUE(std::isnan(back.number("nan")));
+  EXPECT_EQ(back.number("inf"), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(back.text("status"), "failed: a reason, with commas");
+  EXPECT_EQ(back.serialise(), r.serialise());
+  EXPECT_THROW(back.text("absent"), InputError);
+  EXPECT_THROW(Record::parse("no tab here\n", "f.rec"), InputError);
+}
+
+TEST(Store, ReusesOnlyRecordsOfTheSameBuild) {
+  const fs::path dir = scratch("versions");
+  Record r;
+  r.set("x", 1.5);
+  Store(dir.string(), "build-a").save("u1", r);
+  EXPECT_TRUE(Store(dir.string(), "build-a").load("u1"));
+  EXPECT_EQ(Store(dir.string(), "build-a").load("u1")->number("x"), 1.5);
+  EXPECT_FALSE(Store(dir.string(), "build-b").load("u1")) << "another build's record must be recomputed";
+  EXPECT_FALSE(Store(dir.string(), "build-a").load("u2"));
+  fs::remove_all(dir);
+}
+
+TEST(Store, AbsorbCopiesAShardsRecords) {
+  const fs::path a = scratch("shard-a"), b = scratch("shard-b"), merged = scratch("merged");
+  Record r1, r2;
+  r1.set("x", 1.0);
+  r2.set("x", 2.0);
+  Store(a.string(), "v").save("u1", r1);
+  Store(b.string(), "v").save("u2", r2);
+  const Store m(merged.string(), "v");
+  EXPECT_EQ(m.absorb(a.string()), 1);
+  EXPECT_EQ(m.absorb(b.string()), 1);
+  EXPECT_EQ(m.load("u1")->number("x"), 1.0);
+  EXPECT_EQ(m.load("u2")->number("x"), 2.0);
+  EXPECT_THROW(m.absorb((a / "nope").string()), InputError);
+  for (const auto& p : {a, b, merged}) fs::remove_all(p);
+}
+
+TEST(Store, RecordsOfAnEarlierBuildWithoutCheckLinesAreRecomputedQuietly) {
+  const fs::path dir = scratch("earlier");
+  std::ostringstream log;
+  const Store store(dir.string(), "new", &log);
+  // As builds before the check line wrote them: sorted keys, "code" first for a truth record.
+  io::write_file_atomic(dir / "truth.rec", "code\told\nstatus\tok\ny\t1 2 3\n");
+  io::write_file_atomic(dir / "case.rec", "a4\tok\ncode\told\nstatus\tconverged\n");
+  EXPECT_FALSE(store.load("truth"));
+  EXPECT_FALSE(store.load("case"));
+  EXPECT_TRUE(log.str().empty()) << log.str();
+  EXPECT_FALSE(fs::exists(dir / "damaged"));
+  fs::remove_all(dir);
+}
+
+TEST(Store, DamagedRecordsAreNamedMovedAsideAndRecomputed) {
+  const fs::path dir = scratch("damage");
+  std::ostringstream log;
+  const Store store(dir.string(), "v", &log);
+  Record r;
+  r.set("status", std::string("ok"));
+  r.set("cost", std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8});
+  const auto file = [&](const std::string& id) { return dir / (id + ".rec"); };
+  const auto text_of = [&](const std::string& id) { return io::read_file(file(id), "record"); };
+  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder"}) store.save(id, r);
+  const std::string whole = text_of("cut");
+  io::write_file_atomic(file("cut"), whole.substr(0, whole.size() / 2));  // a record truncated in half
+  std::string flipped = whole;
+  flipped[whole.find("cost\t") + 5] = '9';  // one digit altered, the check line kept
+  io::write_file_atomic(file("flip"), flipped);
+  io::write_file_atomic(file("garbage"), std::string("\x7f\x01\xff\x00binary", 10));
+  io::write_file_atomic(file("empty"), "");
+  fs::remove(file("folder"));
+  fs::create_directory(file("folder"));
+  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder"}) {
+    EXPECT_FALSE(store.load(id)) << id;
+    EXPECT_FALSE(fs::exists(file(id))) << id << " must be moved aside";
+    EXPECT_TRUE(fs::exists(dir / "damaged" / (id + ".rec"))) << id;
+    EXPECT_NE(log.str().find(file(id).string()), std::string::npos) << "the log must name " << id;
+  }
+  store.save("cut", r);  // recomputed: the new record is read back
+  EXPECT_EQ(store.load("cut")->numbers("cost").size(), 8u);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace beamid::study
