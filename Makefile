@@ -48,6 +48,10 @@ test-sanitize: deps
 # build-fuzz/crash-<target>-*: add it to the corpus (it then runs in `make test`) and fix the reader.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
+# FUZZ_SEED=0 draws a new random seed each run (exploration); CI passes a fixed seed and FUZZ_RUNS so that its pass is
+# reproducible: the same binary, seed and corpus mutate the same inputs, and a shorter run is a prefix of a longer one.
+FUZZ_SEED    ?= 0
+FUZZ_RUNS    ?= -1
 FUZZ_TARGETS := beam_file study_file csv_record lvm_record command_line
 fuzz:
 	@bash .ci/deps.sh fuzz
@@ -58,6 +62,7 @@ fuzz:
 	  mkdir -p $(FUZZ_BUILD)/corpus/$$t; \
 	  echo "== fuzz $$t ($(FUZZ_SECONDS) s)"; \
 	  $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_BUILD)/corpus/$$t tests/fuzz/corpus/$$t -max_total_time=$(FUZZ_SECONDS) \
+	    -seed=$(FUZZ_SEED) -runs=$(FUZZ_RUNS) \
 	    -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=$(FUZZ_BUILD)/crash-$$t- \
 	    2>$(FUZZ_BUILD)/fuzz-$$t.log || { tail -40 $(FUZZ_BUILD)/fuzz-$$t.log; exit 1; }; \
 	  grep -E "stat::number_of_executed_units|Done" $(FUZZ_BUILD)/fuzz-$$t.log | tail -2; \

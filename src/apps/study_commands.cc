@@ -8,6 +8,7 @@
 #include "apps/command_flags.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
+#include "io/files.h"
 #include "io/provenance.h"
 #include "model/errors.h"
 #include "study/real_study.h"
@@ -72,10 +73,11 @@ int run_merge(const Flags& a, std::ostream& out) {
   int records = 0;
   while (std::getline(list, dir, ',')) {
     if (dir.empty()) continue;
-    if (!std::filesystem::is_directory(dir + "/store"))
+    if (!io::is_existing_folder(dir + "/store"))
       throw InputError("beamid merge: --shards: '" + dir +
                        "' has no store/ folder: must be the --output of a shard run");
-    if (std::filesystem::equivalent(dir + "/store", output + "/store")) continue;
+    std::error_code same_ec;
+    if (std::filesystem::equivalent(dir + "/store", output + "/store", same_ec)) continue;
     records += store.absorb(dir + "/store");
   }
   study::write_tables_from_store(spec, output);

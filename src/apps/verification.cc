@@ -50,7 +50,7 @@ simulation::Experiment experiment_for(const std::string& preset, double length_m
 }  // namespace
 
 void write_verification(const std::string& folder, std::ostream& log) {
-  std::filesystem::create_directories(folder);
+  io::make_folder(folder);
   const std::vector<std::string> presets = model::preset_names();
 
   // 1. Galerkin against exact frequencies.

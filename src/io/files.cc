@@ -8,8 +8,24 @@
 
 namespace beamid::io {
 
+void make_folder(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec) throw InputError(path.string() + ": cannot create folder (" + ec.message() + ")");
+}
+
+bool is_existing_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec) && !ec;
+}
+
+bool is_existing_folder(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::is_directory(path, ec) && !ec;
+}
+
 void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  if (path.has_parent_path()) make_folder(path.parent_path());
   const std::filesystem::path temporary = path.string() + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -17,7 +33,9 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
     out.flush();
     if (!out) throw InputError(temporary.string() + ": cannot write");
   }
-  std::filesystem::rename(temporary, path);
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
 }
 
 std::string read_file(const std::filesystem::path& path, const std::string& cannot_read, std::uintmax_t max_bytes) {

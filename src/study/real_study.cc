@@ -40,7 +40,8 @@ RealStudySpec load_real_study(const std::string& path) {
   {
     Table r = document.required("record");
     s.record_file = relative(r.string("file", std::nullopt));
-    if (!fs::exists(s.record_file)) r.fail("file", "'" + s.record_file + "'", "must be an existing record file");
+    if (!io::is_existing_file(s.record_file))
+      r.fail("file", "'" + s.record_file + "'", "must be an existing record file");
     s.channel = r.string("channel", "");
     s.units = r.string("units", s.units, {"auto", "g", "as-is"});
     if (r.has("start_s"))

@@ -168,9 +168,12 @@ void Store::save(const std::string& id, Record record) const {
 }
 
 int Store::absorb(const std::string& other) const {
-  if (!fs::is_directory(other)) throw InputError(other + ": not a study store folder");
+  if (!io::is_existing_folder(other)) throw InputError(other + ": not a study store folder");
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(other)) {
+  std::error_code ec;
+  fs::directory_iterator folder(other, ec);
+  if (ec) throw InputError(other + ": cannot list the study store folder (" + ec.message() + ")");
+  for (const auto& entry : folder) {
     if (entry.path().extension() != ".rec" || !entry.is_regular_file()) continue;
     const fs::path target = fs::path(directory_) / entry.path().filename();
     const std::string text = io::read_file(entry.path(), "a study record");

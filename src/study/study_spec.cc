@@ -87,7 +87,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       std::filesystem::path p(t.beam);
       if (p.is_relative()) p = std::filesystem::path(directory) / p;
       t.beam_path = p.string();
-      if (!std::filesystem::exists(p))
+      if (!io::is_existing_file(p))
         r.fail("beam", "'" + t.beam + "'",
                "must be a preset (" + Table::join(model::preset_names()) + ") or an existing beam TOML file");
     }

@@ -100,6 +100,13 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
             "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
+  // A path the file system refuses (longer than PATH_MAX) is a missing file, not a filesystem_error: a fuzz finding.
+  const std::string long_name(5000, 'd');
+  EXPECT_EQ(error_of(replaced(kValid, "beam = \"banks-aluminium\"", "beam = \"" + long_name + "\"")).substr(0, 27),
+            "s.toml:7: truth.beam = 'ddd");
+  EXPECT_NE(error_of(replaced(kValid, "beam = \"banks-aluminium\"", "beam = \"" + long_name + "\""))
+                .find("must be a preset (banks-aluminium, thick-steel) or an existing beam TOML file"),
+            std::string::npos);
   EXPECT_EQ(error_of("[study\n"),
             "s.toml:1: TOML syntax error: Error while parsing table header: expected ']', saw '\\n'");
 }
