@@ -105,6 +105,46 @@ int run_simulate(const Flags& a, std::ostream& out) {
   return 0;
 }
 
+namespace {
+
+std::string json_vector(const Eigen::VectorXd& v) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + io::round_trip(v(i));
+  return s + "]";
+}
+
+std::string json_matrix(const Eigen::MatrixXd& m) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < m.rows(); ++i) s += (i ? ",\n    " : "") + json_vector(m.row(i).transpose());
+  return s + "]";
+}
+
+}  // namespace
+
+int run_system(const Flags& a, std::ostream& out) {
+  const std::string beam_name = a.text("beam");
+  const model::BeamParameters beam = config::resolve_beam(beam_name);
+  const int n = a.integer("elements");
+  const simulation::Experiment e = read_experiment(a, beam.l);
+  guard_run_size(a, n, 0, 0);
+  const galerkin::SplineSpace space(n);
+  const galerkin::BeamForms forms(space, beam.l);
+  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
+  const simulation::ResponseProblem p = simulation::make_problem(forms, system, e);
+  // The response problem in the terms of simulation/experiment.h: M w'' + C w' + K w = load P(t), P(t) =
+  // amplitude_N sin^2(pi t / pulse_width_s) on [0, pulse_width_s], w(0) = w0, w'(0) = 0, y_i = sensor^T w^(derivative)
+  // at t_i = i dt_s.
+  out << "{\n  \"beamid\": \"" << io::commit_label() << "\",\n  \"beam\": " << io::json_string(beam_name)
+      << ",\n  \"length_m\": " << io::round_trip(beam.l) << ",\n  \"elements\": " << n
+      << ",\n  \"dt_s\": " << io::round_trip(p.dt_s) << ",\n  \"samples\": " << p.samples
+      << ",\n  \"pulse_width_s\": " << io::round_trip(p.pulse_width_s)
+      << ",\n  \"amplitude_N\": " << io::round_trip(p.amplitude_N) << ",\n  \"derivative\": " << p.derivative
+      << ",\n  \"load\": " << json_vector(p.load) << ",\n  \"sensor\": " << json_vector(p.sensor)
+      << ",\n  \"w0\": " << json_vector(p.w0) << ",\n  \"M\": " << json_matrix(system.M)
+      << ",\n  \"C\": " << json_matrix(system.C) << ",\n  \"K\": " << json_matrix(system.K) << "\n}\n";
+  return 0;
+}
+
 int run_verify(const Flags& a, std::ostream& out) {
   write_verification(a.text("output"), out);
   return 0;

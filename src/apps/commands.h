@@ -29,6 +29,8 @@ std::string overview();
 int run_modes(const Flags& flags, std::ostream& out);
 // beamid simulate --beam B --elements N [experiment flags] [--integrator fast|cvode]: t_s,<output>
 int run_simulate(const Flags& flags, std::ostream& out);
+// beamid system --beam B --elements N [experiment flags]: M, C, K, load, sensor and sampling as JSON
+int run_system(const Flags& flags, std::ostream& out);
 // beamid spikes --data FILE --spikes NM: spike,bin,frequency_hz,magnitude,n_left,n_right
 int run_spikes(const Flags& flags, std::ostream& out);
 // beamid cost --data FILE --prediction FILE --cost NAME: the cost value

@@ -44,6 +44,11 @@ std::vector<Command> make_commands() {
                        switch_flag("verbose", "say on stderr what ran, with the integrator statistics")}),
                {},
                run_simulate});
+  c.push_back({"system",
+               "the Galerkin matrices M, C, K with the load, sensor and sampling of an experiment, as JSON",
+               joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),
+               {},
+               run_system});
   c.push_back(
       {"spikes",
        "the DFT spikes of a record, with their 20 % supports",

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "galerkin/second_order_system.h"
+#include "model/beam_parameters.h"
 
 namespace beamid::apps {
 namespace {
@@ -89,6 +91,36 @@ TEST(CommandLine, HelpIsGeneratedForEveryCommand) {
           << c.name << " --help omits " << f.name;
   }
   EXPECT_EQ(run({}).status, 2);  // no command: the overview, and a non-zero status
+}
+
+// beamid system prints the model other programs solve (tests/benchmarks/peers.py): K as assembled, to the last bit
+// (round-trip digits), with the load of a tip force.
+TEST(CommandLine, SystemPrintsTheAssembledMatricesExactly) {
+  const Outcome o = run({"system", "--beam", "thick-steel", "--elements", "3"});
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto block = [&](const std::string& key) {
+    const std::size_t begin = o.out.find("\"" + key + "\": ");
+    EXPECT_NE(begin, std::string::npos) << key;
+    std::string text = o.out.substr(begin + key.size() + 4);
+    text = text.substr(0, text.find(key == "K" ? "\n}" : ",\n  \""));
+    std::vector<double> values;
+    for (char& ch : text)
+      if (ch == '[' || ch == ']' || ch == ',') ch = ' ';
+    std::istringstream in(text);
+    for (double v; in >> v;) values.push_back(v);
+    return values;
+  };
+  const model::BeamParameters beam = model::preset("thick-steel");
+  const galerkin::SecondOrderSystem system = galerkin::assemble(galerkin::SplineSpace(3), beam);
+  const std::vector<double> k = block("K");
+  ASSERT_EQ(k.size(), static_cast<std::size_t>(system.K.size()));  // 2(N+2) = 10 squared
+  for (int i = 0; i < system.K.rows(); ++i)
+    for (int j = 0; j < system.K.cols(); ++j)
+      EXPECT_EQ(k[static_cast<std::size_t>(i * system.K.cols() + j)], system.K(i, j));
+  const std::vector<double> load = block("load");  // tip force: nu = (0, 0, 1/6, 2/3, 1/6 | 0 ...)
+  ASSERT_EQ(load.size(), 10u);
+  EXPECT_EQ(load[3], 2.0 / 3.0);
+  EXPECT_EQ(load[5], 0.0);
 }
 
 }  // namespace
