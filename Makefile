@@ -68,14 +68,25 @@ fuzz:
 	  grep -E "stat::number_of_executed_units|Done" $(FUZZ_BUILD)/fuzz-$$t.log | tail -2; \
 	done
 
-# Google Benchmark, JSON under results/benchmarks/ (medians over repetitions).
-bench: deps $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS) --target beamid_bench beamid_identification_bench
+# Google Benchmark, JSON under results/benchmarks/ (medians over repetitions); then, in the same invocation, the
+# NumPy/SciPy peers of the forward run side by side with beamid (tests/benchmarks/peers.py -> peers.json), the scaling
+# exponents in N and Nbar (tests/benchmarks/scaling.py -> scaling.json), and the peak memory of the smoke study.
+# Debian's python3 (/usr/bin/python3) with python3-numpy and python3-scipy: `make deps` installs them for bench.
+PYTHON ?= /usr/bin/python3
+bench: $(BUILD)/CMakeCache.txt
+	@bash .ci/deps.sh bench
+	cmake --build $(BUILD) -j $(JOBS) --target beamid beamid_bench beamid_identification_bench
 	@mkdir -p results/benchmarks
 	$(BUILD)/beamid_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-	    --benchmark_out=results/benchmarks/forward_model.json --benchmark_out_format=json
+	    --benchmark_filter=-Cvode --benchmark_out=results/benchmarks/forward_model.json --benchmark_out_format=json
 	$(BUILD)/beamid_identification_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
 	    --benchmark_out=results/benchmarks/identification.json --benchmark_out_format=json
+	$(PYTHON) tests/benchmarks/peers.py --beamid $(BEAMID) --bench $(BUILD)/beamid_bench \
+	    --output results/benchmarks/peers.json
+	$(PYTHON) tests/benchmarks/scaling.py results/benchmarks
+	rm -rf $(BUILD)/bench-smoke
+	$(BEAMID) study studies/smoke.toml --output $(BUILD)/bench-smoke 2>&1 >/dev/null | grep "peak memory" \
+	    | tee results/benchmarks/study_peak_memory.txt
 
 # Forward-model verification tables (results/verification/) and the REPORT.md blocks made from them.
 verify: binary

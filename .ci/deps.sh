@@ -14,6 +14,8 @@ packages=(
 
 # `deps.sh fuzz`: the packages `make fuzz` needs as well (clang with libFuzzer).
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
+# `deps.sh bench`: the NumPy/SciPy peers of `make bench` (Debian's python3, not a pip one).
+if [ "${1:-}" = bench ]; then packages+=(python3 python3-numpy python3-scipy); fi
 
 missing=()
 for p in "${packages[@]}"; do

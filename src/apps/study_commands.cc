@@ -10,6 +10,7 @@
 #include "apps/flags.h"
 #include "io/files.h"
 #include "io/provenance.h"
+#include "io/resources.h"
 #include "model/errors.h"
 #include "study/real_study.h"
 #include "study/runner.h"
@@ -55,6 +56,8 @@ int run_study(const Flags& a, std::ostream& out) {
   out << "study,units,computed,reused,failed_cases,tables\n"
       << spec.name << "," << summary.units << "," << summary.computed << "," << summary.reused << "," << summary.failed
       << "," << (summary.tables ? "written" : "pending") << "\n";
+  std::cerr << "beamid study " << spec.name << ": peak memory (resident) " << io::bytes_text(io::peak_resident_bytes())
+            << "\n";
   return 0;
 }
 

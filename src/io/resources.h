@@ -15,6 +15,9 @@ std::optional<double> available_memory_bytes();
 // available memory; a warning line on `warn` when it exceeds a quarter of it.
 void check_memory(const std::string& what, double bytes, std::ostream& warn);
 
+// The peak resident memory of this process so far (getrusage ru_maxrss), in bytes.
+double peak_resident_bytes();
+
 // "1.5 GB", "320 MB", "12 kB".
 std::string bytes_text(double bytes);
 // "45 s", "12 min", "3.2 h".

@@ -35,6 +35,10 @@ struct CvodeOptions {
   std::string linear_solver = "structured";
 };
 
+// The integrators' names (SimulatorOptions::integrator).
+inline const std::string kFast = "fast";
+inline const std::string kCvode = "cvode";
+
 struct SimulatorOptions {
   std::string integrator = "fast";  // "fast" | "cvode"
   CvodeOptions cvode;

@@ -20,7 +20,7 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   const auto& t = spec.truth;
   const auto& e = t.experiment;
   std::ostringstream os;
-  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << io::round_trip(t.rtol) << ";integrator=cvode"
+  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << io::round_trip(t.rtol) << ";integrator=fast"
      << ";dt_s=" << io::round_trip(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
      << ";force_x_m=" << (e.force_x_m ? io::round_trip(*e.force_x_m) : "tip")
      << ";force_amplitude_N=" << io::round_trip(e.force_amplitude_N)
@@ -54,6 +54,7 @@ Plan make_plan(const StudySpec& spec) {
     t.samples = spec.truth.experiment.samples;
     t.canonical = "truth;" + truth_text(spec, tau);
     identify(t, spec);
+    t.cvode_check = plan.truths.empty();
     plan.truths.push_back(t);
   }
   const std::string fit = fit_text(spec);

@@ -1,5 +1,6 @@
 // The work of a study as a list of independent units, each with a stable identity:
-//   truth       one clean synthetic record per pulse width (CVODE at N_truth, the longest record of the sweep);
+//   truth       one clean synthetic record per pulse width (the exact modal closed form at N_truth, the longest
+//               record of the sweep; the first is also integrated with CVODE as an independent cross-check);
 //   case        one fit: the Cartesian product of the sweep (N, cost, noise, replicate, method, start, pulse width,
 //               record length); a noise-free case is run once (replicate 0), since its replicates would be identical;
 //   slice/grid  a cost evaluated along one parameter axis, or on a grid of two, through the truth (landscape);
@@ -37,6 +38,7 @@ struct Unit {
   std::vector<std::string> parameters;  // slice: 1, grid: 2
   int index = 0;                        // multistart: which random start (-1: the truth)
   bool overlay = false;                 // case: also compute the fit overlay and spectra (one case per cost)
+  bool cvode_check = false;             // truth: also integrate with CVODE and record the agreement (first truth)
   std::uint64_t noise_seed = 0;
 };
 

@@ -149,7 +149,8 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
       missing_truths.push_back(static_cast<int>(i));
   }
   if (!missing_truths.empty()) {
-    Progress progress(log, terminal, "truth records (CVODE, N = " + std::to_string(spec.truth.elements) + ")",
+    Progress progress(log, terminal,
+                      "truth records (exact modal closed form, N = " + std::to_string(spec.truth.elements) + ")",
                       static_cast<int>(missing_truths.size()));
     parallel_for(static_cast<int>(missing_truths.size()), jobs, [&](int j) {
       const int i = missing_truths[static_cast<std::size_t>(j)];

@@ -30,7 +30,7 @@ struct TruthSpec {
   std::string beam_path;                 // resolved path of a beam file ("" for a preset)
   model::BeamParameters parameters;      // the beam itself, read once with the study file
   int elements = 48;                     // N_truth: finer than any fitted N (no inverse crime)
-  double rtol = 1e-10;                   // CVODE relative tolerance
+  double rtol = 1e-10;                   // CVODE relative tolerance of the cross-check of the first truth record
   simulation::Experiment experiment;
 };
 

@@ -25,18 +25,28 @@ Manifest study_manifest(const StudyResults& results) {
   Manifest m{spec.name, spec.question, spec.path, spec.file_hash, {}, {}};
   m.before = {{"seed", std::to_string(spec.seed)}};
   std::string records;
-  for (std::size_t i = 0; i < plan.truths.size(); ++i)
+  for (std::size_t i = 0; i < plan.truths.size(); ++i) {
+    const Record& t = results.truths[i];
+    std::string check;
+    if (t.has("cvode_status")) {
+      check = ", \"cvode_check\": {\"rtol\": " + io::round_trip(spec.truth.rtol) +
+              ", \"status\": " + io::json_string(t.text("cvode_status")) + ", \"steps\": " + t.text("cvode_steps");
+      if (t.has("cvode_max_difference_over_max_y"))
+        check += ", \"max_abs_difference_over_max_abs_y\": " + t.text("cvode_max_difference_over_max_y");
+      check += "}";
+    }
     records += std::string(i ? ", " : "") + "{\"id\": \"" + plan.truths[i].id +
                "\", \"pulse_width_s\": " + io::round_trip(plan.truths[i].pulse_width_s) +
-               ", \"status\": " + io::json_string(results.truths[i].text("status")) + "}";
-  m.after = {{"truth", "{\"beam\": " + io::json_string(spec.truth.beam) +
-                           ", \"elements\": " + std::to_string(spec.truth.elements) +
-                           ", \"integrator\": \"cvode\", \"rtol\": " + io::round_trip(spec.truth.rtol) +
-                           ", \"records\": [" + records + "]}"},
-             {"noise", io::json_string("z = y + level rms(y) g, g standard normal by Box-Muller over "
-                                       "std::mt19937_64 (signal/noise.h)")},
-             {"cases", std::to_string(results.cases.size())},
-             {"landscape_units", std::to_string(results.landscape.size())}};
+               ", \"status\": " + io::json_string(t.text("status")) + check + "}";
+  }
+  m.after = {
+      {"truth", "{\"beam\": " + io::json_string(spec.truth.beam) +
+                    ", \"elements\": " + std::to_string(spec.truth.elements) +
+                    ", \"integrator\": \"fast (exact modal closed form)\"" + ", \"records\": [" + records + "]}"},
+      {"noise", io::json_string("z = y + level rms(y) g, g standard normal by Box-Muller over "
+                                "std::mt19937_64 (signal/noise.h)")},
+      {"cases", std::to_string(results.cases.size())},
+      {"landscape_units", std::to_string(results.landscape.size())}};
   return m;
 }
 

@@ -41,7 +41,7 @@ void BM_StateSpaceModes(benchmark::State& state) {
   const auto system = galerkin::assemble(galerkin::SplineSpace(static_cast<int>(state.range(0))), beam);
   for (auto _ : state) benchmark::DoNotOptimize(galerkin::StateSpaceModes(system));
 }
-BENCHMARK(BM_StateSpaceModes)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StateSpaceModes)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
 void simulate(benchmark::State& state, const std::string& integrator, double rtol) {
   const model::BeamParameters beam = model::preset("banks-aluminium");
@@ -64,7 +64,39 @@ void simulate(benchmark::State& state, const std::string& integrator, double rto
 void BM_SimulateFast(benchmark::State& state) { simulate(state, "fast", 1e-10); }  // rtol unused by fast
 void BM_SimulateCvode1e8(benchmark::State& state) { simulate(state, "cvode", 1e-8); }
 void BM_SimulateCvode1e10(benchmark::State& state) { simulate(state, "cvode", 1e-10); }
-BENCHMARK(BM_SimulateFast)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SimulateFast)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// Scaling in the record length: N = 16, Nbar = 1024 .. 65536 at the same dt (tests/benchmarks/scaling.py fits the
+// exponent).
+void BM_SimulateFastSamples(benchmark::State& state) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const galerkin::SplineSpace space(16);
+  const galerkin::BeamForms forms(space, beam.l);
+  auto e = banks_experiment(beam.l);
+  e.samples = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const auto trace = simulation::simulate(forms, beam, e, {});
+    if (!trace.ok()) state.SkipWithError(trace.status.c_str());
+    benchmark::DoNotOptimize(trace.y.data());
+  }
+}
+BENCHMARK(BM_SimulateFastSamples)->RangeMultiplier(4)->Range(1024, 65536)->Unit(benchmark::kMillisecond);
+
+// The computation of tests/benchmarks/peers.py (NumPy modal closed form, SciPy BDF): N = 16, dt = 10 us, Nbar = 4096
+// (41 ms of record, so that SciPy's BDF at rtol 1e-8 finishes in about a minute), the same pulse and sensor.
+void BM_SimulateFastPeer(benchmark::State& state) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const galerkin::SplineSpace space(16);
+  const galerkin::BeamForms forms(space, beam.l);
+  auto e = banks_experiment(beam.l);
+  e.dt_s = 1e-5;
+  for (auto _ : state) {
+    const auto trace = simulation::simulate(forms, beam, e, {});
+    if (!trace.ok()) state.SkipWithError(trace.status.c_str());
+    benchmark::DoNotOptimize(trace.y.data());
+  }
+}
+BENCHMARK(BM_SimulateFastPeer)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SimulateCvode1e8)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_SimulateCvode1e10)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMillisecond)->Iterations(2);
 

@@ -46,6 +46,28 @@ BENCHMARK_CAPTURE(BM_CostEvaluation, time, std::string("time"))->Unit(benchmark:
 BENCHMARK_CAPTURE(BM_CostEvaluation, spike, std::string("spike"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CostEvaluation, spike_smooth, std::string("spike-smooth"))->Unit(benchmark::kMillisecond);
 
+// Scaling of one cost evaluation in the record length, N = 16, Nbar = 1024 .. 65536 (tests/benchmarks/scaling.py):
+// the forward run, the DFT (n log n) and the cost's own sums must all stay near-linear.
+void BM_CostSamples(benchmark::State& state, const std::string& cost) {
+  auto o = options(cost);
+  o.experiment.samples = static_cast<int>(state.range(0));
+  const galerkin::SplineSpace space(16);
+  const std::vector<double> y =
+      simulation::simulate(galerkin::BeamForms(space, o.start.l), o.start, o.experiment, {}).y;
+  fit::Objective objective(o, y);
+  auto beam = model::preset("banks-aluminium");
+  beam.EI *= 1.01;
+  for (auto _ : state) benchmark::DoNotOptimize(objective.evaluate(beam).evaluation.value);
+}
+BENCHMARK_CAPTURE(BM_CostSamples, time, std::string("time"))
+    ->RangeMultiplier(4)
+    ->Range(1024, 65536)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CostSamples, spike_smooth, std::string("spike-smooth"))
+    ->RangeMultiplier(4)
+    ->Range(1024, 65536)
+    ->Unit(benchmark::kMillisecond);
+
 void BM_FullFit(benchmark::State& state) {
   auto o = options("spike-smooth");
   for (const char* key : {"EI", "rho", "cDI", "gamma"}) o.start.*(model::find_parameter(key)->member) *= 1.05;
