@@ -65,16 +65,37 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
     // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
     const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
-    double bound = 0;  // sum of |mode amplitudes| at tau: no later output can exceed it
+    constexpr int kAnchorEvery = 256;  // samples between exact re-evaluations of a recurrence
+    double bound = 0;                  // sum of |mode amplitudes| at tau: no later output can exceed it
     std::vector<int> kept;
     std::vector<complex> at_tau;
     for (int k = 0; k < lambda.size(); ++k) {
       if (lambda(k).imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
       const double weight = lambda(k).imag() > 0 ? 2.0 : 1.0;
       const complex hk = weight * h(k);
-      for (int i = 0; i < first_free; ++i) {
-        const double t = i * p.dt_s;
-        trace.y[i] += (hk * (g(k) * pulse_response(lambda(k), t, tau) + e0(k) * std::exp(lambda(k) * t))).real();
+      if (first_free > 0) {
+        // Inside the pulse (e0 = 0 there: a pulse starts at rest), one exact step at a time instead of the closed form
+        // at every sample: with rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds and sin^2 = 1/2 - (e^{iws} +
+        // e^{-iws})/4,  rho(t + h) = e^{lambda h} rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt}
+        // D(lambda h, -iwh))/4]: three divided exponentials per mode and a few products per sample, re-anchored on
+        // the closed form every kAnchorEvery samples so that round-off cannot accumulate.
+        const complex l = lambda(k);
+        const double h = p.dt_s, w = 2 * std::numbers::pi / tau;
+        const complex step = std::exp(l * h), turn = std::polar(1.0, w * h);
+        const complex d0 = h * divided_exp(l * h, 0.0), d_plus = h * divided_exp(l * h, complex(0.0, w * h)),
+                      d_minus = h * divided_exp(l * h, complex(0.0, -w * h));
+        const complex hg = hk * g(k);
+        complex rho, rotation;
+        for (int i = 0; i < first_free; ++i) {
+          if (i % kAnchorEvery == 0) {
+            rho = pulse_response(l, i * h, tau);
+            rotation = std::polar(1.0, w * i * h);
+          }
+          trace.y[i] += (hg * rho).real();
+          if (e0(k) != 0.0) trace.y[i] += (hk * e0(k) * std::exp(l * (i * h))).real();  // a pulse on a plucked beam
+          rho = step * rho + 0.5 * d0 - 0.25 * (rotation * d_plus + std::conj(rotation) * d_minus);
+          rotation *= turn;
+        }
       }
       const complex amplitude =
           hk * ((pulse ? g(k) * pulse_response(lambda(k), tau, tau) : complex(0)) + e0(k) * std::exp(lambda(k) * tau));
@@ -86,7 +107,6 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
 
     // Free decay: y_i = Re sum_k A_k e^{lambda_k (t_i - tau)}.
     const double negligible = 1e-18 * bound;
-    constexpr int kAnchorEvery = 256;
     int modes_used = 0;
     for (std::size_t j = 0; j < kept.size(); ++j) {
       const complex l = lambda(kept[j]);
