@@ -1,12 +1,20 @@
 // CI's tolerance check: the smoke study (studies/smoke.toml) is run from scratch and its per-case estimates are
 // compared with the committed golden table tests/golden/smoke_cases.csv (made by `make golden` from a run that was
-// reviewed; this test only reads it). A change that moves any estimate by more than the tolerance below, or changes a
-// fit's status, fails.
+// reviewed; this test only reads it). A change that changes a fit's status or success, or moves an identifying fit's
+// estimate by more than the tolerance below, fails.
 //
-// Tolerance: 1e-4 relative on every estimate. On one machine the study is bit-for-bit reproducible (the tables do
-// not depend on threads), so any difference is a change in the code or the libraries. Converged fits move by
-// ~1e-10 between optimisation levels (Release -O2 against the sanitizer build's -O1); 1e-4 is far above that and
-// 200x below the study's 2 % success tolerance, so it catches every change that matters to a study's conclusions.
+// What is compared, and why. On one machine the study is bit-for-bit reproducible (the tables do not depend on
+// threads), but not across machines: glibc's libm and FFTW choose code paths by the processor's vector units, so the
+// last bits of every evaluation move, and a fit that does not identify (N = 4 and 8 here: the models misplace modes 2
+// and 3 by several bins) lands wherever its optimizer's path takes it. Such a landing point is not a property of the
+// code: the committed golden table of one machine put a spike-smooth N = 4 fit at EI = 0.456 where another machine
+// put it at 0.982 (the bound). So every case is checked for status and success, and the estimates of the fits that
+// identify the beam (success = 1 in the golden table: spike and spike-smooth at N = 16) to
+//   1e-3 relative for stiffness and inertia parameters, 1e-2 for damping parameters.
+// Measured: running the smoke study with glibc's AVX2/FMA/AVX-512 variants switched off (GLIBC_TUNABLES) moves these
+// fits by at most 8e-6 in EI and rho and 5.3e-4 in cDI and gamma (the optimizer's xtol stop along the shallow damping
+// directions); the tolerances are 100x and 20x above that, and 20x below the study's success tolerances (2 %, 25 %),
+// so they catch every change that matters to a conclusion.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +23,7 @@
 #include <map>
 #include <sstream>
 
+#include "model/beam_parameters.h"
 #include "study/runner.h"
 #include "study/study_spec.h"
 
@@ -77,7 +86,7 @@ TEST(GoldenSmoke, EstimatesMatchTheCommittedGoldenTable) {
   const auto now = read_table(out / "cases.csv");
   ASSERT_FALSE(golden.empty());
   ASSERT_EQ(now.size(), golden.size()) << "the smoke study's cases changed: regenerate with `make golden` and review";
-  const double tolerance = 1e-4;
+  int compared = 0;
   for (const auto& [id, g] : golden) {
     ASSERT_TRUE(now.count(id)) << "case " << id << " (" << g.at("cost") << ", N = " << g.at("elements")
                                << ") is no longer in the smoke study";
@@ -86,18 +95,20 @@ TEST(GoldenSmoke, EstimatesMatchTheCommittedGoldenTable) {
         g.at("cost") + ", N = " + g.at("elements") + ", noise " + g.at("noise") + ", replicate " + g.at("replicate");
     EXPECT_EQ(n.at("status"), g.at("status")) << what;
     EXPECT_EQ(n.at("success"), g.at("success")) << what;
+    if (g.at("success") != "1") continue;  // a fit that does not identify: its landing point is not compared
     for (const auto& [column, text] : g) {
       if (column.rfind("estimate_", 0) != 0) continue;
+      const std::string parameter = column.substr(std::string("estimate_").size());
+      const double tolerance = model::find_parameter(parameter)->role == "damping" ? 1e-2 : 1e-3;
       const double want = std::stod(text), got = std::stod(n.at(column));
-      if (std::isnan(want)) {
-        EXPECT_TRUE(std::isnan(got)) << what << ": " << column;
-        continue;
-      }
+      ++compared;
       EXPECT_LE(std::abs(got - want), tolerance * std::abs(want))
           << what << ": " << column << " = " << got << ", golden " << want << " (relative change "
-          << (got - want) / want << ")";
+          << (got - want) / want << ", tolerance " << tolerance << ")";
     }
   }
+  // The smoke study must keep fits that identify, or this test would compare no estimate at all.
+  EXPECT_GE(compared, 16) << "the golden table has fewer than four identifying fits";
 }
 
 }  // namespace
