@@ -128,7 +128,9 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
                        std::string(info.meaning) + ", " + std::string(info.unit) + ")");
   }
   // Constraints between parameters (each one alone was checked where it was read).
-  if (auto e = model::validation_error(beam)) throw InputError(at(table.key_line("c")) + ": beam." + *e);
+  // The message opens with the key it is about ("c = ...", "kAG = ..."): the error names that key's line.
+  if (auto e = model::implausibility(beam))
+    throw InputError(at(table.key_line(e->substr(0, e->find(' ')))) + ": beam." + *e);
   return beam;
 }
 

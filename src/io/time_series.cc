@@ -32,10 +32,21 @@ std::vector<std::string> split(const std::string& line, char separator) {
   return fields;
 }
 
-// A field as an error message shows it: at most 40 characters (a 2 MB field is not echoed whole).
-std::string shown(const std::string& text) {
-  if (text.size() <= 40) return text;
-  return text.substr(0, 40) + "... (" + std::to_string(text.size()) + " characters)";
+// A field as an error message shows it: at most `limit` characters of message (a 2 MB field is not echoed whole),
+// with bytes that are not printable ASCII as \xNN (so that a binary file's bytes never reach the terminal raw).
+std::string shown(const std::string& text, std::size_t limit = 40) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  std::size_t i = 0;
+  for (; i < text.size() && out.size() < limit; ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte >= 0x20 && byte < 0x7f)
+      out += text[i];
+    else
+      out += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 15];
+  }
+  if (i < text.size()) out += "... (" + std::to_string(text.size()) + " characters)";
+  return out;
 }
 
 // The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
@@ -194,7 +205,7 @@ double parse(const std::string& path, int line, const std::string& column, const
   if (text.empty() || end != text.c_str() + text.size())
     throw InputError(path + ":" + std::to_string(line) + ": " + column + " = '" + shown(text) + "': must be a number");
   if (!std::isfinite(v))
-    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + text + ": must be finite");
+    throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + shown(text) + ": must be finite");
   return v;
 }
 
@@ -232,6 +243,7 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
     if (c != table.time_column) signals.push_back(c);
   std::string list;
   for (int c : signals) list += (list.empty() ? "" : ", ") + table.names[static_cast<std::size_t>(c)];
+  list = shown(list, 160);  // room for the names of a multi-channel record, not for a binary file's bytes
   int column = -1;
   if (o.channel.empty()) {
     if (signals.size() != 1)

@@ -96,6 +96,30 @@ std::optional<std::string> validation_error(const BeamParameters& beam) {
   return std::nullopt;
 }
 
+std::optional<std::string> implausibility(const BeamParameters& beam) {
+  if (auto error = validation_error(beam)) return error;
+  // Two ratios that no real beam breaks, and beyond which the Galerkin matrices lose their digits (an absurd density
+  // or stiffness read from a file otherwise ends in a failed eigenproblem with no key named):
+  // the radius of gyration r = sqrt(rho_r2 / rho) of a section between 1e-4 and 1 beam length thick (r = h/sqrt(12)
+  // for a rectangle) gives l/r in [2 sqrt(3), 2 sqrt(3) 1e4] (the thin Banks beam: 990);
+  const double r = std::sqrt(beam.rho_r2 / beam.rho), slenderness = beam.l / r;
+  const double least = 2 * std::sqrt(3.0), most = least * 1e4;
+  if (!(slenderness >= least && slenderness <= most))
+    return "rho_r2 = " + format_value(beam.rho_r2) + ": with rho = " + format_value(beam.rho) +
+           ", the radius of gyration sqrt(rho_r2/rho) = " + format_value(r) + " m is l/" + format_value(slenderness) +
+           ": must lie between l/" + format_value(most) + " and l/" + format_value(least) +
+           " (a section between 1e-4 and 1 beam length thick)";
+  // shear against bending, kAG r^2 / EI = kappa G / E: 0.26-0.33 for metals (kappa ~ 5/6, G/E = 1/(2(1 + nu))), about
+  // 0.01 for fibre composites; [1e-4, 10] leaves room for fits that move kAG and EI to their bounds.
+  const double shear_ratio = beam.kAG * r * r / beam.EI;
+  if (!(shear_ratio >= 1e-4 && shear_ratio <= 10))
+    return "kAG = " + format_value(beam.kAG) + ": with EI = " + format_value(beam.EI) +
+           ", kAG r^2/EI (= kappa G/E, r = sqrt(rho_r2/rho) = " + format_value(r) + " m) is " +
+           format_value(shear_ratio) +
+           ": must lie in [1e-4, 10] (0.26-0.33 for metals, about 0.01 for fibre composites)";
+  return std::nullopt;
+}
+
 namespace {
 
 // model.md section 5, set A: the Banks-group thin aluminium beam B1TAPIH with a tip body added.

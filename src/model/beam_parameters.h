@@ -55,6 +55,10 @@ std::optional<std::string> constraint_violation(const ParameterInfo& info, doubl
 // The first violated constraint as "EI = -1: must be > 0", or nothing when all values are admissible:
 // all finite; l, rho, rho_r2, kAG, EI > 0; gamma, cDI, kAcs, m, c, J_o >= 0.
 std::optional<std::string> validation_error(const BeamParameters& beam);
+// validation_error, then what no real beam has although the mathematics allows it (the exact determinant is tested
+// at l/r = 1e6): a section thinner than 1e-4 or thicker than 1 beam length (l/r outside [2 sqrt 3, 2 sqrt 3 1e4],
+// r = sqrt(rho_r2/rho)), or kAG r^2/EI = kappa G/E outside [1e-4, 10]. For parameters a user gives (beam files).
+std::optional<std::string> implausibility(const BeamParameters& beam);
 
 // Built-in parameter sets of model.md section 5: "banks-aluminium" and "thick-steel".
 std::vector<std::string> preset_names();

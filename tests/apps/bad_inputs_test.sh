@@ -51,6 +51,12 @@ expect_error "random bytes" "a binary file, not CSV" spikes --data "$tmp/random.
 { printf 't_s,y\n0,'; head -c 2000000 /dev/zero | tr '\0' '7'; printf 'x\n'; } >"$tmp/wide.csv"
 for i in $(seq 1 9); do echo "0.00$i,1" >>"$tmp/wide.csv"; done
 expect_error "2 MB field" "(2000001 characters)" spikes --data "$tmp/wide.csv"
+{ printf 't_s,y\n0,'; head -c 2000000 /dev/zero | tr '\0' '7'; printf '\n'; } >"$tmp/wide2.csv"
+for i in $(seq 1 9); do echo "0.00$i,1" >>"$tmp/wide2.csv"; done
+expect_error "2 MB number" "(2000000 characters): must be finite" spikes --data "$tmp/wide2.csv"
+{ printf 't_s'; for i in $(seq 1 30); do printf ',\xe9\x9b\xff%d' "$i"; done; printf '\n0'; for i in $(seq 1 30); do printf ',1'; done
+  printf '\n'; } >"$tmp/high.csv"
+expect_error "non-ASCII column names" "signal columns (\\xe9\\x9b\\xff1" spikes --data "$tmp/high.csv"
 
 # Absurd parameters.
 sed 's/^EI = .*/EI = 1e308/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/ei.toml"
@@ -62,6 +68,10 @@ sed 's/^thickness_m = .*/thickness_m = 1.0/' "$G" >"$tmp/thick.toml"
 expect_error "thickness 1 m" "a beam is at least twice as long as it is thick" modes --beam "$tmp/thick.toml" --elements 4
 sed 's/^c = .*/c = 10/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/tip.toml"
 expect_error "tip offset 10 m" "beam.c = 10: must be <= l = 0.4573" modes --beam "$tmp/tip.toml" --elements 4
+sed 's/^rho = .*/rho = 1e5/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/rho.toml"
+expect_error "rho 1e5 kg/m" "the radius of gyration sqrt(rho_r2/rho)" modes --beam "$tmp/rho.toml" --elements 4
+sed 's/^EI = .*/EI = 1e-19/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/eismall.toml"
+expect_error "EI 1e-19" "kAG r^2/EI (= kappa G/E" modes --beam "$tmp/eismall.toml" --elements 4
 expect_error "dt 1e300" "must last at most 1e6 s" simulate "${S[@]}" --dt 1e300
 
 # Counts beyond what exists are stated.
