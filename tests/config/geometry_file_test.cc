@@ -62,9 +62,10 @@ TEST(Geometry, TipBlockGivesMassOffsetAndInertia) {
 }
 
 TEST(Geometry, ErrorsNameLineKeyAndConstraint) {
-  EXPECT_EQ(error_of(replaced(kThick, "thickness_m = 0.015", "thickness_m = -0.015")),
-            "g.toml:4: geometry.thickness_m = -0.015: must be in (0, length_m / 2]: a beam is at least twice as long as it "
-            "is thick (length_m = 0.3)");
+  EXPECT_EQ(
+      error_of(replaced(kThick, "thickness_m = 0.015", "thickness_m = -0.015")),
+      "g.toml:4: geometry.thickness_m = -0.015: must be in (0, length_m / 2]: a beam is at least twice as long as it "
+      "is thick (length_m = 0.3)");
   EXPECT_EQ(error_of(replaced(kThick, "density_kg_m3 = 7850", "density_kg_m3 = 7850\ncolour = 'grey'")),
             "g.toml:8: unknown key geometry.colour: valid keys are length_m, width_m, thickness_m, youngs_modulus_Pa, "
             "density_kg_m3, poisson_ratio, shear_modulus_Pa, shear_coefficient, tip_mass_kg, tip_offset_m, "

@@ -11,10 +11,10 @@
 
 namespace beamid::fuzz {
 
-void beam_file(const std::uint8_t* data, std::size_t size);   // [beam] and [geometry] TOML
-void study_file(const std::uint8_t* data, std::size_t size);  // study TOML
-void csv_record(const std::uint8_t* data, std::size_t size);  // CSV time series
-void lvm_record(const std::uint8_t* data, std::size_t size);  // LabVIEW .lvm time series
+void beam_file(const std::uint8_t* data, std::size_t size);     // [beam] and [geometry] TOML
+void study_file(const std::uint8_t* data, std::size_t size);    // study TOML
+void csv_record(const std::uint8_t* data, std::size_t size);    // CSV time series
+void lvm_record(const std::uint8_t* data, std::size_t size);    // LabVIEW .lvm time series
 void command_line(const std::uint8_t* data, std::size_t size);  // beamid arguments, NUL-separated
 
 struct Target {
