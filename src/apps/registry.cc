@@ -69,6 +69,11 @@ std::vector<Command> make_commands() {
                fit_flags(),
                {},
                run_fit});
+  c.push_back({"crb",
+               "Cramer-Rao bound of chosen parameters for an experiment in white Gaussian noise",
+               crb_flags(),
+               {{"noise-sd", "noise-level"}},
+               run_crb});
   c.push_back({"verify",
                "forward-model verification tables (Galerkin vs exact, fast vs CVODE)",
                {text_flag("output", "folder for the CSV and Markdown tables", true)},

@@ -1,6 +1,8 @@
-// Ceres adapter: the only file that sees Ceres types. Levenberg-Marquardt with dense QR on the residual vector,
-// central numeric differences (relative step 1e-6 on coordinates of order one: truncation O(h^2) ~ 1e-12 and
-// round-off ~ eps/h ~ 1e-10, both far below the noise-free recovery target of 1e-6) and box bounds.
+// Ceres adapter: the only file that sees Ceres types. Levenberg-Marquardt with dense QR on the residual vector and
+// box bounds, with the problem's exact Jacobian where it has one (the time cost: simulation/sensitivities.h), else
+// central numeric differences (relative step 1e-6 on coordinates of order one: truncation O(h^2) ~ 1e-12, and
+// round-off ~ eps/h ~ 1e-10 of a smooth residual; the thin beam's model output carries ~1e-9 of round-off, which at
+// this step corrupts the weakly sensitive damping columns, so LM then needs tens of iterations near a minimum).
 #include <ceres/ceres.h>
 #include <ceres/version.h>
 
@@ -23,7 +25,36 @@ struct Residuals {
   }
 };
 
+// The same residuals with the problem's exact Jacobian (Ceres wants it row-major: jacobians[0][i n + j] = dr_i/dx_j).
+class ExactJacobian final : public ceres::CostFunction {
+ public:
+  ExactJacobian(GuardedProblem* guarded, double scale) : guarded_(guarded), scale_(scale) {
+    set_num_residuals(guarded->problem.residual_count);
+    mutable_parameter_block_sizes()->push_back(guarded->problem.dimension());
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const int n = guarded_->problem.dimension(), m = guarded_->problem.residual_count;
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(parameters[0], n);
+    Eigen::VectorXd r;
+    if (jacobians == nullptr || jacobians[0] == nullptr) {
+      if (!guarded_->residuals(x, r)) return false;
+    } else {
+      Eigen::MatrixXd j;
+      if (!guarded_->jacobian(x, r, j)) return false;
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      Eigen::Map<RowMajor>(jacobians[0], m, n) = scale_ * j;
+    }
+    Eigen::Map<Eigen::VectorXd>(residuals, m) = scale_ * r;
+    return true;
+  }
+
+ private:
+  GuardedProblem* guarded_;
+  double scale_;
+};
+
 ceres::CostFunction* cost_function(GuardedProblem& guarded, double scale = 1) {
+  if (guarded.problem.jacobian) return new ExactJacobian(&guarded, scale);
   auto* f = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(new Residuals{&guarded, scale});
   f->AddParameterBlock(guarded.problem.dimension());
   f->SetNumResiduals(guarded.problem.residual_count);

@@ -9,6 +9,7 @@
 #include "model/errors.h"
 #include "model/limits.h"
 #include "simulation/free_decay.h"
+#include "simulation/sensitivities.h"
 
 namespace beamid::fit {
 
@@ -28,6 +29,9 @@ struct Objective::Impl {
   std::unique_ptr<simulation::Simulator> simulator;
   bool needs_poles;
   std::vector<double> data;  // free decay: the amplitudes are solved against it
+  // The time cost with a known amplitude on a pulse, by the fast propagator: residuals y - z, whose Jacobian is the
+  // exact sensitivity d y / d q (simulation/sensitivities.h).
+  bool exact_jacobian = false;
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
@@ -46,6 +50,35 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
                                       simulation::make_simulator(o.simulator),
                                       o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues",
                                       o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
+  impl_->exact_jacobian = o.cost.name == costs::kTimeCost && !o.cost.unknown_amplitude &&
+                          simulation::has_exact_sensitivities(o.experiment) && o.simulator.integrator == "fast";
+}
+
+bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
+
+Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters& beam,
+                                                    const std::vector<std::string>& keys, Eigen::MatrixXd& jacobian) {
+  jacobian.resize(0, 0);
+  if (!impl_->exact_jacobian) throw InputError("evaluate_with_jacobian: no exact Jacobian for this cost and experiment");
+  Output out;
+  if (auto error = model::validation_error(beam)) {
+    out.evaluation.status = "inadmissible parameters: " + *error;
+    return out;
+  }
+  try {
+    simulation::SensitivityTrace s =
+        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->experiment, keys);
+    if (!s.trace.ok()) {
+      out.evaluation.status = s.trace.status;
+      return out;
+    }
+    out.y = std::move(s.trace.y);
+    out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
+    if (out.evaluation.ok()) jacobian = std::move(s.dy_dq);  // residuals y - z: d r / d q = d y / d q
+  } catch (const std::exception& error) {
+    out.evaluation.status = error.what();
+  }
+  return out;
 }
 
 Objective::~Objective() = default;
@@ -102,11 +135,12 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
   const Eigen::VectorXd lo = map.lower(), hi = map.upper();
   for (Eigen::Index i = 0; i < n; ++i)
     p.lower(i) = lo(active[static_cast<std::size_t>(i)]), p.upper(i) = hi(active[static_cast<std::size_t>(i)]);
-  auto full = [&map, active, x_fixed](const Eigen::VectorXd& x) {
-    Eigen::VectorXd all = x_fixed;
-    for (std::size_t i = 0; i < active.size(); ++i) all(active[i]) = x(static_cast<Eigen::Index>(i));
-    return map.beam(all);
+  auto all = [active, x_fixed](const Eigen::VectorXd& x) {
+    Eigen::VectorXd coordinates = x_fixed;
+    for (std::size_t i = 0; i < active.size(); ++i) coordinates(active[i]) = x(static_cast<Eigen::Index>(i));
+    return coordinates;
   };
+  auto full = [&map, all](const Eigen::VectorXd& x) { return map.beam(all(x)); };
   p.cost = [&objective, full](const Eigen::VectorXd& x) { return objective.evaluate(full(x)).evaluation.value; };
   p.residual_count = objective.cost().residual_count();
   p.residuals = [&objective, full](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
@@ -115,6 +149,21 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
     r = std::move(out.evaluation.residuals);
     return true;
   };
+  if (objective.has_exact_jacobian()) {
+    std::vector<std::string> keys;
+    for (int i : active) keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
+    // d r / d x_i = d r / d q_i  d q_i / d x_i (the coordinate map is diagonal).
+    p.jacobian = [&objective, &map, all, active, keys](const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                                                         Eigen::MatrixXd& j) {
+      const Eigen::VectorXd coordinates = all(x);
+      auto out = objective.evaluate_with_jacobian(map.beam(coordinates), keys, j);
+      if (!out.evaluation.ok() || j.size() == 0) return false;
+      r = std::move(out.evaluation.residuals);
+      for (std::size_t i = 0; i < active.size(); ++i)
+        j.col(static_cast<Eigen::Index>(i)) *= map.derivative(active[i], coordinates(active[i]));
+      return true;
+    };
+  }
   return p;
 }
 

@@ -53,21 +53,39 @@ double GuardedProblem::cost(const Eigen::VectorXd& x) {
   return value;
 }
 
-bool GuardedProblem::residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-  ++evaluations;
+namespace {
+
+// One counted call of the objective: an exception or an undefined result is a rejected point, never a throw; the
+// best residual norm seen is kept.
+template <class Call>
+bool guarded_call(GuardedProblem& g, const Eigen::VectorXd& x, Eigen::VectorXd& r, Call call) {
+  ++g.evaluations;
   bool ok = false;
   try {
-    ok = problem.residuals(x, r) && r.size() == problem.residual_count && r.allFinite();
+    ok = call() && r.size() == g.problem.residual_count && r.allFinite();
   } catch (const std::exception& error) {
-    if (first_exception.empty()) first_exception = error.what();
+    if (g.first_exception.empty()) g.first_exception = error.what();
   } catch (...) {
-    if (first_exception.empty()) first_exception = "unknown exception";
+    if (g.first_exception.empty()) g.first_exception = "unknown exception";
   }
   if (ok) {
     const double value = r.squaredNorm();
-    if (value < best_cost) best_cost = value, best_x = x;
+    if (value < g.best_cost) g.best_cost = value, g.best_x = x;
   }
   return ok;
+}
+
+}  // namespace
+
+bool GuardedProblem::residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  return guarded_call(*this, x, r, [&] { return problem.residuals(x, r); });
+}
+
+bool GuardedProblem::jacobian(const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& j) {
+  return guarded_call(*this, x, r, [&] {
+    return problem.jacobian(x, r, j) && j.rows() == problem.residual_count && j.cols() == problem.dimension() &&
+           j.allFinite();
+  });
 }
 
 void GuardedProblem::finish(OptimizerResult& result, const std::string& what, const std::string& detail) const {

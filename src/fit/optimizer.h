@@ -2,8 +2,8 @@
 //   NLopt (fit/nlopt_optimizer.cc):  "nelder-mead" (LN_NELDERMEAD), "bobyqa" (LN_BOBYQA), "sbplx" (LN_SBPLX),
 //                                    "direct-l" (GN_DIRECT_L), "crs2-lm" (GN_CRS2_LM, stochastic: seeded by
 //                                    nlopt_srand(seed) before every run);
-//   Ceres (fit/ceres_optimizer.cc):  "lm", Levenberg-Marquardt on the residual vector with central numeric
-//                                    differences and the bounds.
+//   Ceres (fit/ceres_optimizer.cc):  "lm", Levenberg-Marquardt on the residual vector with the bounds, with the
+//                                    problem's exact Jacobian where it has one, else central numeric differences.
 // Optimizers see dimensionless coordinates of order one (fit/parameter_map.h maps them to physical values).
 // Nothing here throws for what happens during a run: an exception inside the objective, a non-finite cost or an
 // undefined residual vector becomes an infinite cost (or a rejected step), and a run that cannot go on becomes a
@@ -29,6 +29,9 @@ struct Problem {
   // Optional residual vector with cost = |r|^2; returns false where it is undefined. Needed by "lm".
   int residual_count = 0;
   std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)> residuals;
+  // Optional: the residuals and their exact Jacobian (residual_count x dimension) at once; "lm" then uses it instead
+  // of central differences. Returns false where undefined.
+  std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&, Eigen::MatrixXd&)> jacobian;
   int dimension() const { return static_cast<int>(lower.size()); }
 };
 
@@ -85,6 +88,7 @@ struct GuardedProblem {
   explicit GuardedProblem(const Problem& problem);
   double cost(const Eigen::VectorXd& x);
   bool residuals(const Eigen::VectorXd& x, Eigen::VectorXd& r);
+  bool jacobian(const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& j);  // counted as one evaluation
   const Problem& problem;
   long evaluations = 0;
   std::string first_exception;

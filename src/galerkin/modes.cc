@@ -127,6 +127,13 @@ Eigen::VectorXcd StateSpaceModes::output_coefficients(const Eigen::VectorXd& sen
   return vectors_.transpose() * row.cast<std::complex<double>>();
 }
 
+Eigen::MatrixXcd StateSpaceModes::physical_vectors() const {
+  const Eigen::Index n = scale_.size();
+  // z = [D q; q'] and w = Phi q, so the displacement part of column k is Phi D^-1 z1.
+  return shapes_.cast<std::complex<double>>() *
+         (scale_.cwiseInverse().cast<std::complex<double>>().asDiagonal() * vectors_.topRows(n));
+}
+
 double StateSpaceModes::feedthrough(const Eigen::VectorXd& sensor, const Eigen::VectorXd& load) const {
   return sensor.dot(system_mass_.solve(load));
 }

@@ -50,6 +50,9 @@ class StateSpaceModes {
   Eigen::VectorXcd output_coefficients(const Eigen::VectorXd& sensor, int derivative) const;
   // The direct term of the acceleration output: c^T M^-1 f (so c^T w'' = sum h_k eta_k + feedthrough * P).
   double feedthrough(const Eigen::VectorXd& sensor, const Eigen::VectorXd& load) const;
+  // The eigenvectors in physical coordinates: column k is x_k with (lambda_k^2 M + lambda_k C + K) x_k = 0, in the
+  // order of eigenvalues() (any scaling; the state-space eigenvector is [x_k; lambda_k x_k]).
+  Eigen::MatrixXcd physical_vectors() const;
   // Reciprocal condition estimate of V (small: nearly defective, e.g. critically damped, modes).
   double eigenvector_rcond() const { return rcond_; }
 

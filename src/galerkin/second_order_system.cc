@@ -59,6 +59,36 @@ SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
   return s;
 }
 
+SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamParameters& p, const std::string& key) {
+  const Eigen::Index n = f.dimension();
+  SecondOrderSystem d{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
+  if (key == "rho") {
+    d.M = f.translation;
+  } else if (key == "rho_r2") {
+    d.M = f.rotation;
+  } else if (key == "m") {
+    d.M = f.tip_uu + p.c * f.tip_ua + p.c * p.c * f.tip_aa;
+  } else if (key == "c") {
+    d.M = p.m * f.tip_ua + 2 * p.m * p.c * f.tip_aa;
+  } else if (key == "J_o") {
+    d.M = f.tip_aa;
+  } else if (key == "kAG") {
+    d.K = f.shear;
+  } else if (key == "EI") {
+    d.K = f.bending;
+  } else if (key == "kAcs") {
+    d.C = f.shear;
+  } else if (key == "cDI") {
+    d.C = f.bending;
+  } else if (key == "gamma") {
+    d.C = f.translation;
+  } else {
+    throw InputError("parameter '" + key + "': the Galerkin matrices have no derivative with respect to it (" +
+                     (key == "l" ? std::string("the forms are built for one length") : "not a beam parameter") + ")");
+  }
+  return d;
+}
+
 SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters& beam) {
   return combine(BeamForms(space, beam.l), beam);
 }

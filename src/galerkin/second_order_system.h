@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
 
 #include "galerkin/spline_space.h"
 #include "model/beam_parameters.h"
@@ -38,6 +39,12 @@ struct BeamForms {
 
 // M, C, K for the given parameters; beam.l must equal forms.length_m (InputError otherwise).
 SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
+
+// dM/dq, dC/dq, dK/dq for the beam parameter `key` at `beam` (exact: M, C, K are linear in every parameter but the
+// tip offset c, which enters M as m c and m c^2). InputError for "l" (the forms are built for one length) or an
+// unknown key.
+SecondOrderSystem parameter_derivative(const BeamForms& forms, const model::BeamParameters& beam,
+                                       const std::string& key);
 
 // Convenience: BeamForms(space, beam.l) then combine.
 SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters& beam);

@@ -33,7 +33,34 @@ complex divided_exp(complex a, complex b) {
   return std::exp(a) * phi1(b - a);
 }
 
+// phi2(z) = (e^z - 1 - z)/z^2 = sum_k z^k/(k+2)!, with phi2(0) = 1/2: by its series for |z| < 1/2 (18 terms: the
+// remainder is below 2^-18/20! ~ 1e-24), else as (phi1(z) - 1)/z, which loses at most a factor 3 to cancellation.
+complex phi2(complex z) {
+  if (std::abs(z) >= 0.5) return (phi1(z) - 1.0) / z;
+  complex sum = 0, term = 0.5;  // z^0 / 2!
+  for (int k = 0; k < 18; ++k) {
+    sum += term;
+    term *= z / static_cast<double>(k + 3);
+  }
+  return sum;
+}
+
+// dD/da (a, b) for D(a, b) = (e^a - e^b)/(a - b): e^a phi2(b - a), or, with b the argument of larger real part (so
+// that nothing overflows), e^b phi1'(a - b) = e^b (phi1(a - b) - phi2(a - b)).
+complex divided_exp_da(complex a, complex b) {
+  if (a.real() >= b.real()) return std::exp(a) * phi2(b - a);
+  return std::exp(b) * (phi1(a - b) - phi2(a - b));
+}
+
 }  // namespace
+
+complex pulse_response_derivative(complex lambda, double t, double tau) {
+  // d/dlambda of t D(lambda t, mu t) is t^2 dD/da (lambda t, mu t), for mu = 0 and +-i w.
+  const double w = 2 * std::numbers::pi / tau;
+  const complex a = lambda * t;
+  const complex i_wt(0.0, w * t);
+  return t * t * (0.5 * divided_exp_da(a, 0.0) - 0.25 * (divided_exp_da(a, i_wt) + divided_exp_da(a, -i_wt)));
+}
 
 complex pulse_response(complex lambda, double t, double tau) {
   const double w = 2 * std::numbers::pi / tau;

@@ -22,5 +22,8 @@ class ModalSimulator final : public Simulator {
 
 // The unit-amplitude pulse response of one mode, int_0^t e^{lambda (t-s)} sin^2(pi s / tau) ds, 0 <= t <= tau.
 std::complex<double> pulse_response(std::complex<double> lambda, double t_s, double tau_s);
+// Its derivative with respect to lambda, int_0^t (t-s) e^{lambda (t-s)} sin^2(pi s / tau) ds, 0 <= t <= tau, from
+// dD/da (a, b) = e^a phi2(b - a), phi2(z) = (e^z - 1 - z)/z^2 (the second divided exponential).
+std::complex<double> pulse_response_derivative(std::complex<double> lambda, double t_s, double tau_s);
 
 }  // namespace beamid::simulation

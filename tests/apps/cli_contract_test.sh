@@ -106,6 +106,23 @@ expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-sm
 printf 't_s,y\n0,1\n0.001,2\n0.0025,3\n0.003,1\n0.004,1\n0.005,1\n0.006,1\n0.007,1\n' >"$tmp/bad.csv"
 expect_error "spikes non-uniform time" "bad.csv:4: t_s = 0.0025: non-uniform time base" spikes --data "$tmp/bad.csv" --spikes 1
 
+# crb: the header, four positive bounds, and the physics of a bound: it scales with the noise sd (F = J^T J / s^2),
+# so 10x the noise level gives 10x every bound (to the 1e-6 the sensitivities' estimated error allows).
+crb_flags="--beam banks-aluminium --elements 4 --estimate EI,rho,cDI,gamma --dt 1e-3 --samples 1024 --pulse-width 0.004"
+"$BEAMID" crb $crb_flags --noise-level 0.001 >"$tmp/c1.csv" 2>/dev/null || fail=$((fail + 1))
+"$BEAMID" crb $crb_flags --noise-level 0.01 >"$tmp/c2.csv" 2>/dev/null || fail=$((fail + 1))
+check "crb header" test "$(head -1 "$tmp/c1.csv")" = "parameter,value,crb_sd,crb_relative_sd"
+check "crb rows" test "$(wc -l <"$tmp/c1.csv")" -eq 5
+check "crb positive" awk -F, 'NR > 1 && !($3 > 0 && $4 > 0) { bad = 1 } END { exit bad }' "$tmp/c1.csv"
+check "crb scales with the noise" awk -F, 'NR == FNR { if (FNR > 1) a[$1] = $4; next }
+    FNR > 1 { r = $4 / a[$1] / 10 - 1; if (r < 0) r = -r; if (r > 1e-6) bad = 1 } END { exit bad }' "$tmp/c1.csv" "$tmp/c2.csv"
+expect_error "crb needs a noise" "give one of --noise-sd S (absolute) and --noise-level L" crb $crb_flags
+expect_error "crb unknown key" "'EJ' is not a beam parameter" crb --beam banks-aluminium --elements 4 --estimate EJ \
+  --noise-sd 1e-6
+printf '[beam]\nl = 0.4573\nrho = 0.093\nrho_r2 = 1.984e-8\nkAG = 7.363e5\nEI = 0.491\ngamma = 0\ncDI = 0.649e-5\nkAcs = 9.73\nm = 0.05\nc = 0.0125\nJ_o = 5.208e-6\n' >"$tmp/nogamma.toml"
+expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/nogamma.toml" --elements 4 --estimate gamma \
+  --noise-sd 1e-6
+
 # study, merge: one run, and two shards merged by `beamid merge`, give the same tables byte for byte (the store and
 # timings.csv aside); a bad study file is one line naming file:line, key, value and constraint.
 cp "$SRC/tests/data/mini_study.toml" "$tmp/mini.toml"

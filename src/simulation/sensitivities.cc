@@ -1,0 +1,138 @@
+#include "simulation/sensitivities.h"
+
+#include <cmath>
+#include <complex>
+
+#include "galerkin/modes.h"
+#include "model/errors.h"
+#include "simulation/modal_simulator.h"
+
+namespace beamid::simulation {
+namespace {
+
+using complex = std::complex<double>;
+
+// Per mode k (one of each conjugate pair) and parameter p: the residue R_k, its derivative and d lambda_k.
+struct ModalDerivatives {
+  Eigen::VectorXcd lambda, residue;      // 2n
+  Eigen::MatrixXcd d_lambda, d_residue;  // 2n x keys
+};
+
+ModalDerivatives modal_derivatives(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
+                                   const galerkin::SecondOrderSystem& system, const ResponseProblem& p,
+                                   const galerkin::StateSpaceModes& modes, const std::vector<std::string>& keys) {
+  ModalDerivatives d;
+  d.lambda = modes.eigenvalues();
+  const Eigen::Index m = d.lambda.size();
+  const Eigen::MatrixXcd x = modes.physical_vectors();  // n x 2n
+  const Eigen::MatrixXcd mx = system.M * x, cx = system.C * x;
+  // s_k = 1 / x_k^T (2 lambda_k M + C) x_k, h_k = c^T x_k, g_k = s_k x_k^T f F0.
+  Eigen::VectorXcd s(m), h = x.transpose() * p.sensor.cast<complex>(), g = x.transpose() * p.load.cast<complex>();
+  for (Eigen::Index k = 0; k < m; ++k)  // transpose, not adjoint: the pencil is complex symmetric
+    s(k) = 1.0 / (x.col(k).transpose() * (2.0 * d.lambda(k) * mx.col(k) + cx.col(k))).value();
+  g = p.amplitude_N * s.cwiseProduct(g);
+  const int power = p.derivative;
+  Eigen::VectorXcd lambda_power = d.lambda.array().pow(power);
+  d.residue = lambda_power.cwiseProduct(h).cwiseProduct(g);
+
+  d.d_lambda.resize(m, static_cast<Eigen::Index>(keys.size()));
+  d.d_residue.resize(m, static_cast<Eigen::Index>(keys.size()));
+  const Eigen::VectorXcd lambda2 = d.lambda.cwiseProduct(d.lambda);
+  for (std::size_t q = 0; q < keys.size(); ++q) {
+    const galerkin::SecondOrderSystem ds = galerkin::parameter_derivative(forms, beam, keys[q]);
+    // Y = dK X + dC X Lambda + dM X Lambda^2;  Q = -diag(s) X^T Y;  N = diag(s) (X^T dM X) Lambda.
+    const Eigen::MatrixXcd dmx = ds.M * x;
+    const Eigen::MatrixXcd y = ds.K * x + (ds.C * x) * d.lambda.asDiagonal() + dmx * lambda2.asDiagonal();
+    const Eigen::MatrixXcd q_matrix = -(s.asDiagonal() * (x.transpose() * y));
+    const Eigen::MatrixXcd n_matrix = s.asDiagonal() * (x.transpose() * dmx) * d.lambda.asDiagonal();
+    const auto col = static_cast<Eigen::Index>(q);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      complex into = 0, out = 0;  // sum_j h_j C_jk and sum_j (C_kj + N_kj) g_j
+      for (Eigen::Index j = 0; j < m; ++j) {
+        out += n_matrix(k, j) * g(j);
+        if (j == k) continue;
+        into += h(j) * q_matrix(j, k) / (d.lambda(k) - d.lambda(j));
+        out += q_matrix(k, j) / (d.lambda(j) - d.lambda(k)) * g(j);
+      }
+      const complex dl = q_matrix(k, k);
+      const complex d_hg = g(k) * into - h(k) * out;
+      d.d_lambda(k, col) = dl;
+      d.d_residue(k, col) =
+          lambda_power(k) * d_hg + (power > 0 ? static_cast<double>(power) * std::pow(d.lambda(k), power - 1) * dl : complex(0.0)) * h(k) * g(k);
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+bool has_exact_sensitivities(const Experiment& e) { return e.excitation == kPulse; }
+
+SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
+                                             const Experiment& experiment, const std::vector<std::string>& keys) {
+  if (!has_exact_sensitivities(experiment))
+    throw InputError("excitation = '" + experiment.excitation +
+                     "': exact sensitivities are available for a pulse from rest only");
+  for (const auto& key : keys) galerkin::parameter_derivative(forms, beam, key);  // InputError for a bad key, first
+  SensitivityTrace out;
+  out.keys = keys;
+  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
+  const ResponseProblem p = make_problem(forms, system, experiment);
+  out.trace = ModalSimulator().run(system, p);
+  if (!out.trace.ok()) return out;
+  try {
+    const galerkin::StateSpaceModes modes(system);
+    const ModalDerivatives d = modal_derivatives(forms, beam, system, p, modes, keys);
+    const auto np = static_cast<Eigen::Index>(keys.size());
+    out.dy_dq = Eigen::MatrixXd::Zero(p.samples, np);
+    const double tau = p.pulse_width_s, dt = p.dt_s;
+    const int first_free = static_cast<int>(std::min<double>(p.samples, std::floor(tau / dt) + 1));
+    constexpr int kAnchorEvery = 256;
+    for (Eigen::Index k = 0; k < d.lambda.size(); ++k) {
+      const complex l = d.lambda(k);
+      if (l.imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
+      const double weight = l.imag() > 0 ? 2.0 : 1.0;
+      const Eigen::VectorXcd dr = weight * d.d_residue.row(k).transpose();
+      const Eigen::VectorXcd rdl = weight * d.residue(k) * d.d_lambda.row(k).transpose();
+      // Inside the pulse: closed forms at every sample (t = 0 is exactly 0: the pulse starts at rest with P(0) = 0).
+      for (int i = 1; i < first_free; ++i) {
+        const double t = i * dt;
+        const complex rho = pulse_response(l, t, tau), drho = pulse_response_derivative(l, t, tau);
+        for (Eigen::Index q = 0; q < np; ++q) out.dy_dq(i, q) += (dr(q) * rho + rdl(q) * drho).real();
+      }
+      if (first_free >= p.samples) continue;
+      // After it: A_q + (t - tau) B_q times e^{lambda (t - tau)}, until that factor is below 1e-18 (the mode's
+      // contribution has then fallen by 18 orders of magnitude from its size at tau).
+      const complex rho_tau = pulse_response(l, tau, tau), drho_tau = pulse_response_derivative(l, tau, tau);
+      const Eigen::VectorXcd a = dr * rho_tau + rdl * drho_tau, b = rdl * rho_tau;
+      int last = p.samples - 1;
+      if (l.real() < 0) {
+        const double c = std::ceil((tau + std::log(1e-18) / l.real()) / dt);
+        if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, first_free - 1.0, p.samples - 1.0));
+      }
+      const complex step = std::exp(l * dt);
+      complex factor;
+      for (int i = first_free; i <= last; ++i) {
+        const double since = i * dt - tau;
+        if ((i - first_free) % kAnchorEvery == 0) factor = std::exp(l * since);
+        for (Eigen::Index q = 0; q < np; ++q) out.dy_dq(i, q) += (factor * (a(q) + since * b(q))).real();
+        factor *= step;
+      }
+    }
+    if (p.derivative == 2) {
+      // The acceleration's direct term c^T M^-1 f P(t): d/dq = -c^T M^-1 dM M^-1 f P(t).
+      const Eigen::LLT<Eigen::MatrixXd> mass(system.M);
+      const Eigen::VectorXd mf = mass.solve(p.load), mc = mass.solve(p.sensor);
+      for (Eigen::Index q = 0; q < np; ++q) {
+        const double direct = -mc.dot(galerkin::parameter_derivative(forms, beam, keys[q]).M * mf);
+        for (int i = 1; i < first_free; ++i) out.dy_dq(i, q) += direct * p.force_N(i * dt);
+      }
+    }
+  } catch (const NumericalError& error) {
+    out.trace.status = std::string("sensitivities: ") + error.what();
+    out.dy_dq.resize(0, 0);
+  }
+  return out;
+}
+
+}  // namespace beamid::simulation
