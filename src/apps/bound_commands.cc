@@ -31,7 +31,7 @@ std::vector<FlagSpec> crb_flags() {
 
 int run_crb(const Flags& a, std::ostream& out) {
   const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = config::resolve_beam(beam_name);
+  const model::BeamParameters beam = read_beam(a);
   const int n = a.integer("elements");
   const simulation::Experiment e = read_experiment(a, beam.l);
   guard_run_size(a, n, e.samples, model::kSimulateBytesPerSample);

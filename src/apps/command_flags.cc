@@ -7,11 +7,20 @@
 #include <map>
 #include <sstream>
 
+#include "config/beam_file.h"
 #include "io/resources.h"
 #include "model/errors.h"
 #include "model/limits.h"
 
 namespace beamid::apps {
+
+model::BeamParameters read_beam(const Flags& a) {
+  try {
+    return config::resolve_beam(a.text("beam"));
+  } catch (const InputError& error) {
+    throw InputError("beamid " + a.command() + ": --beam: " + error.what());
+  }
+}
 
 std::vector<FlagSpec> experiment_flag_specs() {
   return {

@@ -12,6 +12,8 @@
 
 namespace beamid::apps {
 
+// --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
+model::BeamParameters read_beam(const Flags& a);
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width
 std::vector<FlagSpec> experiment_flag_specs();
 // The experiment those flags describe (defaults of simulation::Experiment), validated for a beam of length_m.

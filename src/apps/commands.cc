@@ -25,7 +25,7 @@ namespace beamid::apps {
 namespace {}  // namespace
 
 int run_modes(const Flags& a, std::ostream& out) {
-  const model::BeamParameters beam = config::resolve_beam(a.text("beam"));
+  const model::BeamParameters beam = read_beam(a);
   const std::optional<int> count = a.optional_integer("count");
   a.require(!count || *count >= 1, "count", "must be >= 1");
   if (!a.has("exact") && !a.has("elements"))
@@ -71,7 +71,7 @@ int run_modes(const Flags& a, std::ostream& out) {
 
 int run_simulate(const Flags& a, std::ostream& out) {
   const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = config::resolve_beam(beam_name);
+  const model::BeamParameters beam = read_beam(a);
   const int n = a.integer("elements");
 
   const simulation::Experiment e = read_experiment(a, beam.l);
@@ -123,7 +123,7 @@ std::string json_matrix(const Eigen::MatrixXd& m) {
 
 int run_system(const Flags& a, std::ostream& out) {
   const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = config::resolve_beam(beam_name);
+  const model::BeamParameters beam = read_beam(a);
   const int n = a.integer("elements");
   const simulation::Experiment e = read_experiment(a, beam.l);
   guard_run_size(a, n, 0, 0);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/provenance.h"
+#include "io/files.h"
 #include "io/text.h"
 #include "model/errors.h"
 #include "signal/spectrum.h"
@@ -110,16 +111,19 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   const std::string spectra_path = path + ".spectra.csv";
   md << "\nFull spectra: `" << spectra_path << "` (bin, frequency_hz, data_magnitude, model_magnitude).\n";
 
-  std::ofstream file(path);
-  file << md.str();
-  if (!file) throw InputError("beamid fit: --report = '" + path + "': cannot write the file");
-  std::ofstream spectra(spectra_path);
+  // Both files by atomic rename: a reader (or a killed run) sees the old file or the new one, never half.
+  std::ostringstream spectra;
   spectra << "bin,frequency_hz,data_magnitude,model_magnitude\n";
   for (int k = 0; k <= z.last_bin(); ++k) {
     spectra << k << ",";
     io::write_row(spectra, {z.frequency_hz(k), z.magnitude(k), have_model ? u.magnitude(k) : std::nan("")});
   }
-  if (!spectra) throw InputError("beamid fit: cannot write " + spectra_path);
+  try {
+    io::write_file_atomic(path, md.str());
+    io::write_file_atomic(spectra_path, spectra.str());
+  } catch (const InputError& error) {
+    throw InputError("beamid fit: --report = '" + path + "': " + error.what());
+  }
 }
 
 }  // namespace beamid::apps

@@ -162,7 +162,7 @@ int run_cost(const Flags& a, std::ostream& out) {
 int run_fit(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   const std::string beam_name = a.text("beam");
-  const model::BeamParameters nominal = config::resolve_beam(beam_name);
+  const model::BeamParameters nominal = read_beam(a);
 
   fit::FitOptions o;
   o.elements = a.integer("elements");
