@@ -30,11 +30,11 @@ std::vector<FlagSpec> crb_flags() {
 }
 
 int run_crb(const Flags& a, std::ostream& out) {
-  const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = read_beam(a);
-  const int n = a.integer("elements");
-  const simulation::Experiment e = read_experiment(a, beam.l);
-  guard_run_size(a, n, e.samples, model::kSimulateBytesPerSample);
+  const ModelRun run = read_model_run(a, model::kSimulateBytesPerSample);
+  const std::string& beam_name = run.beam_name;
+  const model::BeamParameters& beam = run.beam;
+  const int n = run.elements;
+  const simulation::Experiment& e = run.experiment;
 
   std::vector<std::string> keys;
   std::stringstream list(a.text("estimate"));

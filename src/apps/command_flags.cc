@@ -22,6 +22,13 @@ model::BeamParameters read_beam(const Flags& a) {
   }
 }
 
+ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
+  ModelRun run{a.text("beam"), read_beam(a), a.integer("elements"), {}};
+  run.experiment = read_experiment(a, run.beam.l);
+  guard_run_size(a, run.elements, bytes_per_sample > 0 ? run.experiment.samples : 0, bytes_per_sample);
+  return run;
+}
+
 std::vector<FlagSpec> experiment_flag_specs() {
   return {
       number_flag("dt", "sampling interval, s (default 1e-3)"),

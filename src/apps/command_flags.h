@@ -14,6 +14,15 @@ namespace beamid::apps {
 
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
+// A model run as the flags describe it: --beam, --elements N and the experiment flags, with the run's size guarded
+// (guard_run_size with `bytes_per_sample`, 0 for a run that simulates no samples).
+struct ModelRun {
+  std::string beam_name;
+  model::BeamParameters beam;
+  int elements = 0;
+  simulation::Experiment experiment;
+};
+ModelRun read_model_run(const Flags& a, double bytes_per_sample);
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width
 std::vector<FlagSpec> experiment_flag_specs();
 // The experiment those flags describe (defaults of simulation::Experiment), validated for a beam of length_m.

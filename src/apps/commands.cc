@@ -70,12 +70,11 @@ int run_modes(const Flags& a, std::ostream& out) {
 }
 
 int run_simulate(const Flags& a, std::ostream& out) {
-  const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = read_beam(a);
-  const int n = a.integer("elements");
-
-  const simulation::Experiment e = read_experiment(a, beam.l);
-  guard_run_size(a, n, e.samples, model::kSimulateBytesPerSample);
+  const ModelRun run = read_model_run(a, model::kSimulateBytesPerSample);
+  const std::string& beam_name = run.beam_name;
+  const model::BeamParameters& beam = run.beam;
+  const int n = run.elements;
+  const simulation::Experiment& e = run.experiment;
 
   simulation::SimulatorOptions options;
   options.integrator = a.text_or("integrator", options.integrator);
@@ -122,11 +121,11 @@ std::string json_matrix(const Eigen::MatrixXd& m) {
 }  // namespace
 
 int run_system(const Flags& a, std::ostream& out) {
-  const std::string beam_name = a.text("beam");
-  const model::BeamParameters beam = read_beam(a);
-  const int n = a.integer("elements");
-  const simulation::Experiment e = read_experiment(a, beam.l);
-  guard_run_size(a, n, 0, 0);
+  const ModelRun run = read_model_run(a, 0);
+  const std::string& beam_name = run.beam_name;
+  const model::BeamParameters& beam = run.beam;
+  const int n = run.elements;
+  const simulation::Experiment& e = run.experiment;
   const galerkin::SplineSpace space(n);
   const galerkin::BeamForms forms(space, beam.l);
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);

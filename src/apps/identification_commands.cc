@@ -21,15 +21,17 @@
 namespace beamid::apps {
 
 std::vector<FlagSpec> spike_flags() {
-  return {integer_flag("spikes", "number of spikes NM (default 4)", 1, model::kMaxSpikes),
-          text_flag("window", "rectangular | hann | exponential (default rectangular)"),
-          number_flag("exponential-end", "exponential window's last weight, in (0, 1) (default 0.01)"),
-          text_flag("spike-rule", "largest | prominence (default largest: the NM highest local maxima)"),
-          number_flag("min-frequency", "lowest spike frequency considered, Hz (default 0)"),
-          number_flag("max-frequency", "highest spike frequency considered, Hz (default Nyquist)"),
-          text_flag("spike-frequencies",
-                    "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each "
-                    "(pairs model and data by frequency)")};
+  return {
+      integer_flag("spikes", "number of spikes NM (default 4)", 1, model::kMaxSpikes),
+      text_flag("window", "rectangular | hann | exponential (default rectangular)"),
+      number_flag("exponential-end", "exponential window's last weight, in (0, 1) (default 0.01)"),
+      text_flag("spike-rule", "largest | prominence (default largest: the NM highest local maxima)"),
+      number_flag("min-frequency", "lowest spike frequency considered (freq-band: the band's low end), Hz (default 0)"),
+      number_flag("max-frequency",
+                  "highest spike frequency considered (freq-band: the band's high end), Hz (default Nyquist)"),
+      text_flag("spike-frequencies",
+                "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each "
+                "(pairs model and data by frequency)")};
 }
 
 // Reading the --data record: CSV or LabVIEW .lvm, a channel, units, a time window (io/time_series.h).
@@ -66,8 +68,8 @@ std::vector<FlagSpec> cost_flags(bool required) {
   flags.push_back(number_flag("eps2", "weight of squared magnitude errors (default 1 / sum of |Z|^2 on the supports)"));
   flags.push_back(number_flag("eps3", "spike-smooth: weight of squared decay-rate errors, s^2 (default (T/2pi)^2)"));
   flags.push_back(switch_flag("unknown-amplitude",
-                              "excitation amplitude unknown: solved in closed form (time), scale-free magnitudes "
-                              "(spike costs)"));
+                              "excitation amplitude unknown: solved in closed form (time, freq-band), scale-free "
+                              "magnitudes (spike costs)"));
   flags.push_back(text_flag("model-poles", "spike-smooth: dft | eigenvalues (default dft)"));
   return flags;
 }

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "costs/band_cost.h"
 #include "model/errors.h"
 
 namespace beamid::costs {
@@ -49,6 +50,10 @@ class TimeCost final : public Cost {
     e.residuals = e.amplitude_scale * y - z;
     e.value = e.residuals.squaredNorm();
     return e;
+  }
+  std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) override {
+    if (options_.unknown_amplitude) return std::nullopt;
+    return dy;  // r = y - z
   }
 
  private:
@@ -343,7 +348,8 @@ const model::NameSet& cost_names() {
   static const model::NameSet names(
       {{kTimeCost, "least squares on the sampled time history"},
        {kSpikeCost, "the paper's DFT spike cost (3.5), as written"},
-       {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"}});
+       {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"},
+       {kBandCost, "least squares on the complex DFT bins of a frequency band (the transient modelled)"}});
   return names;
 }
 
@@ -370,6 +376,7 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
       throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
   if (options.name == kTimeCost) return std::make_unique<TimeCost>(options, std::move(data));
   if (options.name == kSpikeCost) return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
+  if (options.name == kBandCost) return make_band_cost(options, std::move(data), dt_s);
   return std::make_unique<SmoothSpikeCost>(options, std::move(data), dt_s);
 }
 

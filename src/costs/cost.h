@@ -11,6 +11,8 @@
 //                   the model's from its eigenvalues ("eigenvalues"), and magnitudes on the data's bins. The model
 //                   peak paired with data spike l is the local maximum of |U| nearest to k^z_l, so pairs do not
 //                   swap when model peaks trade heights.
+//   "freq-band"     J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2, least squares on the complex DFT bins of
+//                   [min_frequency, max_frequency] (costs/band_cost.h); J_T / Nbar on the full band.
 // Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
 // are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside
 // 0..Nbar/2 is read from the full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|). s = 1, or with an unknown excitation
@@ -42,6 +44,7 @@ namespace beamid::costs {
 inline const std::string kTimeCost = "time";
 inline const std::string kSpikeCost = "spike";
 inline const std::string kSpikeSmoothCost = "spike-smooth";
+inline const std::string kBandCost = "freq-band";  // costs/band_cost.h
 const model::NameSet& cost_names();
 
 struct CostOptions {
@@ -97,6 +100,13 @@ class Cost {
   virtual const std::vector<SpikePair>& data_spikes() const = 0;
   // "eps1 = ..., eps2 = ..." as used (empty for "time").
   virtual std::string weights() const = 0;
+  // For costs whose residuals are linear in the model output (time and freq-band with a known amplitude): the
+  // residuals' change for the columns of dy (samples x p), so that exact output sensitivities give the exact
+  // Jacobian. Nothing for the others.
+  virtual std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) {
+    (void)dy;
+    return std::nullopt;
+  }
 };
 
 // The cost of `options` against the data record z sampled at dt_s. InputError when the options are invalid or the

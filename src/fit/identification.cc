@@ -29,8 +29,9 @@ struct Objective::Impl {
   std::unique_ptr<simulation::Simulator> simulator;
   bool needs_poles;
   std::vector<double> data;  // free decay: the amplitudes are solved against it
-  // The time cost with a known amplitude on a pulse, by the fast propagator: residuals y - z, whose Jacobian is the
-  // exact sensitivity d y / d q (simulation/sensitivities.h).
+  // A cost whose residuals are linear in the output (time, freq-band, with a known amplitude) on a pulse, by the fast
+  // propagator: its Jacobian is that linear map applied to the exact sensitivities d y / d q
+  // (simulation/sensitivities.h).
   bool exact_jacobian = false;
 };
 
@@ -50,8 +51,10 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
                                       simulation::make_simulator(o.simulator),
                                       o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues",
                                       o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
-  impl_->exact_jacobian = o.cost.name == costs::kTimeCost && !o.cost.unknown_amplitude &&
-                          simulation::has_exact_sensitivities(o.experiment) && o.simulator.integrator == "fast";
+  // A zero-column probe asks the cost whether its residuals are linear in the output (time, freq-band).
+  const bool linear = cost_->residual_derivative(Eigen::MatrixXd::Zero(o.experiment.samples, 0)).has_value();
+  impl_->exact_jacobian =
+      linear && simulation::has_exact_sensitivities(o.experiment) && o.simulator.integrator == "fast";
 }
 
 bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
@@ -59,7 +62,8 @@ bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
 Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters& beam,
                                                     const std::vector<std::string>& keys, Eigen::MatrixXd& jacobian) {
   jacobian.resize(0, 0);
-  if (!impl_->exact_jacobian) throw InputError("evaluate_with_jacobian: no exact Jacobian for this cost and experiment");
+  if (!impl_->exact_jacobian)
+    throw InputError("evaluate_with_jacobian: no exact Jacobian for this cost and experiment");
   Output out;
   if (auto error = model::validation_error(beam)) {
     out.evaluation.status = "inadmissible parameters: " + *error;
@@ -74,7 +78,7 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
     }
     out.y = std::move(s.trace.y);
     out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
-    if (out.evaluation.ok()) jacobian = std::move(s.dy_dq);  // residuals y - z: d r / d q = d y / d q
+    if (out.evaluation.ok()) jacobian = *cost_->residual_derivative(s.dy_dq);
   } catch (const std::exception& error) {
     out.evaluation.status = error.what();
   }
@@ -154,7 +158,7 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
     for (int i : active) keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
     // d r / d x_i = d r / d q_i  d q_i / d x_i (the coordinate map is diagonal).
     p.jacobian = [&objective, &map, all, active, keys](const Eigen::VectorXd& x, Eigen::VectorXd& r,
-                                                         Eigen::MatrixXd& j) {
+                                                       Eigen::MatrixXd& j) {
       const Eigen::VectorXd coordinates = all(x);
       auto out = objective.evaluate_with_jacobian(map.beam(coordinates), keys, j);
       if (!out.evaluation.ok() || j.size() == 0) return false;

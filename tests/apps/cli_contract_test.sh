@@ -101,7 +101,7 @@ check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 &
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
 expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \
   --elements 4 --estimate EJ --cost time
-expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth" fit --data "$tmp/z.csv" \
+expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band" fit --data "$tmp/z.csv" \
   --beam banks-aluminium --elements 4 --estimate EI --cost freq
 printf 't_s,y\n0,1\n0.001,2\n0.0025,3\n0.003,1\n0.004,1\n0.005,1\n0.006,1\n0.007,1\n' >"$tmp/bad.csv"
 expect_error "spikes non-uniform time" "bad.csv:4: t_s = 0.0025: non-uniform time base" spikes --data "$tmp/bad.csv" --spikes 1

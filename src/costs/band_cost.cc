@@ -1,0 +1,102 @@
+#include "costs/band_cost.h"
+
+#include <cmath>
+
+#include "model/errors.h"
+
+namespace beamid::costs {
+namespace {
+
+class BandCost final : public Cost {
+ public:
+  BandCost(CostOptions options, const std::vector<double>& data, double dt_s)
+      : options_(std::move(options)), dft_(static_cast<int>(data.size()), dt_s, options_.window) {
+    data_ = dft_.transform(data);
+    for (int k = 0; k <= data_.last_bin(); ++k) {
+      const double f = data_.frequency_hz(k);
+      if (f < options_.spikes.min_frequency_hz || f > options_.spikes.max_frequency_hz) continue;
+      bins_.push_back(k);
+      const bool single = k == 0 || (data_.samples % 2 == 0 && k == data_.last_bin());
+      weights_.push_back(single ? 1.0 : std::sqrt(2.0));
+    }
+    if (bins_.empty())
+      throw InputError("cost freq-band: the band [" + format_value(options_.spikes.min_frequency_hz) + ", " +
+                       format_value(options_.spikes.max_frequency_hz) +
+                       "] Hz holds no DFT bin (df = " + format_value(data_.df_hz()) + " Hz, Nyquist " +
+                       format_value(data_.frequency_hz(data_.last_bin())) + " Hz)");
+  }
+  const CostOptions& options() const override { return options_; }
+  int residual_count() const override { return 2 * static_cast<int>(bins_.size()); }
+  const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
+  std::string weights() const override {
+    return "band " + format_value(data_.frequency_hz(bins_.front())) + ".." +
+           format_value(data_.frequency_hz(bins_.back())) + " Hz, " + std::to_string(bins_.size()) + " bins";
+  }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    if (model.y.size() != static_cast<std::size_t>(data_.samples)) {
+      e.status = "the model gave " + std::to_string(model.y.size()) + " samples for " + std::to_string(data_.samples) +
+                 " data samples";
+      return e;
+    }
+    for (double v : model.y)
+      if (!std::isfinite(v)) {
+        e.status = "the model output is not finite";
+        return e;
+      }
+    const signal::Spectrum u = dft_.transform(model.y);
+    if (options_.unknown_amplitude) {
+      // min_a sum_k w_k^2 |a U - Z|^2 over the band: a = Re <U, Z> / <U, U>.
+      double uz = 0, uu = 0;
+      for (std::size_t b = 0; b < bins_.size(); ++b) {
+        const auto k = static_cast<std::size_t>(bins_[b]);
+        const double w2 = weights_[b] * weights_[b];
+        uz += w2 * std::real(std::conj(u.half[k]) * data_.half[k]);
+        uu += w2 * std::norm(u.half[k]);
+      }
+      e.amplitude_scale = uu > 0 ? uz / uu : 0.0;
+    }
+    e.residuals.resize(residual_count());
+    for (std::size_t b = 0; b < bins_.size(); ++b) {
+      const auto k = static_cast<std::size_t>(bins_[b]);
+      const std::complex<double> r = weights_[b] * (e.amplitude_scale * u.half[k] - data_.half[k]);
+      e.residuals(static_cast<Eigen::Index>(2 * b)) = r.real();
+      e.residuals(static_cast<Eigen::Index>(2 * b + 1)) = r.imag();
+    }
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+
+  std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) override {
+    if (options_.unknown_amplitude) return std::nullopt;
+    Eigen::MatrixXd dr(residual_count(), dy.cols());
+    std::vector<double> column(static_cast<std::size_t>(dy.rows()));
+    for (Eigen::Index c = 0; c < dy.cols(); ++c) {
+      Eigen::Map<Eigen::VectorXd>(column.data(), dy.rows()) = dy.col(c);
+      const signal::Spectrum du = dft_.transform(column);  // the DFT is linear: d U = DFT(d y)
+      for (std::size_t b = 0; b < bins_.size(); ++b) {
+        const std::complex<double> d = weights_[b] * du.half[static_cast<std::size_t>(bins_[b])];
+        dr(static_cast<Eigen::Index>(2 * b), c) = d.real();
+        dr(static_cast<Eigen::Index>(2 * b + 1), c) = d.imag();
+      }
+    }
+    return dr;
+  }
+
+ private:
+  CostOptions options_;
+  signal::Dft dft_;
+  signal::Spectrum data_;
+  std::vector<int> bins_;
+  std::vector<double> weights_;  // sqrt(w_k)
+  std::vector<SpikePair> no_spikes_;
+};
+
+}  // namespace
+
+std::unique_ptr<Cost> make_band_cost(const CostOptions& options, std::vector<double> data, double dt_s) {
+  return std::make_unique<BandCost>(options, data, dt_s);
+}
+
+}  // namespace beamid::costs

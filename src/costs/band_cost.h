@@ -1,0 +1,21 @@
+// The frequency-band least-squares cost "freq-band" (the standard frequency-domain estimator: Pintelon and
+// Schoukens, System Identification, ch. 2; ../shared/docs/comparison.md section 2):
+//   J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2,   w_k = 1 at k = 0 and k = Nbar/2, 2 elsewhere,
+// over the DFT bins 0..Nbar/2 whose frequency lies in [min_frequency, max_frequency] (default: all), with U the DFT of
+// the model's exact sampled response, so that leakage and the transient are modelled rather than windowed away, and
+// the same window on data and model. w_k counts the conjugate bins above Nbar/2, so on the full band with the
+// rectangular window J_B = J_T / Nbar (Parseval with the 1/Nbar scaling). a = 1, or with an unknown excitation
+// amplitude the closed-form a = Re <U, Z>_w / <U, U>_w. Residuals: sqrt(w_k) (Re, Im) of a U(k) - Z(k).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "costs/cost.h"
+
+namespace beamid::costs {
+
+// InputError when the band holds no bin.
+std::unique_ptr<Cost> make_band_cost(const CostOptions& options, std::vector<double> data, double dt_s);
+
+}  // namespace beamid::costs
