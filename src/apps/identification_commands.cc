@@ -186,6 +186,8 @@ int run_fit(const Flags& a, std::ostream& out) {
   o.optimizer.method = a.text_or("optimizer", fit::default_optimizer(o.cost.name));
   o.optimizer.max_evaluations = a.optional_integer("max-evaluations").value_or(o.optimizer.max_evaluations);
   o.strategy = a.text_or("strategy", o.strategy);
+  o.refine = a.text_or("refine", o.refine);
+  a.require(!a.has("refine") || o.strategy == fit::kHybrid, "refine", "is the second cost of --strategy hybrid only");
   o.scaling = a.text_or("scaling", o.scaling);
   o.starts = a.optional_integer("starts").value_or(o.starts);
   const std::optional<int> seed = a.optional_integer("seed");
@@ -207,8 +209,9 @@ int run_fit(const Flags& a, std::ostream& out) {
         << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method
-            << ", strategy " << o.strategy << ": " << result.status << " (" << result.termination << "), cost "
-            << result.cost << ", " << result.evaluations << " evaluations, " << result.wall_time_s << " s"
+            << ", strategy " << o.strategy << (o.strategy == fit::kHybrid ? " (refined by " + o.refine + ")" : "")
+            << ": " << result.status << " (" << result.termination << "), cost " << result.cost << ", "
+            << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
   if (a.has("report")) {
     FitReportInput input{o, result, data, beam_name, a.arguments()};
@@ -225,6 +228,7 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("estimate", "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma", true),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
+      text_flag("refine", "hybrid: the cost of the second fit, time | freq-band (default time)"),
       number_flag("start-scale", "start of every estimated parameter = S x its --beam value (default 1)"),
       number_flag("bound-factor", "bounds [v/F, v F] around each --beam value v (default 2)"),
       text_flag("bounds", "explicit bounds KEY=LO:HI,... (override --bound-factor)"),

@@ -16,7 +16,10 @@ namespace beamid::fit {
 const model::NameSet& strategy_names() {
   static const model::NameSet names({{kDirect, "all estimated parameters at once"},
                                      {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
-                                     {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"}});
+                                     {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"},
+                                     {kHybrid,
+                                      "the fit's cost (spike-smooth) from the start, then --refine (time or "
+                                      "freq-band) from its estimate"}});
   return names;
 }
 
@@ -246,6 +249,8 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
 
 void validate(const FitOptions& o) {
   if (auto error = strategy_names().violation("strategy", o.strategy)) throw InputError(*error);
+  if (o.strategy == kHybrid && o.refine != costs::kTimeCost && o.refine != costs::kBandCost)
+    throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost);
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
   if (o.starts < 1) throw InputError("starts = " + std::to_string(o.starts) + ": must be >= 1");
   if (o.start_design != "lhs" && o.start_design != "random")
@@ -263,8 +268,43 @@ void validate(const FitOptions& o) {
   if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
 }
 
+namespace {
+
+// The hybrid strategy: the global fit (direct, from every start), then the refinement from its estimate. The result
+// is the refinement's, with the stages and evaluations of both.
+FitResult fit_hybrid(const FitOptions& o, const std::vector<double>& data) {
+  FitOptions global = o;
+  global.strategy = kDirect;
+  const FitResult first = fit(global, data);
+  FitOptions fine = o;
+  fine.strategy = kDirect;
+  fine.cost.name = o.refine;
+  fine.optimizer.method = default_optimizer(o.refine);
+  fine.starts = 1;
+  fine.start = first.beam;  // inside the bounds, always
+  FitResult second = fit(fine, data);
+  std::vector<StageResult> stages;
+  for (StageResult stage : first.stages) {
+    stage.name = o.cost.name + ": " + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  for (StageResult stage : second.stages) {
+    stage.name = o.refine + " from the " + o.cost.name + " estimate: " + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  second.stages = std::move(stages);
+  second.evaluations += first.evaluations;
+  second.wall_time_s += first.wall_time_s;
+  second.best_start = first.best_start;
+  for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
+  return second;
+}
+
+}  // namespace
+
 FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   validate(o);
+  if (o.strategy == kHybrid) return fit_hybrid(o, data);
   const ParameterMap map(o.start, o.estimate, o.scaling);
   Objective objective(o, data);
 

@@ -7,6 +7,9 @@
 //   "continuation": record-length continuation, all parameters on the first Nbar/16, /8, /4, /2 samples and then
 //             the whole record, each from the previous estimate (not in the paper; a known remedy for the narrow
 //             basins of the time-domain cost);
+//   "hybrid": the fit's cost (a global one with a wide basin: spike-smooth) directly from the start(s), then the
+//             `refine` cost (time or freq-band: efficient, but with a basin of about 1/(2 f T)) by
+//             Levenberg-Marquardt from that estimate;
 // each run from the given start and, with starts > 1, from further space-filling starts in the bounds (the lowest
 // final cost wins; ties go to the earlier start, so the outcome does not depend on timing).
 // A failed model evaluation (integration, eigen-decomposition, (A4)) is an infinite cost; a failed fit is a status.
@@ -32,6 +35,7 @@ namespace beamid::fit {
 inline const std::string kDirect = "direct";
 inline const std::string kStaged = "staged";
 inline const std::string kContinuation = "continuation";
+inline const std::string kHybrid = "hybrid";
 const model::NameSet& strategy_names();
 
 struct FitOptions {
@@ -42,7 +46,8 @@ struct FitOptions {
   costs::CostOptions cost;
   std::vector<EstimatedParameter> estimate;
   std::string scaling = "linear";   // "linear" | "log"
-  std::string strategy = "direct";  // "direct" | "staged" | "continuation"
+  std::string strategy = "direct";  // "direct" | "staged" | "continuation" | "hybrid"
+  std::string refine = "time";      // hybrid only: the cost of the second fit, "time" | "freq-band"
   OptimizerOptions optimizer;
   int starts = 1;                    // 1: the given start only; more: plus space-filling starts
   std::string start_design = "lhs";  // "lhs" | "random"

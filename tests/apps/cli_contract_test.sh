@@ -103,6 +103,8 @@ expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z
   --elements 4 --estimate EJ --cost time
 expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band" fit --data "$tmp/z.csv" \
   --beam banks-aluminium --elements 4 --estimate EI --cost freq
+expect_error "refine without hybrid" "--refine = 'time': is the second cost of --strategy hybrid only" fit \
+  --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --refine time
 printf 't_s,y\n0,1\n0.001,2\n0.0025,3\n0.003,1\n0.004,1\n0.005,1\n0.006,1\n0.007,1\n' >"$tmp/bad.csv"
 expect_error "spikes non-uniform time" "bad.csv:4: t_s = 0.0025: non-uniform time base" spikes --data "$tmp/bad.csv" --spikes 1
 

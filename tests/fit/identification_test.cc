@@ -173,6 +173,23 @@ TEST(Identification, StagedStrategyRunsThePapersThreeSteps) {
   EXPECT_LT(worst_relative_error(r, "banks-aluminium"), 1e-6);
 }
 
+TEST(Identification, HybridStrategyRefinesTheSmoothSpikeEstimateWithTheTimeCost) {
+  // From the mixed start, where the time cost alone stops in a local minimum (the test above), spike-smooth brings
+  // every mode inside the time cost's basin and Levenberg-Marquardt on the time history (exact Jacobian) finishes.
+  auto o = options_for("banks-aluminium", "spike-smooth", "mixed", 3);
+  o.strategy = kHybrid;
+  o.refine = "time";
+  const auto r = fit(o, cvode_data("banks-aluminium"));
+  EXPECT_EQ(r.status, "converged") << r.termination;
+  EXPECT_LT(worst_relative_error(r, "banks-aluminium"), 1e-6);
+  ASSERT_EQ(r.stages.size(), 2u);
+  EXPECT_EQ(r.stages.front().name, "spike-smooth: direct");
+  EXPECT_EQ(r.stages.back().name, "time from the spike-smooth estimate: direct");
+  EXPECT_EQ(r.parameters.front().start, 0.491 * 1.05);  // the start reported is the user's, not the refinement's
+  o.refine = "spike";
+  EXPECT_THROW(fit(o, cvode_data("banks-aluminium")), InputError);  // refine: time or freq-band only
+}
+
 TEST(Identification, BadSetupsAreInputErrorsBeforeAnyWork) {
   const auto& data = cvode_data("banks-aluminium");
   auto o = options_for("banks-aluminium", "time", "up", 3);
