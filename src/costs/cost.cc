@@ -4,7 +4,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "costs/band_cost.h"
+#include "costs/least_squares.h"
 #include "model/errors.h"
 
 namespace beamid::costs {
@@ -17,50 +17,6 @@ bool all_finite(const std::vector<double>& y) {
     if (!std::isfinite(v)) return false;
   return true;
 }
-
-// A model output that cannot be compared: the evaluation is undefined, never a crash.
-std::optional<std::string> unusable(const std::vector<double>& y, std::size_t samples) {
-  if (y.size() != samples)
-    return "the model gave " + std::to_string(y.size()) + " samples for " + std::to_string(samples) + " data samples";
-  if (!all_finite(y)) return "the model output is not finite";
-  return std::nullopt;
-}
-
-class TimeCost final : public Cost {
- public:
-  TimeCost(CostOptions options, std::vector<double> data) : options_(std::move(options)), z_(std::move(data)) {}
-  const CostOptions& options() const override { return options_; }
-  int residual_count() const override { return static_cast<int>(z_.size()); }
-  const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
-  std::string weights() const override { return ""; }
-
-  Evaluation evaluate(const ModelResponse& model) override {
-    Evaluation e;
-    if (auto why = unusable(model.y, z_.size())) {
-      e.status = *why;
-      return e;
-    }
-    const Eigen::Map<const Eigen::VectorXd> y(model.y.data(), static_cast<Eigen::Index>(model.y.size()));
-    const Eigen::Map<const Eigen::VectorXd> z(z_.data(), static_cast<Eigen::Index>(z_.size()));
-    if (options_.unknown_amplitude) {
-      // min_a |a y - z|^2: the response is linear in the excitation amplitude.
-      const double yy = y.squaredNorm();
-      e.amplitude_scale = yy > 0 ? y.dot(z) / yy : 0.0;
-    }
-    e.residuals = e.amplitude_scale * y - z;
-    e.value = e.residuals.squaredNorm();
-    return e;
-  }
-  std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) override {
-    if (options_.unknown_amplitude) return std::nullopt;
-    return dy;  // r = y - z
-  }
-
- private:
-  CostOptions options_;
-  std::vector<double> z_;
-  std::vector<SpikePair> no_spikes_;
-};
 
 // Shared by the two spike costs: the data spectrum, its spikes and supports, and the weights.
 class SpikeCostBase : public Cost {
@@ -168,7 +124,7 @@ class SpikeCostBase : public Cost {
   // cannot be compared.
   std::optional<signal::Spectrum> model_spectrum(const ModelResponse& model, Evaluation& e) {
     e.pairs = pairs_;
-    if (auto why = unusable(model.y, samples_)) {
+    if (auto why = unusable_output(model.y, samples_)) {
       e.status = *why;
       return std::nullopt;
     }
@@ -294,6 +250,36 @@ class SmoothSpikeCost final : public SpikeCostBase {
     return e;
   }
 
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude && options_.model_poles == "dft"; }
+  // The chain rule through the DFT (linear), the 3-bin estimator at the model's peak bins (held fixed) and the
+  // magnitudes, d|U| = Re(conj(U) dU) / |U|.
+  Eigen::MatrixXd output_jacobian(const ModelResponse& model, const Eigen::MatrixXd& dy) override {
+    const signal::Spectrum u = dft_.transform(model.y);
+    const std::vector<int> maxima = signal::local_maxima(u);
+    std::vector<int> bins;
+    for (const auto& pair : pairs_) bins.push_back(partner_bin(u, maxima, pair.data));
+    Eigen::MatrixXd dr(residual_count(), dy.cols());
+    std::vector<double> column(static_cast<std::size_t>(dy.rows()));
+    for (Eigen::Index q = 0; q < dy.cols(); ++q) {
+      Eigen::Map<Eigen::VectorXd>(column.data(), dy.rows()) = dy.col(q);
+      const signal::Spectrum du = dft_.transform(column);
+      Eigen::Index row = 0;
+      for (std::size_t l = 0; l < pairs_.size(); ++l) {
+        const signal::PoleEstimate change = signal::three_bin_change(u, du, bins[l]);
+        dr(row++, q) = std::sqrt(eps1_) * change.frequency_hz;
+        dr(row++, q) = std::sqrt(eps3_) * change.decay_rate_1_s;
+      }
+      for (const auto& pair : pairs_)
+        for (int j = -pair.data.n_left; j <= pair.data.n_right; ++j) {
+          const std::complex<double> value = u.at(pair.data.bin + j);
+          const double size = std::abs(value);
+          dr(row++, q) =
+              size > 0 ? std::sqrt(eps2_) * std::real(std::conj(value) * du.at(pair.data.bin + j)) / size : 0;
+        }
+    }
+    return dr;
+  }
+
  private:
   // The model's partner of a data spike: the local maximum of |U| nearest to the data spike's bin (the higher one on
   // a tie). Unlike ranking the model's own NM largest maxima, this does not re-pair when two model peaks trade
@@ -344,6 +330,17 @@ class SmoothSpikeCost final : public SpikeCostBase {
 
 }  // namespace
 
+Eigen::MatrixXd Cost::output_jacobian(const ModelResponse&, const Eigen::MatrixXd&) {
+  throw InputError("cost " + options().name + ": no output Jacobian with these options");
+}
+
+std::optional<std::string> unusable_output(const std::vector<double>& y, std::size_t samples) {
+  if (y.size() != samples)
+    return "the model gave " + std::to_string(y.size()) + " samples for " + std::to_string(samples) + " data samples";
+  if (!all_finite(y)) return "the model output is not finite";
+  return std::nullopt;
+}
+
 const model::NameSet& cost_names() {
   static const model::NameSet names(
       {{kTimeCost, "least squares on the sampled time history"},
@@ -374,7 +371,7 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
   for (std::size_t i = 0; i < data.size(); ++i)
     if (!std::isfinite(data[i]))
       throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
-  if (options.name == kTimeCost) return std::make_unique<TimeCost>(options, std::move(data));
+  if (options.name == kTimeCost) return make_time_cost(options, std::move(data));
   if (options.name == kSpikeCost) return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
   if (options.name == kBandCost) return make_band_cost(options, std::move(data), dt_s);
   return std::make_unique<SmoothSpikeCost>(options, std::move(data), dt_s);

@@ -12,7 +12,7 @@
 //                   peak paired with data spike l is the local maximum of |U| nearest to k^z_l, so pairs do not
 //                   swap when model peaks trade heights.
 //   "freq-band"     J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2, least squares on the complex DFT bins of
-//                   [min_frequency, max_frequency] (costs/band_cost.h); J_T / Nbar on the full band.
+//                   [min_frequency, max_frequency] (costs/least_squares.h); J_T / Nbar on the full band.
 // Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
 // are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside
 // 0..Nbar/2 is read from the full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|). s = 1, or with an unknown excitation
@@ -44,7 +44,7 @@ namespace beamid::costs {
 inline const std::string kTimeCost = "time";
 inline const std::string kSpikeCost = "spike";
 inline const std::string kSpikeSmoothCost = "spike-smooth";
-inline const std::string kBandCost = "freq-band";  // costs/band_cost.h
+inline const std::string kBandCost = "freq-band";  // costs/least_squares.h
 const model::NameSet& cost_names();
 
 struct CostOptions {
@@ -100,14 +100,18 @@ class Cost {
   virtual const std::vector<SpikePair>& data_spikes() const = 0;
   // "eps1 = ..., eps2 = ..." as used (empty for "time").
   virtual std::string weights() const = 0;
-  // For costs whose residuals are linear in the model output (time and freq-band with a known amplitude): the
-  // residuals' change for the columns of dy (samples x p), so that exact output sensitivities give the exact
-  // Jacobian. Nothing for the others.
-  virtual std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) {
-    (void)dy;
-    return std::nullopt;
-  }
+  // Whether output_jacobian is available: time and freq-band with a known amplitude (residuals linear in y), and
+  // spike-smooth with a known amplitude and the model's poles from its DFT (by the chain rule through the 3-bin
+  // estimator and the magnitudes).
+  virtual bool has_output_jacobian() const { return false; }
+  // d r / d q at the model output `model` (whose evaluation must be ok) from the output's sensitivities dy (samples x
+  // p). The discrete choices (the model's peak bins) are held, as they are constant almost everywhere.
+  virtual Eigen::MatrixXd output_jacobian(const ModelResponse& model, const Eigen::MatrixXd& dy);
 };
+
+// Why a model output cannot be compared with `samples` data samples (its length, a non-finite value), or nothing: the
+// evaluation is then undefined, never a crash.
+std::optional<std::string> unusable_output(const std::vector<double>& y, std::size_t samples);
 
 // The cost of `options` against the data record z sampled at dt_s. InputError when the options are invalid or the
 // data do not support them (fewer local maxima than spikes requested, a 3-bin estimate that fails).

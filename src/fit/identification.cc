@@ -32,9 +32,8 @@ struct Objective::Impl {
   std::unique_ptr<simulation::Simulator> simulator;
   bool needs_poles;
   std::vector<double> data;  // free decay: the amplitudes are solved against it
-  // A cost whose residuals are linear in the output (time, freq-band, with a known amplitude) on a pulse, by the fast
-  // propagator: its Jacobian is that linear map applied to the exact sensitivities d y / d q
-  // (simulation/sensitivities.h).
+  // A cost with an output Jacobian (costs/cost.h) on a pulse, by the fast propagator: its Jacobian is that map applied
+  // to the exact sensitivities d y / d q (simulation/sensitivities.h).
   bool exact_jacobian = false;
 };
 
@@ -54,10 +53,8 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
                                       simulation::make_simulator(o.simulator),
                                       o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues",
                                       o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
-  // A zero-column probe asks the cost whether its residuals are linear in the output (time, freq-band).
-  const bool linear = cost_->residual_derivative(Eigen::MatrixXd::Zero(o.experiment.samples, 0)).has_value();
-  impl_->exact_jacobian =
-      linear && simulation::has_exact_sensitivities(o.experiment) && o.simulator.integrator == "fast";
+  impl_->exact_jacobian = cost_->has_output_jacobian() && simulation::has_exact_sensitivities(o.experiment) &&
+                          o.simulator.integrator == "fast";
 }
 
 bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
@@ -81,7 +78,8 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
     }
     out.y = std::move(s.trace.y);
     out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
-    if (out.evaluation.ok()) jacobian = *cost_->residual_derivative(s.dy_dq);
+    if (out.evaluation.ok())
+      jacobian = cost_->output_jacobian(costs::ModelResponse{out.y, s.trace.poles_rad_s}, s.dy_dq);
   } catch (const std::exception& error) {
     out.evaluation.status = error.what();
   }

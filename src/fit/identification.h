@@ -97,8 +97,8 @@ class Objective {
   };
   // Never throws for admissible options: a failed simulation is an evaluation with that status.
   Output evaluate(const model::BeamParameters& beam);
-  // Whether evaluate_with_jacobian is available: a cost linear in the output (time, freq-band) with a known
-  // amplitude, a pulse, the fast integrator.
+  // Whether evaluate_with_jacobian is available: a cost with an output Jacobian (costs/cost.h: time, freq-band,
+  // spike-smooth with a known amplitude), a pulse, the fast integrator.
   bool has_exact_jacobian() const;
   // evaluate, and the exact d residual / d q (residuals x keys) for the parameters `keys`; `jacobian` is empty when
   // the evaluation failed. InputError unless has_exact_jacobian().

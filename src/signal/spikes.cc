@@ -113,6 +113,20 @@ std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options)
   return spikes;
 }
 
+PoleEstimate three_bin_change(const Spectrum& s, const Spectrum& change, int bin) {
+  const std::complex<double> a = s.at(bin - 1), b = s.at(bin), c = s.at(bin + 1);
+  const std::complex<double> da = change.at(bin - 1), db = change.at(bin), dc = change.at(bin + 1);
+  const std::complex<double> denominator = 2.0 * b - a - c;
+  const std::complex<double> dr =
+      ((da - dc) * denominator - (a - c) * (2.0 * db - da - dc)) / (denominator * denominator);
+  const double x = std::numbers::pi / s.samples;
+  PoleEstimate e;
+  e.frequency_hz = std::tan(x) / x * dr.real() * s.df_hz();
+  e.decay_rate_1_s = 2 * std::numbers::pi * dr.imag() / (s.samples * s.dt_s);
+  e.ok = std::isfinite(e.frequency_hz) && std::isfinite(e.decay_rate_1_s);
+  return e;
+}
+
 PoleEstimate three_bin_estimate(const Spectrum& s, int bin) {
   const std::complex<double> a = s.at(bin - 1), b = s.at(bin), c = s.at(bin + 1);
   const std::complex<double> denominator = 2.0 * b - a - c;

@@ -60,5 +60,9 @@ struct PoleEstimate {
   bool ok = false;            // false when the denominator vanishes (a flat spectrum)
 };
 PoleEstimate three_bin_estimate(const Spectrum& spectrum, int bin);
+// The first-order change of that estimate when the spectrum changes by `change` (a spectrum of the same length, e.g.
+// the DFT of d y / d q): dR = [(da - dc) D - (a - c)(2 db - da - dc)] / D^2 with D = 2b - a - c, then the same
+// linear maps to frequency and decay rate. Only where three_bin_estimate is ok.
+PoleEstimate three_bin_change(const Spectrum& spectrum, const Spectrum& change, int bin);
 
 }  // namespace beamid::signal

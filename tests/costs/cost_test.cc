@@ -144,6 +144,41 @@ TEST(SpikeCosts, ThePapersCostIsAStaircaseAndTheSmoothOneIsNot) {
   EXPECT_LT(largest_smooth_step, 0.05);
 }
 
+TEST(SmoothSpikeCost, OutputJacobianEqualsCentralDifferencesOfItsResiduals) {
+  // Two decaying tones: the model moves along dy (a shift of the first tone's frequency and the second's decay).
+  // The residuals are smooth there (peak bins fixed), so central differences at h = 1e-5 agree with the chain rule
+  // to O(h^2) ~ 1e-10 of the column's size; 1e-7 leaves room for round-off.
+  const auto z = tones({{1.0, 20.3, 0.8}, {0.5, 47.6, 1.5}});
+  const auto y = tones({{1.0, 20.45, 0.7}, {0.5, 47.4, 1.7}});
+  std::vector<double> dy(kSamples);
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = i * kDt;
+    dy[static_cast<std::size_t>(i)] =
+        -2 * std::numbers::pi * t * std::exp(-0.7 * t) * std::sin(2 * std::numbers::pi * 20.45 * t) -
+        0.5 * t * std::exp(-1.7 * t) * std::cos(2 * std::numbers::pi * 47.4 * t);
+  }
+  CostOptions o;
+  o.name = kSpikeSmoothCost;
+  o.spikes.count = 2;
+  auto cost = make_cost(o, z, kDt);
+  ASSERT_TRUE(cost->has_output_jacobian());
+  const std::vector<std::complex<double>> none;
+  ASSERT_TRUE(cost->evaluate(ModelResponse{y, none}).ok());
+  const Eigen::MatrixXd j =
+      cost->output_jacobian(ModelResponse{y, none}, Eigen::Map<const Eigen::VectorXd>(dy.data(), kSamples));
+  const double h = 1e-5;
+  std::vector<double> plus = y, minus = y;
+  for (int i = 0; i < kSamples; ++i)
+    plus[static_cast<std::size_t>(i)] += h * dy[static_cast<std::size_t>(i)],
+        minus[static_cast<std::size_t>(i)] -= h * dy[static_cast<std::size_t>(i)];
+  const Eigen::VectorXd differences =
+      (cost->evaluate(ModelResponse{plus, none}).residuals - cost->evaluate(ModelResponse{minus, none}).residuals) /
+      (2 * h);
+  EXPECT_LT((differences - j.col(0)).cwiseAbs().maxCoeff(), 1e-7 * differences.cwiseAbs().maxCoeff());
+  o.unknown_amplitude = true;  // the scale then depends on U: no Jacobian offered
+  EXPECT_FALSE(make_cost(o, z, kDt)->has_output_jacobian());
+}
+
 TEST(SmoothSpikeCost, TakesModelPolesFromEigenvaluesPairedByFrequency) {
   // Data: a damped tone at 30.2 bins. Model eigenvalues: a decoy at 100 Hz listed first, and 30.2 Hz written
   // as its alias fs + 30.2 Hz above the sampling rate (fs = 256 Hz), which folds back onto 30.2 Hz. The nearest

@@ -1,4 +1,4 @@
-#include "costs/band_cost.h"
+#include "costs/least_squares.h"
 
 #include <cmath>
 
@@ -6,6 +6,42 @@
 
 namespace beamid::costs {
 namespace {
+
+class TimeCost final : public Cost {
+ public:
+  TimeCost(CostOptions options, std::vector<double> data) : options_(std::move(options)), z_(std::move(data)) {}
+  const CostOptions& options() const override { return options_; }
+  int residual_count() const override { return static_cast<int>(z_.size()); }
+  const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
+  std::string weights() const override { return ""; }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    if (auto why = unusable_output(model.y, z_.size())) {
+      e.status = *why;
+      return e;
+    }
+    const Eigen::Map<const Eigen::VectorXd> y(model.y.data(), static_cast<Eigen::Index>(model.y.size()));
+    const Eigen::Map<const Eigen::VectorXd> z(z_.data(), static_cast<Eigen::Index>(z_.size()));
+    if (options_.unknown_amplitude) {
+      // min_a |a y - z|^2: the response is linear in the excitation amplitude.
+      const double yy = y.squaredNorm();
+      e.amplitude_scale = yy > 0 ? y.dot(z) / yy : 0.0;
+    }
+    e.residuals = e.amplitude_scale * y - z;
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude; }
+  Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
+    return dy;  // r = y - z
+  }
+
+ private:
+  CostOptions options_;
+  std::vector<double> z_;
+  std::vector<SpikePair> no_spikes_;
+};
 
 class BandCost final : public Cost {
  public:
@@ -68,8 +104,9 @@ class BandCost final : public Cost {
     return e;
   }
 
-  std::optional<Eigen::MatrixXd> residual_derivative(const Eigen::MatrixXd& dy) override {
-    if (options_.unknown_amplitude) return std::nullopt;
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude; }
+  // r is linear in y: d r = the band's bins of DFT(d y).
+  Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
     Eigen::MatrixXd dr(residual_count(), dy.cols());
     std::vector<double> column(static_cast<std::size_t>(dy.rows()));
     for (Eigen::Index c = 0; c < dy.cols(); ++c) {
@@ -94,6 +131,10 @@ class BandCost final : public Cost {
 };
 
 }  // namespace
+
+std::unique_ptr<Cost> make_time_cost(const CostOptions& options, std::vector<double> data) {
+  return std::make_unique<TimeCost>(options, std::move(data));
+}
 
 std::unique_ptr<Cost> make_band_cost(const CostOptions& options, std::vector<double> data, double dt_s) {
   return std::make_unique<BandCost>(options, data, dt_s);

@@ -1,4 +1,5 @@
-// The frequency-band least-squares cost "freq-band" (the standard frequency-domain estimator: Pintelon and
+// The two least-squares costs on the model output itself: "time" on the samples (cost.h) and, here in detail,
+// the frequency-band least-squares cost "freq-band" (the standard frequency-domain estimator: Pintelon and
 // Schoukens, System Identification, ch. 2; ../shared/docs/comparison.md section 2):
 //   J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2,   w_k = 1 at k = 0 and k = Nbar/2, 2 elsewhere,
 // over the DFT bins 0..Nbar/2 whose frequency lies in [min_frequency, max_frequency] (default: all), with U the DFT of
@@ -15,6 +16,7 @@
 
 namespace beamid::costs {
 
+std::unique_ptr<Cost> make_time_cost(const CostOptions& options, std::vector<double> data);
 // InputError when the band holds no bin.
 std::unique_ptr<Cost> make_band_cost(const CostOptions& options, std::vector<double> data, double dt_s);
 
