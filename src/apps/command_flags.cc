@@ -9,6 +9,7 @@
 
 #include "config/beam_file.h"
 #include "io/resources.h"
+#include "io/time_series.h"
 #include "model/errors.h"
 #include "model/limits.h"
 
@@ -27,6 +28,20 @@ ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
   run.experiment = read_experiment(a, run.beam.l);
   guard_run_size(a, run.elements, bytes_per_sample > 0 ? run.experiment.samples : 0, bytes_per_sample);
   return run;
+}
+
+io::TimeSeries read_data(const Flags& a) {
+  io::ImportOptions o;
+  o.channel = a.text_or("channel", "");
+  o.units = a.text_or("units", o.units);
+  o.start_s = a.optional_number("start");
+  o.duration_s = a.optional_number("duration");
+  o.resample = a.has("resample");
+  try {
+    return io::read_time_series(a.text("data"), o);
+  } catch (const InputError& e) {
+    throw InputError("beamid " + a.command() + ": --data: " + e.what());
+  }
 }
 
 std::vector<FlagSpec> experiment_flag_specs() {

@@ -7,11 +7,15 @@
 
 #include "apps/flags.h"
 #include "fit/parameter_map.h"
+#include "io/time_series.h"
 #include "model/beam_parameters.h"
 #include "simulation/experiment.h"
 
 namespace beamid::apps {
 
+// --data with the import flags (channel, units, start, duration, resample): the record, or an InputError naming the
+// command and the flag.
+io::TimeSeries read_data(const Flags& a);
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
 // A model run as the flags describe it: --beam, --elements N and the experiment flags, with the run's size guarded

@@ -41,6 +41,9 @@ int run_fit(const Flags& flags, std::ostream& out);
 // beamid crb --beam B --elements N --estimate KEYS (--noise-sd S | --noise-level L) [experiment flags]:
 // parameter,value,crb_sd,crb_relative_sd (the Cramér-Rao bound, fit/cramer_rao.h)
 int run_crb(const Flags& flags, std::ostream& out);
+// beamid modal-id --data FILE [--modes K] [--order M] [--min-frequency F] [--max-frequency F]:
+// mode,frequency_hz,damping_ratio,amplitude,phase_rad (matrix pencil, signal/matrix_pencil.h)
+int run_modal_id(const Flags& flags, std::ostream& out);
 // beamid verify --output DIR: forward-model verification tables (see verification.h)
 int run_verify(const Flags& flags, std::ostream& out);
 // beamid report --update REPORT.md [--results DIR]: refresh the generated blocks
@@ -58,6 +61,7 @@ std::vector<FlagSpec> import_flags();
 std::vector<FlagSpec> cost_flags(bool required);
 std::vector<FlagSpec> fit_flags();
 std::vector<FlagSpec> crb_flags();
+std::vector<FlagSpec> modal_id_flags();
 std::vector<FlagSpec> study_flags();
 std::vector<FlagSpec> merge_flags();
 std::vector<FlagSpec> real_flags();

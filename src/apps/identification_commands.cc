@@ -43,24 +43,6 @@ std::vector<FlagSpec> import_flags() {
           switch_flag("resample", "interpolate a non-uniform time base onto a uniform one instead of refusing it")};
 }
 
-namespace {
-
-io::TimeSeries read_data(const Flags& a) {
-  io::ImportOptions o;
-  o.channel = a.text_or("channel", "");
-  o.units = a.text_or("units", o.units);
-  o.start_s = a.optional_number("start");
-  o.duration_s = a.optional_number("duration");
-  o.resample = a.has("resample");
-  try {
-    return io::read_time_series(a.text("data"), o);
-  } catch (const InputError& e) {
-    throw InputError("beamid " + a.command() + ": --data: " + e.what());
-  }
-}
-
-}  // namespace
-
 std::vector<FlagSpec> cost_flags(bool required) {
   auto flags = spike_flags();
   flags.push_back(text_flag("cost", costs::cost_names().alternatives(), required));

@@ -57,7 +57,7 @@ std::vector<Command> make_commands() {
        {},
        run_spikes});
   c.push_back({"cost",
-               "the time, spike or spike-smooth cost of a prediction against data",
+               "the time, spike, spike-smooth or freq-band cost of a prediction against data",
                joined(joined({text_flag("data", "record of the data: CSV or LabVIEW .lvm", true),
                               text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
                              cost_flags(true)),
@@ -65,7 +65,7 @@ std::vector<Command> make_commands() {
                {},
                run_cost});
   c.push_back({"fit",
-               "identify beam parameters from a record (NLopt or Ceres, direct, staged or continuation)",
+               "identify beam parameters from a record (NLopt or Ceres; direct, staged, continuation or hybrid)",
                fit_flags(),
                {},
                run_fit});
@@ -74,6 +74,11 @@ std::vector<Command> make_commands() {
                crb_flags(),
                {{"noise-sd", "noise-level"}},
                run_crb});
+  c.push_back({"modal-id",
+               "modal frequencies, damping ratios and amplitudes of a free-decay record (matrix pencil)",
+               modal_id_flags(),
+               {},
+               run_modal_id});
   c.push_back({"verify",
                "forward-model verification tables (Galerkin vs exact, fast vs CVODE)",
                {text_flag("output", "folder for the CSV and Markdown tables", true)},

@@ -125,6 +125,17 @@ printf '[beam]\nl = 0.4573\nrho = 0.093\nrho_r2 = 1.984e-8\nkAG = 7.363e5\nEI = 
 expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/nogamma.toml" --elements 4 --estimate gamma \
   --noise-sd 1e-6
 
+# modal-id: the header, and mode 1 of the z.csv record (banks, N = 4, fast: exact) after its pulse equal to the
+# model's own (beamid modes at N = 4): frequency to 1e-8, damping ratio to 1e-5 (the matrix pencil is exact up to
+# round-off on a noise-free decay; the tests of signal/matrix_pencil.h measure 1e-14 and 3e-11).
+"$BEAMID" modal-id --data "$tmp/z.csv" --start 0.01 --modes 1 --order 20 >"$tmp/m.csv" 2>/dev/null || fail=$((fail + 1))
+"$BEAMID" modes --beam banks-aluminium --elements 4 --count 1 >"$tmp/m4.csv" || fail=$((fail + 1))
+check "modal-id header" test "$(head -1 "$tmp/m.csv")" = "mode,frequency_hz,damping_ratio,amplitude,phase_rad"
+check "modal-id mode 1 is the model's" awk -F, 'NR == FNR { if (FNR == 2) { f = $2; z = $3 } next }
+    FNR == 2 { a = $2 / f - 1; b = $3 / z - 1; exit !(a < 1e-8 && a > -1e-8 && b < 1e-5 && b > -1e-5) }' \
+  "$tmp/m4.csv" "$tmp/m.csv"
+expect_error "modal-id order below 2K" "must be at least 2 K = 6" modal-id --data "$tmp/z.csv" --modes 3 --order 4
+
 # study, merge: one run, and two shards merged by `beamid merge`, give the same tables byte for byte (the store and
 # timings.csv aside); a bad study file is one line naming file:line, key, value and constraint.
 cp "$SRC/tests/data/mini_study.toml" "$tmp/mini.toml"

@@ -1,0 +1,82 @@
+#include "signal/matrix_pencil.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "model/errors.h"
+
+namespace beamid::signal {
+
+std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o) {
+  const int n = static_cast<int>(y.size());
+  if (o.modes < 1) throw InputError("modes = " + std::to_string(o.modes) + ": must be >= 1");
+  if (!(dt_s > 0) || !std::isfinite(dt_s)) throw InputError("dt = " + format_value(dt_s) + ": must be > 0");
+  if (o.max_columns < 4) throw InputError("max_columns = " + std::to_string(o.max_columns) + ": must be >= 4");
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(y[static_cast<std::size_t>(i)]))
+      throw InputError("sample " + std::to_string(i) + " = " + format_value(y[static_cast<std::size_t>(i)]) +
+                       ": must be finite");
+  const int pencil = std::min(n / 3, o.max_columns - 1);  // L
+  const int order = o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil);
+  if (order > pencil || pencil < 2)
+    throw InputError("order M = " + std::to_string(order) +
+                     ": must be at most the pencil parameter L = " + std::to_string(pencil) + " (Nbar / 3 for " +
+                     std::to_string(n) + " samples): a longer record or " + "a lower order");
+  if (order < 2 * o.modes)
+    throw InputError("order M = " + std::to_string(order) + ": must be at least 2 K = " + std::to_string(2 * o.modes) +
+                     " (each real mode is a conjugate pair of exponentials)");
+
+  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its M dominant right singular vectors.
+  Eigen::MatrixXd hankel(n - pencil, pencil + 1);
+  for (int i = 0; i < n - pencil; ++i)
+    for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(hankel, Eigen::ComputeThinV);
+  if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
+  const Eigen::MatrixXd v = svd.matrixV().leftCols(order);
+  const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
+  // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
+  const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(pencil_matrix, false);
+  if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
+  const Eigen::VectorXcd z = eig.eigenvalues();
+
+  // Amplitudes of all M exponentials by least squares on the whole record (complex Vandermonde system).
+  Eigen::MatrixXcd vandermonde(n, order);
+  for (int k = 0; k < order; ++k) {
+    std::complex<double> power = 1.0;
+    for (int i = 0; i < n; ++i) {
+      vandermonde(i, k) = power;
+      power *= z(k);
+    }
+  }
+  const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(
+      Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
+
+  std::vector<IdentifiedMode> modes;
+  for (int k = 0; k < order; ++k) {
+    if (!(z(k).imag() > 0) || !(std::abs(z(k)) < 1)) continue;  // one of each pair; decaying only
+    IdentifiedMode m;
+    m.lambda = std::log(z(k)) / dt_s;
+    const double magnitude = std::abs(m.lambda);
+    m.frequency_hz = magnitude / (2 * std::numbers::pi);
+    if (m.frequency_hz < o.min_frequency_hz || m.frequency_hz > o.max_frequency_hz) continue;
+    m.damping_ratio = -m.lambda.real() / magnitude;
+    m.amplitude = 2 * std::abs(c(k));
+    m.phase_rad = std::arg(c(k));
+    modes.push_back(m);
+  }
+  // The K strongest, then by frequency. The strength is the mode's energy over the record, |c|^2 sum |z|^2i, so that
+  // a heavily damped spurious pole with a large initial amplitude does not outrank a lasting mode.
+  auto energy = [n, dt_s](const IdentifiedMode& m) {
+    const double r2 = std::exp(2 * m.lambda.real() * dt_s);
+    return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
+  };
+  std::sort(modes.begin(), modes.end(), [&](const auto& a, const auto& b) { return energy(a) > energy(b); });
+  if (static_cast<int>(modes.size()) > o.modes) modes.resize(static_cast<std::size_t>(o.modes));
+  std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
+  return modes;
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,43 @@
+// Modal identification of a free decay by the matrix pencil method (Hua & Sarkar, IEEE Trans. ASSP 38, 1990;
+// ../shared/docs/comparison.md section 5), the practitioners' first step before updating a physical model.
+//
+// A sampled free decay is a sum of damped complex exponentials, y_i = sum_k c_k z_k^i with z_k = e^{lambda_k dt}.
+// With the Hankel matrix Y(i, j) = y_{i+j} (pencil parameter L columns minus one), Y = A diag(c) B^T where B(j, k) =
+// z_k^j, so the M dominant right singular vectors V span the columns of B. V1 and V2 (V without its last and without
+// its first row) then satisfy V2 = V1 T^-1 Z T, and the eigenvalues of pinv(V1) V2 are the z_k: exact for a noise-free
+// signal of at most M exponentials, and near the Cramér-Rao bound at moderate SNR (Hua & Sarkar). The SVD truncation
+// at M filters the noise; the amplitudes c_k follow by linear least squares on the whole record.
+//
+// Chosen over ESPRIT (the same subspace idea with a TLS step) and Prony (noise-sensitive polynomial rooting) for its
+// robustness to noise at a cost of one SVD. Reported per mode: natural frequency |lambda| / (2 pi) and damping ratio
+// -Re(lambda) / |lambda|, as `beamid modes` reports the model's, so that the two compare directly.
+#pragma once
+
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace beamid::signal {
+
+struct PencilOptions {
+  int modes = 3;          // K: the K strongest underdamped modes in the band are reported
+  int order = 0;          // M, the number of exponentials kept (0: 2 K + 8, at most L)
+  int max_columns = 600;  // L + 1 at most (the SVD costs ~ Nbar L^2): L = min(Nbar / 3, max_columns - 1)
+  double min_frequency_hz = 0;
+  double max_frequency_hz = std::numeric_limits<double>::infinity();
+};
+
+struct IdentifiedMode {
+  double frequency_hz = 0;      // |lambda| / (2 pi)
+  double damping_ratio = 0;     // -Re(lambda) / |lambda|
+  double amplitude = 0;         // of the real mode: 2 |c_k| (y_i contains 2 Re(c_k z_k^i))
+  double phase_rad = 0;         // arg c_k
+  std::complex<double> lambda;  // rad/s, Im > 0
+};
+
+// The modes of the record y sampled at dt_s, sorted by frequency (fewer than K when fewer decaying oscillatory poles
+// lie in the band). InputError for options or a record that cannot support them (too short for M, non-finite).
+std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& options);
+
+}  // namespace beamid::signal
