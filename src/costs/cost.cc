@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "costs/least_squares.h"
+#include "costs/modal_cost.h"
 #include "model/errors.h"
 
 namespace beamid::costs {
@@ -346,7 +347,8 @@ const model::NameSet& cost_names() {
       {{kTimeCost, "least squares on the sampled time history"},
        {kSpikeCost, "the paper's DFT spike cost (3.5), as written"},
        {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"},
-       {kBandCost, "least squares on the complex DFT bins of a frequency band (the transient modelled)"}});
+       {kBandCost, "least squares on the complex DFT bins of a frequency band (the transient modelled)"},
+       {kModalCost, "relative eigenvalue errors against the modes the matrix pencil identifies in the data"}});
   return names;
 }
 
@@ -374,6 +376,7 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
   if (options.name == kTimeCost) return make_time_cost(options, std::move(data));
   if (options.name == kSpikeCost) return std::make_unique<SpikeCost>(options, std::move(data), dt_s);
   if (options.name == kBandCost) return make_band_cost(options, std::move(data), dt_s);
+  if (options.name == kModalCost) return make_modal_cost(options, std::move(data), dt_s);
   return std::make_unique<SmoothSpikeCost>(options, std::move(data), dt_s);
 }
 

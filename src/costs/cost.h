@@ -13,6 +13,8 @@
 //                   swap when model peaks trade heights.
 //   "freq-band"     J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2, least squares on the complex DFT bins of
 //                   [min_frequency, max_frequency] (costs/least_squares.h); J_T / Nbar on the full band.
+//   "modal"         relative errors of the model's eigenvalues against the modes the matrix pencil identifies in the
+//                   data's free decay (costs/modal_cost.h).
 // Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
 // are found by the same rule on |U| and paired with the data's in order of frequency, as in the paper. A bin outside
 // 0..Nbar/2 is read from the full DFT (index modulo Nbar, |U(k)| = |U(Nbar - k)|). s = 1, or with an unknown excitation
@@ -45,6 +47,7 @@ inline const std::string kTimeCost = "time";
 inline const std::string kSpikeCost = "spike";
 inline const std::string kSpikeSmoothCost = "spike-smooth";
 inline const std::string kBandCost = "freq-band";  // costs/least_squares.h
+inline const std::string kModalCost = "modal";     // costs/modal_cost.h
 const model::NameSet& cost_names();
 
 struct CostOptions {
@@ -54,6 +57,7 @@ struct CostOptions {
   std::optional<double> eps1, eps2, eps3;  // nothing: the defaults above
   bool unknown_amplitude = false;          // time: solve a in closed form; spike costs: scale-free magnitudes
   std::string model_poles = "dft";         // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
+  int first_free_sample = 0;               // modal: the free decay starts here (after the excitation)
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);

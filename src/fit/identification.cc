@@ -47,12 +47,17 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
     throw InputError("experiment: samples = " + std::to_string(o.experiment.samples) + ": the data have " +
                      std::to_string(data.size()));
   if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
-  cost_ = costs::make_cost(o.cost, data, o.experiment.dt_s);
+  costs::CostOptions cost_options = o.cost;  // the modal cost identifies the decay after the pulse
+  if (o.experiment.excitation == simulation::kPulse)
+    cost_options.first_free_sample =
+        static_cast<int>(std::min<double>(data.size(), std::floor(o.experiment.pulse_width_s / o.experiment.dt_s) + 1));
+  cost_ = costs::make_cost(cost_options, data, o.experiment.dt_s);
   const galerkin::SplineSpace space(o.elements);
-  impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l), o.experiment,
-                                      simulation::make_simulator(o.simulator),
-                                      o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues",
-                                      o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
+  impl_ = std::make_unique<Impl>(
+      Impl{space, galerkin::BeamForms(space, o.start.l), o.experiment, simulation::make_simulator(o.simulator),
+           o.cost.name == costs::kModalCost ||
+               (o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues"),
+           o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
   impl_->exact_jacobian = cost_->has_output_jacobian() && simulation::has_exact_sensitivities(o.experiment) &&
                           o.simulator.integrator == "fast";
 }

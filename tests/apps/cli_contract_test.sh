@@ -101,7 +101,7 @@ check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 &
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
 expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \
   --elements 4 --estimate EJ --cost time
-expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band" fit --data "$tmp/z.csv" \
+expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band, modal" fit --data "$tmp/z.csv" \
   --beam banks-aluminium --elements 4 --estimate EI --cost freq
 expect_error "refine without hybrid" "--refine = 'time': is the second cost of --strategy hybrid only" fit \
   --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --refine time

@@ -1,14 +1,14 @@
 // The frequency-band cost (costs/least_squares.h): Parseval against the time cost, the band's bins, its closed-form
 // amplitude, its linear residual map, and a fit that recovers the beam with it (exact Jacobian).
-#include "costs/least_squares.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "costs/least_squares.h"
 #include "fit/identification.h"
 #include "model/errors.h"
+#include "thin_beam_fit.h"
 
 namespace beamid::costs {
 namespace {
@@ -88,25 +88,14 @@ TEST(BandCost, FitRecoversTheBeamWithItsExactJacobian) {
   // Noise-free data from the same model (N = 8, fast): the band below 120 Hz holds modes 1-3 of the thin beam; from
   // every parameter 5 % off in mixed directions the fit must return the truth to 1e-6.
   const auto truth = model::preset("banks-aluminium");
-  fit::FitOptions o;
-  o.start = truth;
-  o.elements = 8;
-  o.experiment.dt_s = 1e-3;
-  o.experiment.samples = 4096;
-  o.experiment.pulse_width_s = 4e-3;
-  o.experiment.force_x_m = 0.7 * truth.l;
-  o.experiment.output = "velocity";
-  o.cost.name = kBandCost;
-  o.cost.spikes.max_frequency_hz = 120;
-  o.optimizer.method = fit::default_optimizer(kBandCost);
+  fit::FitOptions o = thin_beam_fit(kBandCost);
+  const auto data = thin_beam_data(o);
   const std::map<std::string, double> scale = {{"EI", 1.005}, {"rho", 0.995}, {"cDI", 1.05}, {"gamma", 0.95}};
   for (const auto& [key, factor] : scale) {
     double& v = o.start.*(model::find_parameter(key)->member);
     o.estimate.push_back({key, v / 2, v * 2});
     v *= factor;
   }
-  const galerkin::SplineSpace space(8);
-  const auto data = simulation::simulate(galerkin::BeamForms(space, truth.l), truth, o.experiment, {}).y;
   fit::Objective objective(o, data);
   EXPECT_TRUE(objective.has_exact_jacobian());
   const fit::FitResult r = fit::fit(o, data);

@@ -207,7 +207,7 @@ TEST(SmoothSpikeCost, TakesModelPolesFromEigenvaluesPairedByFrequency) {
 TEST(CostOptions, InvalidChoicesAreNamed) {
   CostOptions o;
   o.name = "frequency";
-  EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band");
+  EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band, modal");
   o.name = "spike";
   o.eps1 = -1.0;
   EXPECT_EQ(*validation_error(o), "eps1 = -1: must be finite and >= 0");

@@ -78,7 +78,7 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
             "s.toml:10: truth.pulse_width_s = -0.004: must be > 0");
   EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
-            "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth, freq-band");
+            "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth, freq-band, modal");
   EXPECT_EQ(error_of(replaced(kValid, "elements = [4, 8]", "elements = [4, 48]")),
             "s.toml:23: sweep.elements element 48: must be in 1..47");  // coarser than N_truth: no inverse crime
   EXPECT_EQ(

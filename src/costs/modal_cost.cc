@@ -1,0 +1,112 @@
+#include "costs/modal_cost.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "model/errors.h"
+#include "signal/matrix_pencil.h"
+
+namespace beamid::costs {
+namespace {
+
+class ModalCost final : public Cost {
+ public:
+  ModalCost(CostOptions options, const std::vector<double>& data, double dt_s) : options_(std::move(options)) {
+    const auto first = static_cast<std::size_t>(std::max(0, options_.first_free_sample));
+    if (first >= data.size()) throw InputError("cost modal: the record ends before its free decay begins");
+    const std::vector<double> decay(data.begin() + static_cast<std::ptrdiff_t>(first), data.end());
+    signal::PencilOptions p;
+    p.min_frequency_hz = options_.spikes.min_frequency_hz;
+    p.max_frequency_hz = options_.spikes.max_frequency_hz;
+    const auto& wanted = options_.spikes.frequencies_hz;
+    // With chosen frequencies, identify more modes than asked, in the band the choices span, and keep the strongest
+    // near each.
+    p.modes = options_.spikes.count;
+    if (!wanted.empty()) {
+      const auto [low, high] = std::minmax_element(wanted.begin(), wanted.end());
+      p.min_frequency_hz = std::max(p.min_frequency_hz, *low * (1 - options_.spikes.frequency_window));
+      p.max_frequency_hz = std::min(p.max_frequency_hz, *high * (1 + options_.spikes.frequency_window));
+      p.modes = 3 * static_cast<int>(wanted.size()) + 4;
+    }
+    std::vector<signal::IdentifiedMode> found = signal::matrix_pencil(decay, dt_s, p);
+    if (!wanted.empty()) {
+      std::vector<signal::IdentifiedMode> chosen;
+      for (double f : wanted) {
+        const signal::IdentifiedMode* best = nullptr;
+        for (const auto& m : found)
+          if (std::abs(m.frequency_hz / f - 1) <= options_.spikes.frequency_window &&
+              (!best || m.amplitude > best->amplitude))
+            best = &m;
+        if (!best)
+          throw InputError("cost modal: no identified mode within " + format_value(options_.spikes.frequency_window) +
+                           " of " + format_value(f) + " Hz");
+        chosen.push_back(*best);
+      }
+      found = chosen;
+    }
+    if (static_cast<int>(found.size()) < (wanted.empty() ? options_.spikes.count : static_cast<int>(wanted.size())))
+      throw InputError("cost modal: the record shows " + std::to_string(found.size()) + " decaying mode(s) in the " +
+                       "band, fewer than the " + std::to_string(options_.spikes.count) + " asked for");
+    for (const auto& m : found) {
+      SpikePair pair;
+      pair.data_frequency_hz = m.frequency_hz;
+      pair.data_decay_rate_1_s = -m.lambda.real();
+      pair.data.frequency_hz = m.frequency_hz;
+      pair.data.magnitude = m.amplitude;
+      pairs_.push_back(pair);
+      lambda_.push_back(m.lambda);
+    }
+  }
+  const CostOptions& options() const override { return options_; }
+  int residual_count() const override { return 2 * static_cast<int>(lambda_.size()); }
+  const std::vector<SpikePair>& data_spikes() const override { return pairs_; }
+  std::string weights() const override { return "relative frequency and decay-rate errors (per |lambda| of the mode)"; }
+
+  Evaluation evaluate(const ModelResponse& model) override {
+    Evaluation e;
+    e.pairs = pairs_;
+    if (model.poles_rad_s.empty()) {
+      e.status = "cost modal: the model gave no eigenvalues (the fast integrator gives them)";
+      return e;
+    }
+    e.residuals.resize(residual_count());
+    std::vector<int> partner(lambda_.size());
+    for (std::size_t l = 0; l < lambda_.size(); ++l) {
+      const double target = std::abs(lambda_[l]);
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < model.poles_rad_s.size(); ++k)
+        if (std::abs(std::abs(model.poles_rad_s[k]) - target) < std::abs(std::abs(model.poles_rad_s[best]) - target))
+          best = k;
+      partner[l] = static_cast<int>(best);
+      const std::complex<double> u = model.poles_rad_s[best];
+      e.residuals(static_cast<Eigen::Index>(2 * l)) = (std::abs(u) - target) / target;
+      e.residuals(static_cast<Eigen::Index>(2 * l + 1)) = (u.real() - lambda_[l].real()) / target;
+      e.pairs[l].has_model = true;
+      e.pairs[l].model_frequency_hz = std::abs(u) / (2 * std::numbers::pi);
+      e.pairs[l].model_decay_rate_1_s = -u.real();
+    }
+    for (std::size_t l = 0; l < lambda_.size(); ++l)
+      for (std::size_t m = 0; m < l; ++m)
+        if (partner[l] == partner[m]) {
+          e.pairs[l].jumps = true;
+          e.a4 = "(A4) two identified modes pair with one model mode (spikes " + std::to_string(m + 1) + " and " +
+                 std::to_string(l + 1) + ")";
+        }
+    e.value = e.residuals.squaredNorm();
+    return e;
+  }
+
+ private:
+  CostOptions options_;
+  std::vector<SpikePair> pairs_;
+  std::vector<std::complex<double>> lambda_;
+};
+
+}  // namespace
+
+std::unique_ptr<Cost> make_modal_cost(const CostOptions& options, std::vector<double> data, double dt_s) {
+  return std::make_unique<ModalCost>(options, data, dt_s);
+}
+
+}  // namespace beamid::costs
