@@ -5,8 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
-#include "io/provenance.h"
 #include "io/files.h"
+#include "io/provenance.h"
 #include "io/text.h"
 #include "model/errors.h"
 #include "signal/spectrum.h"
@@ -47,11 +47,11 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   md << "## Result\n\n";
   md << "Status **" << r.status << "** (" << r.termination << "); cost " << g(r.cost, 10) << "; " << r.evaluations
      << " model evaluations; " << g(r.wall_time_s, 3) << " s.\n\n";
-  md << "| parameter | estimate | standard error | start | lower | upper |\n|---|---|---|---|---|---|\n";
+  md << "| parameter | estimate | standard error | start | lower | upper | status |\n|---|---|---|---|---|---|---|\n";
   for (const auto& p : r.parameters)
     md << "| " << p.key << " | " << g(p.estimate, 10) << " | "
        << (std::isnan(p.standard_error) ? "-" : g(p.standard_error, 3)) << " | " << g(p.start) << " | " << g(p.lower)
-       << " | " << g(p.upper) << " |\n";
+       << " | " << g(p.upper) << " | " << p.status << " |\n";
   md << "\nStandard errors and correlations are formal: (J^T J)^-1 |r|^2/(m - n) at the estimate, valid only if the "
         "residuals are independent Gaussian noise of equal variance, which is not so for the spike costs' mixed "
         "terms nor for model error. Covariance: "

@@ -184,11 +184,20 @@ int run_fit(const Flags& a, std::ostream& out) {
   for (const auto& e : o.estimate) o.start.*(model::find_parameter(e.key)->member) *= start_scale;
 
   const fit::FitResult result = fit::fit(o, data.values);
-  out << "parameter,estimate,standard_error,start,lower,upper\n";
-  for (const auto& p : result.parameters)
+  out << "parameter,estimate,standard_error,start,lower,upper,status\n";
+  std::string at_bound;
+  for (const auto& p : result.parameters) {
     out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
         << io::full_precision(p.start) << "," << io::full_precision(p.lower) << "," << io::full_precision(p.upper)
-        << "\n";
+        << "," << p.status << "\n";
+    if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
+      at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
+  }
+  if (!at_bound.empty())
+    std::cerr << "beamid fit: on a bound: " << at_bound
+              << " (the bound, not the data, set the value; its standard error is not defined)\n";
+  if (result.status == "failed")
+    std::cerr << "beamid fit: the fit failed, so no estimate is printed (NaN): " << result.termination << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method
             << ", strategy " << o.strategy << (o.strategy == fit::kHybrid ? " (refined by " + o.refine + ")" : "")

@@ -358,11 +358,27 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
         result.correlation(i, j) = s > 0 ? physical(i, j) / s : std::numeric_limits<double>::quiet_NaN();
       }
   }
+  const Eigen::VectorXd lower = map.lower(), upper = map.upper();
+  bool at_bound = false;
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
-    result.parameters.push_back({e.key, result.beam.*(model::find_parameter(e.key)->member), standard_error(i),
-                                 o.start.*(model::find_parameter(e.key)->member), e.lower, e.upper});
+    ParameterEstimate p{e.key,
+                        result.beam.*(model::find_parameter(e.key)->member),
+                        standard_error(i),
+                        o.start.*(model::find_parameter(e.key)->member),
+                        e.lower,
+                        e.upper};
+    const double margin = 1e-6 * (upper(i) - lower(i));
+    if (best.x(i) - lower(i) <= margin) p.status = kAtLowerBound;
+    if (upper(i) - best.x(i) <= margin) p.status = kAtUpperBound;
+    if (p.status != kFree) p.standard_error = std::numeric_limits<double>::quiet_NaN(), at_bound = true;
+    if (result.status == "failed") {
+      p.status = "failed";
+      p.estimate = p.standard_error = std::numeric_limits<double>::quiet_NaN();
+    }
+    result.parameters.push_back(p);
   }
+  if (at_bound && result.status != "failed") result.status += "-at-bound";
   return result;
 }
 

@@ -58,9 +58,17 @@ struct FitOptions {
 // "nelder-mead" for the paper's spike cost, whose frequency term has zero gradient almost everywhere.
 std::string default_optimizer(const std::string& cost);
 
+// A parameter's status: "free" (inside its bounds), "at-lower-bound" or "at-upper-bound" (within 1e-6 of the bound
+// range of it, in the optimizer's coordinates: the bound, not the data, decided the value), or "failed" (the fit
+// failed: the estimate is NaN, never the start shown as a result).
+inline const std::string kFree = "free";
+inline const std::string kAtLowerBound = "at-lower-bound";
+inline const std::string kAtUpperBound = "at-upper-bound";
+
 struct ParameterEstimate {
   std::string key;
   double estimate = 0, standard_error = 0, start = 0, lower = 0, upper = 0;  // standard_error NaN when unknown
+  std::string status = kFree;  // standard_error is NaN at a bound: the formal covariance assumes an interior minimum
 };
 
 struct StageResult {
@@ -77,7 +85,9 @@ struct FitResult {
   double cost = 0;
   long evaluations = 0;  // over all starts and stages
   double wall_time_s = 0;
-  std::string status = "failed";  // of the final stage of the best start: converged | max-evaluations | failed
+  // Of the final stage of the best start: converged | max-evaluations | failed, with "-at-bound" appended to the first
+  // two when any parameter ends on a bound (converged-at-bound is a constrained optimum, not an identification).
+  std::string status = "failed";
   std::string termination;
   int best_start = 0;                  // 0: the given start
   std::vector<StageResult> stages;     // of the best start

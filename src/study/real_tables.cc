@@ -19,21 +19,22 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
   const std::vector<double>& measured = results.measured_hz;
   const std::vector<double>& measured_zeta = results.measured_zeta;
   std::ostringstream fits, modes, timings, md;
-  fits << "cost,status,cost_value,evaluations,parameter,estimate,standard_error,nominal,ratio_to_nominal\n";
+  fits << "cost,status,cost_value,evaluations,parameter,estimate,standard_error,nominal,ratio_to_nominal,"
+          "parameter_status\n";
   modes << "cost,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio\n";
   timings << "cost,wall_time_s\n";
   std::vector<std::pair<std::string, Overlay>> overlays;
   for (const RealFit& f : results.fits) {
     timings << f.cost << "," << io::round_trip(f.wall_time_s) << "\n";
     if (f.status.rfind("failed", 0) == 0) {
-      fits << f.cost << "," << io::json_string(f.status) << ",inf,0,,,,,\n";
+      fits << f.cost << "," << io::json_string(f.status) << ",inf,0,,,,,,\n";
       continue;
     }
     for (const auto& p : f.parameters) {
       const double v = nominal.*(model::find_parameter(p.key)->member);
       fits << f.cost << "," << f.status << "," << io::round_trip(f.cost_value) << "," << f.evaluations << "," << p.key
            << "," << io::round_trip(p.estimate) << "," << io::round_trip(p.standard_error) << "," << io::round_trip(v)
-           << "," << io::round_trip(p.estimate / v) << "\n";
+           << "," << io::round_trip(p.estimate / v) << "," << p.status << "\n";
     }
     for (std::size_t m = 0; m < measured.size(); ++m)
       modes << f.cost << "," << m + 1 << "," << io::round_trip(measured[m]) << "," << io::round_trip(f.identified_hz[m])

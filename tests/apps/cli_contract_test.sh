@@ -96,7 +96,8 @@ for c in time spike spike-smooth; do
 done
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --start-scale 1.02 \
   --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>/dev/null
-check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper"
+check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper,status"
+check "fit: a recovered parameter is free" awk -F, 'NR == 2 { exit !($7 == "free") }' "$tmp/f.csv"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
 expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \

@@ -190,6 +190,21 @@ TEST(Identification, HybridStrategyRefinesTheSmoothSpikeEstimateWithTheTimeCost)
   EXPECT_THROW(fit(o, cvode_data("banks-aluminium")), InputError);  // refine: time or freq-band only
 }
 
+TEST(Identification, AnEstimateOnItsBoundSaysSo) {
+  // EI's bounds exclude the truth (0.491): the fit ends on the upper bound, which the result must say (parameter
+  // status, overall converged-at-bound, no standard error), instead of calling it converged.
+  auto o = options_for("banks-aluminium", "time", "up", 3);
+  o.estimate = {{"EI", 0.3, 0.45}};
+  o.start = model::preset("banks-aluminium");
+  o.start.EI = 0.44;
+  const auto r = fit(o, cvode_data("banks-aluminium"));
+  ASSERT_EQ(r.parameters.size(), 1u);
+  EXPECT_EQ(r.parameters[0].status, kAtUpperBound);
+  EXPECT_EQ(r.parameters[0].estimate, 0.45);
+  EXPECT_TRUE(std::isnan(r.parameters[0].standard_error));
+  EXPECT_EQ(r.status, "converged-at-bound") << r.termination;
+}
+
 TEST(Identification, BadSetupsAreInputErrorsBeforeAnyWork) {
   const auto& data = cvode_data("banks-aluminium");
   auto o = options_for("banks-aluminium", "time", "up", 3);
