@@ -5,6 +5,9 @@
 // this step corrupts the weakly sensitive damping columns, so LM then needs tens of iterations near a minimum).
 #include <ceres/ceres.h>
 #include <ceres/version.h>
+#include <glog/logging.h>
+
+#include <mutex>
 
 #include "fit/optimizer.h"
 
@@ -77,9 +80,23 @@ class Budget final : public ceres::IterationCallback {
   long limit_;
 };
 
+// Ceres reports through glog ("Terminating: Residual and Jacobian evaluation failed.", after a "Logging before
+// InitGoogleLogging" warning). Those lines would break beamid's one-line stderr contract, and everything they say
+// reaches the caller as a status and termination text, so glog is initialised once with only fatal messages shown.
+void quiet_glog() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    FLAGS_stderrthreshold = google::GLOG_FATAL;
+    FLAGS_logtostderr = false;
+    if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging("beamid");
+  });
+}
+
 }  // namespace
 
 OptimizerResult minimize_ceres(const Problem& problem, const Eigen::VectorXd& start, const OptimizerOptions& options) {
+  quiet_glog();
   const int n = problem.dimension();
   GuardedProblem guarded(problem);
   Eigen::VectorXd x = start;
