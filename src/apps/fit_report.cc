@@ -5,10 +5,12 @@
 #include <iomanip>
 #include <sstream>
 
+#include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
 #include "model/errors.h"
+#include "signal/matrix_pencil.h"
 #include "signal/spectrum.h"
 
 namespace beamid::apps {
@@ -21,6 +23,55 @@ std::string g(double v, int digits = 6) {
 }
 
 }  // namespace
+
+ModeComparison compare_modes(const FitReportInput& in) {
+  ModeComparison c;
+  const auto& o = in.options;
+  if (in.result.status == "failed") {
+    c.status = "the fit failed";
+    return c;
+  }
+  std::vector<galerkin::DampedMode> model;
+  try {
+    model = galerkin::StateSpaceModes(galerkin::assemble(galerkin::SplineSpace(o.elements), in.result.beam))
+                .underdamped_modes();
+  } catch (const std::exception& e) {
+    c.status = std::string("model modes: ") + e.what();
+    return c;
+  }
+  signal::PencilOptions p;
+  p.modes = std::min(o.cost.spikes.count, 8);
+  p.min_frequency_hz = o.cost.spikes.min_frequency_hz;
+  p.max_frequency_hz = o.cost.spikes.max_frequency_hz;
+  // The free decay: after the pulse (a pluck and a free decay start free).
+  const std::size_t first =
+      o.experiment.excitation == "pulse" ? static_cast<std::size_t>(o.experiment.pulse_width_s / in.data.dt_s) + 1 : 0;
+  try {
+    if (first >= in.data.values.size()) throw InputError("the record ends within the pulse");
+    const std::vector<double> decay(in.data.values.begin() + static_cast<std::ptrdiff_t>(first), in.data.values.end());
+    for (const auto& m : signal::matrix_pencil(decay, in.data.dt_s, p)) {
+      ModePair pair{m.frequency_hz, m.damping_ratio, std::nan(""), std::nan("")};
+      double distance = std::numeric_limits<double>::infinity();
+      for (const auto& u : model)
+        if (std::abs(u.frequency_hz - m.frequency_hz) < distance)
+          distance = std::abs(u.frequency_hz - m.frequency_hz), pair.model_hz = u.frequency_hz,
+          pair.model_damping_ratio = u.damping_ratio;
+      c.pairs.push_back(pair);
+    }
+  } catch (const std::exception& e) {
+    c.status = std::string("data modes: ") + e.what();
+  }
+  return c;
+}
+
+std::string modes_line(const ModeComparison& c) {
+  if (c.status != "ok") return "modes at the estimate: not compared (" + c.status + ")";
+  std::string s = "modes at the estimate (data by matrix pencil | model):";
+  for (std::size_t k = 0; k < c.pairs.size(); ++k)
+    s += std::string(k ? ";" : "") + " " + g(c.pairs[k].data_hz) + " | " + g(c.pairs[k].model_hz) + " Hz, zeta " +
+         g(100 * c.pairs[k].data_damping_ratio, 3) + " | " + g(100 * c.pairs[k].model_damping_ratio, 3) + " %";
+  return s;
+}
 
 void write_fit_report(const std::string& path, const FitReportInput& in) {
   const auto& o = in.options;
@@ -43,6 +94,21 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     md << ", unknown excitation amplitude (scale " << g(r.final_evaluation.amplitude_scale) << ")";
   md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
      << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
+
+  const ModeComparison modes = compare_modes(in);
+  md << "## Modes\n\n";
+  if (modes.status != "ok") {
+    md << "Not compared: " << modes.status << ".\n\n";
+  } else {
+    md << "The record's modes (matrix pencil on its free decay) beside the model's at the estimate, paired by "
+          "frequency:\n\n| mode | data f (Hz) | model f (Hz) | data zeta (%) | model zeta (%) "
+          "|\n|---|---|---|---|---|\n";
+    for (std::size_t k = 0; k < modes.pairs.size(); ++k)
+      md << "| " << k + 1 << " | " << g(modes.pairs[k].data_hz, 8) << " | " << g(modes.pairs[k].model_hz, 8) << " | "
+         << g(100 * modes.pairs[k].data_damping_ratio, 4) << " | " << g(100 * modes.pairs[k].model_damping_ratio, 4)
+         << " |\n";
+    md << "\n";
+  }
 
   md << "## Result\n\n";
   md << "Status **" << r.status << "** (" << r.termination << "); cost " << g(r.cost, 10) << "; " << r.evaluations

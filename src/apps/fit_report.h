@@ -19,6 +19,21 @@ struct FitReportInput {
   const std::vector<std::string>& arguments;
 };
 
+// The identified modes beside the data's: the model's underdamped modes at the estimate, each paired by frequency
+// with a mode the matrix pencil identifies in the data (after the pulse; signal/matrix_pencil.h).
+struct ModePair {
+  double data_hz = 0, data_damping_ratio = 0;    // identified in the record
+  double model_hz = 0, model_damping_ratio = 0;  // at the estimate
+};
+struct ModeComparison {
+  std::vector<ModePair> pairs;
+  std::string status = "ok";  // or why the data's modes could not be identified
+};
+// K = the cost's spike count (at most 8) modes in the cost's frequency band.
+ModeComparison compare_modes(const FitReportInput& input);
+// One line for stderr: "modes at the estimate (data | model): 2.4637 | 2.4637 Hz, zeta 0.0809 | 0.0809 %; ...".
+std::string modes_line(const ModeComparison& comparison);
+
 // InputError when the file cannot be written.
 void write_fit_report(const std::string& path, const FitReportInput& input);
 

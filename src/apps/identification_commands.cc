@@ -204,10 +204,9 @@ int run_fit(const Flags& a, std::ostream& out) {
             << ": " << result.status << " (" << result.termination << "), cost " << result.cost << ", "
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
-  if (a.has("report")) {
-    FitReportInput input{o, result, data, beam_name, a.arguments()};
-    write_fit_report(a.text("report"), input);
-  }
+  const FitReportInput input{o, result, data, beam_name, a.arguments()};
+  std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
+  if (a.has("report")) write_fit_report(a.text("report"), input);
   return result.status == "failed" ? 3 : 0;
 }
 

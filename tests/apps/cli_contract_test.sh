@@ -95,9 +95,12 @@ for c in time spike spike-smooth; do
     <("$BEAMID" cost --data "$tmp/z.csv" --prediction "$tmp/z.csv" --cost $c --spikes 3)
 done
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --start-scale 1.02 \
-  --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>/dev/null
+  --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>"$tmp/f.err"
 check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper,status"
 check "fit: a recovered parameter is free" awk -F, 'NR == 2 { exit !($7 == "free") }' "$tmp/f.csv"
+# The modes line: data (matrix pencil) and model at the recovered estimate agree on mode 1, 2.4638 Hz.
+check "fit: modes at the estimate" grep -q "modes at the estimate (data by matrix pencil | model): 2.46383 | 2.46383 Hz" "$tmp/f.err"
+check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
 expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \
