@@ -99,14 +99,14 @@ CramerRaoBound cramer_rao_bound(const LogModel& model, const Eigen::VectorXd& lo
   if (!(options.log_step > 0 && options.log_step <= 0.1))
     throw InputError("Cramér-Rao bound: log step = " + format_value(options.log_step) + ": must lie in (0, 0.1]");
   const Eigen::Index p = log_q.size();
-  const std::size_t samples = model(log_q).size();
-
   CramerRaoBound b;
   b.values = log_q.array().exp();
   b.noise_sd = noise_sd;
-  b.sensitivities.resize(static_cast<Eigen::Index>(samples), p);
   for (Eigen::Index k = 0; k < p; ++k) {
     const Derivative d = ridders(model, log_q, static_cast<int>(k), options);
+    if (k == 0) b.sensitivities.resize(d.value.size(), p);  // the sample count, from the model's own output
+    if (d.value.size() != b.sensitivities.rows())
+      throw NumericalError("Cramér-Rao bound: the model's sample count changed");
     b.sensitivities.col(k) = d.value;
     b.step_agreement = std::max(b.step_agreement, d.relative_error);
   }
@@ -145,7 +145,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
     b.keys = keys;
     b.method = "exact";
     b.noise_sd = noise_sd;
-    b.values = log_q.array().exp();
+    b.values.resize(log_q.size());  // the beam's own values, not exp(ln q)
     for (std::size_t k = 0; k < keys.size(); ++k) b.values(static_cast<Eigen::Index>(k)) = beam.*members[k];
     b.sensitivities = s.dy_dq * b.values.asDiagonal();  // d y / d ln q = q d y / d q
     return bound_from_sensitivities(std::move(b));

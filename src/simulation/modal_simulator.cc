@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 
 #include "galerkin/modes.h"
 #include "model/errors.h"
@@ -70,11 +71,25 @@ complex pulse_response(complex lambda, double t, double tau) {
 }
 
 Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const ResponseProblem& p) const {
+  std::optional<galerkin::StateSpaceModes> modes;
+  try {
+    modes.emplace(system);
+  } catch (const NumericalError& error) {
+    Trace trace;
+    trace.stats.integrator = "fast";
+    trace.y.assign(static_cast<std::size_t>(p.samples), 0.0);
+    trace.status = std::string("fast: ") + error.what();
+    return trace;
+  }
+  return run(*modes, system, p);
+}
+
+Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
+                          const ResponseProblem& p) const {
   Trace trace;
   trace.stats.integrator = "fast";
   trace.y.assign(static_cast<std::size_t>(p.samples), 0.0);
   try {
-    const galerkin::StateSpaceModes modes(system);
     const Eigen::VectorXcd& lambda = modes.eigenvalues();
     const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
     const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;

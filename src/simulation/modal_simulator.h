@@ -11,6 +11,7 @@
 // There is no time-stepping error: the result is exact up to round-off in the eigen-decomposition.
 #pragma once
 
+#include "galerkin/modes.h"
 #include "simulation/simulator.h"
 
 namespace beamid::simulation {
@@ -18,6 +19,10 @@ namespace beamid::simulation {
 class ModalSimulator final : public Simulator {
  public:
   Trace run(const galerkin::SecondOrderSystem& system, const ResponseProblem& problem) const override;
+  // The same with the state-space modes of `system` already decomposed (so that a caller who needs them too, such as
+  // the sensitivities, decomposes once).
+  Trace run(const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
+            const ResponseProblem& problem) const;
 };
 
 // The unit-amplitude pulse response of one mode, int_0^t e^{lambda (t-s)} sin^2(pi s / tau) ds, 0 <= t <= tau.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
 
 #include "galerkin/modes.h"
 #include "model/errors.h"
@@ -18,9 +19,9 @@ struct ModalDerivatives {
   Eigen::MatrixXcd d_lambda, d_residue;  // 2n x keys
 };
 
-ModalDerivatives modal_derivatives(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
-                                   const galerkin::SecondOrderSystem& system, const ResponseProblem& p,
-                                   const galerkin::StateSpaceModes& modes, const std::vector<std::string>& keys) {
+ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, const ResponseProblem& p,
+                                   const galerkin::StateSpaceModes& modes,
+                                   const std::vector<galerkin::SecondOrderSystem>& derivatives) {
   ModalDerivatives d;
   d.lambda = modes.eigenvalues();
   const Eigen::Index m = d.lambda.size();
@@ -35,11 +36,11 @@ ModalDerivatives modal_derivatives(const galerkin::BeamForms& forms, const model
   Eigen::VectorXcd lambda_power = d.lambda.array().pow(power);
   d.residue = lambda_power.cwiseProduct(h).cwiseProduct(g);
 
-  d.d_lambda.resize(m, static_cast<Eigen::Index>(keys.size()));
-  d.d_residue.resize(m, static_cast<Eigen::Index>(keys.size()));
+  d.d_lambda.resize(m, static_cast<Eigen::Index>(derivatives.size()));
+  d.d_residue.resize(m, static_cast<Eigen::Index>(derivatives.size()));
   const Eigen::VectorXcd lambda2 = d.lambda.cwiseProduct(d.lambda);
-  for (std::size_t q = 0; q < keys.size(); ++q) {
-    const galerkin::SecondOrderSystem ds = galerkin::parameter_derivative(forms, beam, keys[q]);
+  for (std::size_t q = 0; q < derivatives.size(); ++q) {
+    const galerkin::SecondOrderSystem& ds = derivatives[q];
     // Y = dK X + dC X Lambda + dM X Lambda^2;  Q = -diag(s) X^T Y;  N = diag(s) (X^T dM X) Lambda.
     const Eigen::MatrixXcd dmx = ds.M * x;
     const Eigen::MatrixXcd y = ds.K * x + (ds.C * x) * d.lambda.asDiagonal() + dmx * lambda2.asDiagonal();
@@ -58,7 +59,8 @@ ModalDerivatives modal_derivatives(const galerkin::BeamForms& forms, const model
       const complex d_hg = g(k) * into - h(k) * out;
       d.d_lambda(k, col) = dl;
       d.d_residue(k, col) =
-          lambda_power(k) * d_hg + (power > 0 ? static_cast<double>(power) * std::pow(d.lambda(k), power - 1) * dl : complex(0.0)) * h(k) * g(k);
+          lambda_power(k) * d_hg +
+          (power > 0 ? static_cast<double>(power) * std::pow(d.lambda(k), power - 1) * dl : complex(0.0)) * h(k) * g(k);
     }
   }
   return d;
@@ -73,16 +75,23 @@ SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, c
   if (!has_exact_sensitivities(experiment))
     throw InputError("excitation = '" + experiment.excitation +
                      "': exact sensitivities are available for a pulse from rest only");
-  for (const auto& key : keys) galerkin::parameter_derivative(forms, beam, key);  // InputError for a bad key, first
+  std::vector<galerkin::SecondOrderSystem> derivatives;  // dM, dC, dK per key (InputError for a bad key, first)
+  for (const auto& key : keys) derivatives.push_back(galerkin::parameter_derivative(forms, beam, key));
   SensitivityTrace out;
   out.keys = keys;
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
   const ResponseProblem p = make_problem(forms, system, experiment);
-  out.trace = ModalSimulator().run(system, p);
+  std::optional<galerkin::StateSpaceModes> modes;  // decomposed once, for the output and its derivatives
+  try {
+    modes.emplace(system);
+  } catch (const NumericalError&) {
+    out.trace = ModalSimulator().run(system, p);  // the simulator's own failure trace and status
+    return out;
+  }
+  out.trace = ModalSimulator().run(*modes, system, p);
   if (!out.trace.ok()) return out;
   try {
-    const galerkin::StateSpaceModes modes(system);
-    const ModalDerivatives d = modal_derivatives(forms, beam, system, p, modes, keys);
+    const ModalDerivatives d = modal_derivatives(system, p, *modes, derivatives);
     const auto np = static_cast<Eigen::Index>(keys.size());
     out.dy_dq = Eigen::MatrixXd::Zero(p.samples, np);
     const double tau = p.pulse_width_s, dt = p.dt_s;
@@ -124,7 +133,7 @@ SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, c
       const Eigen::LLT<Eigen::MatrixXd> mass(system.M);
       const Eigen::VectorXd mf = mass.solve(p.load), mc = mass.solve(p.sensor);
       for (Eigen::Index q = 0; q < np; ++q) {
-        const double direct = -mc.dot(galerkin::parameter_derivative(forms, beam, keys[q]).M * mf);
+        const double direct = -mc.dot(derivatives[static_cast<std::size_t>(q)].M * mf);
         for (int i = 1; i < first_free; ++i) out.dy_dq(i, q) += direct * p.force_N(i * dt);
       }
     }

@@ -31,8 +31,8 @@
 namespace beamid::simulation {
 
 struct SensitivityTrace {
-  Trace trace;                  // the output y, exactly as ModalSimulator gives it
-  Eigen::MatrixXd dy_dq;        // samples x keys: d y_i / d q_k, in the output's units per parameter unit
+  Trace trace;            // the output y, exactly as ModalSimulator gives it
+  Eigen::MatrixXd dy_dq;  // samples x keys: d y_i / d q_k, in the output's units per parameter unit
   std::vector<std::string> keys;
 };
 
