@@ -28,19 +28,21 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
   auto by_cost = success_by_cost(results.cases, 0.01);
   for (const auto& cost : spec.sweep.cost)
     if (by_cost.count(cost))
-      f.counts.push_back({cost + " succeeds in " + std::to_string(by_cost[cost].successes) + "/" +
-                              std::to_string(by_cost[cost].cases) + " fits with noise <= 1 %",
+      f.counts.push_back({cost + " succeeds in " + count_with_interval(by_cost[cost].successes, by_cost[cost].cases) +
+                              " of the fits with noise <= 1 %",
                           by_cost[cost].successes, by_cost[cost].cases});
   std::vector<SliceRow> slice_rows;  // the first experiment's
   for (const auto& s : landscape.slices)
     if (s.first_experiment) slice_rows.push_back(s);
   const auto rate = [&](const std::string& c) { return by_cost.count(c) ? by_cost[c].rate() : -1.0; };
   if (by_cost.count(kTime) && (by_cost.count(kSpike) || by_cost.count(kSmooth))) {
-    const double best_freq = std::max(rate(kSpike), rate(kSmooth));
+    const std::string best = rate(kSmooth) > rate(kSpike) ? kSmooth : kSpike;
+    const double best_freq = rate(best);
     claim(best_freq > rate(kTime), -1, -1,
           "a frequency-domain cost succeeds more often than the time-domain cost "
-          "(noise <= 1 %: best spike cost " +
-              pct(best_freq) + " against time " + pct(rate(kTime)) + ")");
+          "(noise <= 1 %: best spike cost, " +
+              best + ", " + count_with_interval(by_cost[best].successes, by_cost[best].cases) + " against time " +
+              count_with_interval(by_cost[kTime].successes, by_cost[kTime].cases) + ")");
     // Paired per group: where spike-smooth >= time.
     int holds = 0, total = 0;
     std::map<std::tuple<double, int, std::string, std::string, int, double>, std::map<std::string, double>> cmp;
@@ -73,10 +75,9 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
       const auto& hi = by_modes.rbegin()->second;
       const double rlo = static_cast<double>(lo.first) / lo.second, rhi = static_cast<double>(hi.first) / hi.second;
       claim(rhi < rlo, -1, -1,
-            cost + "'s success rate falls from " + std::to_string(lo.first) + "/" + std::to_string(lo.second) +
-                " with " + std::to_string(by_modes.begin()->first) + " mode(s) in the data to " +
-                std::to_string(hi.first) + "/" + std::to_string(hi.second) + " with " +
-                std::to_string(by_modes.rbegin()->first));
+            cost + "'s success rate falls from " + count_with_interval(lo.first, lo.second) + " with " +
+                std::to_string(by_modes.begin()->first) + " mode(s) in the data to " +
+                count_with_interval(hi.first, hi.second) + " with " + std::to_string(by_modes.rbegin()->first));
     }
   }
   if (several && !landscape.slices.empty()) {
@@ -131,7 +132,7 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
                 std::to_string(flat_holds) + "/" + std::to_string(flat_total) + ")");
   }
   for (const auto& s : landscape.multistarts)
-    f.counts.push_back({s.cost + ": " + std::to_string(s.reached) + "/" + std::to_string(s.started) +
+    f.counts.push_back({s.cost + ": " + count_with_interval(s.reached, s.started) +
                             " local fits from random starts reach the reference minimum (the best of all its fits, "
                             "the truth start's included)",
                         s.reached, s.started});
@@ -144,9 +145,9 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
     for (const std::string& freq : {kSmooth, kSpike})
       if (const MultistartSummary* q = reach(freq))
         claim(q->reached * t->started > t->reached * q->started, -1, -1,
-              "more random starts reach the minimum with " + freq + " than with time (" + std::to_string(q->reached) +
-                  "/" + std::to_string(q->started) + " against " + std::to_string(t->reached) + "/" +
-                  std::to_string(t->started) + ")");
+              "more random starts reach the minimum with " + freq + " than with time (" +
+                  count_with_interval(q->reached, q->started) + " against " +
+                  count_with_interval(t->reached, t->started) + ")");
   return f;
 }
 

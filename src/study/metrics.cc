@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "model/beam_parameters.h"
@@ -56,6 +57,21 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::pair<double, double> wilson_interval(int successes, int cases) {
+  if (cases <= 0) return {kNaN, kNaN};
+  const double z = 1.96, n = cases, p = successes / n, z2 = z * z;
+  const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
+  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+std::string count_with_interval(int successes, int cases) {
+  const auto [low, high] = wilson_interval(successes, cases);
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%d/%d (95 %% interval %.3g-%.3g %%)", successes, cases, 100 * low, 100 * high);
+  return buf;
 }
 
 Stats stats(const std::vector<double>& values) {

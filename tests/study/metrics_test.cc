@@ -15,6 +15,17 @@
 namespace beamid::study {
 namespace {
 
+TEST(Metrics, WilsonIntervalsOfSuccessRates) {
+  // comparison.md section 4's example: 18/20 gives [0.70, 0.97]; 0/n starts at 0 and is not empty.
+  const auto [low, high] = wilson_interval(18, 20);
+  EXPECT_NEAR(low, 0.699, 0.001);
+  EXPECT_NEAR(high, 0.972, 0.001);
+  const auto [zero_low, zero_high] = wilson_interval(0, 132);
+  EXPECT_NEAR(zero_low, 0.0, 1e-15);
+  EXPECT_NEAR(zero_high, 3.8416 / (132 + 3.8416), 1e-12);  // z^2 / (n + z^2) at k = 0
+  EXPECT_EQ(count_with_interval(18, 20), "18/20 (95 % interval 69.9-97.2 %)");
+}
+
 TEST(Metrics, StatisticsOfRelativeErrors) {
   // Values 1, 2, 3, 4 and a NaN (a failed fit): the NaN is left out of every statistic.
   const Stats s = stats({1, 2, 3, 4, std::numeric_limits<double>::quiet_NaN()});
