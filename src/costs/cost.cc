@@ -1,5 +1,6 @@
 #include "costs/cost.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -66,6 +67,7 @@ class SpikeCostBase : public Cost {
     eps1_ = options_.eps1.value_or(1.0 / (df * df));
     eps2_ = options_.eps2.value_or(support_energy > 0 ? 1.0 / support_energy : 1.0);
     eps3_ = options_.eps3.value_or(std::pow(record_s / (2 * std::numbers::pi), 2));
+    frequency_factors_ = spike_factors(dt_s);
   }
 
   const CostOptions& options() const override { return options_; }
@@ -75,6 +77,12 @@ class SpikeCostBase : public Cost {
     out.precision(6);
     out << "eps1 = " << eps1_ << " 1/Hz^2, eps2 = " << eps2_ << " 1/(signal unit)^2";
     if (options_.name == kSpikeSmoothCost) out << ", eps3 = " << eps3_ << " s^2";
+    out << ", frequency weight " << options_.frequency_weight;
+    if (options_.frequency_weight != kAbsoluteWeight) {
+      out << " (c_l =";
+      for (double c : frequency_factors_) out << " " << c;
+      out << ")";
+    }
     return out.str();
   }
 
@@ -162,6 +170,44 @@ class SpikeCostBase : public Cost {
     }
   }
 
+  // The weighting factors c_l of the data spikes (cost.h), mean square 1.
+  std::vector<double> spike_factors(double dt_s) {
+    std::vector<double> c(pairs_.size(), 1.0);
+    if (options_.frequency_weight == kRelativeWeight)
+      for (std::size_t l = 0; l < pairs_.size(); ++l) c[l] = 1.0 / pairs_[l].data_frequency_hz;
+    if (options_.frequency_weight == kInverseVarianceWeight)
+      for (std::size_t l = 0; l < pairs_.size(); ++l) c[l] = 1.0 / spike_frequency_sd(pairs_[l].data, dt_s);
+    double mean_square = 0;
+    for (double v : c) mean_square += v * v / static_cast<double>(c.size());
+    for (double& v : c) v /= std::sqrt(mean_square);
+    return c;
+  }
+
+  // The bound on data spike s's frequency for unit noise (cost.h, "inverse-variance"): the spike's own 3-bin pole
+  // (the exponential window's added decay removed) and the amplitude A = |Z(k)| / |W(k)|, W the DFT of the unit mode
+  // e^{-alpha t} cos(2 pi f t) through the same window.
+  double spike_frequency_sd(const signal::Spike& s, double dt_s) {
+    const auto pole = signal::three_bin_estimate(data_, s.bin);
+    if (!pole.ok)
+      throw InputError("cost " + options_.name + ": frequency_weight = '" + kInverseVarianceWeight +
+                       "': the 3-bin estimate fails at the data spike of bin " + std::to_string(s.bin));
+    const double record_s = static_cast<double>(samples_) * dt_s;
+    const double added =
+        options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
+    const double decay = std::max(0.0, pole.decay_rate_1_s - added);
+    std::vector<double> unit(samples_);
+    for (std::size_t i = 0; i < samples_; ++i) {
+      const double t = static_cast<double>(i) * dt_s;
+      unit[i] = std::exp(-decay * t) * std::cos(2 * std::numbers::pi * pole.frequency_hz * t);
+    }
+    const double amplitude = data_.magnitude(s.bin) / dft_.transform(unit).magnitude(s.bin);
+    const double sd = signal::damped_mode_frequency_sd(amplitude, decay, dt_s, static_cast<int>(samples_), 1.0);
+    if (!(std::isfinite(sd) && sd > 0))
+      throw InputError("cost " + options_.name + ": frequency_weight = '" + kInverseVarianceWeight +
+                       "': the data spike of bin " + std::to_string(s.bin) + " has no finite frequency bound");
+    return sd;
+  }
+
   CostOptions options_;
   std::size_t samples_;
   signal::Dft dft_;
@@ -169,6 +215,7 @@ class SpikeCostBase : public Cost {
   std::vector<SpikePair> pairs_;
   int compared_bins_ = 0;
   double eps1_ = 1, eps2_ = 1, eps3_ = 1;
+  std::vector<double> frequency_factors_;  // c_l
 };
 
 class SpikeCost final : public SpikeCostBase {
@@ -197,7 +244,7 @@ class SpikeCost final : public SpikeCostBase {
     Eigen::Index row = 0;
     const double w = std::sqrt(eps1_);
     for (std::size_t l = 0; l < pairs_.size(); ++l)
-      e.residuals(row++) = w * (e.pairs[l].model_frequency_hz - pairs_[l].data.frequency_hz);
+      e.residuals(row++) = w * frequency_factors_[l] * (e.pairs[l].model_frequency_hz - pairs_[l].data.frequency_hz);
     append_magnitudes(u, centres, e, row);  // |U(k^u_l + j)| against |Z(k^z_l + j)|
     e.value = e.residuals.squaredNorm();
     return e;
@@ -243,8 +290,9 @@ class SmoothSpikeCost final : public SpikeCostBase {
     e.residuals.resize(residual_count());
     Eigen::Index row = 0;
     for (std::size_t l = 0; l < pairs_.size(); ++l) {
-      e.residuals(row++) = std::sqrt(eps1_) * (e.pairs[l].model_frequency_hz - pairs_[l].data_frequency_hz);
-      e.residuals(row++) = std::sqrt(eps3_) * (e.pairs[l].model_decay_rate_1_s - pairs_[l].data_decay_rate_1_s);
+      const double c = frequency_factors_[l];
+      e.residuals(row++) = std::sqrt(eps1_) * c * (e.pairs[l].model_frequency_hz - pairs_[l].data_frequency_hz);
+      e.residuals(row++) = std::sqrt(eps3_) * c * (e.pairs[l].model_decay_rate_1_s - pairs_[l].data_decay_rate_1_s);
     }
     append_magnitudes(u, centres, e, row);
     e.value = e.residuals.squaredNorm();
@@ -267,8 +315,8 @@ class SmoothSpikeCost final : public SpikeCostBase {
       Eigen::Index row = 0;
       for (std::size_t l = 0; l < pairs_.size(); ++l) {
         const signal::PoleEstimate change = signal::three_bin_change(u, du, bins[l]);
-        dr(row++, q) = std::sqrt(eps1_) * change.frequency_hz;
-        dr(row++, q) = std::sqrt(eps3_) * change.decay_rate_1_s;
+        dr(row++, q) = std::sqrt(eps1_) * frequency_factors_[l] * change.frequency_hz;
+        dr(row++, q) = std::sqrt(eps3_) * frequency_factors_[l] * change.decay_rate_1_s;
       }
       for (const auto& pair : pairs_)
         for (int j = -pair.data.n_left; j <= pair.data.n_right; ++j) {
@@ -352,12 +400,21 @@ const model::NameSet& cost_names() {
   return names;
 }
 
+const model::NameSet& frequency_weight_names() {
+  static const model::NameSet names(
+      {{kAbsoluteWeight, "frequency errors in Hz, as the paper's (3.5) writes them"},
+       {kRelativeWeight, "frequency errors as fractions of each mode's frequency"},
+       {kInverseVarianceWeight, "each spike by the inverse of its frequency's Cramér-Rao variance"}});
+  return names;
+}
+
 bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
 
 std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = cost_names().violation("cost", o.name)) return error;
   if (auto error = signal::validation_error(o.spikes)) return error;
   if (auto error = signal::validation_error(o.window)) return error;
+  if (auto error = frequency_weight_names().violation("frequency_weight", o.frequency_weight)) return error;
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
   for (const auto& [key, value] : eps)
     if (value && !(std::isfinite(*value) && *value >= 0))

@@ -21,7 +21,17 @@
 // amplitude ("scale-free") s = sum |U||Z| / sum |U|^2 over the compared bins, the least-squares scale of the model's
 // magnitudes (frequencies and decay rates do not depend on it). Default weights make every term dimensionless and of
 // order one: eps1 = 1/df^2 (frequency errors in bins), eps3 = (T/(2 pi))^2 (decay-rate errors in bins, T = Nbar dt),
-// eps2 = 1 / sum_l sum_j |Z(k^z_l + j)|^2. Every cost is a sum of squares: value = |r|^2 with a residual vector r of
+// eps2 = 1 / sum_l sum_j |Z(k^z_l + j)|^2. Frequency weighting across spikes ("frequency_weight") multiplies spike
+// l's frequency (and decay-rate) residual by c_l, normalised so that mean_l c_l^2 = 1 (eps1 and eps3 keep their
+// meaning: a uniform error costs the same under every weighting):
+//   "absolute"          c_l = 1: errors in Hz, as the paper's (3.5) writes them; the highest mode dominates.
+//   "relative"          c_l ~ 1 / f^z_l: errors as fractions of each mode's frequency, so that a model error that
+//                       shifts every mode by the same fraction is not absorbed by the lowest modes.
+//   "inverse-variance"  c_l ~ 1 / sd_l, sd_l the Cramér-Rao bound on the frequency of data spike l alone (a damped
+//                       mode of the data's 3-bin frequency and decay rate, and of the amplitude that gives the data's
+//                       peak magnitude through the same window): the maximum-likelihood weighting of independent
+//                       modal estimates. The noise level is common to all spikes, so it cancels in the normalisation.
+// Every cost is a sum of squares: value = |r|^2 with a residual vector r of
 // fixed length, for Ceres. (A4) (the model shows as many spikes as the data, paired with the right ones) is checked at
 // every evaluation: too few model spikes makes the cost undefined (infinite, with the reason in the status); a pairing
 // in which a model spike lies nearer to another data spike than to its partner ("jumps modes") is reported but still
@@ -50,6 +60,12 @@ inline const std::string kBandCost = "freq-band";  // costs/least_squares.h
 inline const std::string kModalCost = "modal";     // costs/modal_cost.h
 const model::NameSet& cost_names();
 
+// The spike costs' frequency weightings by name (above).
+inline const std::string kAbsoluteWeight = "absolute";
+inline const std::string kRelativeWeight = "relative";
+inline const std::string kInverseVarianceWeight = "inverse-variance";
+const model::NameSet& frequency_weight_names();
+
 struct CostOptions {
   std::string name = "time";               // "time" | "spike" | "spike-smooth"
   signal::SpikeOptions spikes;             // NM, peak rule, band, support level
@@ -58,6 +74,7 @@ struct CostOptions {
   bool unknown_amplitude = false;          // time: solve a in closed form; spike costs: scale-free magnitudes
   std::string model_poles = "dft";         // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
   int first_free_sample = 0;               // modal: the free decay starts here (after the excitation)
+  std::string frequency_weight = kAbsoluteWeight;  // spike costs: across spikes (above)
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);

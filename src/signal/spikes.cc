@@ -142,4 +142,16 @@ PoleEstimate three_bin_estimate(const Spectrum& s, int bin) {
   return e;
 }
 
+double damped_mode_frequency_sd(double amplitude, double decay_rate_1_s, double dt_s, int samples, double noise_sd) {
+  // Sums in t / T (T the record length) so that S0 S2 - S1^2 does not cancel catastrophically in absolute units.
+  const double record_s = dt_s * samples;
+  double s0 = 0, s1 = 0, s2 = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double u = static_cast<double>(i) / samples, w = std::exp(-2 * decay_rate_1_s * i * dt_s);
+    s0 += w, s1 += u * w, s2 += u * u * w;
+  }
+  const double spread = (s0 * s2 - s1 * s1) * record_s * record_s;  // S0 S2 - S1^2 in s^2
+  return std::sqrt(2 * noise_sd * noise_sd * s0 / (amplitude * amplitude * spread));
+}
+
 }  // namespace beamid::signal

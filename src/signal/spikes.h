@@ -65,4 +65,11 @@ PoleEstimate three_bin_estimate(const Spectrum& spectrum, int bin);
 // linear maps to frequency and decay rate. Only where three_bin_estimate is ok.
 PoleEstimate three_bin_change(const Spectrum& spectrum, const Spectrum& change, int bin);
 
+// The Cramér-Rao bound on the angular frequency (rad/s) of one damped mode A e^{-alpha t} cos(omega t + phi), sampled
+// at t_i = i dt, i = 0..samples-1, in white Gaussian noise of standard deviation noise_sd (Yao & Pandit 1995, many
+// cycles: the oscillating sums, of relative size alpha / omega, neglected). With S_k = sum_i t_i^k e^{-2 alpha t_i},
+//   var(omega_hat) = var(alpha_hat) = 2 noise_sd^2 S0 / (A^2 (S0 S2 - S1^2)),
+// the same for the decay rate alpha. For alpha >= 0 and samples >= 2.
+double damped_mode_frequency_sd(double amplitude, double decay_rate_1_s, double dt_s, int samples, double noise_sd);
+
 }  // namespace beamid::signal

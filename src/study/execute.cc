@@ -51,6 +51,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
   o.experiment = experiment_of(spec, unit);
   o.cost.name = unit.cost;
   o.cost.window.name = spec.fit.window;
+  o.cost.frequency_weight = spec.fit.frequency_weight;
   o.cost.spikes.count = spikes;
   o.cost.spikes.rule = spec.fit.spike_rule;
   o.cost.spikes.min_frequency_hz = spec.fit.min_frequency_hz;

@@ -39,6 +39,8 @@ std::string fit_text(const StudySpec& spec) {
      << io::round_trip(f.max_frequency_hz) << ";window=" << f.window
      << ";bound_factor=" << io::round_trip(f.bound_factor) << ";scaling=" << f.scaling
      << ";max_evaluations=" << f.max_evaluations << ";xtol_rel=" << io::round_trip(f.xtol_rel);
+  // Named only when not the default, so that the units of studies written before the key keep their identity.
+  if (f.frequency_weight != "absolute") os << ";frequency_weight=" << f.frequency_weight;
   // The success tolerances are not part of a unit's identity: they judge a result and do not change it.
   return os.str();
 }

@@ -41,6 +41,7 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
   base.experiment.samples = static_cast<int>(record.values.size());
   base.cost.spikes.frequencies_hz = spec.peaks_hz;
   base.cost.spikes.count = static_cast<int>(spec.peaks_hz.size());
+  base.cost.frequency_weight = spec.frequency_weight;
   base.optimizer.max_evaluations = spec.max_evaluations;
   for (const auto& key : spec.estimate) {
     const double v = nominal.*(model::find_parameter(key)->member);

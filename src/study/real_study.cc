@@ -67,6 +67,7 @@ RealStudySpec load_real_study(const std::string& path) {
     s.estimate = r.strings("estimate", true, keys);
     s.costs = r.strings("costs", true, costs::cost_names().names());
     s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, model::kMaxEvaluations);
+    s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
     if (auto bounds = r.table("bounds")) {
       for (const auto& [k, value] : bounds->entries()) {
         const std::vector<config::Node> a = value.elements();
@@ -82,7 +83,7 @@ RealStudySpec load_real_study(const std::string& path) {
         s.bounds[k] = {lo, hi};
       }
     }
-    r.finish({"elements", "estimate", "costs", "max_evaluations", "bounds"});
+    r.finish({"elements", "estimate", "costs", "max_evaluations", "frequency_weight", "bounds"});
   }
   config::load_beam_toml(s.beam_file);  // checked before anything runs
   return s;

@@ -43,6 +43,7 @@ struct RealStudySpec {
   std::vector<std::string> costs;
   std::map<std::string, std::pair<double, double>> bounds;
   int max_evaluations = 3000;
+  std::string frequency_weight = "relative";  // spike costs (costs/cost.h): a measured record's default
 };
 
 // Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).

@@ -126,6 +126,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     if (f.max_frequency_hz > 0 && f.max_frequency_hz <= f.min_frequency_hz)
       r.fail("max_frequency_hz", format_value(f.max_frequency_hz), "must exceed fit.min_frequency_hz");
     f.window = r.string("window", f.window, {"rectangular", "hann", "exponential"});
+    f.frequency_weight = r.string("frequency_weight", f.frequency_weight, costs::frequency_weight_names().names());
     f.bound_factor = r.number(
         "bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
     f.scaling = r.string("scaling", f.scaling, {"linear", "log"});
@@ -135,7 +136,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
     f.damping_tolerance = r.number("damping_tolerance", f.success_tolerance, positive, "must be > 0");
     r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window",
-              "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance", "damping_tolerance"});
+              "frequency_weight", "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance", "damping_tolerance"});
   }
   // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
   if (const auto starts = document.table("starts", false)) {

@@ -204,6 +204,38 @@ TEST(SmoothSpikeCost, TakesModelPolesFromEigenvaluesPairedByFrequency) {
   EXPECT_FALSE(cost->evaluate(ModelResponse{y, none}).ok());
 }
 
+TEST(SpikeCost, FrequencyWeightingsScaleEachSpikesFrequencyError) {
+  // Data: undamped tones on bins 20 (amplitude 2) and 50 (amplitude 1); model: bins 22 and 55, both 10 % high, so
+  // the paper's absolute residuals are 2 and 5 bins (eps1 = 1/df^2 = 1). Exact integer bins make every quantity
+  // exact up to round-off: Z(k) = A Nbar / 2, the 3-bin decay rate 0, hence 1e-12.
+  const auto z = tones({{2.0, 20, 0}, {1.0, 50, 0}});
+  const auto y = tones({{2.0, 22, 0}, {1.0, 55, 0}});
+  CostOptions o;
+  o.name = kSpikeCost;
+  o.spikes.count = 2;
+  const auto residuals = [&](const std::string& weight) {
+    o.frequency_weight = weight;
+    auto cost = make_cost(o, z, kDt);
+    const Evaluation e = evaluate(*cost, y);
+    EXPECT_TRUE(e.ok()) << e.status;
+    return std::pair(e.residuals(0), e.residuals(1));
+  };
+  const auto [a1, a2] = residuals(kAbsoluteWeight);
+  EXPECT_NEAR(a1, 2.0, 1e-12);
+  EXPECT_NEAR(a2, 5.0, 1e-12);
+  // Relative: c_l ~ 1/f_l with mean square 1, so both 10 % errors cost the same, 0.1 / rms(1/20, 1/50) each.
+  const auto [r1, r2] = residuals(kRelativeWeight);
+  const double rms_inverse_f = std::sqrt((1.0 / 400 + 1.0 / 2500) / 2);
+  EXPECT_NEAR(r1, 0.1 / rms_inverse_f, 1e-12);
+  EXPECT_NEAR(r2, 0.1 / rms_inverse_f, 1e-12);
+  // Inverse-variance: equal (zero) decay rates, so the bound is ~1/A and c_l ~ A_l = (2, 1), mean square 2.5.
+  const auto [v1, v2] = residuals(kInverseVarianceWeight);
+  EXPECT_NEAR(v1, 2.0 * 2 / std::sqrt(2.5), 1e-9);
+  EXPECT_NEAR(v2, 1.0 * 5 / std::sqrt(2.5), 1e-9);
+  o.frequency_weight = "hertz";
+  EXPECT_EQ(*validation_error(o), "frequency_weight = 'hertz': must be one of absolute, relative, inverse-variance");
+}
+
 TEST(CostOptions, InvalidChoicesAreNamed) {
   CostOptions o;
   o.name = "frequency";

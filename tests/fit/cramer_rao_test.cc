@@ -12,6 +12,7 @@
 #include "fit/identification.h"
 #include "model/errors.h"
 #include "signal/noise.h"
+#include "signal/spikes.h"
 
 namespace beamid::fit {
 namespace {
@@ -69,6 +70,21 @@ TEST(CramerRao, DampedSinusoidMatchesTheClosedFormForFrequencyAndDamping) {
   std::printf("[ sd(omega) %.6e, sd(alpha) %.6e, closed form %.6e ]\n", b.sd(2), b.sd(1), closed_sd);
   EXPECT_NEAR(b.sd(2) / closed_sd, 1.0, 1e-2);
   EXPECT_NEAR(b.sd(1) / closed_sd, 1.0, 1e-2);
+}
+
+TEST(CramerRao, SpikeWeightsUseTheSameClosedForm) {
+  // signal::damped_mode_frequency_sd (the inverse-variance weights of the spike costs) against the bound computed
+  // here from the Fisher information of the whole model: the same 1 % as above, for a lightly and a heavily damped
+  // mode (the envelope falling to e^-1 and to e^-10 over the record).
+  for (const double alpha : {0.5, 5.0}) {
+    DampedSinusoid model;
+    Eigen::Vector4d tone = kTone;
+    tone(1) = alpha;
+    const double sigma = 0.01;
+    const CramerRaoBound b = cramer_rao_bound(model, tone.array().log().matrix(), sigma);
+    const double sd = signal::damped_mode_frequency_sd(tone(0), alpha, model.dt, model.samples, sigma);
+    EXPECT_NEAR(b.sd(2) / sd, 1.0, 1e-2) << "alpha " << alpha;
+  }
 }
 
 TEST(CramerRao, RefusesWhatHasNoBound) {
