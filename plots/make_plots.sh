@@ -87,6 +87,9 @@ if [[ -f $res/modes.csv ]] && head -n 1 "$res/modes.csv" | grep -q "^modes_in_da
   fi
 fi
 
+# start_distance: start_distance/curves.csv and radius.csv
+if [[ -f $res/start_distance/curves.csv && -f $res/start_distance/radius.csv ]]; then plot start_distance start_distance; fi
+
 # spectrum: spectrum.csv (+ spikes.csv for the marks); overlay: overlay.csv + spectrum.csv
 if [[ -f $res/spectrum.csv ]]; then plot spectrum spectrum; fi
 if [[ -f $res/overlay.csv && -f $res/spectrum.csv ]]; then plot overlay overlay; fi

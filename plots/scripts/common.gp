@@ -21,7 +21,8 @@ ncols(f) = int(system(sprintf("head -n 1 '%s' | awk -F, '{print NF}'", f)))
 
 # One colour per cost, the same in every plot (Okabe-Ito, colour-blind safe).
 costcolor(c) = c eq "time" ? "#0072b2" : c eq "spike" ? "#d55e00" : \
-               c eq "spike-smooth" ? "#009e73" : c eq "data" ? "#000000" : "#cc79a7"
+               c eq "spike-smooth" ? "#009e73" : c eq "data" ? "#000000" : \
+               c eq "freq-band" ? "#56b4e9" : c eq "modal" ? "#e69f00" : "#cc79a7"
 costdash(c)  = c eq "spike-smooth" ? 2 : c eq "time" || c eq "spike" || c eq "data" ? 1 : 4
 
 # Every script draws its plot twice:  do for [fmt in "png svg"] { eval term(fmt, W, H, name) ... }

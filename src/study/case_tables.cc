@@ -49,6 +49,12 @@ RenderedFiles render_cases(const StudyResults& results) {
   for (const CaseRow& r : results.cases)
     tm << r.unit->id << ",case," << r.unit->cost << "," << r.unit->elements << "," << io::round_trip(r.unit->noise)
        << "," << r.record.text("wall_time_s") << "\n";
+  for (const LandscapeRow& l : results.bounds)
+    tm << l.unit->id << ",bound,," << l.unit->elements << "," << io::round_trip(l.unit->noise) << ","
+       << l.record.text("wall_time_s") << "\n";
+  for (const LandscapeRow& l : results.starts)
+    tm << l.unit->id << ",start," << l.unit->cost << "," << l.unit->elements << "," << io::round_trip(l.unit->noise)
+       << "," << l.record.text("wall_time_s") << "\n";
   for (const LandscapeRow& l : results.landscape)
     tm << l.unit->id << "," << l.unit->kind << "," << l.unit->cost << "," << l.unit->elements << ",0,"
        << l.record.text("wall_time_s") << "\n";
@@ -238,6 +244,29 @@ RenderedFiles render_spread(const StudyResults& results, const Groups& groups) {
     md << "\n";
   }
   return {{"spread.csv", csv.str()}, {"spread.md", md.str()}};
+}
+
+RenderedFiles render_efficiency(const std::vector<EfficiencyRow>& rows) {
+  if (rows.empty()) return {};
+  std::ostringstream csv, md;
+  csv << "pulse_width_s,samples,cost,method,start,elements,noise,parameter,fits,stayed,bias,bias_mcse,"
+         "bias_significant,sd,rmse,crb_relative_sd,rmse_over_crb,sd_over_crb\n";
+  md << "| cost | method | N | noise | parameter | stayed at the minimum | bias ± MCSE | RMSE | bound | RMSE / bound |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const EfficiencyRow& r : rows) {
+    const GroupKey& k = r.key;
+    csv << io::round_trip(k.pulse_width_s) << "," << k.samples << "," << k.cost << "," << k.method << "," << k.start
+        << "," << k.elements << "," << io::round_trip(k.noise) << "," << r.parameter << "," << r.fits << ","
+        << r.stayed << "," << io::round_trip(r.errors.mean) << "," << io::round_trip(r.mcse) << ","
+        << (r.significant_bias() ? 1 : 0) << "," << io::round_trip(r.errors.std) << ","
+        << io::round_trip(r.errors.rmse) << "," << io::round_trip(r.bound) << "," << io::round_trip(r.efficiency())
+        << "," << io::round_trip(r.errors.std / r.bound) << "\n";
+    md << "| " << k.cost << " | " << k.method << " | " << k.elements << " | " << noise_label(k.noise) << " | "
+       << r.parameter << " | " << count_with_interval(r.stayed, r.fits) << " | " << g3(r.errors.mean) << " ± "
+       << g3(r.mcse) << (r.significant_bias() ? " (significant)" : "") << " | " << g3(r.errors.rmse) << " | "
+       << g3(r.bound) << " | " << g3(r.efficiency()) << " |\n";
+  }
+  return {{"efficiency.csv", csv.str()}, {"efficiency.md", md.str()}};
 }
 
 // modes.csv

@@ -20,6 +20,8 @@ RenderedFiles render_summary(const StudyResults& results, const Groups& groups);
 RenderedFiles render_bias(const StudyResults& results, const Groups& groups);
 RenderedFiles render_convergence(const StudyResults& results, const Groups& groups);
 RenderedFiles render_spread(const StudyResults& results, const Groups& groups);
+// efficiency.csv and efficiency.md (RMSE against the Cramér-Rao bound; nothing without outputs.efficiency).
+RenderedFiles render_efficiency(const std::vector<EfficiencyRow>& rows);
 RenderedFiles render_modes(const StudyResults& results);
 
 }  // namespace beamid::study

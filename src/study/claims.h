@@ -8,6 +8,7 @@
 
 #include "study/metrics.h"
 #include "study/results.h"
+#include "study/start_distance.h"
 
 namespace beamid::study {
 
@@ -27,6 +28,7 @@ struct Findings {
   std::vector<Claim> claims;
 };
 
-Findings study_findings(const StudyResults& results, const Groups& groups, const LandscapeMetrics& landscape);
+Findings study_findings(const StudyResults& results, const Groups& groups, const LandscapeMetrics& landscape,
+                        const StartDistanceMetrics& start_distance);
 
 }  // namespace beamid::study

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "fit/cramer_rao.h"
 #include "fit/identification.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
@@ -14,6 +15,7 @@
 #include "signal/spectrum.h"
 #include "simulation/simulator.h"
 #include "study/overlay.h"
+#include "study/start_distance.h"
 
 namespace beamid::study {
 namespace {
@@ -66,13 +68,15 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
   o.optimizer.method = fit::default_optimizer(unit.cost);
   o.seed = unit.seed;
   o.optimizer.seed = unit.seed;
-  if (unit.kind == "case") {
+  if (!unit.method.empty()) {  // cases and start-distance fits
     const MethodSpec& m = spec.method(unit.method);
     o.strategy = m.strategy;
+    o.refine = m.refine;
     if (m.optimizer != "default") o.optimizer.method = m.optimizer;
     o.starts = m.starts;
-    for (const auto& [key, factor] : spec.start(unit.start).factor) member(o.start, key) *= factor;
   }
+  if (unit.kind == "case")
+    for (const auto& [key, factor] : spec.start(unit.start).factor) member(o.start, key) *= factor;
   return o;
 }
 
@@ -169,7 +173,7 @@ int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vect
 
 void validate_plan(const StudySpec& spec, const Plan& plan) {
   for (const Unit& u : plan.units) {
-    if (u.kind == "frequencies") continue;  // no fit
+    if (u.kind == "frequencies" || u.kind == "bound") continue;  // no fit
     try {
       fit::validate(unit_options(spec, u, spec.fit.spikes > 0 ? spec.fit.spikes : spec.fit.max_spikes));
     } catch (const InputError& e) {
@@ -307,6 +311,80 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
   return r;
 }
 
+Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("failed"));
+  r.set("termination", std::string("not run"));
+  r.set("cost", std::numeric_limits<double>::infinity());
+  r.set("evaluations", 0.0);
+  r.set("frequency_offset", 0.0);
+  r.set("shrunk", 0.0);
+  for (const auto& key : spec.fit.estimate) {
+    r.set("start." + key, std::numeric_limits<double>::quiet_NaN());
+    r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
+  }
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    int modes = 0, spikes = 0;
+    fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("fitted_modes", static_cast<double>(spikes));
+    if (unit.index >= 0) {
+      // The fitted modes: the spikes of a spike cost; for the others the same number, so that every run is started
+      // at the same frequency offset of the same modes.
+      const galerkin::SplineSpace space(unit.elements);
+      const galerkin::BeamForms forms(space, spec.truth.parameters.l);
+      const Eigen::VectorXd u = random_direction(
+          signal::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
+          static_cast<int>(spec.fit.estimate.size()));
+      const OffsetStart s = offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset,
+                                         spec.fit.bound_factor);
+      for (const auto& key : spec.fit.estimate) member(o.start, key) = value(s.start, key);
+      r.set("frequency_offset", s.frequency_offset);
+      r.set("shrunk", s.shrunk ? 1.0 : 0.0);
+    }
+    for (const auto& key : spec.fit.estimate) r.set("start." + key, value(o.start, key));
+    const fit::FitResult result = fit::fit(o, data);
+    r.set("status", result.status);
+    r.set("termination", result.termination);
+    r.set("cost", result.cost);
+    r.set("evaluations", static_cast<double>(result.evaluations));
+    for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed"));
+    r.set("termination", e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("failed"));
+  r.set("noise_sd", std::numeric_limits<double>::quiet_NaN());
+  for (const auto& key : spec.fit.estimate) r.set("relative_sd." + key, std::numeric_limits<double>::quiet_NaN());
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    // The noise the cases add: level x RMS of the clean record (signal/noise.h).
+    const double noise_sd = unit.noise * signal::rms(clean_record(truth, unit.samples));
+    const fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements,
+                                                             experiment_of(spec, unit), spec.fit.estimate, noise_sd);
+    r.set("status", b.status);
+    r.set("method", b.method);
+    r.set("noise_sd", noise_sd);
+    r.set("rcond", b.rcond);
+    for (std::size_t i = 0; i < b.keys.size(); ++i)
+      r.set("relative_sd." + b.keys[i], b.relative_sd(static_cast<Eigen::Index>(i)));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
 Record run_frequencies(const StudySpec& spec, int elements) {
   Record r;
   const auto t0 = std::chrono::steady_clock::now();
@@ -339,6 +417,8 @@ Record run_frequencies(const StudySpec& spec, int elements) {
 Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
   Record r = unit.kind == "case"          ? run_case(spec, unit, truth)
              : unit.kind == "frequencies" ? run_frequencies(spec, unit.elements)
+             : unit.kind == "start"       ? run_start(spec, unit, truth)
+             : unit.kind == "bound"       ? run_bound(spec, unit, truth)
                                           : run_landscape(spec, unit, truth);
   r.set("kind", unit.kind);
   return r;

@@ -35,6 +35,15 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth);
 // from the frequency determinant) and galerkin_hz (as many).
 Record run_frequencies(const StudySpec& spec, int elements);
 
+// One start-distance fit (kind "start", study_spec.h): fields status, termination, cost, evaluations, wall_time_s,
+// frequency_offset (exact, of the start), shrunk (1 when the step was shortened to stay in the bounds), and for every
+// estimated key K: start.K, estimate.K.
+Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth);
+
+// The Cramér-Rao bound (kind "bound"): fields status, method, noise_sd, rcond, and relative_sd.K for every estimated
+// key K (the bound on the relative standard deviation of an unbiased estimate of K).
+Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth);
+
 // Any unit of plan.units (the record's field "kind" says which).
 Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth);
 

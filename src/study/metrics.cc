@@ -247,4 +247,32 @@ std::map<ModeKey, ModeCell> mode_cells(const StudyResults& results) {
   return cells;
 }
 
+std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Groups& groups) {
+  std::vector<EfficiencyRow> rows;
+  for (const auto& [k, members] : groups) {
+    if (k.noise == 0) continue;
+    const LandscapeRow* bound = nullptr;
+    for (const auto& b : results.bounds)
+      if (b.unit->pulse_width_s == k.pulse_width_s && b.unit->samples == k.samples &&
+          b.unit->elements == k.elements && b.unit->noise == k.noise)
+        bound = &b;
+    if (!bound) continue;
+    for (const auto& key : results.spec->fit.estimate) {
+      EfficiencyRow row;
+      row.key = k;
+      row.parameter = key;
+      row.fits = static_cast<int>(members.size());
+      std::vector<double> errors;
+      for (const CaseRow* r : members)
+        if (r->success) errors.push_back(r->error(key));
+      row.stayed = static_cast<int>(errors.size());
+      row.errors = stats(errors);
+      row.mcse = row.errors.std / std::sqrt(static_cast<double>(row.errors.count));
+      if (bound->record.text("status") == "ok") row.bound = bound->record.number("relative_sd." + key);
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 }  // namespace beamid::study

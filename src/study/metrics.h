@@ -2,6 +2,7 @@
 // relative errors per setting, landscape shapes, multi-start reach. Nothing here reads or writes a file.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <string>
 #include <tuple>
@@ -103,6 +104,24 @@ struct LandscapeMetrics {
   std::vector<MultistartSummary> multistarts;  // in the order of landscape.cost
 };
 LandscapeMetrics landscape_metrics(const StudyResults& results);
+
+// Efficiency (outputs.efficiency): per group of noisy replicates and parameter, the fits that stayed at the global
+// minimum (success: every estimate within the study's tolerances) summarised apart from those that left it, against
+// the Cramér-Rao bound of the fitted model at the truth. Bias = mean relative error with its Monte-Carlo standard
+// error sd / sqrt(n) (comparison.md section 4: a bias is claimed only beyond 2 MCSE); RMSE / bound = 1 for an
+// efficient unbiased estimator, and above 1 by the estimator's excess variance and its bias (squared, added).
+struct EfficiencyRow {
+  GroupKey key;
+  std::string parameter;
+  int stayed = 0, fits = 0;
+  Stats errors;                                                // relative errors of the fits that stayed
+  double mcse = std::numeric_limits<double>::quiet_NaN();      // errors.std / sqrt(stayed)
+  double bound = std::numeric_limits<double>::quiet_NaN();     // relative sd bound (NaN when unavailable)
+  bool significant_bias() const { return std::abs(errors.mean) > 2 * mcse; }  // NaN: false
+  double efficiency() const { return errors.rmse / bound; }   // RMSE / bound
+};
+// Rows for every noisy group with a bound unit (same pulse width, record length, N and noise), in group order.
+std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Groups& groups);
 
 // Success and errors against the number of modes in the data, per (modes, pulse width, Nbar, cost, method).
 struct ModeCell {

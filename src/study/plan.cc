@@ -29,6 +29,12 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   return os.str();
 }
 
+// A method as it enters a unit's identity (refine only for the hybrid strategy, so that older ids stay).
+std::string method_text(const MethodSpec& m) {
+  return m.strategy + "/" + m.optimizer + "/" + std::to_string(m.starts) +
+         (m.strategy == "hybrid" ? "/refine:" + m.refine : std::string());
+}
+
 std::string fit_text(const StudySpec& spec) {
   const auto& f = spec.fit;
   std::ostringstream os;
@@ -84,7 +90,7 @@ Plan make_plan(const StudySpec& spec) {
                   std::ostringstream os;
                   os << "case;" << plan.truths[ti].canonical << ";record_samples=" << samples
                      << ";noise=" << io::round_trip(noise) << ";replicate=" << rep << ";N=" << n << ";cost=" << cost
-                     << ";" << fit << ";method=" << m.strategy << "/" << m.optimizer << "/" << m.starts << ";start=";
+                     << ";" << fit << ";method=" << method_text(m) << ";start=";
                   for (const auto& [key, factor] : s.factor) os << key << ":" << io::round_trip(factor) << ",";
                   u.canonical = os.str();
                   identify(u, spec);
@@ -147,6 +153,63 @@ Plan make_plan(const StudySpec& spec) {
         }
         first = false;
       }
+  }
+  if (spec.outputs.efficiency)
+    for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
+      for (int samples : spec.sweep.samples)
+        for (double noise : spec.sweep.noise)
+          for (int n : spec.sweep.elements) {
+            if (noise == 0) continue;  // no noise, no bound
+            Unit u;
+            u.kind = "bound";
+            u.truth = static_cast<int>(ti);
+            u.pulse_width_s = plan.truths[ti].pulse_width_s;
+            u.samples = samples;
+            u.elements = n;
+            u.noise = noise;
+            std::ostringstream os;
+            os << "bound;" << plan.truths[ti].canonical << ";record_samples=" << samples
+               << ";noise=" << io::round_trip(noise) << ";N=" << n << ";estimate=";
+            for (const auto& key : spec.fit.estimate) os << key << ",";
+            u.canonical = os.str();
+            identify(u, spec);
+            plan.units.push_back(u);
+          }
+  if (spec.start_distance.enabled) {
+    // Every run from the truth (index -1: the reference minimum), then from every offset in every direction, all on
+    // the first experiment's one record (start_distance.noise, replicate 0).
+    const auto& d = spec.start_distance;
+    const Unit& truth = plan.truths.front();
+    const std::string base = truth.canonical + ";record_samples=" + std::to_string(spec.sweep.samples.front()) +
+                             ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
+    const std::uint64_t noise_seed = signal::mix64(
+        spec.seed ^ signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" +
+                                    std::to_string(spec.sweep.samples.front()) + ";noise=" + io::round_trip(d.noise) +
+                                    ";replicate=0"));
+    for (const auto& [cost, method] : d.runs)
+      for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
+        for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
+          Unit u;
+          u.kind = "start";
+          u.truth = 0;
+          u.pulse_width_s = truth.pulse_width_s;
+          u.samples = spec.sweep.samples.front();
+          u.elements = d.elements;
+          u.cost = cost;
+          u.method = method;
+          u.noise = d.noise;
+          u.index = k;
+          u.offset = oi < 0 ? 0.0 : d.offsets[static_cast<std::size_t>(oi)];
+          u.noise_seed = noise_seed;
+          // The direction's identity is its index among `directions` (its seed derives from the study seed and
+          // the index alone, so every run and offset shares the directions).
+          u.canonical = "start;" + base + ";cost=" + cost + ";method=" + method_text(spec.method(method)) +
+                        (k < 0 ? std::string(";start=truth")
+                               : ";offset=" + io::round_trip(u.offset) + ";direction=" + std::to_string(k) + "/" +
+                                     std::to_string(d.directions));
+          identify(u, spec);
+          plan.units.push_back(u);
+        }
   }
   // The overlay case of each cost: its fit is also shown in time and frequency (overlay.csv, spectrum.csv).
   for (const auto& cost : spec.sweep.cost)

@@ -5,7 +5,10 @@
 //               record length); a noise-free case is run once (replicate 0), since its replicates would be identical;
 //   slice/grid  a cost evaluated along one parameter axis, or on a grid of two, through the truth (landscape);
 //   multistart  one local fit of the landscape cost from a random start in the bounds, or from the truth (index -1);
-//   frequencies the Galerkin frequencies of the truth beam at one N of the sweep, and the exact ones.
+//   frequencies the Galerkin frequencies of the truth beam at one N of the sweep, and the exact ones;
+//   bound       the Cramér-Rao bound of the model at one N for one experiment and noise level (outputs.efficiency);
+//   start       one fit of the start-distance curves (study_spec.h): a run (cost and method) from a start at a
+//               frequency offset in one random direction (index), or from the truth (index -1, offset 0).
 // A unit's id is the FNV-1a hash of its canonical text (every setting that affects its result, written out), so
 // adding a unit changes no other id, and its seed derives from (study seed, id), not from its position. The noise
 // realisation of a case derives from (study seed, truth, noise level, replicate) only, so every cost, N and method
@@ -21,7 +24,7 @@
 namespace beamid::study {
 
 struct Unit {
-  std::string kind;       // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies"
+  std::string kind;  // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies" | "start" | "bound"
   std::string id;         // 16 hex digits
   std::string canonical;  // "key=value;..." of everything that determines the result
   std::uint64_t seed = 0;
@@ -36,7 +39,8 @@ struct Unit {
   std::string method;
   std::string start;
   std::vector<std::string> parameters;  // slice: 1, grid: 2
-  int index = 0;                        // multistart: which random start (-1: the truth)
+  int index = 0;                        // multistart, start: which random start or direction (-1: the truth)
+  double offset = 0;                    // start: the relative frequency offset of the start
   bool overlay = false;                 // case: also compute the fit overlay and spectra (one case per cost)
   bool cvode_check = false;             // truth: also integrate with CVODE and record the agreement (first truth)
   std::uint64_t noise_seed = 0;

@@ -29,6 +29,8 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
   if (!results.landscape.empty()) report << " and " << results.landscape.size() << " landscape units";
   report << ", seed " << spec.seed << ", commit " << io::commit_label() << "; truth: `" << spec.truth.beam
          << "` by the exact modal closed form at N = " << spec.truth.elements;
+  if (spec.truth.control)
+    report << " (a control: the fits use the truth's own model, so no discretisation error separates them from the data)";
   if (!results.truths.empty() && results.truths.front().has("cvode_max_difference_over_max_y"))
     report << " (CVODE at rtol " << g3(spec.truth.rtol) << " agrees to "
            << g3(results.truths.front().number("cvode_max_difference_over_max_y")) << " of max |y|)";
@@ -58,6 +60,12 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
                 "formal errors are right; they assume independent Gaussian residuals):\n\n"
              << read(tables, "spread.md") << "\n";
   }
+  if (has(tables, "efficiency.md"))
+    report << "Efficiency: the fits that stayed at the minimum (every estimate within the success tolerances; the "
+              "others are counted apart), their bias with its Monte-Carlo standard error (\"significant\" beyond 2 "
+              "MCSE), RMSE, and the Cramér-Rao bound of the fitted model for the same noise (relative sd; RMSE / "
+              "bound = 1 is the best any unbiased estimator can do):\n\n"
+           << read(tables, "efficiency.md") << "\n";
   if (spec.landscape.enabled)
     report << "Landscape smoothness at N = " << spec.landscape.elements << ":\n\n"
            << read(tables, "smoothness.md") << "\n";
@@ -65,6 +73,17 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
     report << "Each local fit's final cost minus the reference minimum (the lowest over the cost's fits; \"reached\": "
               "every estimate within the success tolerance of the reference's):\n\n"
            << read(tables, "landscape/multistart.md") << "\n";
+  if (has(tables, "start_distance.md")) {
+    const auto& d = spec.start_distance;
+    report << "Start-distance curves at N = " << d.elements << " (noise " << pct(d.noise) << "; " << d.directions
+           << " random directions per offset in the log space of the estimated parameters; a start \"reaches\" when "
+              "every estimate is within "
+           << pct(d.agreement) << " (damping " << pct(d.damping_agreement)
+           << ") of the same run's fit from the truth). Columns: the share of starts that reach it at each frequency "
+              "offset of the fitted modes; the offset where that share falls through one half, with the interval "
+              "from the 95 % Wilson bounds, and its ratio to the predicted 1/(2 f T):\n\n"
+           << read(tables, "start_distance.md") << "\n";
+  }
   // Plot links: the images plots/make_plots.sh makes from these tables (names fixed there), SVG beside each PNG.
   const std::string p = "plots/" + spec.name + "/";
   std::vector<std::pair<std::string, std::string>> images;
@@ -73,6 +92,8 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
     for (const auto& [a, b] : spec.landscape.pairs)
       images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
   }
+  if (spec.start_distance.enabled)
+    images.emplace_back("start_distance", "share of starts that reach the minimum against the start's frequency offset");
   if (spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1)
     images.emplace_back("success_vs_modes", "success rate against the modes in the data");
   if (spec.sweep.elements.size() > 1)

@@ -53,6 +53,10 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
     if (u.kind == "case") {
       const bool success = case_succeeded(spec, *r);
       results.cases.push_back({&u, std::move(*r), success});
+    } else if (u.kind == "bound") {
+      results.bounds.push_back({&u, std::move(*r)});
+    } else if (u.kind == "start") {
+      results.starts.push_back({&u, std::move(*r)});
     } else if (u.kind == "frequencies") {
       results.frequencies[u.elements] = std::move(*r);
     } else {

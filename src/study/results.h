@@ -39,6 +39,8 @@ struct StudyResults {
   std::vector<Record> truths;           // as plan.truths
   std::vector<CaseRow> cases;           // plan order
   std::vector<LandscapeRow> landscape;  // plan order
+  std::vector<LandscapeRow> starts;     // start-distance fits (kind "start"), plan order
+  std::vector<LandscapeRow> bounds;     // Cramér-Rao bounds (kind "bound"), plan order
   std::map<int, Record> frequencies;    // N -> its "frequencies" unit (exact_hz, galerkin_hz)
 };
 

@@ -60,7 +60,7 @@ const MethodSpec& StudySpec::method(const std::string& n) const {
 StudySpec parse_study(const std::string& text, const std::string& source, const std::string& directory) {
   const config::Document document = config::Document::parse(text, source);
   const Table root = document.root();
-  root.only_tables({"study", "truth", "fit", "starts", "methods", "sweep", "landscape", "outputs"});
+  root.only_tables({"study", "truth", "fit", "starts", "methods", "sweep", "landscape", "start_distance", "outputs"});
 
   StudySpec spec;
   spec.path = source;
@@ -91,11 +91,15 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
         r.fail("beam", "'" + t.beam + "'",
                "must be a preset (" + Table::join(model::preset_names()) + ") or an existing beam TOML file");
     }
-    t.elements = r.integer("elements", 48, model::kMinTruthElements, model::kMaxTruthElements);
+    // A control study fits the truth's own model (an inverse crime on purpose): what remains is the estimator's own
+    // bias and variance, the yardstick for the studies whose truth is finer than every fit.
+    t.control = r.boolean("control", false);
+    t.elements = r.integer("elements", 48, t.control ? model::kMinElements : model::kMinTruthElements,
+                           model::kMaxTruthElements);
     t.rtol = r.number(
         "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
     read_experiment(r, t.experiment);
-    r.finish({"beam", "elements", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
+    r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
               "pulse_width_s", "sensor_x_m", "output"});
     t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
     const model::BeamParameters& beam = t.parameters;
@@ -105,6 +109,8 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       throw InputError(r.where(key) + ": truth." + *e);
     }
   }
+  // Fitted orders: coarser than the truth's (no inverse crime), or up to it in a control study.
+  const int finest_fit = spec.truth.control ? spec.truth.elements : spec.truth.elements - 1;
   {  // [fit]
     Table r = document.required("fit");
     FitSpec& f = spec.fit;
@@ -162,14 +168,17 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       m.strategy = r.string("strategy", m.strategy, fit::strategy_names().names());
       m.optimizer = r.string("optimizer", m.optimizer, optimizers);
       m.starts = r.integer("starts", 1, 1, model::kMaxStarts);
-      r.finish({"strategy", "optimizer", "starts"});
+      m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost});
+      if (r.has("refine") && m.strategy != fit::kHybrid)
+        r.fail("refine", "'" + m.refine + "'", "applies to strategy = 'hybrid' only");
+      r.finish({"strategy", "optimizer", "starts", "refine"});
       spec.methods.push_back(m);
     }
   }
   {  // [sweep]
     Table r = document.required("sweep");
     SweepSpec& s = spec.sweep;
-    s.elements = r.integers("elements", true, 1, spec.truth.elements - 1);
+    s.elements = r.integers("elements", true, 1, finest_fit);
     s.cost = r.strings("cost", true, cost_names());
     s.noise = r.numbers(
         "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
@@ -193,7 +202,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     Table& r = *landscape;
     LandscapeSpec& l = spec.landscape;
     l.enabled = true;
-    l.elements = r.integer("elements", l.elements, 1, spec.truth.elements - 1);
+    l.elements = r.integer("elements", l.elements, 1, finest_fit);
     l.cost = r.strings("cost", true, cost_names());
     l.range_factor = r.number(
         "range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
@@ -216,6 +225,42 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     }
     r.finish({"elements", "cost", "range_factor", "points", "pairs", "grid_points", "multistarts"});
   }
+  if (auto table = document.table("start_distance", false)) {
+    Table& r = *table;
+    StartDistanceSpec& d = spec.start_distance;
+    d.enabled = true;
+    d.elements = r.integer("elements", d.elements, 1, finest_fit);
+    d.offsets = r.numbers(
+        "offsets", [](double v) { return v > 0 && v < 1; }, "must be in (0, 1) (relative frequency offsets)");
+    if (d.offsets.empty()) r.fail("offsets", "[]", "must list at least one offset");
+    if (!std::is_sorted(d.offsets.begin(), d.offsets.end()))
+      r.fail("offsets", "[...]", "must be in increasing order");
+    d.directions = r.integer("directions", d.directions, 1, 100000);
+    d.noise = r.number(
+        "noise", 0.0, [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    d.agreement = r.number(
+        "agreement", d.agreement, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    d.damping_agreement = r.number(
+        "damping_agreement", d.damping_agreement, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    std::vector<std::string> method_names;
+    for (const auto& m : spec.methods) method_names.push_back(m.name);
+    // Runs as "cost/method": not every pairing is meaningful (a hybrid's cost is its global stage).
+    const auto runs = r.array("runs", true);
+    for (const Node& item : *runs) {
+      const auto bad = [&](const std::string& why) { r.element_fail("runs", item, item.text(), why); };
+      if (!item.is_string()) bad("must be a string \"cost/method\"");
+      const std::string text = *item.string();
+      const auto slash = text.find('/');
+      if (slash == std::string::npos) bad("must be \"cost/method\", e.g. \"time/direct\"");
+      const std::string cost = text.substr(0, slash), method = text.substr(slash + 1);
+      if (!costs::cost_names().contains(cost)) bad("cost '" + cost + "' must be one of " + costs::cost_names().list());
+      if (std::find(method_names.begin(), method_names.end(), method) == method_names.end())
+        bad("method '" + method + "' must be one of the [methods.NAME] tables (" + Table::join(method_names) + ")");
+      if (std::find(d.runs.begin(), d.runs.end(), std::pair(cost, method)) != d.runs.end()) bad("is listed twice");
+      d.runs.emplace_back(cost, method);
+    }
+    r.finish({"elements", "offsets", "directions", "noise", "agreement", "damping_agreement", "runs"});
+  }
   if (auto outputs = document.table("outputs", false)) {
     Table& r = *outputs;
     OutputsSpec& o = spec.outputs;
@@ -226,7 +271,8 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     o.overlay_noise = r.number("overlay_noise", 0.0, non_negative, "must be >= 0");
     if (std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), o.overlay_noise) == spec.sweep.noise.end())
       r.fail("overlay_noise", format_value(o.overlay_noise), "must be one of sweep.noise");
-    r.finish({"overlay_elements", "overlay_noise"});
+    o.efficiency = r.boolean("efficiency", false);
+    r.finish({"overlay_elements", "overlay_noise", "efficiency"});
   }
   if (spec.outputs.overlay_elements == 0)
     spec.outputs.overlay_elements = *std::max_element(spec.sweep.elements.begin(), spec.sweep.elements.end());

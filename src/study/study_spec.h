@@ -30,6 +30,7 @@ struct TruthSpec {
   std::string beam_path;                 // resolved path of a beam file ("" for a preset)
   model::BeamParameters parameters;      // the beam itself, read once with the study file
   int elements = 48;                     // N_truth: finer than any fitted N (no inverse crime)
+  bool control = false;                  // fitted N may equal N_truth (a control: the estimators alone)
   double rtol = 1e-10;                   // CVODE relative tolerance of the cross-check of the first truth record
   simulation::Experiment experiment;
 };
@@ -63,6 +64,7 @@ struct MethodSpec {
   std::string strategy = "direct";    // "direct" | "staged" | "continuation"
   std::string optimizer = "default";  // "default" (lm, or nelder-mead for spike) or an optimizer name
   int starts = 1;                     // > 1: the start plus Latin-hypercube starts in the bounds
+  std::string refine = "time";        // "hybrid": the least-squares cost that refines the global fit (time | freq-band)
 };
 
 struct SweepSpec {
@@ -87,9 +89,31 @@ struct LandscapeSpec {
   int multistarts = 12;                                    // local fits from random starts in the bounds, per cost
 };
 
+// Start-distance curves (comparison.md section 1): how far from the truth each cost and strategy may be started and
+// still reach the minimum it reaches from the truth. For every run (a cost with a method), every offset r and every
+// direction d: a fit from  log q = log q_true + s u_d,  u_d a random unit vector in the log space of the estimated
+// parameters (the same directions for every run and offset), s such that the fitted modes' frequencies move by r at
+// most (to first order: s = log(1 + r) / max_k |d log f_k / d log q . u_d|, k over the fitted modes), and s shrunk to
+// stay inside the bounds when the direction barely moves a frequency. A fit "reaches" the minimum when every estimate
+// is within `agreement` (damping parameters: `damping_agreement`) of the run's own fit from the truth on the same
+// record: this measures the basin alone, apart from the bias that the model error and the noise put into the minimum.
+struct StartDistanceSpec {
+  bool enabled = false;
+  int elements = 16;
+  std::vector<double> offsets;                            // r, relative frequency offsets (0.0015 = 0.15 %)
+  int directions = 30;                                    // per offset
+  std::vector<std::pair<std::string, std::string>> runs;  // (cost, method name)
+  double noise = 0;                                       // of the one record every fit sees
+  double agreement = 1e-3;
+  double damping_agreement = 1e-2;
+};
+
 struct OutputsSpec {
   int overlay_elements = 0;  // 0: the largest N of the sweep
   double overlay_noise = 0;  // noise level of the overlay case (must be in the sweep)
+  // Efficiency tables: the Cramér-Rao bound (fit/cramer_rao.h) of the model at each fitted N, at the truth, for the
+  // noise of each noisy level of the sweep (level x RMS of the clean record), beside the fits' RMSE.
+  bool efficiency = false;
 };
 
 struct StudySpec {
@@ -103,6 +127,7 @@ struct StudySpec {
   std::vector<MethodSpec> methods;
   SweepSpec sweep;
   LandscapeSpec landscape;
+  StartDistanceSpec start_distance;
   OutputsSpec outputs;
   std::string file_hash;  // FNV-1a 64 of the file's bytes, hex
 

@@ -11,6 +11,7 @@
 #include "study/metrics.h"
 #include "study/overlay.h"
 #include "study/report_block.h"
+#include "study/start_distance_tables.h"
 
 namespace beamid::study {
 namespace {
@@ -47,6 +48,7 @@ Manifest study_manifest(const StudyResults& results) {
                                 "std::mt19937_64 (signal/noise.h)")},
       {"cases", std::to_string(results.cases.size())},
       {"landscape_units", std::to_string(results.landscape.size())}};
+  if (!results.starts.empty()) m.after.emplace_back("start_distance_fits", std::to_string(results.starts.size()));
   return m;
 }
 
@@ -63,9 +65,13 @@ RenderedFiles render_tables(const StudyResults& results) {
   append(files, render_bias(results, groups));
   append(files, render_convergence(results, groups));
   append(files, render_spread(results, groups));
+  const std::vector<EfficiencyRow> efficiency = efficiency_rows(results, groups);
+  append(files, render_efficiency(efficiency));
   append(files, render_modes(results));
   const LandscapeMetrics landscape = landscape_metrics(results);
   append(files, render_landscape(results, landscape));
+  const StartDistanceMetrics start_distance = start_distance_metrics(results);
+  append(files, render_start_distance(results, start_distance));
   std::vector<std::pair<std::string, Overlay>> overlays;
   for (const auto& cost : spec.sweep.cost)
     for (const CaseRow& r : results.cases)
@@ -74,7 +80,7 @@ RenderedFiles render_tables(const StudyResults& results) {
         break;
       }
   append(files, render_overlay_files(overlays));
-  const Findings findings = study_findings(results, groups, landscape);
+  const Findings findings = study_findings(results, groups, landscape, start_distance);
   files.push_back({"report.md", render_report_block(results, findings, files)});
   return files;
 }

@@ -147,7 +147,7 @@ TEST(Metrics, ReachCountsTakeTheReferenceFromEveryFitTheTruthStartIncluded) {
 TEST(Metrics, ReachCountIsAFindingWithItsEvidence) {
   const MultistartCase c({{-1, "converged", 1e-20, 0.491}, {0, "converged", 1e-6, 0.6}});
   const LandscapeMetrics m = landscape_metrics(c.results);
-  const Findings f = study_findings(c.results, {}, m);
+  const Findings f = study_findings(c.results, {}, m, {});
   ASSERT_EQ(f.counts.size(), 1u);
   EXPECT_EQ(f.counts[0].count, 0);
   EXPECT_EQ(f.counts[0].total, 1);

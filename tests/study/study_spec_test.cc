@@ -86,7 +86,7 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
       "s.toml:16: starts.near.EI = 2.5: must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = 2");
   EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fits]")),
             "s.toml:12: unknown table [fits]: valid tables are study, truth, fit, starts, methods, sweep, landscape, "
-            "outputs");
+            "start_distance, outputs");
   EXPECT_EQ(error_of(replaced(kValid, "force_x_m = 0.32", "force_x_m = 0.9")),
             "s.toml:9: truth.force_x_m = 0.9: must lie on the beam, 0 <= x <= l = 0.4573");
   EXPECT_EQ(error_of(replaced(kValid, "method = [\"direct\"]", "method = [\"staged\"]")),
@@ -144,6 +144,46 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   const Plan reseeded = make_plan(parse_study(replaced(kValid, "seed = 5", "seed = 6"), "s.toml", "."));
   EXPECT_EQ(reseeded.units[3].id, plan.units[3].id);
   EXPECT_NE(reseeded.units[3].seed, plan.units[3].seed);
+}
+
+TEST(StudySpec, StartDistanceRunsAreCostSlashMethod) {
+  const std::string base = std::string(kValid) + "\n[start_distance]\noffsets = [0.001, 0.01]\ndirections = 4\n";
+  EXPECT_EQ(error_of(base + "runs = [\"time-direct\"]\n"),
+            "s.toml:33: start_distance.runs element 'time-direct': must be \"cost/method\", e.g. \"time/direct\"");
+  EXPECT_EQ(error_of(base + "runs = [\"time/staged\"]\n"),
+            "s.toml:33: start_distance.runs element 'time/staged': method 'staged' must be one of the "
+            "[methods.NAME] tables (direct)");
+  EXPECT_EQ(error_of(base + "runs = [\"spiky/direct\"]\n"),
+            "s.toml:33: start_distance.runs element 'spiky/direct': cost 'spiky' must be one of time, spike, "
+            "spike-smooth, freq-band, modal");
+  EXPECT_EQ(error_of(replaced(base, "[0.001, 0.01]", "[0.01, 0.001]") + "runs = [\"time/direct\"]\n"),
+            "s.toml:31: start_distance.offsets = [...]: must be in increasing order");
+  EXPECT_EQ(error_of(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nrefine = \"time\"")),
+            "s.toml:21: methods.direct.refine = 'time': applies to strategy = 'hybrid' only");
+}
+
+TEST(StudyPlan, StartDistanceUnitsShareDirectionsAndTheRecord) {
+  const StudySpec s = parse_study(
+      std::string(kValid) +
+          "\n[start_distance]\noffsets = [0.001, 0.01]\ndirections = 4\nnoise = 0.01\n"
+          "runs = [\"time/direct\", \"spike-smooth/direct\"]\n",
+      "s.toml", ".");
+  const Plan plan = make_plan(s);
+  // Per run: the fit from the truth plus 2 offsets x 4 directions.
+  std::vector<const Unit*> starts;
+  for (const auto& u : plan.units)
+    if (u.kind == "start") starts.push_back(&u);
+  ASSERT_EQ(starts.size(), 2u * (1 + 2 * 4));
+  std::set<std::string> ids;
+  std::set<std::uint64_t> noise;
+  for (const Unit* u : starts) ids.insert(u->id), noise.insert(u->noise_seed);
+  EXPECT_EQ(ids.size(), starts.size());
+  EXPECT_EQ(noise.size(), 1u);  // one record for every run, offset and direction (paired comparisons)
+  EXPECT_EQ(starts.front()->index, -1);
+  EXPECT_EQ(starts.front()->offset, 0.0);
+  // The start units come after the cases and leave their ids alone.
+  const Plan without = make_plan(parse_study(kValid, "s.toml", "."));
+  for (std::size_t i = 0; i + 2 < without.units.size(); ++i) EXPECT_EQ(without.units[i].id, plan.units[i].id);
 }
 
 TEST(StudyPlan, ShardsPartitionTheUnits) {

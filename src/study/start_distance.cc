@@ -1,0 +1,170 @@
+#include "study/start_distance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "galerkin/modes.h"
+#include "model/errors.h"
+#include "signal/noise.h"
+#include "study/format.h"
+#include "study/metrics.h"
+
+namespace beamid::study {
+namespace {
+
+double& member(model::BeamParameters& beam, const std::string& key) {
+  return beam.*(model::find_parameter(key)->member);
+}
+
+// The first `modes` undamped frequencies (rad/s) of the model.
+Eigen::VectorXd frequencies(const galerkin::BeamForms& forms, const model::BeamParameters& beam, int modes) {
+  const auto m = galerkin::undamped_modes(galerkin::combine(forms, beam));
+  if (m.omega_rad_s.size() < modes)
+    throw InputError("the Galerkin model has " + std::to_string(m.omega_rad_s.size()) + " modes, " +
+                     std::to_string(modes) + " are fitted");
+  return m.omega_rad_s.head(modes);
+}
+
+}  // namespace
+
+Eigen::VectorXd random_direction(std::uint64_t seed, int dimension) {
+  const std::vector<double> g = signal::gaussian_deviates(seed, static_cast<std::size_t>(dimension));
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(g.data(), dimension);
+  return u / u.norm();
+}
+
+Eigen::MatrixXd frequency_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
+                                        const std::vector<std::string>& keys, int modes) {
+  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
+  const galerkin::UndampedModes m = galerkin::undamped_modes(system);
+  if (m.omega_rad_s.size() < modes)
+    throw InputError("the Galerkin model has " + std::to_string(m.omega_rad_s.size()) + " modes, " +
+                     std::to_string(modes) + " are fitted");
+  Eigen::MatrixXd g(modes, static_cast<Eigen::Index>(keys.size()));
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const galerkin::SecondOrderSystem d = galerkin::parameter_derivative(forms, beam, keys[i]);
+    const double q = beam.*(model::find_parameter(keys[i])->member);
+    for (int k = 0; k < modes; ++k) {
+      const Eigen::VectorXd phi = m.shapes.col(k);
+      const double w2 = m.omega_rad_s(k) * m.omega_rad_s(k);
+      g(k, static_cast<Eigen::Index>(i)) = q * phi.dot(d.K * phi - w2 * (d.M * phi)) / (2 * w2);
+    }
+  }
+  return g;
+}
+
+OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamParameters& truth,
+                         const std::vector<std::string>& keys, int modes, const Eigen::VectorXd& direction,
+                         double offset, double bound_factor) {
+  const Eigen::MatrixXd g = frequency_sensitivities(forms, truth, keys, modes);
+  const double slope = (g * direction).cwiseAbs().maxCoeff();  // max_k |d log f_k / ds| along u
+  OffsetStart out;
+  const double limit = 0.9 * std::log(bound_factor) / direction.cwiseAbs().maxCoeff();
+  out.step = slope > 0 ? std::log1p(offset) / slope : limit;
+  if (!(slope > 0) || out.step > limit) out.step = limit, out.shrunk = true;
+  out.start = truth;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    member(out.start, keys[i]) *= std::exp(out.step * direction(static_cast<Eigen::Index>(i)));
+  const Eigen::VectorXd f0 = frequencies(forms, truth, modes), f1 = frequencies(forms, out.start, modes);
+  out.frequency_offset = (f1.array() / f0.array() - 1).abs().maxCoeff();
+  return out;
+}
+
+HalfRadius half_radius(const std::vector<double>& offsets, const std::vector<double>& rates) {
+  HalfRadius r;
+  if (offsets.empty() || offsets.size() != rates.size()) throw InputError("half_radius: no curve");
+  if (!(rates.front() >= 0.5)) {
+    r.below = true;
+    r.value = offsets.front();
+    return r;
+  }
+  for (std::size_t j = 1; j < rates.size(); ++j) {
+    if (rates[j] >= 0.5) continue;
+    const double a = std::log(offsets[j - 1]), b = std::log(offsets[j]);
+    r.value = std::exp(a + (rates[j - 1] - 0.5) / (rates[j - 1] - rates[j]) * (b - a));
+    return r;
+  }
+  r.above = true;
+  r.value = offsets.back();
+  return r;
+}
+
+std::string radius_text(const HalfRadius& r) {
+  const std::string percent = g3(100 * r.value) + " %";
+  return r.below ? "< " + percent : r.above ? "> " + percent : percent;
+}
+
+bool reaches(const StudySpec& spec, const Record& reference, const Record& fit) {
+  if (fit.text("status") == "failed" || reference.text("status") == "failed") return false;
+  for (const auto& key : spec.fit.estimate) {
+    const double a = reference.number("estimate." + key), b = fit.number("estimate." + key);
+    const double tolerance = model::find_parameter(key)->role == "damping" ? spec.start_distance.damping_agreement
+                                                                           : spec.start_distance.agreement;
+    if (!(std::abs(b - a) <= tolerance * std::abs(a))) return false;  // NaN: not reached
+  }
+  return true;
+}
+
+StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
+  const StudySpec& spec = *results.spec;
+  const auto& d = spec.start_distance;
+  StartDistanceMetrics m;
+  m.reached.assign(results.starts.size(), false);
+  if (!d.enabled) return m;
+  for (const auto& [cost, method] : d.runs) {
+    StartRun run;
+    run.cost = cost;
+    run.method = method;
+    for (const auto& row : results.starts)
+      if (row.unit->cost == cost && row.unit->method == method && row.unit->index < 0) run.reference = &row;
+    run.reference_ok = run.reference && run.reference->record.text("status") != "failed";
+    for (double offset : d.offsets) {
+      StartCurvePoint p;
+      p.offset = offset;
+      std::vector<double> evaluations;
+      for (std::size_t i = 0; i < results.starts.size(); ++i) {
+        const LandscapeRow& row = results.starts[i];
+        const Unit& u = *row.unit;
+        if (u.cost != cost || u.method != method || u.index < 0 || u.offset != offset) continue;
+        if (!run.reference_ok) continue;
+        ++p.fits;
+        m.reached[i] = reaches(spec, run.reference->record, row.record);
+        p.reached += m.reached[i] ? 1 : 0;
+        p.shrunk += row.record.number("shrunk") > 0 ? 1 : 0;
+        evaluations.push_back(row.record.number("evaluations"));
+      }
+      p.median_evaluations = median(evaluations);
+      run.points.push_back(p);
+    }
+    if (run.reference_ok) {
+      std::vector<double> offsets, rates, lows, highs;
+      for (const auto& p : run.points) {
+        const auto [low, high] = wilson_interval(p.reached, p.fits);
+        offsets.push_back(p.offset);
+        rates.push_back(p.rate());
+        lows.push_back(low);
+        highs.push_back(high);
+      }
+      run.radius = half_radius(offsets, rates);
+      run.radius_low = half_radius(offsets, lows);
+      run.radius_high = half_radius(offsets, highs);
+      if (m.fitted_modes == 0) m.fitted_modes = static_cast<int>(run.reference->record.number("fitted_modes"));
+    }
+    m.runs.push_back(run);
+  }
+  if (!results.truths.empty() && m.fitted_modes > 0) {
+    const std::vector<double> f = results.truths.front().numbers("mode_frequency_hz");
+    const std::vector<double> zeta = results.truths.front().numbers("mode_damping_ratio");
+    const auto k = static_cast<std::size_t>(m.fitted_modes - 1);
+    if (f.size() > k && zeta.size() > k) {
+      m.highest_mode_hz = f[k];  // natural frequency |lambda| / (2 pi), and zeta = -Re(lambda) / |lambda|
+      m.decay_rate_1_s = zeta[k] * 2 * M_PI * f[k];
+    }
+    m.record_s = spec.sweep.samples.front() * spec.truth.experiment.dt_s;
+    m.predicted_basin = 1 / (2 * m.highest_mode_hz * m.record_s);
+    m.predicted_basin_decay = 1 / (2 * m.highest_mode_hz * std::min(m.record_s, 1 / m.decay_rate_1_s));
+  }
+  return m;
+}
+
+}  // namespace beamid::study

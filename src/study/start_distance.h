@@ -1,0 +1,84 @@
+// Start-distance curves (study_spec.h, StartDistanceSpec): the starts at a prescribed frequency offset, and the
+// metrics of the curves (share of starts that reach the minimum, against the offset, and the offset at which that
+// share falls through one half), as pure functions. Theory (comparison.md section 1): least squares on a record of
+// length T has a basin of about 1/(2 f T) in relative frequency for its highest fitted mode f, the offset at which
+// that mode's phase is off by half a cycle at the end of the record.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "galerkin/second_order_system.h"
+#include "model/beam_parameters.h"
+#include "study/results.h"
+
+namespace beamid::study {
+
+// A unit vector of `dimension` components, uniform on the sphere (normalised standard normal deviates of `seed`).
+Eigen::VectorXd random_direction(std::uint64_t seed, int dimension);
+
+// d log f_k / d log q_i of the first `modes` undamped modes of the Galerkin model (forms, beam), exactly: with
+// phi_k M-normalised, d(omega_k^2)/dq = phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k, so that
+// d log f_k / d log q = q phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k / (2 omega_k^2)  (0 for damping parameters).
+// modes x keys.
+Eigen::MatrixXd frequency_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
+                                        const std::vector<std::string>& keys, int modes);
+
+struct OffsetStart {
+  model::BeamParameters start;
+  double step = 0;              // s: log q = log q_true + s u
+  bool shrunk = false;          // s was reduced to keep every parameter within 0.9 of the log bound range
+  double frequency_offset = 0;  // max_k |f_k(start) / f_k(truth) - 1| over the fitted modes, exact
+};
+// The start at frequency offset r in direction u (study_spec.h): s = log(1 + r) / max_k |g_k . u|, g = the
+// sensitivities above, then shrunk to max_i |s u_i| <= 0.9 log(bound_factor) when it would leave the bounds.
+OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamParameters& truth,
+                         const std::vector<std::string>& keys, int modes, const Eigen::VectorXd& direction,
+                         double offset, double bound_factor);
+
+// The offset at which a success curve falls through 1/2: rates[j] at offsets[j] (increasing, > 0). Interpolated
+// linearly in log offset between the last offset of the leading run of rates >= 1/2 and the next one. `below` when
+// the first rate is already < 1/2, `above` when no rate falls below 1/2 (value is then that end of the range).
+struct HalfRadius {
+  double value = 0;
+  bool below = false, above = false;
+};
+HalfRadius half_radius(const std::vector<double>& offsets, const std::vector<double>& rates);
+// "0.31 %", "< 0.05 %" or "> 20 %".
+std::string radius_text(const HalfRadius& r);
+
+// The curves of a finished study.
+struct StartCurvePoint {
+  double offset = 0;
+  int reached = 0, fits = 0, shrunk = 0;  // fits: directions whose outcome is known (the reference fit ok)
+  double median_evaluations = 0;
+  double rate() const { return fits > 0 ? static_cast<double>(reached) / fits : std::nan(""); }
+};
+struct StartRun {
+  std::string cost, method;
+  const LandscapeRow* reference = nullptr;  // the fit from the truth (nullptr when missing)
+  bool reference_ok = false;                // it did not fail
+  std::vector<StartCurvePoint> points;      // by offset
+  HalfRadius radius, radius_low, radius_high;  // from the rates, their Wilson lower and upper bounds
+};
+struct StartDistanceMetrics {
+  int fitted_modes = 0;
+  double highest_mode_hz = 0;  // the truth's mode `fitted_modes`
+  double record_s = 0;
+  double predicted_basin = 0;  // 1 / (2 f T)
+  // The same with the mode's own duration: a mode of decay rate sigma is visible for about 1/sigma, so a phase error
+  // accumulates only over T_eff = min(T, 1/sigma): 1 / (2 f T_eff).
+  double decay_rate_1_s = 0;  // sigma of the truth's mode `fitted_modes`
+  double predicted_basin_decay = 0;
+  std::vector<StartRun> runs;  // in the order of start_distance.runs
+  std::vector<bool> reached;   // per results.starts row
+};
+// Whether `fit` reached the minimum of `reference`: not failed, and every estimate within start_distance.agreement
+// (damping parameters: damping_agreement) of the reference's, relatively.
+bool reaches(const StudySpec& spec, const Record& reference, const Record& fit);
+StartDistanceMetrics start_distance_metrics(const StudyResults& results);
+
+}  // namespace beamid::study
