@@ -92,6 +92,24 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A fit's outcome in a record (cases and start-distance fits alike).
+void record_fit(Record& r, const fit::FitResult& result) {
+  r.set("status", result.status);
+  r.set("termination", result.termination);
+  r.set("cost", result.cost);
+  r.set("evaluations", static_cast<double>(result.evaluations));
+  for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+}
+
+// The fields of a fit that has not run (so that a failure before the fit still leaves every column).
+void record_unrun_fit(Record& r, const std::vector<std::string>& keys) {
+  r.set("status", std::string("failed"));
+  r.set("termination", std::string("not run"));
+  r.set("cost", std::numeric_limits<double>::infinity());
+  r.set("evaluations", 0.0);
+  for (const auto& key : keys) r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
+}
+
 Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
   const std::vector<double> clean = clean_record(truth, unit.samples);
   const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
@@ -186,14 +204,10 @@ void validate_plan(const StudySpec& spec, const Plan& plan) {
 Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
   Record r;
   const auto t0 = std::chrono::steady_clock::now();
-  r.set("status", std::string("failed"));
-  r.set("termination", std::string("not run"));
-  r.set("cost", std::numeric_limits<double>::infinity());
-  r.set("evaluations", 0.0);
+  record_unrun_fit(r, spec.fit.estimate);
   r.set("a4", std::string("-"));
   const model::BeamParameters beam = spec.truth.parameters;
   for (const auto& key : spec.fit.estimate) {
-    r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
     r.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
     r.set("relative_error." + key, std::numeric_limits<double>::quiet_NaN());
   }
@@ -206,15 +220,11 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
     r.set("modes_in_data", static_cast<double>(modes));
     r.set("spikes", static_cast<double>(costs::is_spike_cost(unit.cost) ? spikes : 0));
     const fit::FitResult result = fit::fit(o, data);
-    r.set("status", result.status);
-    r.set("termination", result.termination);
-    r.set("cost", result.cost);
-    r.set("evaluations", static_cast<double>(result.evaluations));
+    record_fit(r, result);
     r.set("best_start", static_cast<double>(result.best_start));
     r.set("a4", result.final_evaluation.a4);
     for (const auto& p : result.parameters) {
       const double t = value(beam, p.key);
-      r.set("estimate." + p.key, p.estimate);
       r.set("standard_error." + p.key, p.standard_error);
       r.set("relative_error." + p.key, (p.estimate - t) / t);
     }
@@ -314,16 +324,10 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
 Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
   Record r;
   const auto t0 = std::chrono::steady_clock::now();
-  r.set("status", std::string("failed"));
-  r.set("termination", std::string("not run"));
-  r.set("cost", std::numeric_limits<double>::infinity());
-  r.set("evaluations", 0.0);
+  record_unrun_fit(r, spec.fit.estimate);
   r.set("frequency_offset", 0.0);
   r.set("shrunk", 0.0);
-  for (const auto& key : spec.fit.estimate) {
-    r.set("start." + key, std::numeric_limits<double>::quiet_NaN());
-    r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
-  }
+  for (const auto& key : spec.fit.estimate) r.set("start." + key, std::numeric_limits<double>::quiet_NaN());
   try {
     if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
     const std::vector<double> clean = clean_record(truth, unit.samples);
@@ -346,12 +350,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       r.set("shrunk", s.shrunk ? 1.0 : 0.0);
     }
     for (const auto& key : spec.fit.estimate) r.set("start." + key, value(o.start, key));
-    const fit::FitResult result = fit::fit(o, data);
-    r.set("status", result.status);
-    r.set("termination", result.termination);
-    r.set("cost", result.cost);
-    r.set("evaluations", static_cast<double>(result.evaluations));
-    for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+    record_fit(r, fit::fit(o, data));
   } catch (const std::exception& e) {
     r.set("status", std::string("failed"));
     r.set("termination", e.what());

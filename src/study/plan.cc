@@ -51,6 +51,14 @@ std::string fit_text(const StudySpec& spec) {
   return os.str();
 }
 
+// The noise realisation of a record: (study seed, truth, record length, noise level, replicate) only, so that every
+// cost, N, method and start sees the same noisy record (common random numbers).
+std::uint64_t record_noise_seed(const StudySpec& spec, const Unit& truth, int samples, double noise, int replicate) {
+  return signal::mix64(spec.seed ^ signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" +
+                                                   std::to_string(samples) + ";noise=" + io::round_trip(noise) +
+                                                   ";replicate=" + std::to_string(replicate)));
+}
+
 }  // namespace
 
 Plan make_plan(const StudySpec& spec) {
@@ -94,12 +102,7 @@ Plan make_plan(const StudySpec& spec) {
                   for (const auto& [key, factor] : s.factor) os << key << ":" << io::round_trip(factor) << ",";
                   u.canonical = os.str();
                   identify(u, spec);
-                  // Same record for every cost, N, method and start (common random numbers).
-                  u.noise_seed =
-                      signal::mix64(spec.seed ^ signal::fnv1a64("noise;" + plan.truths[ti].canonical +
-                                                                ";record_samples=" + std::to_string(samples) +
-                                                                ";noise=" + io::round_trip(noise) +
-                                                                ";replicate=" + std::to_string(rep)));
+                  u.noise_seed = record_noise_seed(spec, plan.truths[ti], samples, noise, rep);
                   plan.units.push_back(u);
                 }
   if (spec.landscape.enabled) {
@@ -182,10 +185,7 @@ Plan make_plan(const StudySpec& spec) {
     const Unit& truth = plan.truths.front();
     const std::string base = truth.canonical + ";record_samples=" + std::to_string(spec.sweep.samples.front()) +
                              ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
-    const std::uint64_t noise_seed = signal::mix64(
-        spec.seed ^ signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" +
-                                    std::to_string(spec.sweep.samples.front()) + ";noise=" + io::round_trip(d.noise) +
-                                    ";replicate=0"));
+    const std::uint64_t noise_seed = record_noise_seed(spec, truth, spec.sweep.samples.front(), d.noise, 0);
     for (const auto& [cost, method] : d.runs)
       for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
         for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
