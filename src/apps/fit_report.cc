@@ -49,7 +49,12 @@ ModeComparison compare_modes(const FitReportInput& in) {
   try {
     if (first >= in.data.values.size()) throw InputError("the record ends within the pulse");
     const std::vector<double> decay(in.data.values.begin() + static_cast<std::ptrdiff_t>(first), in.data.values.end());
-    for (const auto& m : signal::matrix_pencil(decay, in.data.dt_s, p)) {
+    // The chosen spikes' modes when there are any (a record's strongest modes may be ones the model lacks).
+    const auto& wanted = o.cost.spikes.frequencies_hz;
+    const std::vector<signal::IdentifiedMode> identified =
+        wanted.empty() ? signal::matrix_pencil(decay, in.data.dt_s, p)
+                       : signal::modes_near(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
+    for (const auto& m : identified) {
       ModePair pair{m.frequency_hz, m.damping_ratio, std::nan(""), std::nan("")};
       double distance = std::numeric_limits<double>::infinity();
       for (const auto& u : model)

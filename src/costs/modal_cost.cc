@@ -20,30 +20,13 @@ class ModalCost final : public Cost {
     p.min_frequency_hz = options_.spikes.min_frequency_hz;
     p.max_frequency_hz = options_.spikes.max_frequency_hz;
     const auto& wanted = options_.spikes.frequencies_hz;
-    // With chosen frequencies, identify more modes than asked, in the band the choices span, and keep the strongest
-    // near each.
     p.modes = options_.spikes.count;
-    if (!wanted.empty()) {
-      const auto [low, high] = std::minmax_element(wanted.begin(), wanted.end());
-      p.min_frequency_hz = std::max(p.min_frequency_hz, *low * (1 - options_.spikes.frequency_window));
-      p.max_frequency_hz = std::min(p.max_frequency_hz, *high * (1 + options_.spikes.frequency_window));
-      p.modes = 3 * static_cast<int>(wanted.size()) + 4;
-    }
-    std::vector<signal::IdentifiedMode> found = signal::matrix_pencil(decay, dt_s, p);
-    if (!wanted.empty()) {
-      std::vector<signal::IdentifiedMode> chosen;
-      for (double f : wanted) {
-        const signal::IdentifiedMode* best = nullptr;
-        for (const auto& m : found)
-          if (std::abs(m.frequency_hz / f - 1) <= options_.spikes.frequency_window &&
-              (!best || m.amplitude > best->amplitude))
-            best = &m;
-        if (!best)
-          throw InputError("cost modal: no identified mode within " + format_value(options_.spikes.frequency_window) +
-                           " of " + format_value(f) + " Hz");
-        chosen.push_back(*best);
-      }
-      found = chosen;
+    std::vector<signal::IdentifiedMode> found;
+    try {
+      found = wanted.empty() ? signal::matrix_pencil(decay, dt_s, p)
+                             : signal::modes_near(decay, dt_s, p, wanted, options_.spikes.frequency_window);
+    } catch (const InputError& e) {
+      throw InputError(std::string("cost modal: ") + e.what());
     }
     if (static_cast<int>(found.size()) < (wanted.empty() ? options_.spikes.count : static_cast<int>(wanted.size())))
       throw InputError("cost modal: the record shows " + std::to_string(found.size()) + " decaying mode(s) in the " +

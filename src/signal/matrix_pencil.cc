@@ -79,4 +79,24 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   return modes;
 }
 
+std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double dt_s, PencilOptions options,
+                                       const std::vector<double>& wanted_hz, double window) {
+  if (wanted_hz.empty()) throw InputError("modes_near: no frequency chosen");
+  const auto [low, high] = std::minmax_element(wanted_hz.begin(), wanted_hz.end());
+  options.min_frequency_hz = std::max(options.min_frequency_hz, *low * (1 - window));
+  options.max_frequency_hz = std::min(options.max_frequency_hz, *high * (1 + window));
+  options.modes = 3 * static_cast<int>(wanted_hz.size()) + 4;
+  const std::vector<IdentifiedMode> found = matrix_pencil(decay, dt_s, options);
+  std::vector<IdentifiedMode> chosen;
+  for (double f : wanted_hz) {
+    const IdentifiedMode* best = nullptr;
+    for (const auto& m : found)
+      if (std::abs(m.frequency_hz / f - 1) <= window && (!best || m.amplitude > best->amplitude)) best = &m;
+    if (!best)
+      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
+    chosen.push_back(*best);
+  }
+  return chosen;
+}
+
 }  // namespace beamid::signal

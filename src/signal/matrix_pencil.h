@@ -28,6 +28,13 @@ struct PencilOptions {
   double max_frequency_hz = std::numeric_limits<double>::infinity();
 };
 
+struct IdentifiedMode;
+// The modes of chosen frequencies (a record may hold modes a model lacks, such as torsion): the pencil is run over
+// the band the choices span (each widened by +-window, relative) for 3 K + 4 modes, and the strongest within +-window
+// of each wanted frequency is kept, in the order of `wanted_hz`. InputError naming a frequency that has none.
+std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double dt_s, PencilOptions options,
+                                       const std::vector<double>& wanted_hz, double window);
+
 struct IdentifiedMode {
   double frequency_hz = 0;      // |lambda| / (2 pi)
   double damping_ratio = 0;     // -Re(lambda) / |lambda|
