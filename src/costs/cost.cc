@@ -192,8 +192,7 @@ class SpikeCostBase : public Cost {
       throw InputError("cost " + options_.name + ": frequency_weight = '" + kInverseVarianceWeight +
                        "': the 3-bin estimate fails at the data spike of bin " + std::to_string(s.bin));
     const double record_s = static_cast<double>(samples_) * dt_s;
-    const double added =
-        options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
+    const double added = signal::window_decay_rate(options_.window, record_s);
     const double decay = std::max(0.0, pole.decay_rate_1_s - added);
     std::vector<double> unit(samples_);
     for (std::size_t i = 0; i < samples_; ++i) {
@@ -353,8 +352,7 @@ class SmoothSpikeCost final : public SpikeCostBase {
     }
     const double fs = 1.0 / u.dt_s;
     const double record_s = u.samples * u.dt_s;
-    const double added =
-        options_.window.name == "exponential" ? -std::log(options_.window.exponential_end) / record_s : 0.0;
+    const double added = signal::window_decay_rate(options_.window, record_s);
     std::vector<int> chosen;
     for (std::size_t l = 0; l < pairs_.size(); ++l) {
       int best = -1;

@@ -28,7 +28,7 @@ class ModalCost final : public Cost {
     } catch (const InputError& e) {
       throw InputError(std::string("cost modal: ") + e.what());
     }
-    if (static_cast<int>(found.size()) < (wanted.empty() ? options_.spikes.count : static_cast<int>(wanted.size())))
+    if (wanted.empty() && static_cast<int>(found.size()) < options_.spikes.count)  // modes_near has one per choice
       throw InputError("cost modal: the record shows " + std::to_string(found.size()) + " decaying mode(s) in the " +
                        "band, fewer than the " + std::to_string(options_.spikes.count) + " asked for");
     for (const auto& m : found) {

@@ -43,6 +43,10 @@ std::vector<double> window_weights(const WindowOptions& options, int samples) {
   return w;
 }
 
+double window_decay_rate(const WindowOptions& options, double record_s) {
+  return options.name == "exponential" ? -std::log(options.exponential_end) / record_s : 0.0;
+}
+
 std::complex<double> Spectrum::at(long k) const {
   const long n = samples;
   long r = k % n;

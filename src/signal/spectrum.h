@@ -28,6 +28,9 @@ std::optional<std::string> validation_error(const WindowOptions& options);
 
 // w_0..w_{Nbar-1}.
 std::vector<double> window_weights(const WindowOptions& options, int samples);
+// The decay rate (1/s) the window adds to every mode of a record of length record_s: the exponential window
+// e^{-alpha t / T}, alpha = -ln(exponential_end), adds alpha / T; the others add none.
+double window_decay_rate(const WindowOptions& options, double record_s);
 
 struct Spectrum {
   int samples = 0;                         // Nbar
