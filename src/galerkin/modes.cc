@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "model/errors.h"
@@ -34,55 +35,98 @@ UndampedModes undamped_modes(const SecondOrderSystem& s) {
   return modes;
 }
 
+namespace {
+
+using complex = std::complex<double>;
+
+// a x for real a and complex x, as two real products (Eigen's mixed real-complex product is several times slower).
+Eigen::MatrixXcd real_times(const Eigen::MatrixXd& a, const Eigen::MatrixXcd& x) {
+  Eigen::MatrixXcd out(a.rows(), x.cols());
+  out.real() = a * x.real();
+  out.imag() = a * x.imag();
+  return out;
+}
+
+// x_k^T y_k for every column k (transpose, not adjoint: the pencil is complex symmetric).
+Eigen::VectorXcd column_products(const Eigen::MatrixXcd& x, const Eigen::MatrixXcd& y) {
+  return x.cwiseProduct(y).colwise().sum().transpose();
+}
+
+}  // namespace
+
 StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
   const int n = static_cast<int>(s.M.rows());
-  shapes_ = undamped_modes(s).shapes;
-  phi_t_mass_ = shapes_.transpose() * s.M;
-  const Eigen::MatrixXd mt = phi_t_mass_ * shapes_;
-  const Eigen::MatrixXd kt = shapes_.transpose() * s.K * shapes_;
-  const Eigen::MatrixXd ct = shapes_.transpose() * s.C * shapes_;
-  mass_.compute(0.5 * (mt + mt.transpose()));
+  const Eigen::MatrixXd shapes = undamped_modes(s).shapes;
+  const Eigen::MatrixXd mt = shapes.transpose() * s.M * shapes;
+  const Eigen::MatrixXd kt = shapes.transpose() * s.K * shapes;
+  const Eigen::MatrixXd ct = shapes.transpose() * s.C * shapes;
+  const Eigen::LLT<Eigen::MatrixXd> mass(0.5 * (mt + mt.transpose()));
   system_mass_.compute(s.M);
-  if (mass_.info() != Eigen::Success || system_mass_.info() != Eigen::Success)
+  if (mass.info() != Eigen::Success || system_mass_.info() != Eigen::Success)
     throw NumericalError("mass matrix is not positive definite");
-  scale_ = kt.diagonal().cwiseMax(0.0).cwiseSqrt();
-  if ((scale_.array() <= 0).any()) throw NumericalError("stiffness matrix is not positive definite");
+  const Eigen::VectorXd scale = kt.diagonal().cwiseMax(0.0).cwiseSqrt();
+  if ((scale.array() <= 0).any()) throw NumericalError("stiffness matrix is not positive definite");
 
-  a_ = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  a_.topRightCorner(n, n) = scale_.asDiagonal();
-  a_.bottomLeftCorner(n, n) = -mass_.solve(kt) * scale_.cwiseInverse().asDiagonal();
-  a_.bottomRightCorner(n, n) = -mass_.solve(ct);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  a.topRightCorner(n, n) = scale.asDiagonal();
+  a.bottomLeftCorner(n, n) = -mass.solve(kt) * scale.cwiseInverse().asDiagonal();
+  a.bottomRightCorner(n, n) = -mass.solve(ct);
 
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(a_, true);
+  Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
   if (eig.info() != Eigen::Success) throw NumericalError("state-space eigen-decomposition did not converge");
   lambda_ = eig.eigenvalues();
-  vectors_ = eig.eigenvectors();
-  refine_eigenvalues(s);
-  lu_.compute(vectors_);
-  rcond_ = lu_.rcond();
+  // x_k = Phi q_k with q_k = D^-1 (v_k)_top = (v_k)_bottom / lambda_k, taken component by component from the
+  // half with the larger divisor: the eigensolver's error is eps |v_k| in every component, so the top half loses
+  // accuracy in the components where D_j < |lambda_k| (overdamped modes) and the bottom half where D_j > |lambda_k|.
+  // Then the products with M, C, K that the refinement, the normalisation and the modal coefficients share.
+  const Eigen::MatrixXcd& v = eig.eigenvectors();
+  Eigen::MatrixXcd q(n, 2 * n);
+  for (Eigen::Index k = 0; k < 2 * n; ++k)
+    for (Eigen::Index j = 0; j < n; ++j)
+      q(j, k) = scale(j) >= std::abs(lambda_(k)) ? v(j, k) / scale(j) : v(n + j, k) / lambda_(k);
+  vectors_ = real_times(shapes, q);
+  mass_vectors_ = real_times(s.M, vectors_);
+  damping_vectors_ = real_times(s.C, vectors_);
+  const Eigen::MatrixXcd stiffness_vectors = real_times(s.K, vectors_);
+  refine_eigenvalues(column_products(vectors_, mass_vectors_), column_products(vectors_, damping_vectors_),
+                     column_products(vectors_, stiffness_vectors));
+  normalisation_ = 2.0 * lambda_.cwiseProduct(column_products(vectors_, mass_vectors_)) +
+                   column_products(vectors_, damping_vectors_);
+  group_clusters();
+
+  // Left eigenvector of A in z = [D q; q'] coordinates: eta_k = phi_k^T [C M; M 0] u / n_k with u = [w; w'] =
+  // [Phi D^-1 z1; Phi z2], so u_k = [D^-1 Phi^T (lambda_k M + C) x_k; Phi^T M x_k] / n_k.
+  const Eigen::MatrixXcd left_top =
+      scale.cwiseInverse().asDiagonal() *
+      real_times(shapes.transpose(), mass_vectors_ * lambda_.asDiagonal() + damping_vectors_);
+  const Eigen::MatrixXcd left_bottom = real_times(shapes.transpose(), mass_vectors_);
+  double worst = 0;
+  for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
+    const double left = std::sqrt(left_top.col(k).squaredNorm() + left_bottom.col(k).squaredNorm());
+    const double condition = left * v.col(k).norm() / std::abs(normalisation_(k));
+    worst = std::isfinite(condition) ? std::max(worst, condition) : std::numeric_limits<double>::infinity();
+  }
+  rcond_ = worst > 0 ? 1 / worst : 0.0;
   if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
     throw NumericalError("state-space modes are (nearly) defective: eigenvector matrix rcond = " +
                          format_value(rcond_));
 }
 
-void StateSpaceModes::refine_eigenvalues(const SecondOrderSystem& s) {
+void StateSpaceModes::refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b,
+                                         const Eigen::VectorXcd& c) {
   // The QR algorithm's backward error is eps ||A||, and ||A|| is set by the largest damping rates (kAcs/rho_r2 ~ 5e8
   // 1/s for the thin beam), which can cost a slow mode 1e-7 of relative accuracy. For the complex-symmetric
-  // T(lambda) = lambda^2 M + lambda C + K the Rayleigh functional, the root of v^T T(lambda) v = 0 (transpose, not
-  // conjugate), is stationary at eigenvectors: with the computed v it corrects lambda to second order in v's error,
+  // T(lambda) = lambda^2 M + lambda C + K the Rayleigh functional, the root of x^T T(lambda) x = 0 (transpose, not
+  // conjugate), is stationary at eigenvectors: with the computed x it corrects lambda to second order in x's error,
   // using the stored M, C, K. The root nearest the QR value is taken, and only if it moves lambda by < 1e-6
-  // relative (else v is too inaccurate, e.g. inside a cluster of nearly equal shear relaxation rates).
-  using complex = std::complex<double>;
-  const Eigen::Index n = scale_.size();
+  // relative (else x is too inaccurate, e.g. inside a cluster of nearly equal shear relaxation rates).
   for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
     if (lambda_(k).imag() < 0) continue;  // set with its partner below
-    const Eigen::VectorXcd w = shapes_ * (scale_.cwiseInverse().asDiagonal() * vectors_.col(k).head(n));  // w = Phi q
-    const complex a = w.transpose() * (s.M * w), b = w.transpose() * (s.C * w), c = w.transpose() * (s.K * w);
-    const complex root = std::sqrt(b * b - 4.0 * a * c);
+    const complex root = std::sqrt(b(k) * b(k) - 4.0 * a(k) * c(k));
     // Cancellation-free roots of a x^2 + b x + c: q = -(b + sign root)/2, x1 = q/a, x2 = c/q.
-    const complex q = -0.5 * (b + (std::real(std::conj(b) * root) >= 0 ? root : -root));
-    if (std::abs(a) == 0 || std::abs(q) == 0) continue;
-    const complex x1 = q / a, x2 = c / q;
+    const complex q = -0.5 * (b(k) + (std::real(std::conj(b(k)) * root) >= 0 ? root : -root));
+    if (std::abs(a(k)) == 0 || std::abs(q) == 0) continue;
+    const complex x1 = q / a(k), x2 = c(k) / q;
     const complex best = std::abs(x1 - lambda_(k)) <= std::abs(x2 - lambda_(k)) ? x1 : x2;
     if (!(std::abs(best - lambda_(k)) < 1e-6 * std::abs(lambda_(k)))) continue;
     if (lambda_(k).imag() == 0) {
@@ -98,41 +142,68 @@ void StateSpaceModes::refine_eigenvalues(const SecondOrderSystem& s) {
   }
 }
 
+void StateSpaceModes::group_clusters() {
+  // Union of every pair within 1e-3 (relative) of each other, by a scan over the pairs (2n is small).
+  constexpr double kClusterGap = 1e-3;
+  const Eigen::Index m = lambda_.size();
+  std::vector<Eigen::Index> root(static_cast<std::size_t>(m));
+  for (Eigen::Index k = 0; k < m; ++k) root[k] = k;
+  const auto find = [&root](Eigen::Index k) {
+    while (root[k] != k) k = root[k] = root[root[k]];
+    return k;
+  };
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (Eigen::Index k = j + 1; k < m; ++k)
+      if (std::norm(lambda_(j) - lambda_(k)) <=
+          kClusterGap * kClusterGap * std::max(std::norm(lambda_(j)), std::norm(lambda_(k))))
+        root[find(k)] = find(j);
+  std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(m));
+  for (Eigen::Index k = 0; k < m; ++k) members[find(k)].push_back(k);
+  for (auto& cluster : members) {
+    if (cluster.size() < 2) continue;
+    const auto size = static_cast<Eigen::Index>(cluster.size());
+    Eigen::MatrixXcd gram(size, size);
+    for (Eigen::Index a = 0; a < size; ++a)
+      for (Eigen::Index b = 0; b < size; ++b) {
+        const Eigen::Index j = cluster[a], k = cluster[b];
+        gram(a, b) =
+            vectors_.col(j).transpose() * (damping_vectors_.col(k) + (lambda_(j) + lambda_(k)) * mass_vectors_.col(k));
+      }
+    cluster_gram_.emplace_back(gram);
+    clusters_.push_back(std::move(cluster));
+  }
+}
+
+Eigen::VectorXcd StateSpaceModes::modal_solve(const Eigen::VectorXcd& rhs) const {
+  Eigen::VectorXcd eta = rhs.cwiseQuotient(normalisation_);
+  for (std::size_t c = 0; c < clusters_.size(); ++c) {
+    const auto& cluster = clusters_[c];
+    Eigen::VectorXcd block(static_cast<Eigen::Index>(cluster.size()));
+    for (std::size_t a = 0; a < cluster.size(); ++a) block(a) = rhs(cluster[a]);
+    block = cluster_gram_[c].solve(block);
+    for (std::size_t a = 0; a < cluster.size(); ++a) eta(cluster[a]) = block(a);
+  }
+  return eta;
+}
+
 Eigen::VectorXcd StateSpaceModes::input_coefficients(const Eigen::VectorXd& load) const {
-  const int n = static_cast<int>(scale_.size());
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n);
-  b.tail(n) = mass_.solve(shapes_.transpose() * load);
-  return lu_.solve(b.cast<std::complex<double>>());
+  return modal_solve(vectors_.transpose() * load.cast<complex>());
 }
 
 Eigen::VectorXcd StateSpaceModes::state_coefficients(const Eigen::VectorXd& w0, const Eigen::VectorXd& v0) const {
-  const int n = static_cast<int>(scale_.size());
-  Eigen::VectorXd z(2 * n);
-  z.head(n) = scale_.asDiagonal() * mass_.solve(phi_t_mass_ * w0);  // D Phi^-1 w0
-  z.tail(n) = mass_.solve(phi_t_mass_ * v0);                        // Phi^-1 v0
-  return lu_.solve(z.cast<std::complex<double>>());
+  const Eigen::VectorXcd mw = mass_vectors_.transpose() * w0.cast<complex>();
+  const Eigen::VectorXcd cw = damping_vectors_.transpose() * w0.cast<complex>();
+  const Eigen::VectorXcd mv = mass_vectors_.transpose() * v0.cast<complex>();
+  return modal_solve(lambda_.cwiseProduct(mw) + cw + mv);
 }
 
 Eigen::VectorXcd StateSpaceModes::output_coefficients(const Eigen::VectorXd& sensor, int derivative) const {
-  const int n = static_cast<int>(scale_.size());
-  const Eigen::VectorXd pc = shapes_.transpose() * sensor;  // y = c^T Phi q
-  Eigen::VectorXd row = Eigen::VectorXd::Zero(2 * n);
-  if (derivative == 0) {
-    row.head(n) = scale_.cwiseInverse().asDiagonal() * pc;  // q = D^-1 z1
-  } else if (derivative == 1) {
-    row.tail(n) = pc;  // q' = z2
-  } else {
-    row = a_.bottomRows(n).transpose() * pc;  // q'' = (A z)_2 + load term
-  }
-  return vectors_.transpose() * row.cast<std::complex<double>>();
+  Eigen::VectorXcd h = vectors_.transpose() * sensor.cast<complex>();
+  for (int d = 0; d < derivative; ++d) h = h.cwiseProduct(lambda_);
+  return h;
 }
 
-Eigen::MatrixXcd StateSpaceModes::physical_vectors() const {
-  const Eigen::Index n = scale_.size();
-  // z = [D q; q'] and w = Phi q, so the displacement part of column k is Phi D^-1 z1.
-  return shapes_.cast<std::complex<double>>() *
-         (scale_.cwiseInverse().cast<std::complex<double>>().asDiagonal() * vectors_.topRows(n));
-}
+Eigen::MatrixXcd StateSpaceModes::physical_vectors() const { return vectors_; }
 
 double StateSpaceModes::feedthrough(const Eigen::VectorXd& sensor, const Eigen::VectorXd& load) const {
   return sensor.dot(system_mass_.solve(load));

@@ -9,8 +9,20 @@
 //     A = [ 0                 D          ]      b = [ 0             ]
 //         [ -M~^-1 K~ D^-1    -M~^-1 C~  ],         [ M~^-1 Phi^T f ],
 // whose entries are all of the size of the modal frequencies and damping rates (in the raw form [0 I; -M^-1K -M^-1C]
-// they span ~20 orders of magnitude). A = V Lambda V^-1 then decouples it: eta = V^-1 z, eta_k' = lambda_k eta_k + g_k
-// P.
+// they span ~20 orders of magnitude). Its eigenpairs A v_k = lambda_k v_k give the physical eigenvectors
+// x_k = Phi D^-1 (v_k)_top of T(lambda) = lambda^2 M + lambda C + K. Because M, C, K are symmetric, the first-order
+// pencil [C M; M 0] u' = [-K 0; 0 M] u + [f P; 0] in u = [w; w'] is symmetric, its left eigenvectors are its right
+// ones phi_k = [x_k; lambda_k x_k], and with n_k = phi_k^T [C M; M 0] phi_k = x_k^T (2 lambda_k M + C) x_k the
+// modal coordinates of w = sum_k x_k eta_k are, without inverting the eigenvector matrix,
+//     eta_k' = lambda_k eta_k + g_k P,   g_k = x_k^T f / n_k,
+//     eta_k(0) = x_k^T [(lambda_k M + C) w(0) + M w'(0)] / n_k,
+//     c^T w^(d) = sum_k lambda_k^d (c^T x_k) eta_k   (d = 0, 1; d = 2 adds the direct term c^T M^-1 f P).
+// That needs phi_j^T [C M; M 0] phi_k = 0 for j != k, which the computed vectors of a cluster of nearly equal
+// eigenvalues (the shear relaxation rates kAG/kAcs of a heavily damped beam agree to ~1e-6) do not satisfy: their
+// errors are of order eps / gap within the cluster's span. So eigenvalues within 1e-3 of each other (relative) form a
+// block, whose coordinates solve G eta_block = Phi_block^T [C M; M 0] u with the block's Gram matrix
+// G_jk = x_j^T (C + (lambda_j + lambda_k) M) x_k, the oblique projection onto the span, which is accurate; between
+// blocks the neglected Gram entries are below eps / 1e-3.
 #pragma once
 
 #include <Eigen/Dense>
@@ -42,34 +54,42 @@ class StateSpaceModes {
   int size() const { return static_cast<int>(lambda_.size()); }
   const Eigen::VectorXcd& eigenvalues() const { return lambda_; }
 
-  // g = V^-1 [0; M~^-1 Phi^T f]: modal input coefficients of the generalised load f (per unit P).
+  // g_k = x_k^T f / n_k: modal input coefficients of the generalised load f (per unit P).
   Eigen::VectorXcd input_coefficients(const Eigen::VectorXd& load) const;
-  // V^-1 z(0) for the physical initial state w(0) = w0, w'(0) = v0.
+  // eta(0) for the physical initial state w(0) = w0, w'(0) = v0.
   Eigen::VectorXcd state_coefficients(const Eigen::VectorXd& w0, const Eigen::VectorXd& v0) const;
-  // h with y = sum_k h_k eta_k for y = c^T w (derivative 0), c^T w' (1) or c^T w'' without the direct load term (2).
+  // h_k = lambda_k^d c^T x_k, with y = sum_k h_k eta_k for y = c^T w (derivative d = 0), c^T w' (1) or c^T w''
+  // without the direct load term (2).
   Eigen::VectorXcd output_coefficients(const Eigen::VectorXd& sensor, int derivative) const;
   // The direct term of the acceleration output: c^T M^-1 f (so c^T w'' = sum h_k eta_k + feedthrough * P).
   double feedthrough(const Eigen::VectorXd& sensor, const Eigen::VectorXd& load) const;
   // The eigenvectors in physical coordinates: column k is x_k with (lambda_k^2 M + lambda_k C + K) x_k = 0, in the
   // order of eigenvalues() (any scaling; the state-space eigenvector is [x_k; lambda_k x_k]).
   Eigen::MatrixXcd physical_vectors() const;
-  // Reciprocal condition estimate of V (small: nearly defective, e.g. critically damped, modes).
+  // The reciprocal of the largest eigenvalue condition number of A, 1 / max_k |u_k| |v_k| with the left eigenvector
+  // u_k (u_k^T v_k = 1) from the symmetric pencil: small for nearly defective (e.g. critically damped) modes. The
+  // condition number of the eigenvector matrix lies between max_k |u_k| |v_k| and 2n times it.
   double eigenvector_rcond() const { return rcond_; }
 
   // Underdamped modes (Im lambda > 0), sorted by natural frequency.
   std::vector<DampedMode> underdamped_modes() const;
 
  private:
-  void refine_eigenvalues(const SecondOrderSystem& system);
+  // lambda_k from the Rayleigh functional of T at x_k (modes.cc), given the forms a_k = x_k^T M x_k, b_k = x_k^T C x_k,
+  // c_k = x_k^T K x_k.
+  void refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b, const Eigen::VectorXcd& c);
 
-  Eigen::MatrixXd shapes_;            // Phi
-  Eigen::LLT<Eigen::MatrixXd> mass_;  // M~ = Phi^T M Phi
-  Eigen::MatrixXd phi_t_mass_;        // Phi^T M, for Phi^-1 w = M~^-1 Phi^T M w
-  Eigen::VectorXd scale_;             // D
-  Eigen::MatrixXd a_;                 // A
   Eigen::VectorXcd lambda_;
-  Eigen::MatrixXcd vectors_;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> lu_;
+  Eigen::MatrixXcd vectors_;          // x_k, n x 2n
+  Eigen::MatrixXcd mass_vectors_;     // M x_k
+  Eigen::MatrixXcd damping_vectors_;  // C x_k
+  Eigen::VectorXcd normalisation_;    // n_k = x_k^T (2 lambda_k M + C) x_k
+  // Clusters of nearly equal eigenvalues (indices into lambda_) and the LU of their Gram matrices (above).
+  std::vector<std::vector<Eigen::Index>> clusters_;
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> cluster_gram_;
+  // eta from rhs_k = phi_k^T [C M; M 0] u: rhs_k / n_k, and the Gram solve within each cluster.
+  Eigen::VectorXcd modal_solve(const Eigen::VectorXcd& rhs) const;
+  void group_clusters();  // sets clusters_ and cluster_gram_ from lambda_, vectors_ and their products
   Eigen::LLT<Eigen::MatrixXd> system_mass_;  // M itself, for the feedthrough
   double rcond_ = 0;
 };

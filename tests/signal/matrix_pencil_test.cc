@@ -70,6 +70,10 @@ TEST(MatrixPencil, RecoversTheBeamsOwnDampedEigenvalues) {
   PencilOptions o;
   o.modes = 3;
   o.order = 60;
+  // Modes 1-3 lie below 90 Hz. Above them, an order-60 pencil also returns heavily damped exponentials (damping ratio
+  // 0.1-0.2 near 440-470 Hz) that fit the record's round-off, and their amplitude at t = 20 ms can exceed mode 3's
+  // by chance of the round-off; the band keeps the assertion about the modes' eigenvalues, not about that ranking.
+  o.max_frequency_hz = 150;
   const auto modes = matrix_pencil(decay, e.dt_s, o);
   const auto model = galerkin::StateSpaceModes(galerkin::combine(forms, beam)).underdamped_modes();
   ASSERT_EQ(modes.size(), 3u);
