@@ -381,6 +381,10 @@ Eigen::MatrixXd Cost::output_jacobian(const ModelResponse&, const Eigen::MatrixX
   throw InputError("cost " + options().name + ": no output Jacobian with these options");
 }
 
+Eigen::MatrixXd Cost::pole_jacobian(const ModelResponse&, const Eigen::MatrixXcd&) {
+  throw InputError("cost " + options().name + ": no pole Jacobian");
+}
+
 std::optional<std::string> unusable_output(const std::vector<double>& y, std::size_t samples) {
   if (y.size() != samples)
     return "the model gave " + std::to_string(y.size()) + " samples for " + std::to_string(samples) + " data samples";

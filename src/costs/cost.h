@@ -67,13 +67,13 @@ inline const std::string kInverseVarianceWeight = "inverse-variance";
 const model::NameSet& frequency_weight_names();
 
 struct CostOptions {
-  std::string name = "time";               // "time" | "spike" | "spike-smooth"
-  signal::SpikeOptions spikes;             // NM, peak rule, band, support level
-  signal::WindowOptions window;            // applied to data and model alike
-  std::optional<double> eps1, eps2, eps3;  // nothing: the defaults above
-  bool unknown_amplitude = false;          // time: solve a in closed form; spike costs: scale-free magnitudes
-  std::string model_poles = "dft";         // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
-  int first_free_sample = 0;               // modal: the free decay starts here (after the excitation)
+  std::string name = "time";                       // "time" | "spike" | "spike-smooth"
+  signal::SpikeOptions spikes;                     // NM, peak rule, band, support level
+  signal::WindowOptions window;                    // applied to data and model alike
+  std::optional<double> eps1, eps2, eps3;          // nothing: the defaults above
+  bool unknown_amplitude = false;                  // time: solve a in closed form; spike costs: scale-free magnitudes
+  std::string model_poles = "dft";                 // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
+  int first_free_sample = 0;                       // modal: the free decay starts here (after the excitation)
   std::string frequency_weight = kAbsoluteWeight;  // spike costs: across spikes (above)
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
@@ -128,6 +128,11 @@ class Cost {
   // d r / d q at the model output `model` (whose evaluation must be ok) from the output's sensitivities dy (samples x
   // p). The discrete choices (the model's peak bins) are held, as they are constant almost everywhere.
   virtual Eigen::MatrixXd output_jacobian(const ModelResponse& model, const Eigen::MatrixXd& dy);
+  // Whether pole_jacobian is available: the costs of the model's eigenvalues alone (modal).
+  virtual bool has_pole_jacobian() const { return false; }
+  // d r / d q at `model` (whose evaluation must be ok) from d lambda_k / d q of its poles (poles x p, in the order of
+  // model.poles_rad_s). The pairing of data and model modes is held, as it is constant almost everywhere.
+  virtual Eigen::MatrixXd pole_jacobian(const ModelResponse& model, const Eigen::MatrixXcd& d_poles);
 };
 
 // Why a model output cannot be compared with `samples` data samples (its length, a non-finite value), or nothing: the

@@ -54,15 +54,10 @@ class ModalCost final : public Cost {
       return e;
     }
     e.residuals.resize(residual_count());
-    std::vector<int> partner(lambda_.size());
+    const std::vector<int> partner = partners(model);
     for (std::size_t l = 0; l < lambda_.size(); ++l) {
       const double target = std::abs(lambda_[l]);
-      std::size_t best = 0;
-      for (std::size_t k = 1; k < model.poles_rad_s.size(); ++k)
-        if (std::abs(std::abs(model.poles_rad_s[k]) - target) < std::abs(std::abs(model.poles_rad_s[best]) - target))
-          best = k;
-      partner[l] = static_cast<int>(best);
-      const std::complex<double> u = model.poles_rad_s[best];
+      const std::complex<double> u = model.poles_rad_s[static_cast<std::size_t>(partner[l])];
       e.residuals(static_cast<Eigen::Index>(2 * l)) = (std::abs(u) - target) / target;
       e.residuals(static_cast<Eigen::Index>(2 * l + 1)) = (u.real() - lambda_[l].real()) / target;
       e.pairs[l].has_model = true;
@@ -79,8 +74,42 @@ class ModalCost final : public Cost {
     e.value = e.residuals.squaredNorm();
     return e;
   }
+  bool has_pole_jacobian() const override { return true; }
+  Eigen::MatrixXd pole_jacobian(const ModelResponse& model, const Eigen::MatrixXcd& d_poles) override {
+    // r_2l = (|u| - |z|)/|z| and r_2l+1 = (Re u - Re z)/|z| for the partner u of data mode z: d|u| = Re(conj(u)
+    // du)/|u|.
+    if (d_poles.rows() != static_cast<Eigen::Index>(model.poles_rad_s.size()))
+      throw InputError("cost modal: " + std::to_string(d_poles.rows()) + " pole derivatives for " +
+                       std::to_string(model.poles_rad_s.size()) + " poles");
+    const std::vector<int> partner = partners(model);
+    Eigen::MatrixXd j(residual_count(), d_poles.cols());
+    for (std::size_t l = 0; l < lambda_.size(); ++l) {
+      const double target = std::abs(lambda_[l]);
+      const std::complex<double> u = model.poles_rad_s[static_cast<std::size_t>(partner[l])];
+      for (Eigen::Index q = 0; q < d_poles.cols(); ++q) {
+        const std::complex<double> du = d_poles(partner[l], q);
+        j(static_cast<Eigen::Index>(2 * l), q) = (std::conj(u) * du).real() / std::abs(u) / target;
+        j(static_cast<Eigen::Index>(2 * l + 1), q) = du.real() / target;
+      }
+    }
+    return j;
+  }
 
  private:
+  // For each data mode, the model pole nearest to it in natural frequency (pairing by frequency, not by rank).
+  std::vector<int> partners(const ModelResponse& model) const {
+    std::vector<int> partner(lambda_.size());
+    for (std::size_t l = 0; l < lambda_.size(); ++l) {
+      const double target = std::abs(lambda_[l]);
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < model.poles_rad_s.size(); ++k)
+        if (std::abs(std::abs(model.poles_rad_s[k]) - target) < std::abs(std::abs(model.poles_rad_s[best]) - target))
+          best = k;
+      partner[l] = static_cast<int>(best);
+    }
+    return partner;
+  }
+
   CostOptions options_;
   std::vector<SpikePair> pairs_;
   std::vector<std::complex<double>> lambda_;

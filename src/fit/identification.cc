@@ -9,6 +9,7 @@
 #include "model/errors.h"
 #include "model/limits.h"
 #include "simulation/free_decay.h"
+#include "simulation/modal_simulator.h"
 #include "simulation/sensitivities.h"
 
 namespace beamid::fit {
@@ -33,8 +34,10 @@ struct Objective::Impl {
   bool needs_poles;
   std::vector<double> data;  // free decay: the amplitudes are solved against it
   // A cost with an output Jacobian (costs/cost.h) on a pulse, by the fast propagator: its Jacobian is that map applied
-  // to the exact sensitivities d y / d q (simulation/sensitivities.h).
+  // to the exact sensitivities d y / d q (simulation/sensitivities.h). A cost with a pole Jacobian (modal) on a
+  // simulated record by the fast propagator: that map applied to the eigenvalue derivatives (galerkin/modes.h).
   bool exact_jacobian = false;
+  bool pole_jacobian = false;
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
@@ -58,8 +61,10 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
            o.cost.name == costs::kModalCost ||
                (o.cost.name == costs::kSpikeSmoothCost && o.cost.model_poles == "eigenvalues"),
            o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
-  impl_->exact_jacobian = cost_->has_output_jacobian() && simulation::has_exact_sensitivities(o.experiment) &&
-                          o.simulator.integrator == "fast";
+  const bool fast = o.simulator.integrator == "fast";
+  impl_->pole_jacobian = cost_->has_pole_jacobian() && o.experiment.excitation != "free-decay" && fast;
+  impl_->exact_jacobian = impl_->pole_jacobian ||
+                          (cost_->has_output_jacobian() && simulation::has_exact_sensitivities(o.experiment) && fast);
 }
 
 bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
@@ -75,6 +80,7 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
     return out;
   }
   try {
+    if (impl_->pole_jacobian) return evaluate_with_pole_jacobian(beam, keys, jacobian);
     simulation::SensitivityTrace s =
         simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->experiment, keys);
     if (!s.trace.ok()) {
@@ -88,6 +94,36 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
   } catch (const std::exception& error) {
     out.evaluation.status = error.what();
   }
+  return out;
+}
+
+Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParameters& beam,
+                                                         const std::vector<std::string>& keys,
+                                                         Eigen::MatrixXd& jacobian) {
+  // The record and poles exactly as evaluate() gives them (the fast propagator on the same decomposition), and
+  // d lambda / d q of the underdamped poles, in the trace's order.
+  Output out;
+  const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
+  const galerkin::StateSpaceModes modes(system);
+  const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
+  simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
+  if (!trace.ok()) {
+    out.evaluation.status = trace.status;
+    return out;
+  }
+  out.y = std::move(trace.y);
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, trace.poles_rad_s});
+  if (!out.evaluation.ok()) return out;
+  std::vector<Eigen::Index> underdamped;
+  for (Eigen::Index k = 0; k < modes.size(); ++k)
+    if (modes.eigenvalues()(k).imag() > 0) underdamped.push_back(k);
+  Eigen::MatrixXcd d_poles(static_cast<Eigen::Index>(underdamped.size()), static_cast<Eigen::Index>(keys.size()));
+  for (std::size_t q = 0; q < keys.size(); ++q) {
+    const Eigen::VectorXcd d = modes.eigenvalue_derivative(galerkin::parameter_derivative(impl_->forms, beam, keys[q]));
+    for (std::size_t i = 0; i < underdamped.size(); ++i)
+      d_poles(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(q)) = d(underdamped[i]);
+  }
+  jacobian = cost_->pole_jacobian(costs::ModelResponse{out.y, trace.poles_rad_s}, d_poles);
   return out;
 }
 

@@ -108,7 +108,8 @@ class Objective {
   // Never throws for admissible options: a failed simulation is an evaluation with that status.
   Output evaluate(const model::BeamParameters& beam);
   // Whether evaluate_with_jacobian is available: a cost with an output Jacobian (costs/cost.h: time, freq-band,
-  // spike-smooth with a known amplitude), a pulse, the fast integrator.
+  // spike-smooth with a known amplitude) on a pulse, or with a pole Jacobian (modal) on a simulated record; the fast
+  // integrator.
   bool has_exact_jacobian() const;
   // evaluate, and the exact d residual / d q (residuals x keys) for the parameters `keys`; `jacobian` is empty when
   // the evaluation failed. InputError unless has_exact_jacobian().
@@ -117,6 +118,8 @@ class Objective {
   const costs::Cost& cost() const { return *cost_; }
 
  private:
+  Output evaluate_with_pole_jacobian(const model::BeamParameters& beam, const std::vector<std::string>& keys,
+                                     Eigen::MatrixXd& jacobian);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<costs::Cost> cost_;

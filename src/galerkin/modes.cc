@@ -205,6 +205,14 @@ Eigen::VectorXcd StateSpaceModes::output_coefficients(const Eigen::VectorXd& sen
 
 Eigen::MatrixXcd StateSpaceModes::physical_vectors() const { return vectors_; }
 
+Eigen::VectorXcd StateSpaceModes::eigenvalue_derivative(const SecondOrderSystem& d) const {
+  const Eigen::VectorXcd dm = column_products(vectors_, real_times(d.M, vectors_));
+  const Eigen::VectorXcd dc = column_products(vectors_, real_times(d.C, vectors_));
+  const Eigen::VectorXcd dk = column_products(vectors_, real_times(d.K, vectors_));
+  return -(lambda_.cwiseProduct(lambda_).cwiseProduct(dm) + lambda_.cwiseProduct(dc) + dk)
+              .cwiseQuotient(normalisation_);
+}
+
 double StateSpaceModes::feedthrough(const Eigen::VectorXd& sensor, const Eigen::VectorXd& load) const {
   return sensor.dot(system_mass_.solve(load));
 }

@@ -71,6 +71,12 @@ class StateSpaceModes {
   // condition number of the eigenvector matrix lies between max_k |u_k| |v_k| and 2n times it.
   double eigenvector_rcond() const { return rcond_; }
 
+  // d lambda_k / d q for a parameter with derivatives d = (dM, dC, dK) (galerkin::parameter_derivative), all 2n, in the
+  // order of eigenvalues(): first-order perturbation of T(lambda) x = 0 with the left eigenvector x^T,
+  //   d lambda_k = -x_k^T (lambda_k^2 dM + lambda_k dC + dK) x_k / n_k.
+  // Exact for a simple eigenvalue; within a cluster (above) only the cluster's mean moves smoothly.
+  Eigen::VectorXcd eigenvalue_derivative(const SecondOrderSystem& d) const;
+
   // Underdamped modes (Im lambda > 0), sorted by natural frequency.
   std::vector<DampedMode> underdamped_modes() const;
 
