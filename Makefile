@@ -7,7 +7,7 @@ BEAMID     := $(BUILD)/beamid
 .PHONY: fuzz all deps build binary test test-sanitize bench verify report clean study study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature).
-STUDIES    ?= paper thick modes landscape start-distance efficiency
+STUDIES    ?= paper thick modes landscape start-distance efficiency bias
 STUDY_JOBS ?= 0
 
 all: build

@@ -22,6 +22,9 @@ RenderedFiles render_convergence(const StudyResults& results, const Groups& grou
 RenderedFiles render_spread(const StudyResults& results, const Groups& groups);
 // efficiency.csv and efficiency.md (RMSE against the Cramér-Rao bound; nothing without outputs.efficiency).
 RenderedFiles render_efficiency(const std::vector<EfficiencyRow>& rows);
+// bias_decomposition.csv and .md (the noise-free bias, the noisy mean and their difference; nothing without
+// outputs.bias_decomposition).
+RenderedFiles render_bias_decomposition(const std::vector<BiasRow>& rows, bool control);
 RenderedFiles render_modes(const StudyResults& results);
 
 }  // namespace beamid::study

@@ -34,30 +34,29 @@ void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
     for (const auto& p : r.points) reached += p.reached, fits += p.fits;
     f.counts.push_back({name(r) + ": half of the starts reach the minimum out to a frequency offset of " +
                             radius_text(r.radius) + " (95 % interval " + radius_text(r.radius_low) + " to " +
-                            radius_text(r.radius_high) + "; " + std::to_string(reached) + "/" +
-                            std::to_string(fits) + " starts reach it over all offsets)",
+                            radius_text(r.radius_high) + "; " + std::to_string(reached) + "/" + std::to_string(fits) +
+                            " starts reach it over all offsets)",
                         reached, fits});
   }
   for (const auto& r : m.runs)
     if (r.reference_ok && (r.cost == "time" || r.cost == "freq-band") && r.method == "direct" && !r.radius.below &&
-        !r.radius.above && m.predicted_basin > 0)
-    {
+        !r.radius.above && m.predicted_basin > 0) {
       const auto within = [&](double predicted) {
         return r.radius.value <= 3 * predicted && r.radius.value >= predicted / 3;
       };
-      f.claims.push_back({within(m.predicted_basin),
-                          name(r) + "'s 50 % radius, " + radius_text(r.radius) +
-                              ", is within a factor 3 of the least-squares basin 1/(2 f T) = " +
-                              pct(m.predicted_basin) + " predicted from the record length (f = " +
-                              g3(m.highest_mode_hz) + " Hz, mode " + std::to_string(m.fitted_modes) +
-                              "; T = " + g3(m.record_s) + " s)",
-                          -1, -1});
+      f.claims.push_back(
+          {within(m.predicted_basin),
+           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
+               ", is within a factor 3 of the least-squares basin 1/(2 f T) = " + pct(m.predicted_basin) +
+               " predicted from the record length (f = " + g3(m.highest_mode_hz) + " Hz, mode " +
+               std::to_string(m.fitted_modes) + "; T = " + g3(m.record_s) + " s)",
+           -1, -1});
       f.claims.push_back({within(m.predicted_basin_decay),
                           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
                               ", is within a factor 3 of 1/(2 f T_eff) = " + pct(m.predicted_basin_decay) +
                               ", predicted from the time the mode is visible, T_eff = min(T, 1/sigma) = " +
-                              g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s (sigma = " +
-                              g3(m.decay_rate_1_s) + " 1/s)",
+                              g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s (sigma = " + g3(m.decay_rate_1_s) +
+                              " 1/s)",
                           -1, -1});
     }
   const StartRun& first = m.runs.front();
@@ -85,8 +84,8 @@ void efficiency_findings(const StudySpec& spec, const std::vector<EfficiencyRow>
     if (r.key.elements == largest) by_setting[{r.key.cost, r.key.method, r.key.noise}].push_back(&r);
   for (const auto& [setting, members] : by_setting) {
     const auto& [cost, method, noise] = setting;
-    std::string text = cost + " (" + method + ", N = " + std::to_string(largest) + ", noise " + pct(noise) +
-                       "): RMSE / bound";
+    std::string text =
+        cost + " (" + method + ", N = " + std::to_string(largest) + ", noise " + pct(noise) + "): RMSE / bound";
     for (const EfficiencyRow* r : members) text += " " + r->parameter + " " + g3(r->efficiency());
     text += ", over the " + count_with_interval(members.front()->stayed, members.front()->fits) +
             " fits that stayed at the minimum";
@@ -107,13 +106,38 @@ void efficiency_findings(const StudySpec& spec, const std::vector<EfficiencyRow>
     const std::string name = cost_method.first + " (" + cost_method.second + ")";
     if (enough)
       f.claims.push_back({efficient == total,
-                          name + " is efficient: RMSE within 0.8-1.25 x the Cramér-Rao bound for every parameter and "
-                                 "noise level (" +
+                          name +
+                              " is efficient: RMSE within 0.8-1.25 x the Cramér-Rao bound for every parameter and "
+                              "noise level (" +
                               std::to_string(efficient) + "/" + std::to_string(total) + ")",
                           efficient, total});
     f.counts.push_back({name + ": a bias beyond 2 Monte-Carlo standard errors in " + std::to_string(biased) + " of " +
                             std::to_string(total) + " (parameter, noise) settings",
                         biased, total});
+  }
+}
+
+// Bias decomposition counts, per cost, method and N: the noise-free bias of each parameter (the minimum's), and in how
+// many (parameter, noise) settings the noise-induced bias exceeds twice its Monte-Carlo standard error.
+void bias_findings(const std::vector<BiasRow>& rows, bool control, Findings& f) {
+  std::map<std::tuple<std::string, std::string, int>, std::vector<const BiasRow*>> by_setting;
+  for (const auto& r : rows) by_setting[{r.key.cost, r.key.method, r.key.elements}].push_back(&r);
+  for (const auto& [setting, members] : by_setting) {
+    const auto& [cost, method, elements] = setting;
+    std::string text = cost + " (" + method + ", N = " + std::to_string(elements) +
+                       "): " + (control ? "the estimator's own bias" : "noise-free bias");
+    std::map<std::string, bool> named;
+    for (const BiasRow* r : members)
+      if (!named[r->parameter]) {
+        named[r->parameter] = true;
+        text += " " + r->parameter + " " + g3(r->noise_free);
+      }
+    int significant = 0;
+    for (const BiasRow* r : members) significant += r->significant_noise_induced() ? 1 : 0;
+    const int total = static_cast<int>(members.size());
+    text += "; the noise adds a bias beyond 2 Monte-Carlo standard errors in " + std::to_string(significant) + " of " +
+            std::to_string(total) + " (parameter, noise) settings";
+    f.counts.push_back({text, significant, total});
   }
 }
 
@@ -254,6 +278,7 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
                   count_with_interval(t->reached, t->started) + ")");
   start_distance_findings(start_distance, f);
   efficiency_findings(spec, efficiency_rows(results, groups), f);
+  bias_findings(bias_rows(results, groups), spec.truth.control, f);
   return f;
 }
 

@@ -247,14 +247,43 @@ std::map<ModeKey, ModeCell> mode_cells(const StudyResults& results) {
   return cells;
 }
 
+std::vector<BiasRow> bias_rows(const StudyResults& results, const Groups& groups) {
+  std::vector<BiasRow> rows;
+  if (!results.spec->outputs.bias_decomposition) return rows;
+  for (const auto& [k, members] : groups) {
+    if (k.noise == 0) continue;
+    GroupKey twin = k;
+    twin.noise = 0;
+    const CaseRow* noise_free = nullptr;
+    for (const auto& [other, other_members] : groups)
+      if (other == twin && !other_members.empty()) noise_free = other_members.front();
+    if (!noise_free) continue;
+    for (const auto& key : results.spec->fit.estimate) {
+      BiasRow row;
+      row.key = k;
+      row.parameter = key;
+      row.fits = static_cast<int>(members.size());
+      if (noise_free->success) row.noise_free = noise_free->error(key);
+      std::vector<double> errors;
+      for (const CaseRow* r : members)
+        if (r->success) errors.push_back(r->error(key));
+      row.stayed = static_cast<int>(errors.size());
+      row.errors = stats(errors);
+      row.mcse = row.errors.std / std::sqrt(static_cast<double>(row.errors.count));
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Groups& groups) {
   std::vector<EfficiencyRow> rows;
   for (const auto& [k, members] : groups) {
     if (k.noise == 0) continue;
     const LandscapeRow* bound = nullptr;
     for (const auto& b : results.bounds)
-      if (b.unit->pulse_width_s == k.pulse_width_s && b.unit->samples == k.samples &&
-          b.unit->elements == k.elements && b.unit->noise == k.noise)
+      if (b.unit->pulse_width_s == k.pulse_width_s && b.unit->samples == k.samples && b.unit->elements == k.elements &&
+          b.unit->noise == k.noise)
         bound = &b;
     if (!bound) continue;
     for (const auto& key : results.spec->fit.estimate) {

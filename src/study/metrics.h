@@ -114,14 +114,32 @@ struct EfficiencyRow {
   GroupKey key;
   std::string parameter;
   int stayed = 0, fits = 0;
-  Stats errors;                                                // relative errors of the fits that stayed
-  double mcse = std::numeric_limits<double>::quiet_NaN();      // errors.std / sqrt(stayed)
-  double bound = std::numeric_limits<double>::quiet_NaN();     // relative sd bound (NaN when unavailable)
+  Stats errors;                                             // relative errors of the fits that stayed
+  double mcse = std::numeric_limits<double>::quiet_NaN();   // errors.std / sqrt(stayed)
+  double bound = std::numeric_limits<double>::quiet_NaN();  // relative sd bound (NaN when unavailable)
   bool significant_bias() const { return std::abs(errors.mean) > 2 * mcse; }  // NaN: false
-  double efficiency() const { return errors.rmse / bound; }   // RMSE / bound
+  double efficiency() const { return errors.rmse / bound; }                   // RMSE / bound
 };
 // Rows for every noisy group with a bound unit (same pulse width, record length, N and noise), in group order.
 std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Groups& groups);
+
+// Bias decomposition (outputs.bias_decomposition): per group of noisy replicates and parameter, the relative error
+// b0 of the noise-free fit of the same setting (the bias of the cost's minimum on these data), the mean error of the
+// replicates that stayed at the minimum (success) with its Monte-Carlo standard error MCSE = sd / sqrt(stayed), and
+// their difference, the noise-induced bias, with the same MCSE (b0 has none: it is one deterministic fit).
+struct BiasRow {
+  GroupKey key;
+  std::string parameter;
+  int stayed = 0, fits = 0;
+  double noise_free = std::numeric_limits<double>::quiet_NaN();  // b0 (NaN when that fit failed or left the minimum)
+  Stats errors;                                                  // of the replicates that stayed
+  double mcse = std::numeric_limits<double>::quiet_NaN();
+  double noise_induced() const { return errors.mean - noise_free; }
+  bool significant_total() const { return std::abs(errors.mean) > 2 * mcse; }              // NaN: false
+  bool significant_noise_induced() const { return std::abs(noise_induced()) > 2 * mcse; }  // NaN: false
+};
+// Rows for every noisy group whose noise-free twin (same settings, noise 0) is in the study, in group order.
+std::vector<BiasRow> bias_rows(const StudyResults& results, const Groups& groups);
 
 // Success and errors against the number of modes in the data, per (modes, pulse width, Nbar, cost, method).
 struct ModeCell {

@@ -94,8 +94,8 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     // A control study fits the truth's own model (an inverse crime on purpose): what remains is the estimator's own
     // bias and variance, the yardstick for the studies whose truth is finer than every fit.
     t.control = r.boolean("control", false);
-    t.elements = r.integer("elements", 48, t.control ? model::kMinElements : model::kMinTruthElements,
-                           model::kMaxTruthElements);
+    t.elements =
+        r.integer("elements", 48, t.control ? model::kMinElements : model::kMinTruthElements, model::kMaxTruthElements);
     t.rtol = r.number(
         "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
     read_experiment(r, t.experiment);
@@ -142,7 +142,8 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
     f.damping_tolerance = r.number("damping_tolerance", f.success_tolerance, positive, "must be > 0");
     r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window",
-              "frequency_weight", "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance", "damping_tolerance"});
+              "frequency_weight", "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance",
+              "damping_tolerance"});
   }
   // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
   if (const auto starts = document.table("starts", false)) {
@@ -233,8 +234,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     d.offsets = r.numbers(
         "offsets", [](double v) { return v > 0 && v < 1; }, "must be in (0, 1) (relative frequency offsets)");
     if (d.offsets.empty()) r.fail("offsets", "[]", "must list at least one offset");
-    if (!std::is_sorted(d.offsets.begin(), d.offsets.end()))
-      r.fail("offsets", "[...]", "must be in increasing order");
+    if (!std::is_sorted(d.offsets.begin(), d.offsets.end())) r.fail("offsets", "[...]", "must be in increasing order");
     d.directions = r.integer("directions", d.directions, 1, 100000);
     d.noise = r.number(
         "noise", 0.0, [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
@@ -272,7 +272,11 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     if (std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), o.overlay_noise) == spec.sweep.noise.end())
       r.fail("overlay_noise", format_value(o.overlay_noise), "must be one of sweep.noise");
     o.efficiency = r.boolean("efficiency", false);
-    r.finish({"overlay_elements", "overlay_noise", "efficiency"});
+    o.bias_decomposition = r.boolean("bias_decomposition", false);
+    if (o.bias_decomposition &&
+        std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), 0.0) == spec.sweep.noise.end())
+      r.fail("bias_decomposition", "true", "needs 0 in sweep.noise (the noise-free fit is the bias of the minimum)");
+    r.finish({"overlay_elements", "overlay_noise", "efficiency", "bias_decomposition"});
   }
   if (spec.outputs.overlay_elements == 0)
     spec.outputs.overlay_elements = *std::max_element(spec.sweep.elements.begin(), spec.sweep.elements.end());

@@ -114,6 +114,10 @@ struct OutputsSpec {
   // Efficiency tables: the Cramér-Rao bound (fit/cramer_rao.h) of the model at each fitted N, at the truth, for the
   // noise of each noisy level of the sweep (level x RMS of the clean record), beside the fits' RMSE.
   bool efficiency = false;
+  // Bias decomposition tables: per group of noisy replicates, the noise-free fit's error (the bias of the minimum:
+  // discretisation, or with [truth] control the estimator's own) beside the replicates' mean and their difference,
+  // the noise-induced bias, each with its Monte-Carlo standard error. Needs noise 0 in the sweep.
+  bool bias_decomposition = false;
 };
 
 struct StudySpec {

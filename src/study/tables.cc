@@ -67,6 +67,7 @@ RenderedFiles render_tables(const StudyResults& results) {
   append(files, render_spread(results, groups));
   const std::vector<EfficiencyRow> efficiency = efficiency_rows(results, groups);
   append(files, render_efficiency(efficiency));
+  append(files, render_bias_decomposition(bias_rows(results, groups), spec.truth.control));
   append(files, render_modes(results));
   const LandscapeMetrics landscape = landscape_metrics(results);
   append(files, render_landscape(results, landscape));

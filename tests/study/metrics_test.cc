@@ -154,5 +154,49 @@ TEST(Metrics, ReachCountIsAFindingWithItsEvidence) {
   for (const Claim& claim : f.claims) EXPECT_FALSE(claim.text.empty());
 }
 
+TEST(Metrics, BiasDecompositionSeparatesTheMinimumsBiasFromTheNoises) {
+  // One setting (time, N = 8): the noise-free fit errs by +1 % in EI (the bias of the minimum); four noisy replicates
+  // err by 1.1, 1.3, 1.2 and 1.4 % and a fifth left the minimum (30 %, not a success). Mean of the four 1.25 %, sd
+  // sqrt(0.05/3) % = 0.1291 %, MCSE = sd / 2 = 0.0645 %: the total bias is significant, and so is the noise-induced
+  // 0.25 % (3.9 MCSE). With replicates 1.0, 1.2, 0.8, 1.0 % the noise adds 0 +- 0.082 %: not significant.
+  for (const bool shifted : {true, false}) {
+    StudySpec spec;
+    spec.truth.parameters = model::preset("banks-aluminium");
+    spec.fit.estimate = {"EI"};
+    spec.fit.success_tolerance = 0.05;
+    spec.outputs.bias_decomposition = true;
+    const std::vector<double> noisy = shifted ? std::vector<double>{0.011, 0.013, 0.012, 0.014, 0.3}
+                                              : std::vector<double>{0.010, 0.012, 0.008, 0.010, 0.3};
+    Plan plan;
+    plan.units.resize(1 + noisy.size());
+    StudyResults results;
+    results.spec = &spec;
+    results.plan = &plan;
+    for (std::size_t i = 0; i < plan.units.size(); ++i) {
+      Unit& u = plan.units[i];
+      u.kind = "case";
+      u.cost = "time", u.method = "direct", u.start = "truth";
+      u.elements = 8, u.pulse_width_s = 0.004, u.samples = 4096;
+      u.noise = i == 0 ? 0.0 : 0.01;
+      const double error = i == 0 ? 0.01 : noisy[i - 1];
+      Record r;
+      r.set("status", "converged");
+      r.set("relative_error.EI", error);
+      results.cases.push_back({&u, r, std::abs(error) <= 0.05});
+    }
+    const std::vector<BiasRow> rows = bias_rows(results, group_cases(results.cases));
+    ASSERT_EQ(rows.size(), 1u);
+    const BiasRow& b = rows[0];
+    EXPECT_EQ(b.fits, 5);
+    EXPECT_EQ(b.stayed, 4);
+    EXPECT_DOUBLE_EQ(b.noise_free, 0.01);
+    EXPECT_NEAR(b.errors.mean, shifted ? 0.0125 : 0.0100, 1e-15);
+    EXPECT_NEAR(b.mcse, (shifted ? std::sqrt(0.05 / 3) : std::sqrt(0.08 / 3)) * 1e-2 / 2, 1e-15);
+    EXPECT_NEAR(b.noise_induced(), shifted ? 0.0025 : 0.0, 1e-15);
+    EXPECT_TRUE(b.significant_total());
+    EXPECT_EQ(b.significant_noise_induced(), shifted);
+  }
+}
+
 }  // namespace
 }  // namespace beamid::study
