@@ -53,10 +53,11 @@ void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
            -1, -1});
       f.claims.push_back({within(m.predicted_basin_decay),
                           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
-                              ", is within a factor 3 of 1/(2 f T_eff) = " + pct(m.predicted_basin_decay) +
-                              ", predicted from the time the mode is visible, T_eff = min(T, 1/sigma) = " +
-                              g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s (sigma = " + g3(m.decay_rate_1_s) +
-                              " 1/s)",
+                              ", is within a factor 3 of min_k 1/(2 f_k T_eff,k) = " + pct(m.predicted_basin_decay) +
+                              ", predicted from the time each fitted mode is visible, T_eff = min(T, 1/sigma), and " +
+                              "reached at mode " + std::to_string(m.limiting_mode) + " (f = " +
+                              g3(m.limiting_mode_hz) + " Hz, sigma = " + g3(m.decay_rate_1_s) + " 1/s, T_eff = " +
+                              g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s)",
                           -1, -1});
     }
   const StartRun& first = m.runs.front();

@@ -94,6 +94,28 @@ std::string radius_text(const HalfRadius& r) {
   return r.below ? "< " + percent : r.above ? "> " + percent : percent;
 }
 
+void predict_basins(const std::vector<double>& f, const std::vector<double>& zeta, double record_s,
+                    StartDistanceMetrics& m) {
+  m.record_s = record_s;
+  const auto fitted = static_cast<std::size_t>(m.fitted_modes);
+  if (fitted == 0 || f.size() < fitted || zeta.size() < fitted) return;
+  // f is the natural frequency |lambda| / (2 pi) and zeta = -Re(lambda) / |lambda|, so sigma = 2 pi f zeta.
+  const auto decay_limited = [&](std::size_t k) {
+    return 1 / (2 * f[k] * std::min(record_s, 1 / (2 * M_PI * f[k] * zeta[k])));
+  };
+  m.highest_mode_hz = f[fitted - 1];
+  m.predicted_basin = 1 / (2 * m.highest_mode_hz * record_s);
+  m.predicted_basin_highest_decay = decay_limited(fitted - 1);
+  m.limiting_mode = 0;
+  for (std::size_t k = 0; k < fitted; ++k)
+    if (m.limiting_mode == 0 || decay_limited(k) < m.predicted_basin_decay) {
+      m.limiting_mode = static_cast<int>(k + 1);
+      m.limiting_mode_hz = f[k];
+      m.decay_rate_1_s = 2 * M_PI * f[k] * zeta[k];
+      m.predicted_basin_decay = decay_limited(k);
+    }
+}
+
 bool reaches(const StudySpec& spec, const Record& reference, const Record& fit) {
   if (fit.text("status") == "failed" || reference.text("status") == "failed") return false;
   for (const auto& key : spec.fit.estimate) {
@@ -155,14 +177,7 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
   if (!results.truths.empty() && m.fitted_modes > 0) {
     const std::vector<double> f = results.truths.front().numbers("mode_frequency_hz");
     const std::vector<double> zeta = results.truths.front().numbers("mode_damping_ratio");
-    const auto k = static_cast<std::size_t>(m.fitted_modes - 1);
-    if (f.size() > k && zeta.size() > k) {
-      m.highest_mode_hz = f[k];  // natural frequency |lambda| / (2 pi), and zeta = -Re(lambda) / |lambda|
-      m.decay_rate_1_s = zeta[k] * 2 * M_PI * f[k];
-    }
-    m.record_s = spec.sweep.samples.front() * spec.truth.experiment.dt_s;
-    m.predicted_basin = 1 / (2 * m.highest_mode_hz * m.record_s);
-    m.predicted_basin_decay = 1 / (2 * m.highest_mode_hz * std::min(m.record_s, 1 / m.decay_rate_1_s));
+    predict_basins(f, zeta, spec.sweep.samples.front() * spec.truth.experiment.dt_s, m);
   }
   return m;
 }

@@ -59,9 +59,9 @@ struct StartCurvePoint {
 };
 struct StartRun {
   std::string cost, method;
-  const LandscapeRow* reference = nullptr;  // the fit from the truth (nullptr when missing)
-  bool reference_ok = false;                // it did not fail
-  std::vector<StartCurvePoint> points;      // by offset
+  const LandscapeRow* reference = nullptr;     // the fit from the truth (nullptr when missing)
+  bool reference_ok = false;                   // it did not fail
+  std::vector<StartCurvePoint> points;         // by offset
   HalfRadius radius, radius_low, radius_high;  // from the rates, their Wilson lower and upper bounds
 };
 struct StartDistanceMetrics {
@@ -69,13 +69,26 @@ struct StartDistanceMetrics {
   double highest_mode_hz = 0;  // the truth's mode `fitted_modes`
   double record_s = 0;
   double predicted_basin = 0;  // 1 / (2 f T)
-  // The same with the mode's own duration: a mode of decay rate sigma is visible for about 1/sigma, so a phase error
-  // accumulates only over T_eff = min(T, 1/sigma): 1 / (2 f T_eff).
-  double decay_rate_1_s = 0;  // sigma of the truth's mode `fitted_modes`
+  // The same with each mode's own duration: a mode of decay rate sigma is visible for about 1/sigma, so its phase
+  // error accumulates only over T_eff = min(T, 1/sigma), and the basin is that of the most restrictive fitted mode,
+  // min_k 1 / (2 f_k T_eff,k) (the highest mode when the modes decay slowly, as on the thin beam; a lower, longer-lived
+  // one when the highest decays fast, as on the thick beam).
+  // Neither is the measured radius: the cost sums the modes' terms weighted by their energy, so the radius lies
+  // between the most restrictive term's basin and the dominant mode's; the highest mode's 1/(2 f T_eff) is kept
+  // beside it (radius.csv).
+  int limiting_mode = 0;        // 1-based: the k of the minimum
+  double limiting_mode_hz = 0;  // its f_k
+  double decay_rate_1_s = 0;    // its sigma_k
   double predicted_basin_decay = 0;
-  std::vector<StartRun> runs;  // in the order of start_distance.runs
-  std::vector<bool> reached;   // per results.starts row
+  double predicted_basin_highest_decay = 0;  // 1 / (2 f T_eff) of mode `fitted_modes`
+  std::vector<StartRun> runs;                // in the order of start_distance.runs
+  std::vector<bool> reached;                 // per results.starts row
 };
+// Fills the predictions above (highest_mode_hz, record_s, predicted_basin, limiting_mode ...
+// predicted_basin_highest_decay) for the first m.fitted_modes modes of natural frequencies f (Hz) and damping ratios
+// zeta, on a record of record_s.
+void predict_basins(const std::vector<double>& f, const std::vector<double>& zeta, double record_s,
+                    StartDistanceMetrics& m);
 // Whether `fit` reached the minimum of `reference`: not failed, and every estimate within start_distance.agreement
 // (damping parameters: damping_agreement) of the reference's, relatively.
 bool reaches(const StudySpec& spec, const Record& reference, const Record& fit);

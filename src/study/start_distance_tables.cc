@@ -35,9 +35,11 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
       const Unit& u = *row.unit;
       const Record& r = row.record;
       os << u.cost << "," << u.method << "," << io::round_trip(u.offset) << "," << u.index << ","
-         << io::round_trip(r.number("frequency_offset")) << "," << r.number("shrunk") << "," << r.text("status")
-         << "," << (u.index < 0 ? "reference" : m.reached[i] ? "1" : "0") << "," << r.number("evaluations") << ","
-         << io::round_trip(r.number("cost"));
+         << io::round_trip(r.number("frequency_offset")) << "," << r.number("shrunk") << "," << r.text("status") << ","
+         << (u.index < 0    ? "reference"
+             : m.reached[i] ? "1"
+                            : "0")
+         << "," << r.number("evaluations") << "," << io::round_trip(r.number("cost"));
       for (const auto& k : keys) os << "," << io::round_trip(r.number("start." + k));
       for (const auto& k : keys) os << "," << io::round_trip(r.number("estimate." + k));
       os << "\n";
@@ -59,7 +61,8 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
   {
     std::ostringstream os;
     os << "cost,method,reference_status,half_radius,half_radius_low,half_radius_high,position,predicted_basin,"
-          "ratio_to_predicted,predicted_basin_decay_limited,ratio_to_decay_limited\n";
+          "ratio_to_predicted,predicted_basin_decay_limited,ratio_to_decay_limited,limiting_mode,"
+          "predicted_basin_highest_mode_decay_limited\n";
     for (const auto& run : m.runs)
       os << run.cost << "," << run.method << ","
          << (run.reference ? run.reference->record.text("status") : std::string("missing")) << ","
@@ -69,12 +72,13 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
          << (run.reference_ok ? flag(run.radius) : "-") << "," << io::round_trip(m.predicted_basin) << ","
          << io::round_trip(run.reference_ok ? run.radius.value / m.predicted_basin : std::nan("")) << ","
          << io::round_trip(m.predicted_basin_decay) << ","
-         << io::round_trip(run.reference_ok ? run.radius.value / m.predicted_basin_decay : std::nan("")) << "\n";
+         << io::round_trip(run.reference_ok ? run.radius.value / m.predicted_basin_decay : std::nan("")) << ","
+         << m.limiting_mode << "," << io::round_trip(m.predicted_basin_highest_decay) << "\n";
     files.push_back({"start_distance/radius.csv", os.str()});
   }
   {
     std::ostringstream os;
-    os << "| cost | method | 50 % radius (95 % interval) | x 1/(2 f T) | x 1/(2 f T_eff) |";
+    os << "| cost | method | 50 % radius (95 % interval) | x 1/(2 f T) | x min_k 1/(2 f_k T_eff,k) |";
     for (double r : spec.start_distance.offsets) os << " " << pct(r) << " |";
     os << " evaluations (median) |\n|---|---|---|---|---|";
     for (std::size_t j = 0; j < spec.start_distance.offsets.size(); ++j) os << "---|";

@@ -95,11 +95,42 @@ TEST(StartDistance, ReachingMeansAgreeingWithTheFitFromTheTruth) {
     return r;
   };
   const Record reference = record("converged", 10.0, 2.0);
-  EXPECT_TRUE(reaches(spec, reference, record("converged", 10.009, 2.019)));    // 9e-4 and 9.5e-3
-  EXPECT_FALSE(reaches(spec, reference, record("converged", 10.011, 2.0)));     // EI 1.1e-3 off
-  EXPECT_FALSE(reaches(spec, reference, record("converged", 10.0, 2.021)));     // damping 1.05e-2 off
-  EXPECT_FALSE(reaches(spec, reference, record("failed", 10.0, 2.0)));          // a failed fit reaches nothing
+  EXPECT_TRUE(reaches(spec, reference, record("converged", 10.009, 2.019)));  // 9e-4 and 9.5e-3
+  EXPECT_FALSE(reaches(spec, reference, record("converged", 10.011, 2.0)));   // EI 1.1e-3 off
+  EXPECT_FALSE(reaches(spec, reference, record("converged", 10.0, 2.021)));   // damping 1.05e-2 off
+  EXPECT_FALSE(reaches(spec, reference, record("failed", 10.0, 2.0)));        // a failed fit reaches nothing
   EXPECT_FALSE(reaches(spec, reference, record("converged", std::nan(""), 2.0)));
+}
+
+TEST(StartDistance, PredictedBasinsTakeTheMostRestrictiveFittedMode) {
+  // Where a mode decays within the record (1/sigma < T) its basin 1/(2 f T_eff) is sigma/(2 f) = pi zeta exactly.
+  // Thin beam (T = 4.096 s): modes 2.46, 26.5, 81.7 Hz with damping ratios 8.1e-4, 1.5e-3, 3.5e-3, so
+  // 1/sigma = 79.9, 4.004, 0.5566 s: mode 1 lasts the record (1/(2 x 2.46 x 4.096) = 4.96 %), modes 2 and 3 give
+  // pi zeta = 0.471 % and 1.10 %. The record-length basin is the highest mode's 1/(2 f T) = 0.149 %.
+  StartDistanceMetrics thin;
+  thin.fitted_modes = 3;
+  predict_basins({2.46, 26.5, 81.7, 160.0}, {8.1e-4, 1.5e-3, 3.5e-3, 7e-3}, 4.096, thin);
+  EXPECT_NEAR(thin.predicted_basin, 1 / (2 * 81.7 * 4.096), 1e-15);
+  EXPECT_EQ(thin.limiting_mode, 2);
+  EXPECT_DOUBLE_EQ(thin.limiting_mode_hz, 26.5);
+  EXPECT_NEAR(thin.decay_rate_1_s, 2 * M_PI * 26.5 * 1.5e-3, 1e-15);
+  EXPECT_NEAR(thin.predicted_basin_decay, M_PI * 1.5e-3, 1e-15);
+  EXPECT_NEAR(thin.predicted_basin_highest_decay, M_PI * 3.5e-3, 1e-15);
+  // Thick beam (T = 0.8192 s): 81.7, 579, 1666 Hz with 7.57e-4, 4.16e-3, 1.34e-2: mode 1 lasts the record
+  // (1/(2 x 81.7 x 0.8192) = 0.747 %), modes 2 and 3 give pi zeta = 1.31 % and 4.21 %: mode 1 limits, and the
+  // highest mode alone would predict 5.6x wider.
+  StartDistanceMetrics thick;
+  thick.fitted_modes = 3;
+  predict_basins({81.7, 579.0, 1666.0}, {7.57e-4, 4.16e-3, 1.34e-2}, 0.8192, thick);
+  EXPECT_EQ(thick.limiting_mode, 1);
+  EXPECT_NEAR(thick.predicted_basin_decay, 1 / (2 * 81.7 * 0.8192), 1e-15);
+  EXPECT_NEAR(thick.predicted_basin_highest_decay, M_PI * 1.34e-2, 1e-15);
+  // Fewer modes known than fitted: no prediction.
+  StartDistanceMetrics none;
+  none.fitted_modes = 3;
+  predict_basins({81.7}, {7.57e-4}, 0.8192, none);
+  EXPECT_EQ(none.limiting_mode, 0);
+  EXPECT_EQ(none.predicted_basin, 0);
 }
 
 }  // namespace
