@@ -247,6 +247,23 @@ std::map<ModeKey, ModeCell> mode_cells(const StudyResults& results) {
   return cells;
 }
 
+namespace {
+
+// The relative errors in `key` of the replicates that stayed at the minimum (succeeded), their statistics and the
+// Monte-Carlo standard error of their mean, sd / sqrt(stayed), as the efficiency and bias tables state them.
+void stayed_errors(const std::vector<const CaseRow*>& members, const std::string& key, int& fits, int& stayed,
+                   Stats& errors, double& mcse) {
+  std::vector<double> values;
+  for (const CaseRow* r : members)
+    if (r->success) values.push_back(r->error(key));
+  fits = static_cast<int>(members.size());
+  stayed = static_cast<int>(values.size());
+  errors = stats(values);
+  mcse = errors.std / std::sqrt(static_cast<double>(errors.count));
+}
+
+}  // namespace
+
 std::vector<BiasRow> bias_rows(const StudyResults& results, const Groups& groups) {
   std::vector<BiasRow> rows;
   if (!results.spec->outputs.bias_decomposition) return rows;
@@ -262,14 +279,8 @@ std::vector<BiasRow> bias_rows(const StudyResults& results, const Groups& groups
       BiasRow row;
       row.key = k;
       row.parameter = key;
-      row.fits = static_cast<int>(members.size());
       if (noise_free->success) row.noise_free = noise_free->error(key);
-      std::vector<double> errors;
-      for (const CaseRow* r : members)
-        if (r->success) errors.push_back(r->error(key));
-      row.stayed = static_cast<int>(errors.size());
-      row.errors = stats(errors);
-      row.mcse = row.errors.std / std::sqrt(static_cast<double>(row.errors.count));
+      stayed_errors(members, key, row.fits, row.stayed, row.errors, row.mcse);
       rows.push_back(row);
     }
   }
@@ -290,13 +301,7 @@ std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Gr
       EfficiencyRow row;
       row.key = k;
       row.parameter = key;
-      row.fits = static_cast<int>(members.size());
-      std::vector<double> errors;
-      for (const CaseRow* r : members)
-        if (r->success) errors.push_back(r->error(key));
-      row.stayed = static_cast<int>(errors.size());
-      row.errors = stats(errors);
-      row.mcse = row.errors.std / std::sqrt(static_cast<double>(row.errors.count));
+      stayed_errors(members, key, row.fits, row.stayed, row.errors, row.mcse);
       if (bound->record.text("status") == "ok") row.bound = bound->record.number("relative_sd." + key);
       rows.push_back(row);
     }
