@@ -55,9 +55,9 @@ void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
                           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
                               ", is within a factor 3 of min_k 1/(2 f_k T_eff,k) = " + pct(m.predicted_basin_decay) +
                               ", predicted from the time each fitted mode is visible, T_eff = min(T, 1/sigma), and " +
-                              "reached at mode " + std::to_string(m.limiting_mode) + " (f = " +
-                              g3(m.limiting_mode_hz) + " Hz, sigma = " + g3(m.decay_rate_1_s) + " 1/s, T_eff = " +
-                              g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s)",
+                              "reached at mode " + std::to_string(m.limiting_mode) + " (f = " + g3(m.limiting_mode_hz) +
+                              " Hz, sigma = " + g3(m.decay_rate_1_s) +
+                              " 1/s, T_eff = " + g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s)",
                           -1, -1});
     }
   const StartRun& first = m.runs.front();
@@ -213,8 +213,9 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
     // Median basin width (over the estimated parameters) at the fewest and the most modes, per cost.
     for (const auto& cost : spec.landscape.cost) {
       std::map<int, std::vector<double>> widths;
-      for (const auto& b : landscape.slices)
-        if (b.cost == cost) widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
+      for (const auto& b : landscape.slices)  // only where the slice resolves the least-squares basin
+        if (b.cost == cost && b.resolution.resolved())
+          widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
       if (widths.size() < 2) continue;
       const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);
       claim(hi < lo, -1, -1,
@@ -228,7 +229,8 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
       for (const auto& s : slice_rows)
         if (s.cost == a)
           for (const auto& t : slice_rows)
-            if (t.cost == b && t.parameter == s.parameter) ++total, holds += better(s.shape, t.shape) ? 1 : 0;
+            if (t.cost == b && t.parameter == s.parameter && s.resolution.resolved() && t.resolution.resolved())
+              ++total, holds += better(s.shape, t.shape) ? 1 : 0;
       return std::make_pair(holds, total);
     };
     for (const std::string& freq : {kSmooth, kSpike}) {

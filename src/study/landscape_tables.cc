@@ -124,35 +124,52 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   files.insert(files.end(), ms.begin(), ms.end());
 
   std::ostringstream basin;
-  basin << "modes_in_data,pulse_width_s,samples,cost,parameter,local_minima,basin_lower,basin_upper,basin_width\n";
+  basin << "modes_in_data,pulse_width_s,samples,cost,parameter,local_minima,basin_lower,basin_upper,basin_width,"
+           "frequency_step,predicted_basin,resolved\n";
   for (const auto& s : metrics.slices) {
     const Record& rec = s.row->record;
     basin << (rec.has("modes_in_data") ? rec.text("modes_in_data") : "nan") << ","
           << io::round_trip(s.row->unit->pulse_width_s) << "," << s.row->unit->samples << "," << s.cost << ","
           << s.parameter << "," << s.shape.local_minima << "," << io::round_trip(s.shape.basin_lower) << ","
           << io::round_trip(s.shape.basin_upper) << "," << io::round_trip(s.shape.basin_upper - s.shape.basin_lower)
-          << "\n";
+          << "," << io::round_trip(s.resolution.frequency_step) << "," << io::round_trip(s.resolution.predicted_basin)
+          << "," << (s.resolution.resolved() ? 1 : 0) << "\n";
   }
   files.push_back({"landscape/basin.csv", basin.str()});
 
   std::ostringstream csv, md;
-  csv << "cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,descent_share\n";
-  md << "| cost | slice or grid | local minima | basin around the minimum | TV / range | flat steps | "
-        "grid points descending to the minimum |\n|---|---|---|---|---|---|---|\n";
+  csv << "cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,descent_share,"
+         "frequency_step,predicted_basin,resolved\n";
+  md << "| cost | slice or grid | step in frequency | local minima | basin around the minimum | TV / range | flat "
+        "steps "
+        "| grid points descending to the minimum |\n|---|---|---|---|---|---|---|---|\n";
+  const auto resolution_csv = [](const Resolution& r) {
+    return io::round_trip(r.frequency_step) + "," + io::round_trip(r.predicted_basin) + "," +
+           (r.resolved() ? "1" : "0");
+  };
+  // The step beside the predicted least-squares basin; "(coarse)" when it exceeds a third of it.
+  const auto step_md = [](const Resolution& r) {
+    return pct(r.frequency_step) + (r.resolved() ? "" : " (coarse: basin " + pct(r.predicted_basin) + ")");
+  };
   for (const auto& s : metrics.slices) {
     if (!s.first_experiment) continue;
     csv << s.cost << ",slice," << s.parameter << "," << s.shape.local_minima << ","
         << io::round_trip(s.shape.basin_lower) << "," << io::round_trip(s.shape.basin_upper) << ","
-        << io::round_trip(s.shape.total_variation_ratio) << "," << io::round_trip(s.shape.flat_share) << ",nan\n";
-    md << "| " << s.cost << " | " << s.parameter << " | " << s.shape.local_minima << " | "
-       << signed_pct(s.shape.basin_lower) << " .. " << signed_pct(s.shape.basin_upper) << " | "
-       << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share) << " | - |\n";
+        << io::round_trip(s.shape.total_variation_ratio) << "," << io::round_trip(s.shape.flat_share) << ",nan,"
+        << resolution_csv(s.resolution) << "\n";
+    md << "| " << s.cost << " | " << s.parameter << " | " << step_md(s.resolution) << " | " << s.shape.local_minima
+       << " | "
+       << (s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
+                                   : "unresolved")
+       << " | " << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share) << " | - |\n";
   }
   for (const auto& g : metrics.grids) {
     csv << g.cost << ",grid," << g.a << "+" << g.b << "," << g.shape.local_minima << ",nan,nan,nan,"
-        << io::round_trip(g.shape.flat_share) << "," << io::round_trip(g.shape.descent_share) << "\n";
-    md << "| " << g.cost << " | " << g.a << " x " << g.b << " | " << g.shape.local_minima << " | - | - | "
-       << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share) << " |\n";
+        << io::round_trip(g.shape.flat_share) << "," << io::round_trip(g.shape.descent_share) << ","
+        << resolution_csv(g.resolution) << "\n";
+    md << "| " << g.cost << " | " << g.a << " x " << g.b << " | " << step_md(g.resolution) << " | "
+       << g.shape.local_minima << " | - | - | " << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share)
+       << " |\n";
   }
   if (!metrics.multistarts.empty()) {
     md << "\nLocal fits from " << spec.landscape.multistarts

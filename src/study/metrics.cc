@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
+#include "study/start_distance.h"
 
 namespace beamid::study {
 namespace {
@@ -177,6 +179,38 @@ GridShape grid_shape(const std::vector<double>& c, int nx, int ny) {
   return g;
 }
 
+namespace {
+
+// The resolution of a landscape unit whose axes are `keys` with log steps `log_steps` (see Resolution).
+Resolution landscape_resolution(const StudyResults& results, const Unit& u, const std::vector<std::string>& keys,
+                                const std::vector<double>& log_steps) {
+  const StudySpec& spec = *results.spec;
+  Resolution r;
+  const auto truth = static_cast<std::size_t>(u.truth);
+  if (truth >= results.truths.size() || !results.truths[truth].has("mode_frequency_hz") ||
+      !results.truths[truth].has("mode_damping_ratio"))
+    return r;
+  StartDistanceMetrics prediction;
+  prediction.fitted_modes = spec.fit.spikes;
+  predict_basins(results.truths[truth].numbers("mode_frequency_hz"),
+                 results.truths[truth].numbers("mode_damping_ratio"), u.samples * spec.truth.experiment.dt_s,
+                 prediction);
+  if (prediction.limiting_mode == 0) return r;
+  try {
+    const galerkin::BeamForms forms(galerkin::SplineSpace(spec.landscape.elements), spec.truth.parameters.l);
+    const Eigen::MatrixXd g = frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);
+    double step = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      step = std::max(step, g.col(static_cast<Eigen::Index>(i)).cwiseAbs().maxCoeff() * std::abs(log_steps[i]));
+    r.frequency_step = step;
+    r.predicted_basin = prediction.predicted_basin_decay;
+  } catch (const std::exception&) {  // a model without enough modes: resolution unknown
+  }
+  return r;
+}
+
+}  // namespace
+
 LandscapeMetrics landscape_metrics(const StudyResults& results) {
   const StudySpec& spec = *results.spec;
   const model::BeamParameters& beam = spec.truth.parameters;
@@ -192,13 +226,19 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
       if (c.empty() || x.size() != c.size()) continue;
       const double v = beam.*(model::find_parameter(u.parameters[0])->member);
       const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
-      m.slices.push_back({&l, rec.has("modes_in_data") ? static_cast<int>(rec.number("modes_in_data")) : 0, u.cost,
-                          u.parameters[0], slice_shape(x, c, v), first});
+      m.slices.push_back(
+          {&l, rec.has("modes_in_data") ? static_cast<int>(rec.number("modes_in_data")) : 0, u.cost, u.parameters[0],
+           slice_shape(x, c, v), first,
+           x.size() > 1 ? landscape_resolution(results, u, {u.parameters[0]}, {std::log(x[1] / x[0])}) : Resolution{}});
     } else {
       const std::vector<double> y = list("y");
       if (c.empty() || x.size() * y.size() != c.size()) continue;
       m.grids.push_back({&l, u.cost, u.parameters[0], u.parameters[1],
-                         grid_shape(c, static_cast<int>(x.size()), static_cast<int>(y.size()))});
+                         grid_shape(c, static_cast<int>(x.size()), static_cast<int>(y.size())),
+                         x.size() > 1 && y.size() > 1
+                             ? landscape_resolution(results, u, {u.parameters[0], u.parameters[1]},
+                                                    {std::log(x[1] / x[0]), std::log(y[1] / y[0])})
+                             : Resolution{}});
     }
   }
   for (const auto& cost : spec.landscape.cost) {

@@ -69,17 +69,29 @@ struct GridShape {
 };
 GridShape grid_shape(const std::vector<double>& cost, int nx, int ny);
 
+// Resolution of a slice or grid against the least-squares basin (start_distance.h, predict_basins): its step in
+// relative frequency, max_k |d log f_k / d log q| x (step in log q) over the fitted modes (the widest of both axes for
+// a grid), against the predicted basin min_k 1/(2 f_k T_eff,k) of its experiment. A sample spacing wider than a third
+// of that basin cannot show the least-squares needle, so the monotone region around the lowest sample may be the bowl
+// the needle sits in: its basin width is then reported as unresolved, not as a number.
+struct Resolution {
+  double frequency_step = std::numeric_limits<double>::quiet_NaN();
+  double predicted_basin = std::numeric_limits<double>::quiet_NaN();
+  bool resolved() const { return frequency_step <= predicted_basin / 3; }  // NaN (unknown): false
+};
 struct SliceRow {
   const LandscapeRow* row;
   int modes;  // in the data of the slice's experiment
   std::string cost, parameter;
   SliceShape shape;
   bool first_experiment;  // the experiment of the tables (grids, multi-starts, slices plots)
+  Resolution resolution;
 };
 struct GridRow {
   const LandscapeRow* row;
   std::string cost, a, b;
   GridShape shape;
+  Resolution resolution;
 };
 
 // Local fits from the truth (start -1) and from random starts. The reference minimum of a cost is the lowest final

@@ -198,5 +198,58 @@ TEST(Metrics, BiasDecompositionSeparatesTheMinimumsBiasFromTheNoises) {
   }
 }
 
+TEST(Metrics, LandscapeResolutionFlagsSlicesCoarserThanTheLeastSquaresBasin) {
+  // The thin beam with the truth's modes 2.46, 26.5, 81.7 Hz at damping ratios 8.1e-4, 1.5e-3, 3.5e-3 on a 4.096 s
+  // record: the predicted basin is mode 2's pi zeta = 0.471 %. An EI slice over [v/1.5, 1.5 v] steps
+  // 2 ln 1.5 / (points - 1) in log EI, times |d log f / d log EI| ~ 0.5 in frequency: 0.169 % at 241 points (more
+  // than a third of 0.471 %: unresolved, as the landscape study's slices were) and 0.0563 % at 721 (resolved).
+  for (const int points : {241, 721}) {
+    StudySpec spec;
+    spec.truth.parameters = model::preset("banks-aluminium");
+    spec.truth.experiment.dt_s = 1e-3;
+    spec.fit.estimate = {"EI"};
+    spec.fit.spikes = 3;
+    spec.landscape.enabled = true;
+    spec.landscape.elements = 16;
+    spec.landscape.cost = {"time"};
+    spec.sweep.pulse_width_s = {0.004};
+    spec.sweep.samples = {4096};
+    Plan plan;
+    Unit u;
+    u.kind = "slice";
+    u.cost = "time";
+    u.parameters = {"EI"};
+    u.truth = 0;
+    u.pulse_width_s = 0.004;
+    u.samples = 4096;
+    plan.units.push_back(u);
+    StudyResults results;
+    results.spec = &spec;
+    results.plan = &plan;
+    Record truth;
+    truth.set("mode_frequency_hz", std::vector<double>{2.46, 26.5, 81.7});
+    truth.set("mode_damping_ratio", std::vector<double>{8.1e-4, 1.5e-3, 3.5e-3});
+    results.truths.push_back(truth);
+    std::vector<double> x, c;
+    for (int j = 0; j < points; ++j) {
+      x.push_back(0.491 * std::exp(std::log(1.5) * (2.0 * j / (points - 1) - 1)));
+      c.push_back(std::pow(std::log(x.back() / 0.491), 2));
+    }
+    Record slice;
+    slice.set("x", x);
+    slice.set("cost", c);
+    results.landscape.push_back({&plan.units[0], slice});
+    const LandscapeMetrics m = landscape_metrics(results);
+    ASSERT_EQ(m.slices.size(), 1u);
+    const Resolution& r = m.slices[0].resolution;
+    EXPECT_NEAR(r.predicted_basin, M_PI * 1.5e-3, 1e-15);
+    // d log f / d log EI of the bending modes is just below 1/2 (shear takes a little of the strain energy).
+    const double log_step = 2 * std::log(1.5) / (points - 1);
+    EXPECT_GT(r.frequency_step, 0.45 * log_step);
+    EXPECT_LE(r.frequency_step, 0.5 * log_step);
+    EXPECT_EQ(r.resolved(), points == 721) << points;
+  }
+}
+
 }  // namespace
 }  // namespace beamid::study
