@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
@@ -104,7 +105,14 @@ Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParame
   // d lambda / d q of the underdamped poles, in the trace's order.
   Output out;
   const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
-  const galerkin::StateSpaceModes modes(system);
+  std::optional<galerkin::StateSpaceModes> decomposed;
+  try {
+    decomposed.emplace(system);
+  } catch (const NumericalError& error) {  // the status evaluate() gives (the fast simulator's)
+    out.evaluation.status = std::string("fast: ") + error.what();
+    return out;
+  }
+  const galerkin::StateSpaceModes& modes = *decomposed;
   const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
   simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
   if (!trace.ok()) {

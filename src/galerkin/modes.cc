@@ -92,7 +92,7 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
                      column_products(vectors_, stiffness_vectors));
   normalisation_ = 2.0 * lambda_.cwiseProduct(column_products(vectors_, mass_vectors_)) +
                    column_products(vectors_, damping_vectors_);
-  group_clusters();
+  const double cluster_rcond = group_clusters();
 
   // Left eigenvector of A in z = [D q; q'] coordinates: eta_k = phi_k^T [C M; M 0] u / n_k with u = [w; w'] =
   // [Phi D^-1 z1; Phi z2], so u_k = [D^-1 Phi^T (lambda_k M + C) x_k; Phi^T M x_k] / n_k.
@@ -106,9 +106,10 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
     const double condition = left * v.col(k).norm() / std::abs(normalisation_(k));
     worst = std::isfinite(condition) ? std::max(worst, condition) : std::numeric_limits<double>::infinity();
   }
-  rcond_ = worst > 0 ? 1 / worst : 0.0;
+  // A cluster whose vectors are nearly parallel has a near-singular Gram matrix even when each n_k is not small.
+  rcond_ = std::min(worst > 0 ? 1 / worst : 0.0, cluster_rcond);
   if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
-    throw NumericalError("state-space modes are (nearly) defective: eigenvector matrix rcond = " +
+    throw NumericalError("state-space modes are (nearly) defective: eigenvalue condition rcond = " +
                          format_value(rcond_));
 }
 
@@ -133,16 +134,19 @@ void StateSpaceModes::refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen:
       lambda_(k) = best.real();
       continue;
     }
+    // Its conjugate partner: Eigen's solver stores a complex pair as exact conjugates at k and k + 1. Matching by
+    // that exact value, not by nearness, keeps two underdamped modes less than 1e-6 apart from trading partners.
+    const complex partner = std::conj(lambda_(k));
     lambda_(k) = best;
-    for (Eigen::Index j = 0; j < lambda_.size(); ++j)  // its conjugate partner (Eigen stores it next to it)
-      if (j != k && lambda_(j).imag() < 0 && std::abs(lambda_(j) - std::conj(lambda_(k))) < 1e-6 * std::abs(best)) {
+    for (Eigen::Index j = k + 1; j < lambda_.size(); ++j)
+      if (lambda_(j) == partner) {
         lambda_(j) = std::conj(best);
         break;
       }
   }
 }
 
-void StateSpaceModes::group_clusters() {
+double StateSpaceModes::group_clusters() {
   // Union of every pair within 1e-3 (relative) of each other, by a scan over the pairs (2n is small).
   constexpr double kClusterGap = 1e-3;
   const Eigen::Index m = lambda_.size();
@@ -158,6 +162,7 @@ void StateSpaceModes::group_clusters() {
           kClusterGap * kClusterGap * std::max(std::norm(lambda_(j)), std::norm(lambda_(k))))
         root[find(k)] = find(j);
   std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(m));
+  double smallest = 1;
   for (Eigen::Index k = 0; k < m; ++k) members[find(k)].push_back(k);
   for (auto& cluster : members) {
     if (cluster.size() < 2) continue;
@@ -169,9 +174,17 @@ void StateSpaceModes::group_clusters() {
         gram(a, b) =
             vectors_.col(j).transpose() * (damping_vectors_.col(k) + (lambda_(j) + lambda_(k)) * mass_vectors_.col(k));
       }
+    // The reciprocal condition of the Gram matrix scaled to a unit diagonal (its LU's estimate).
+    Eigen::MatrixXcd scaled(size, size);
+    for (Eigen::Index a = 0; a < size; ++a)
+      for (Eigen::Index b = 0; b < size; ++b)
+        scaled(a, b) = gram(a, b) / std::sqrt(std::abs(gram(a, a)) * std::abs(gram(b, b)));
+    const double rcond = scaled.allFinite() ? Eigen::PartialPivLU<Eigen::MatrixXcd>(scaled).rcond() : 0.0;
+    smallest = std::isfinite(rcond) ? std::min(smallest, rcond) : 0.0;
     cluster_gram_.emplace_back(gram);
     clusters_.push_back(std::move(cluster));
   }
+  return smallest;
 }
 
 Eigen::VectorXcd StateSpaceModes::modal_solve(const Eigen::VectorXcd& rhs) const {

@@ -55,8 +55,9 @@ struct SimulationStats {
   long linear_solver_setups = 0;  // LU (dense) or Cholesky (structured) factorisations
   long error_test_failures = 0;
   long nonlinear_convergence_failures = 0;
-  int modes = 0;                 // fast: state-space modes kept
-  double eigenvector_rcond = 0;  // fast: reciprocal condition of the modal matrix
+  int modes = 0;  // fast: state-space modes kept
+  double eigenvector_rcond =
+      0;  // fast: galerkin::StateSpaceModes::eigenvector_rcond (1 / largest eigenvalue condition)
 };
 
 struct Trace {

@@ -149,6 +149,7 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   };
   // The step beside the predicted least-squares basin; "(coarse)" when it exceeds a third of it.
   const auto step_md = [](const Resolution& r) {
+    if (!std::isfinite(r.frequency_step) || !std::isfinite(r.predicted_basin)) return std::string("unknown");
     return pct(r.frequency_step) + (r.resolved() ? "" : " (coarse: basin " + pct(r.predicted_basin) + ")");
   };
   for (const auto& s : metrics.slices) {
@@ -160,7 +161,7 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
     md << "| " << s.cost << " | " << s.parameter << " | " << step_md(s.resolution) << " | " << s.shape.local_minima
        << " | "
        << (s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
-                                   : "unresolved")
+                                   : std::string("unresolved"))
        << " | " << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share) << " | - |\n";
   }
   for (const auto& g : metrics.grids) {

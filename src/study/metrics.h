@@ -73,7 +73,8 @@ GridShape grid_shape(const std::vector<double>& cost, int nx, int ny);
 // relative frequency, max_k |d log f_k / d log q| x (step in log q) over the fitted modes (the widest of both axes for
 // a grid), against the predicted basin min_k 1/(2 f_k T_eff,k) of its experiment. A sample spacing wider than a third
 // of that basin cannot show the least-squares needle, so the monotone region around the lowest sample may be the bowl
-// the needle sits in: its basin width is then reported as unresolved, not as a number.
+// the needle sits in: its basin width is then reported as unresolved, not as a number. A damping axis moves no
+// natural frequency (step 0): it has no least-squares needle to miss and counts as resolved.
 struct Resolution {
   double frequency_step = std::numeric_limits<double>::quiet_NaN();
   double predicted_basin = std::numeric_limits<double>::quiet_NaN();

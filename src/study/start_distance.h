@@ -64,11 +64,11 @@ struct StartRun {
   std::vector<StartCurvePoint> points;         // by offset
   HalfRadius radius, radius_low, radius_high;  // from the rates, their Wilson lower and upper bounds
 };
-struct StartDistanceMetrics {
+struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print "-" for them)
   int fitted_modes = 0;
-  double highest_mode_hz = 0;  // the truth's mode `fitted_modes`
+  double highest_mode_hz = std::nan("");  // the truth's mode `fitted_modes`
   double record_s = 0;
-  double predicted_basin = 0;  // 1 / (2 f T)
+  double predicted_basin = std::nan("");  // 1 / (2 f T)
   // The same with each mode's own duration: a mode of decay rate sigma is visible for about 1/sigma, so its phase
   // error accumulates only over T_eff = min(T, 1/sigma), and the basin is that of the most restrictive fitted mode,
   // min_k 1 / (2 f_k T_eff,k) (the highest mode when the modes decay slowly, as on the thin beam; a lower, longer-lived
@@ -76,13 +76,13 @@ struct StartDistanceMetrics {
   // Neither is the measured radius: the cost sums the modes' terms weighted by their energy, so the radius lies
   // between the most restrictive term's basin and the dominant mode's; the highest mode's 1/(2 f T_eff) is kept
   // beside it (radius.csv).
-  int limiting_mode = 0;        // 1-based: the k of the minimum
-  double limiting_mode_hz = 0;  // its f_k
-  double decay_rate_1_s = 0;    // its sigma_k
-  double predicted_basin_decay = 0;
-  double predicted_basin_highest_decay = 0;  // 1 / (2 f T_eff) of mode `fitted_modes`
-  std::vector<StartRun> runs;                // in the order of start_distance.runs
-  std::vector<bool> reached;                 // per results.starts row
+  int limiting_mode = 0;                   // 1-based: the k of the minimum
+  double limiting_mode_hz = std::nan("");  // its f_k
+  double decay_rate_1_s = std::nan("");    // its sigma_k
+  double predicted_basin_decay = std::nan("");
+  double predicted_basin_highest_decay = std::nan("");  // 1 / (2 f T_eff) of mode `fitted_modes`
+  std::vector<StartRun> runs;                           // in the order of start_distance.runs
+  std::vector<bool> reached;                            // per results.starts row
 };
 // Fills the predictions above (highest_mode_hz, record_s, predicted_basin, limiting_mode ...
 // predicted_basin_highest_decay) for the first m.fitted_modes modes of natural frequencies f (Hz) and damping ratios

@@ -130,7 +130,8 @@ TEST(StartDistance, PredictedBasinsTakeTheMostRestrictiveFittedMode) {
   none.fitted_modes = 3;
   predict_basins({81.7}, {7.57e-4}, 0.8192, none);
   EXPECT_EQ(none.limiting_mode, 0);
-  EXPECT_EQ(none.predicted_basin, 0);
+  EXPECT_TRUE(std::isnan(none.predicted_basin));
+  EXPECT_TRUE(std::isnan(none.predicted_basin_decay));
 }
 
 }  // namespace
