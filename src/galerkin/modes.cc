@@ -88,10 +88,10 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
   mass_vectors_ = real_times(s.M, vectors_);
   damping_vectors_ = real_times(s.C, vectors_);
   const Eigen::MatrixXcd stiffness_vectors = real_times(s.K, vectors_);
-  refine_eigenvalues(column_products(vectors_, mass_vectors_), column_products(vectors_, damping_vectors_),
-                     column_products(vectors_, stiffness_vectors));
-  normalisation_ = 2.0 * lambda_.cwiseProduct(column_products(vectors_, mass_vectors_)) +
-                   column_products(vectors_, damping_vectors_);
+  const Eigen::VectorXcd mass_forms = column_products(vectors_, mass_vectors_);
+  const Eigen::VectorXcd damping_forms = column_products(vectors_, damping_vectors_);
+  refine_eigenvalues(mass_forms, damping_forms, column_products(vectors_, stiffness_vectors));
+  normalisation_ = 2.0 * lambda_.cwiseProduct(mass_forms) + damping_forms;
   const double cluster_rcond = group_clusters();
 
   // Left eigenvector of A in z = [D q; q'] coordinates: eta_k = phi_k^T [C M; M 0] u / n_k with u = [w; w'] =
