@@ -68,6 +68,28 @@ for pair in $(printf '%s\n' $pairs | LC_ALL=C sort -u); do
   plot landscape_grid "landscape_grid_${a}_${b}" "a='$a'; b='$b'; costs='$(ordered "$known_costs" "$costs")'"
 done
 
+# landscape_zoom_<setting>_<a>_<b>: landscape/zoom/<setting>/grid_<cost>_<a>_<b>.dat, the fine grids around the truth
+# of one N and noise level (<setting> = N<n>-noise<level>), one figure per setting and pair
+for d in "$res"/landscape/zoom/*/; do
+  setting=${d%/}; setting=${setting##*/}
+  pairs=""
+  for f in "$d"grid_*_*_*.dat; do
+    b=${f##*/}; b=${b%.dat}
+    pb=${b##*_}; rest=${b%_*}; pa=${rest##*_}
+    pairs+=" ${pa}_${pb}"
+  done
+  for pair in $(printf '%s\n' $pairs | LC_ALL=C sort -u); do
+    a=${pair%_*} b=${pair#*_} costs=""
+    for f in "$d"grid_*_"${a}_${b}".dat; do
+      c=${f##*/}; c=${c#grid_}; c=${c%_"${a}_${b}".dat}
+      costs+=" $c"
+    done
+    n=${setting%%-*}; level=${setting#*-noise}
+    plot landscape_grid "landscape_zoom_${setting}_${a}_${b}" \
+      "a='$a'; b='$b'; sub='zoom/$setting/'; what=' near the truth, ${n/N/N = }, noise $level'; costs='$(ordered "$known_costs" "$costs")'"
+  done
+done
+
 # bias_<param>: bias_<param>.csv
 found=""
 for f in "$res"/bias_*.csv; do

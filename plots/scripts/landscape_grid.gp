@@ -7,7 +7,10 @@
 # narrow valleys (time), terraces (spike) and one smooth basin (spike-smooth) can be told apart.
 # The white cross marks the truth (1,1).
 load lib.'/common.gp'
-grid(cn) = sprintf("%s/landscape/grid_%s_%s_%s.dat", dir, cn, a, b)
+# sub: a subfolder of landscape/ ("zoom/N16-noise0/": the fine grids of one N and noise level), "" for the wide grids
+if (!exists("sub")) sub = ""
+if (!exists("what")) what = ""
+grid(cn) = sprintf("%s/landscape/%sgrid_%s_%s_%s.dat", dir, sub, cn, a, b)
 # half cell width in log space: the grid is log-spaced, so use (log max - log min) / (2 (count - 1))
 halfcell(f, col) = real(system(sprintf("awk '!/^#/ && NF >= 4 {v[$%d]} END {n = 0; for (k in v) {n++; lo = (n == 1 || k+0 < lo) ? k+0 : lo; hi = (n == 1 || k+0 > hi) ? k+0 : hi} printf \"%%.9e\\n\", (n > 1 && lo > 0) ? (log(hi) - log(lo)) / (2 * (n - 1)) : 0.05}' '%s'", col, f)))
 n = words(costs)
@@ -22,8 +25,13 @@ set cblabel "log10 normalised cost"
 set logscale xy
 set autoscale xfix
 set autoscale yfix
-set xtics (0.1, 0.2, 0.5, 0.67, 0.8, 1, 1.25, 1.5, 2, 5, 10)
-set ytics (0.1, 0.2, 0.5, 0.67, 0.8, 1, 1.25, 1.5, 2, 5, 10)
+if (sub eq "") {
+  set xtics (0.1, 0.2, 0.5, 0.67, 0.8, 1, 1.25, 1.5, 2, 5, 10)
+  set ytics (0.1, 0.2, 0.5, 0.67, 0.8, 1, 1.25, 1.5, 2, 5, 10)
+} else {  # a fine grid, a few per cent around the truth
+  set xtics (0.95, 0.97, 0.98, 0.99, 0.995, 1, 1.005, 1.01, 1.02, 1.03, 1.05)
+  set ytics (0.95, 0.97, 0.98, 0.99, 0.995, 1, 1.005, 1.01, 1.02, 1.03, 1.05)
+}
 set xlabel a." / true value" noenhanced
 set ylabel b." / true value" noenhanced offset 1, 0
 set label 1 "" at 1, 1 point pt 2 ps 2.5 lw 3 lc rgb "#ffffff" front
@@ -35,7 +43,7 @@ set cntrparam levels discrete -6, -5, -4, -3, -2, -1
 
 do for [fmt in "png svg"] {
   eval term(fmt, W, 640, name)
-  set multiplot layout 1, n title sprintf("Cost landscape over (%s, %s): log10 normalised cost, contours every decade, white cross = truth\n%s", a, b, prov) noenhanced \
+  set multiplot layout 1, n title sprintf("Cost landscape over (%s, %s)%s: log10 normalised cost, contours every decade, white cross = truth\n%s", a, b, what, prov) noenhanced \
       margins 95.0 / W, 1 - 110.0 / W, 0.12, 0.82 spacing 90.0 / W
   do for [i = 1:n] {
     cn = word(costs, i)

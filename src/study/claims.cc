@@ -160,7 +160,7 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
                           by_cost[cost].successes, by_cost[cost].cases});
   std::vector<SliceRow> slice_rows;  // the first experiment's
   for (const auto& s : landscape.slices)
-    if (s.first_experiment) slice_rows.push_back(s);
+    if (s.first_experiment && s.first_setting) slice_rows.push_back(s);
   const auto rate = [&](const std::string& c) { return by_cost.count(c) ? by_cost[c].rate() : -1.0; };
   // Rates are compared only from 10 fits per cost up: below that the intervals span most of [0, 1].
   const auto enough = [&](const std::string& c) { return by_cost.count(c) && by_cost[c].cases >= 10; };
@@ -214,7 +214,7 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
     for (const auto& cost : spec.landscape.cost) {
       std::map<int, std::vector<double>> widths;
       for (const auto& b : landscape.slices)  // only where the slice resolves the least-squares basin
-        if (b.cost == cost && b.resolution.resolved())
+        if (b.cost == cost && b.first_setting && b.resolution.resolved())
           widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
       if (widths.size() < 2) continue;
       const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);

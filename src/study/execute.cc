@@ -253,8 +253,10 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
     int modes = 0, spikes = 0;
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("modes_in_data", static_cast<double>(modes));
+    // A noisy landscape sees the record of the sweep's replicate 0 at its noise level (the same draw as its cases).
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
     const model::BeamParameters beam = spec.truth.parameters;
-    const double F = spec.landscape.range_factor;
+    const double F = unit.range_factor > 1 ? unit.range_factor : spec.landscape.range_factor;
     // Log-spaced axis v F^(2j/(P-1) - 1), j = 0..P-1: the middle point (P odd) is the true value.
     const auto axis = [&](const std::string& key, int points) {
       std::vector<double> x(static_cast<std::size_t>(points));
@@ -263,13 +265,13 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
       return x;
     };
     if (unit.kind == "slice" || unit.kind == "grid") {
-      fit::Objective objective(o, clean);
+      fit::Objective objective(o, data);
       const auto cost_at = [&](const model::BeamParameters& b) {
         const double c = objective.evaluate(b).evaluation.value;
         return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
       };
       if (unit.kind == "slice") {
-        const std::vector<double> x = axis(unit.parameters[0], spec.landscape.points);
+        const std::vector<double> x = axis(unit.parameters[0], unit.points);
         std::vector<double> c;
         for (double v : x) {
           model::BeamParameters b = beam;
@@ -279,8 +281,8 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         r.set("x", x);
         r.set("cost", c);
       } else {
-        const std::vector<double> x = axis(unit.parameters[0], spec.landscape.grid_points);
-        const std::vector<double> y = axis(unit.parameters[1], spec.landscape.grid_points);
+        const std::vector<double> x = axis(unit.parameters[0], unit.points);
+        const std::vector<double> y = axis(unit.parameters[1], unit.points);
         std::vector<double> c;
         for (double u : x)
           for (double v : y) {
@@ -308,7 +310,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
               std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]);
       }
       for (const auto& e : o.estimate) r.set("start." + e.key, value(o.start, e.key));
-      const fit::FitResult result = fit::fit(o, clean);
+      const fit::FitResult result = fit::fit(o, data);
       r.set("status", result.status);
       r.set("cost", result.cost);
       r.set("evaluations", static_cast<double>(result.evaluations));
@@ -340,11 +342,11 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       // at the same frequency offset of the same modes.
       const galerkin::SplineSpace space(unit.elements);
       const galerkin::BeamForms forms(space, spec.truth.parameters.l);
-      const Eigen::VectorXd u = random_direction(
-          signal::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
-          static_cast<int>(spec.fit.estimate.size()));
-      const OffsetStart s = offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset,
-                                         spec.fit.bound_factor);
+      const Eigen::VectorXd u =
+          random_direction(signal::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
+                           static_cast<int>(spec.fit.estimate.size()));
+      const OffsetStart s =
+          offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset, spec.fit.bound_factor);
       for (const auto& key : spec.fit.estimate) member(o.start, key) = value(s.start, key);
       r.set("frequency_offset", s.frequency_offset);
       r.set("shrunk", s.shrunk ? 1.0 : 0.0);

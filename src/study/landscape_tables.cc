@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "io/text.h"
@@ -26,7 +27,13 @@ std::pair<double, double> finite_range(const std::vector<double>& c) {
   return {mn, mx};
 }
 
-Rendered slice_file(const LandscapeRow& l, double v) {
+// The folder name of a landscape setting, "N8-noise0.01".
+std::string setting_name(const Unit& u) {
+  return "N" + std::to_string(u.elements) + "-noise" + io::round_trip(u.noise);
+}
+
+// The first setting's slices are landscape/slice_*.csv; the others' landscape/<setting>/slice_*.csv.
+Rendered slice_file(const LandscapeRow& l, double v, bool first_setting) {
   const Unit& u = *l.unit;
   const std::vector<double> x = l.record.has("x") ? l.record.numbers("x") : std::vector<double>{};
   const std::vector<double> c = l.record.has("cost") ? l.record.numbers("cost") : std::vector<double>{};
@@ -36,11 +43,13 @@ Rendered slice_file(const LandscapeRow& l, double v) {
   for (std::size_t j = 0; j < c.size() && j < x.size(); ++j)
     os << io::round_trip(x[j] / v) << "," << io::round_trip(x[j]) << "," << io::round_trip(c[j]) << ","
        << io::round_trip(std::isfinite(c[j]) && mx > mn ? (c[j] - mn) / (mx - mn) : kNaN) << "\n";
-  return {"landscape/slice_" + u.cost + "_" + u.parameters[0] + ".csv", os.str()};
+  return {"landscape/" + (first_setting ? std::string() : setting_name(u) + "/") + "slice_" + u.cost + "_" +
+              u.parameters[0] + ".csv",
+          os.str()};
 }
 
 // gnuplot pm3d blocks (a blank line after each x row); the height is log10 of the normalised cost, which shows the
-// floor of a basin as well as its walls.
+// floor of a basin as well as its walls. Wide grids are landscape/grid_*.dat, fine ones landscape/zoom/<setting>/.
 Rendered grid_file(const LandscapeRow& l, double va, double vb) {
   const Unit& u = *l.unit;
   const std::vector<double> x = l.record.numbers("x"), y = l.record.numbers("y"), c = l.record.numbers("cost");
@@ -57,7 +66,9 @@ Rendered grid_file(const LandscapeRow& l, double va, double vb) {
     }
     os << "\n";
   }
-  return {"landscape/grid_" + u.cost + "_" + u.parameters[0] + "_" + u.parameters[1] + ".dat", os.str()};
+  return {"landscape/" + (u.zoom ? "zoom/" + setting_name(u) + "/" : std::string()) + "grid_" + u.cost + "_" +
+              u.parameters[0] + "_" + u.parameters[1] + ".dat",
+          os.str()};
 }
 
 std::string start_label(int index) { return index < 0 ? "truth" : std::to_string(index); }
@@ -116,7 +127,8 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   for (const LandscapeRow& l : results.landscape) {
     const Unit& u = *l.unit;
     const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
-    if (u.kind == "slice" && first) files.push_back(slice_file(l, true_value(spec, u.parameters[0])));
+    if (u.kind == "slice" && first)
+      files.push_back(slice_file(l, true_value(spec, u.parameters[0]), first_setting(spec, u)));
   }
   for (const GridRow& g : metrics.grids)  // the grids whose lists agree in size (metrics.h)
     files.push_back(grid_file(*g.row, true_value(spec, g.a), true_value(spec, g.b)));
@@ -124,13 +136,14 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   files.insert(files.end(), ms.begin(), ms.end());
 
   std::ostringstream basin;
-  basin << "modes_in_data,pulse_width_s,samples,cost,parameter,local_minima,basin_lower,basin_upper,basin_width,"
-           "frequency_step,predicted_basin,resolved\n";
+  basin << "modes_in_data,pulse_width_s,samples,N,noise,cost,parameter,local_minima,basin_lower,basin_upper,"
+           "basin_width,frequency_step,predicted_basin,resolved\n";
   for (const auto& s : metrics.slices) {
     const Record& rec = s.row->record;
     basin << (rec.has("modes_in_data") ? rec.text("modes_in_data") : "nan") << ","
-          << io::round_trip(s.row->unit->pulse_width_s) << "," << s.row->unit->samples << "," << s.cost << ","
-          << s.parameter << "," << s.shape.local_minima << "," << io::round_trip(s.shape.basin_lower) << ","
+          << io::round_trip(s.row->unit->pulse_width_s) << "," << s.row->unit->samples << "," << s.row->unit->elements
+          << "," << io::round_trip(s.row->unit->noise) << "," << s.cost << "," << s.parameter << ","
+          << s.shape.local_minima << "," << io::round_trip(s.shape.basin_lower) << ","
           << io::round_trip(s.shape.basin_upper) << "," << io::round_trip(s.shape.basin_upper - s.shape.basin_lower)
           << "," << io::round_trip(s.resolution.frequency_step) << "," << io::round_trip(s.resolution.predicted_basin)
           << "," << (s.resolution.resolved() ? 1 : 0) << "\n";
@@ -138,8 +151,8 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   files.push_back({"landscape/basin.csv", basin.str()});
 
   std::ostringstream csv, md;
-  csv << "cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,descent_share,"
-         "frequency_step,predicted_basin,resolved\n";
+  csv << "N,noise,cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,"
+         "descent_share,frequency_step,predicted_basin,resolved\n";
   md << "| cost | slice or grid | step in frequency | local minima | basin around the minimum | TV / range | flat "
         "steps "
         "| grid points descending to the minimum |\n|---|---|---|---|---|---|---|---|\n";
@@ -152,25 +165,75 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
     if (!std::isfinite(r.frequency_step) || !std::isfinite(r.predicted_basin)) return std::string("unknown");
     return pct(r.frequency_step) + (r.resolved() ? "" : " (coarse: basin " + pct(r.predicted_basin) + ")");
   };
+  const auto setting_csv = [](const Unit& u) { return std::to_string(u.elements) + "," + io::round_trip(u.noise); };
+  const auto basin_md = [](const SliceRow& s) {
+    return s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
+                                   : std::string("unresolved");
+  };
+  const auto grid_label = [&](const GridRow& g) {
+    return g.a + " x " + g.b +
+           (g.zoom ? " (+-" + pct(spec.landscape.zoom_range_factor - 1) + ", " +
+                         std::to_string(spec.landscape.zoom_points) + " points per axis)"
+                   : std::string());
+  };
   for (const auto& s : metrics.slices) {
     if (!s.first_experiment) continue;
-    csv << s.cost << ",slice," << s.parameter << "," << s.shape.local_minima << ","
+    csv << setting_csv(*s.row->unit) << "," << s.cost << ",slice," << s.parameter << "," << s.shape.local_minima << ","
         << io::round_trip(s.shape.basin_lower) << "," << io::round_trip(s.shape.basin_upper) << ","
         << io::round_trip(s.shape.total_variation_ratio) << "," << io::round_trip(s.shape.flat_share) << ",nan,"
         << resolution_csv(s.resolution) << "\n";
+    if (!s.first_setting) continue;
     md << "| " << s.cost << " | " << s.parameter << " | " << step_md(s.resolution) << " | " << s.shape.local_minima
-       << " | "
-       << (s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
-                                   : std::string("unresolved"))
-       << " | " << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share) << " | - |\n";
+       << " | " << basin_md(s) << " | " << g3(s.shape.total_variation_ratio) << " | " << pct(s.shape.flat_share)
+       << " | - |\n";
   }
   for (const auto& g : metrics.grids) {
-    csv << g.cost << ",grid," << g.a << "+" << g.b << "," << g.shape.local_minima << ",nan,nan,nan,"
-        << io::round_trip(g.shape.flat_share) << "," << io::round_trip(g.shape.descent_share) << ","
-        << resolution_csv(g.resolution) << "\n";
-    md << "| " << g.cost << " | " << g.a << " x " << g.b << " | " << step_md(g.resolution) << " | "
-       << g.shape.local_minima << " | - | - | " << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share)
-       << " |\n";
+    csv << setting_csv(*g.row->unit) << "," << g.cost << "," << (g.zoom ? "zoom-grid," : "grid,") << g.a << "+" << g.b
+        << "," << g.shape.local_minima << ",nan,nan,nan," << io::round_trip(g.shape.flat_share) << ","
+        << io::round_trip(g.shape.descent_share) << "," << resolution_csv(g.resolution) << "\n";
+    if (!g.first_setting) continue;
+    md << "| " << g.cost << " | " << grid_label(g) << " | " << step_md(g.resolution) << " | " << g.shape.local_minima
+       << " | - | - | " << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share) << " |\n";
+  }
+  // Across N and noise (the first experiment): one column per setting, one row per slice or fine grid.
+  if (spec.landscape.elements.size() * spec.landscape.noise.size() > 1) {
+    std::ostringstream across;
+    across << "| cost | slice or grid |";
+    for (int n : spec.landscape.elements)
+      for (double noise : spec.landscape.noise) across << " N = " << n << ", noise " << pct(noise) << " |";
+    across << "\n|---|---|";
+    for (std::size_t i = 0; i < spec.landscape.elements.size() * spec.landscape.noise.size(); ++i) across << "---|";
+    across << "\n";
+    // Cells in plan order: the settings of one (cost, axis) follow the order N, then noise.
+    std::map<std::pair<std::string, std::string>, std::vector<std::string>> rows;
+    std::vector<std::pair<std::string, std::string>> order;
+    const auto cell = [&](const std::string& cost, const std::string& what, const std::string& text) {
+      const auto key = std::make_pair(cost, what);
+      if (!rows.count(key)) order.push_back(key);
+      rows[key].push_back(text);
+    };
+    for (const auto& s : metrics.slices)
+      if (s.first_experiment)
+        cell(s.cost, s.parameter,
+             basin_md(s) + ", " + std::to_string(s.shape.local_minima) + " minima" +
+                 (s.resolution.resolved() ? std::string() : " (coarse)"));
+    for (const auto& g : metrics.grids)
+      if (g.zoom)
+        cell(g.cost, grid_label(g),
+             std::to_string(g.shape.local_minima) + " minima, " + pct(g.shape.descent_share) + " descend" +
+                 (g.resolution.resolved() ? std::string() : " (coarse)"));
+    std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
+      const auto rank = [&](const std::string& c) {
+        return std::find(spec.landscape.cost.begin(), spec.landscape.cost.end(), c) - spec.landscape.cost.begin();
+      };
+      return rank(x.first) < rank(y.first);
+    });
+    for (const auto& key : order) {
+      across << "| " << key.first << " | " << key.second << " |";
+      for (const auto& text : rows[key]) across << " " << text << " |";
+      across << "\n";
+    }
+    files.push_back({"landscape_across.md", across.str()});
   }
   if (!metrics.multistarts.empty()) {
     md << "\nLocal fits from " << spec.landscape.multistarts

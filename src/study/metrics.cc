@@ -197,7 +197,7 @@ Resolution landscape_resolution(const StudyResults& results, const Unit& u, cons
                  prediction);
   if (prediction.limiting_mode == 0) return r;
   try {
-    const galerkin::BeamForms forms(galerkin::SplineSpace(spec.landscape.elements), spec.truth.parameters.l);
+    const galerkin::BeamForms forms(galerkin::SplineSpace(u.elements), spec.truth.parameters.l);
     const Eigen::MatrixXd g = frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);
     double step = 0;
     for (std::size_t i = 0; i < keys.size(); ++i)
@@ -210,6 +210,10 @@ Resolution landscape_resolution(const StudyResults& results, const Unit& u, cons
 }
 
 }  // namespace
+
+bool first_setting(const StudySpec& spec, const Unit& u) {
+  return u.elements == spec.landscape.elements.front() && u.noise == spec.landscape.noise.front();
+}
 
 LandscapeMetrics landscape_metrics(const StudyResults& results) {
   const StudySpec& spec = *results.spec;
@@ -228,7 +232,7 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
       const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
       m.slices.push_back(
           {&l, rec.has("modes_in_data") ? static_cast<int>(rec.number("modes_in_data")) : 0, u.cost, u.parameters[0],
-           slice_shape(x, c, v), first,
+           slice_shape(x, c, v), first, first_setting(spec, u),
            x.size() > 1 ? landscape_resolution(results, u, {u.parameters[0]}, {std::log(x[1] / x[0])}) : Resolution{}});
     } else {
       const std::vector<double> y = list("y");
@@ -238,7 +242,8 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
                          x.size() > 1 && y.size() > 1
                              ? landscape_resolution(results, u, {u.parameters[0], u.parameters[1]},
                                                     {std::log(x[1] / x[0]), std::log(y[1] / y[0])})
-                             : Resolution{}});
+                             : Resolution{},
+                         u.zoom, first_setting(spec, u)});
     }
   }
   for (const auto& cost : spec.landscape.cost) {

@@ -86,6 +86,7 @@ struct SliceRow {
   std::string cost, parameter;
   SliceShape shape;
   bool first_experiment;  // the experiment of the tables (grids, multi-starts, slices plots)
+  bool first_setting;     // at the first N and noise level of [landscape] (the tables' setting)
   Resolution resolution;
 };
 struct GridRow {
@@ -93,6 +94,8 @@ struct GridRow {
   std::string cost, a, b;
   GridShape shape;
   Resolution resolution;
+  bool zoom;           // a fine grid around the truth (landscape.zoom_range_factor)
+  bool first_setting;  // at the first N and noise level of [landscape]
 };
 
 // Local fits from the truth (start -1) and from random starts. The reference minimum of a cost is the lowest final
@@ -117,6 +120,9 @@ struct LandscapeMetrics {
   std::vector<MultistartSummary> multistarts;  // in the order of landscape.cost
 };
 LandscapeMetrics landscape_metrics(const StudyResults& results);
+// Whether a landscape unit is at the first N and noise level of [landscape] (the setting of the tables and claims
+// that compare costs: a comparison holds N and noise fixed).
+bool first_setting(const StudySpec& spec, const Unit& u);
 
 // Efficiency (outputs.efficiency): per group of noisy replicates and parameter, the fits that stayed at the global
 // minimum (success: every estimate within the study's tolerances) summarised apart from those that left it, against

@@ -54,9 +54,9 @@ std::string fit_text(const StudySpec& spec) {
 // The noise realisation of a record: (study seed, truth, record length, noise level, replicate) only, so that every
 // cost, N, method and start sees the same noisy record (common random numbers).
 std::uint64_t record_noise_seed(const StudySpec& spec, const Unit& truth, int samples, double noise, int replicate) {
-  return signal::mix64(spec.seed ^ signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" +
-                                                   std::to_string(samples) + ";noise=" + io::round_trip(noise) +
-                                                   ";replicate=" + std::to_string(replicate)));
+  return signal::mix64(spec.seed ^
+                       signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" + std::to_string(samples) +
+                                       ";noise=" + io::round_trip(noise) + ";replicate=" + std::to_string(replicate)));
 }
 
 }  // namespace
@@ -106,55 +106,75 @@ Plan make_plan(const StudySpec& spec) {
                   plan.units.push_back(u);
                 }
   if (spec.landscape.enabled) {
-    // Slices for every experiment (truth x record length), so basin widths can be set against the number of modes;
-    // grids and multi-starts for the first experiment only.
+    // Slices for every experiment (truth x record length), fitted N and noise level, so basin widths can be set
+    // against the number of modes, the discretisation and the noise; the wide grids and the multi-starts for the
+    // first experiment, N and noise only; the fine (zoom) grids for every N and noise of the first experiment.
     const auto& l = spec.landscape;
-    bool first = true;
+    bool first_experiment = true;
     for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
       for (int samples : spec.sweep.samples) {
-        const std::string base = plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) +
-                                 ";N=" + std::to_string(l.elements) + ";" + fit +
-                                 ";range_factor=" + io::round_trip(l.range_factor);
-        const auto add = [&](Unit u) {
-          u.truth = static_cast<int>(ti);
-          u.pulse_width_s = plan.truths[ti].pulse_width_s;
-          u.samples = samples;
-          u.elements = l.elements;
-          identify(u, spec);
-          plan.units.push_back(u);
-        };
-        for (const auto& cost : l.cost) {
-          for (const auto& key : spec.fit.estimate) {
-            Unit u;
-            u.kind = "slice";
-            u.cost = cost;
-            u.parameters = {key};
-            u.canonical =
-                "slice;" + base + ";cost=" + cost + ";parameter=" + key + ";points=" + std::to_string(l.points);
-            add(u);
+        for (int n : l.elements)
+          for (double noise : l.noise) {
+            const bool first = first_experiment && n == l.elements.front() && noise == l.noise.front();
+            // A noise-free unit's text is what it was before noise levels existed (its id, and a resumed store,
+            // stay valid).
+            const std::string noise_text = noise == 0 ? "" : ";noise=" + io::round_trip(noise);
+            const auto base = [&](double range_factor) {
+              return plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) +
+                     ";N=" + std::to_string(n) + ";" + fit + ";range_factor=" + io::round_trip(range_factor) +
+                     noise_text;
+            };
+            const auto add = [&](Unit u) {
+              u.truth = static_cast<int>(ti);
+              u.pulse_width_s = plan.truths[ti].pulse_width_s;
+              u.samples = samples;
+              u.elements = n;
+              u.noise = noise;
+              u.noise_seed = noise == 0 ? 0 : record_noise_seed(spec, plan.truths[ti], samples, noise, 0);
+              identify(u, spec);
+              plan.units.push_back(u);
+            };
+            for (const auto& cost : l.cost) {
+              for (const auto& key : spec.fit.estimate) {
+                Unit u;
+                u.kind = "slice";
+                u.cost = cost;
+                u.parameters = {key};
+                u.range_factor = l.range_factor;
+                u.points = l.points;
+                u.canonical = "slice;" + base(l.range_factor) + ";cost=" + cost + ";parameter=" + key +
+                              ";points=" + std::to_string(l.points);
+                add(u);
+              }
+              if (!first_experiment) continue;
+              for (const auto& [a, b] : l.pairs)
+                for (const bool zoom : {false, true}) {
+                  if (zoom ? l.zoom_range_factor <= 1 : !first) continue;
+                  Unit u;
+                  u.kind = "grid";
+                  u.cost = cost;
+                  u.parameters = {a, b};
+                  u.zoom = zoom;
+                  u.range_factor = zoom ? l.zoom_range_factor : l.range_factor;
+                  u.points = zoom ? l.zoom_points : l.grid_points;
+                  u.canonical = "grid;" + base(u.range_factor) + ";cost=" + cost + ";parameters=" + a + "," + b +
+                                ";points=" + std::to_string(u.points);
+                  add(u);
+                }
+              if (!first) continue;
+              // Index -1 starts at the truth: with the random starts it gives the reference minimum of the cost.
+              for (int k = l.multistarts > 0 ? -1 : 0; k < l.multistarts; ++k) {
+                Unit u;
+                u.kind = "multistart";
+                u.cost = cost;
+                u.index = k;
+                u.canonical = "multistart;" + base(l.range_factor) + ";cost=" + cost + ";start=" +
+                              (k < 0 ? std::string("truth") : std::to_string(k) + "/" + std::to_string(l.multistarts));
+                add(u);
+              }
+            }
           }
-          if (!first) continue;
-          for (const auto& [a, b] : l.pairs) {
-            Unit u;
-            u.kind = "grid";
-            u.cost = cost;
-            u.parameters = {a, b};
-            u.canonical = "grid;" + base + ";cost=" + cost + ";parameters=" + a + "," + b +
-                          ";points=" + std::to_string(l.grid_points);
-            add(u);
-          }
-          // Index -1 starts at the truth: with the random starts it gives the reference minimum of the cost.
-          for (int k = l.multistarts > 0 ? -1 : 0; k < l.multistarts; ++k) {
-            Unit u;
-            u.kind = "multistart";
-            u.cost = cost;
-            u.index = k;
-            u.canonical = "multistart;" + base + ";cost=" + cost + ";start=" +
-                          (k < 0 ? std::string("truth") : std::to_string(k) + "/" + std::to_string(l.multistarts));
-            add(u);
-          }
-        }
-        first = false;
+        first_experiment = false;
       }
   }
   if (spec.outputs.efficiency)

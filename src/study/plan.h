@@ -3,7 +3,8 @@
 //               record of the sweep; the first is also integrated with CVODE as an independent cross-check);
 //   case        one fit: the Cartesian product of the sweep (N, cost, noise, replicate, method, start, pulse width,
 //               record length); a noise-free case is run once (replicate 0), since its replicates would be identical;
-//   slice/grid  a cost evaluated along one parameter axis, or on a grid of two, through the truth (landscape);
+//   slice/grid  a cost evaluated along one parameter axis, or on a grid of two, through the truth (landscape), for
+//               every fitted N and noise level of [landscape] (noisy records: the sweep's replicate 0 draw);
 //   multistart  one local fit of the landscape cost from a random start in the bounds, or from the truth (index -1);
 //   frequencies the Galerkin frequencies of the truth beam at one N of the sweep, and the exact ones;
 //   bound       the Cramér-Rao bound of the model at one N for one experiment and noise level (outputs.efficiency);
@@ -24,7 +25,7 @@
 namespace beamid::study {
 
 struct Unit {
-  std::string kind;  // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies" | "start" | "bound"
+  std::string kind;       // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies" | "start" | "bound"
   std::string id;         // 16 hex digits
   std::string canonical;  // "key=value;..." of everything that determines the result
   std::uint64_t seed = 0;
@@ -41,6 +42,9 @@ struct Unit {
   std::vector<std::string> parameters;  // slice: 1, grid: 2
   int index = 0;                        // multistart, start: which random start or direction (-1: the truth)
   double offset = 0;                    // start: the relative frequency offset of the start
+  double range_factor = 0;              // slice, grid: the axes span [v/F, v F] around the true value v
+  int points = 0;                       // slice, grid: points per axis
+  bool zoom = false;                    // grid: one of the fine grids around the truth (landscape.zoom_range_factor)
   bool overlay = false;                 // case: also compute the fit overlay and spectra (one case per cost)
   bool cvode_check = false;             // truth: also integrate with CVODE and record the agreement (first truth)
   std::uint64_t noise_seed = 0;

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "io/provenance.h"
+#include "io/text.h"
 #include "study/format.h"
 
 namespace beamid::study {
@@ -30,7 +31,8 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
   report << ", seed " << spec.seed << ", commit " << io::commit_label() << "; truth: `" << spec.truth.beam
          << "` by the exact modal closed form at N = " << spec.truth.elements;
   if (spec.truth.control)
-    report << " (a control: the fits use the truth's own model, so no discretisation error separates them from the data)";
+    report
+        << " (a control: the fits use the truth's own model, so no discretisation error separates them from the data)";
   if (!results.truths.empty() && results.truths.front().has("cvode_max_difference_over_max_y"))
     report << " (CVODE at rtol " << g3(spec.truth.rtol) << " agrees to "
            << g3(results.truths.front().number("cvode_max_difference_over_max_y")) << " of max |y|)";
@@ -67,8 +69,14 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
               "bound = 1 is the best any unbiased estimator can do):\n\n"
            << read(tables, "efficiency.md") << "\n";
   if (spec.landscape.enabled)
-    report << "Landscape smoothness at N = " << spec.landscape.elements << ":\n\n"
+    report << "Landscape smoothness at N = " << spec.landscape.elements.front() << ", noise "
+           << pct(spec.landscape.noise.front()) << ":\n\n"
            << read(tables, "smoothness.md") << "\n";
+  if (has(tables, "landscape_across.md"))
+    report << "Across N and noise (the noisy records are the sweep's first draw at each level): each slice's basin "
+              "around its minimum and its local minima, and each fine grid's local minima and the share of its "
+              "points from which steepest descent on the grid reaches the minimum:\n\n"
+           << read(tables, "landscape_across.md") << "\n";
   if (has(tables, "landscape/multistart.md"))
     report << "Each local fit's final cost minus the reference minimum (the lowest over the cost's fits; \"reached\": "
               "every estimate within the success tolerance of the reference's):\n\n"
@@ -91,9 +99,17 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
     images.emplace_back("landscape_slices", "cost slices through the truth, normalised to [0, 1]");
     for (const auto& [a, b] : spec.landscape.pairs)
       images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
+    if (spec.landscape.zoom_range_factor > 1)
+      for (int n : spec.landscape.elements)
+        for (double noise : spec.landscape.noise)
+          for (const auto& [a, b] : spec.landscape.pairs)
+            images.emplace_back(
+                "landscape_zoom_N" + std::to_string(n) + "-noise" + io::round_trip(noise) + "_" + a + "_" + b,
+                "fine cost surfaces over (" + a + ", " + b + ") at N = " + std::to_string(n) + ", noise " + pct(noise));
   }
   if (spec.start_distance.enabled)
-    images.emplace_back("start_distance", "share of starts that reach the minimum against the start's frequency offset");
+    images.emplace_back("start_distance",
+                        "share of starts that reach the minimum against the start's frequency offset");
   if (spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1)
     images.emplace_back("success_vs_modes", "success rate against the modes in the data");
   if (spec.sweep.elements.size() > 1)

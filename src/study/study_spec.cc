@@ -203,13 +203,23 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     Table& r = *landscape;
     LandscapeSpec& l = spec.landscape;
     l.enabled = true;
-    l.elements = r.integer("elements", l.elements, 1, finest_fit);
+    // elements: one order (16) or a list ([8, 16]).
+    if (const auto node = r.get("elements"); node && !node->is_array())
+      l.elements = {r.integer("elements", std::nullopt, 1, finest_fit)};
+    else if (node)
+      l.elements = r.integers("elements", true, 1, finest_fit);
+    l.noise = r.numbers(
+        "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    if (l.noise.empty()) l.noise = {0.0};
     l.cost = r.strings("cost", true, cost_names());
     l.range_factor = r.number(
         "range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
     l.points = r.integer("points", l.points, 5, 4001);
     l.grid_points = r.integer("grid_points", l.grid_points, 3, 401);
     l.multistarts = r.integer("multistarts", l.multistarts, 0, 10000);
+    l.zoom_range_factor = r.number(
+        "zoom_range_factor", 0.0, [](double v) { return v > 1; }, "must be > 1");
+    l.zoom_points = r.integer("zoom_points", l.zoom_points, 3, 401);
     if (const auto pairs = r.array("pairs", false)) {
       for (const Node& item : *pairs) {
         const std::vector<Node> p = item.elements();
@@ -224,7 +234,10 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
         l.pairs.emplace_back(a, b);
       }
     }
-    r.finish({"elements", "cost", "range_factor", "points", "pairs", "grid_points", "multistarts"});
+    if (l.zoom_range_factor > 1 && l.pairs.empty())
+      r.fail("zoom_range_factor", format_value(l.zoom_range_factor), "needs landscape.pairs (the grids it zooms)");
+    r.finish({"elements", "noise", "cost", "range_factor", "points", "pairs", "grid_points", "zoom_range_factor",
+              "zoom_points", "multistarts"});
   }
   if (auto table = document.table("start_distance", false)) {
     Table& r = *table;

@@ -80,13 +80,20 @@ struct SweepSpec {
 
 struct LandscapeSpec {
   bool enabled = false;
-  int elements = 16;
+  // Fitted orders and noise levels of the slices (a noisy record is the sweep's replicate-0 draw at that level, the
+  // one its cases see); the first of each is the tables' (wide grids, multi-starts, the slice plots).
+  std::vector<int> elements = {16};
+  std::vector<double> noise = {0.0};
   std::vector<std::string> cost;
   double range_factor = 2;                                 // slices and grids span [v/F, v F] (log-spaced)
   int points = 121;                                        // per slice
   std::vector<std::pair<std::string, std::string>> pairs;  // 2-D grids
   int grid_points = 41;                                    // per grid axis
-  int multistarts = 12;                                    // local fits from random starts in the bounds, per cost
+  // Fine grids over [v/Z, v Z] of every pair, for every N and noise level (Z <= 1: none): where the wide grids are too
+  // coarse to resolve the least-squares basin, these resolve it (the tables state each grid's step).
+  double zoom_range_factor = 0;
+  int zoom_points = 61;
+  int multistarts = 12;  // local fits from random starts in the bounds, per cost
 };
 
 // Start-distance curves (comparison.md section 1): how far from the truth each cost and strategy may be started and

@@ -210,7 +210,7 @@ TEST(Metrics, LandscapeResolutionFlagsSlicesCoarserThanTheLeastSquaresBasin) {
     spec.fit.estimate = {"EI"};
     spec.fit.spikes = 3;
     spec.landscape.enabled = true;
-    spec.landscape.elements = 16;
+    spec.landscape.elements = {16};
     spec.landscape.cost = {"time"};
     spec.sweep.pulse_width_s = {0.004};
     spec.sweep.samples = {4096};
@@ -222,6 +222,7 @@ TEST(Metrics, LandscapeResolutionFlagsSlicesCoarserThanTheLeastSquaresBasin) {
     u.truth = 0;
     u.pulse_width_s = 0.004;
     u.samples = 4096;
+    u.elements = 16;
     plan.units.push_back(u);
     StudyResults results;
     results.spec = &spec;

@@ -54,10 +54,13 @@ start = ["near"]
 
 [landscape]
 elements = 4
+noise = [0.0, 0.02]
 cost = ["time", "spike-smooth"]
 points = 9
 pairs = [["EI", "rho"]]
 grid_points = 5
+zoom_range_factor = 1.05
+zoom_points = 5
 multistarts = 2
 )";
 
@@ -108,6 +111,46 @@ TEST_F(StudyRunner, WritesTheTablesAndARowPerCase) {
   const std::string& cases = reference_["cases.csv"];
   EXPECT_EQ(std::count(cases.begin(), cases.end(), '\n'), 7);
   EXPECT_NE(reference_["report.md"].find("Computed claims"), std::string::npos);
+}
+
+// Landscapes across noise levels: the noisy slice sees the sweep's replicate-0 record, so its cost differs from the
+// clean slice's at every point (the noise adds sum sigma^2 g_i^2 > 0 to a least-squares cost, not a constant 0); a
+// fine grid spans [v/1.05, 1.05 v] on both axes; the across table has one column per setting.
+TEST_F(StudyRunner, LandscapesAcrossNoiseAndFineGrids) {
+  for (const char* f : {"landscape/N4-noise0.02/slice_time_EI.csv", "landscape/zoom/N4-noise0/grid_time_EI_rho.dat",
+                        "landscape/zoom/N4-noise0.02/grid_spike-smooth_EI_rho.dat", "landscape_across.md"})
+    ASSERT_TRUE(reference_.count(f)) << f;
+  const auto column = [](const std::string& csv, int k) {
+    std::vector<double> v;
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+      std::istringstream row(line);
+      std::string cell;
+      for (int i = 0; i <= k; ++i) std::getline(row, cell, ',');
+      v.push_back(std::stod(cell));
+    }
+    return v;
+  };
+  const std::vector<double> clean = column(reference_["landscape/slice_time_EI.csv"], 2);
+  const std::vector<double> noisy = column(reference_["landscape/N4-noise0.02/slice_time_EI.csv"], 2);
+  ASSERT_EQ(clean.size(), 9u);
+  ASSERT_EQ(noisy.size(), 9u);
+  for (std::size_t j = 0; j < clean.size(); ++j) EXPECT_NE(clean[j], noisy[j]) << j;
+  std::istringstream grid(reference_["landscape/zoom/N4-noise0/grid_time_EI_rho.dat"]);
+  std::string line;
+  double lo = INFINITY, hi = -INFINITY;
+  while (std::getline(grid, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const double ratio = std::stod(line.substr(0, line.find(' ')));
+    lo = std::min(lo, ratio), hi = std::max(hi, ratio);
+  }
+  EXPECT_NEAR(lo, 1 / 1.05, 1e-12);
+  EXPECT_NEAR(hi, 1.05, 1e-12);
+  const std::string& across = reference_["landscape_across.md"];
+  EXPECT_NE(across.find("N = 4, noise 0 %"), std::string::npos) << across;
+  EXPECT_NE(across.find("N = 4, noise 2 %"), std::string::npos) << across;
 }
 
 TEST_F(StudyRunner, TablesDoNotDependOnTheThreadCount) {

@@ -100,6 +100,10 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
             "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
+  EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nnoise = [0.0, 1.5]\n"),
+            "s.toml:32: landscape.noise element 1.5: must be in [0, 1] (a fraction of the clean RMS)");
+  EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nzoom_range_factor = 1.03\n"),
+            "s.toml:32: landscape.zoom_range_factor = 1.03: needs landscape.pairs (the grids it zooms)");
   // A path the file system refuses (longer than PATH_MAX) is a missing file, not a filesystem_error: a fuzz finding.
   const std::string long_name(5000, 'd');
   EXPECT_EQ(error_of(replaced(kValid, "beam = \"banks-aluminium\"", "beam = \"" + long_name + "\"")).substr(0, 27),
@@ -163,11 +167,10 @@ TEST(StudySpec, StartDistanceRunsAreCostSlashMethod) {
 }
 
 TEST(StudyPlan, StartDistanceUnitsShareDirectionsAndTheRecord) {
-  const StudySpec s = parse_study(
-      std::string(kValid) +
-          "\n[start_distance]\noffsets = [0.001, 0.01]\ndirections = 4\nnoise = 0.01\n"
-          "runs = [\"time/direct\", \"spike-smooth/direct\"]\n",
-      "s.toml", ".");
+  const StudySpec s = parse_study(std::string(kValid) +
+                                      "\n[start_distance]\noffsets = [0.001, 0.01]\ndirections = 4\nnoise = 0.01\n"
+                                      "runs = [\"time/direct\", \"spike-smooth/direct\"]\n",
+                                  "s.toml", ".");
   const Plan plan = make_plan(s);
   // Per run: the fit from the truth plus 2 offsets x 4 directions.
   std::vector<const Unit*> starts;
