@@ -64,8 +64,8 @@ class SpikeCostBase : public Cost {
     }
     const double df = data_.df_hz();
     const double record_s = static_cast<double>(samples_) * dt_s;
-    eps1_ = options_.eps1.value_or(1.0 / (df * df));
-    eps2_ = options_.eps2.value_or(support_energy > 0 ? 1.0 / support_energy : 1.0);
+    eps1_ = options_.eps1_factor * options_.eps1.value_or(1.0 / (df * df));
+    eps2_ = options_.eps2_factor * options_.eps2.value_or(support_energy > 0 ? 1.0 / support_energy : 1.0);
     eps3_ = options_.eps3.value_or(std::pow(record_s / (2 * std::numbers::pi), 2));
     frequency_factors_ = spike_factors(dt_s);
   }
@@ -421,6 +421,10 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   for (const auto& [key, value] : eps)
     if (value && !(std::isfinite(*value) && *value >= 0))
       return std::string(key) + " = " + format_value(*value) + ": must be finite and >= 0";
+  const std::pair<const char*, double> factors[] = {{"eps1_factor", o.eps1_factor}, {"eps2_factor", o.eps2_factor}};
+  for (const auto& [key, value] : factors)
+    if (!(std::isfinite(value) && value > 0))
+      return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
   if (o.model_poles != "dft" && o.model_poles != "eigenvalues")
     return "model_poles = '" + o.model_poles + "': must be one of dft, eigenvalues";
   return std::nullopt;

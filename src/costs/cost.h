@@ -71,6 +71,7 @@ struct CostOptions {
   signal::SpikeOptions spikes;                     // NM, peak rule, band, support level
   signal::WindowOptions window;                    // applied to data and model alike
   std::optional<double> eps1, eps2, eps3;          // nothing: the defaults above
+  double eps1_factor = 1, eps2_factor = 1;         // multiply eps1 and eps2, given or default (a study's variants)
   bool unknown_amplitude = false;                  // time: solve a in closed form; spike costs: scale-free magnitudes
   std::string model_poles = "dft";                 // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
   int first_free_sample = 0;                       // modal: the free decay starts here (after the excitation)

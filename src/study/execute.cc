@@ -74,6 +74,10 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
     o.refine = m.refine;
     if (m.optimizer != "default") o.optimizer.method = m.optimizer;
     o.starts = m.starts;
+    if (!m.window.empty()) o.cost.window.name = m.window;
+    if (!m.frequency_weight.empty()) o.cost.frequency_weight = m.frequency_weight;
+    o.cost.eps1_factor = m.eps1_factor;
+    o.cost.eps2_factor = m.eps2_factor;
   }
   if (unit.kind == "case")
     for (const auto& [key, factor] : spec.start(unit.start).factor) member(o.start, key) *= factor;

@@ -71,6 +71,8 @@ Rendered grid_file(const LandscapeRow& l, double va, double vb) {
           os.str()};
 }
 
+std::string minima(int n) { return std::to_string(n) + (n == 1 ? " minimum" : " minima"); }
+
 std::string start_label(int index) { return index < 0 ? "truth" : std::to_string(index); }
 
 RenderedFiles multistart_files(const StudySpec& spec, const std::vector<MultistartSummary>& summaries) {
@@ -215,12 +217,12 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
     for (const auto& s : metrics.slices)
       if (s.first_experiment)
         cell(s.cost, s.parameter,
-             basin_md(s) + ", " + std::to_string(s.shape.local_minima) + " minima" +
+             basin_md(s) + ", " + minima(s.shape.local_minima) +
                  (s.resolution.resolved() ? std::string() : " (coarse)"));
     for (const auto& g : metrics.grids)
       if (g.zoom)
         cell(g.cost, grid_label(g),
-             std::to_string(g.shape.local_minima) + " minima, " + pct(g.shape.descent_share) + " descend" +
+             minima(g.shape.local_minima) + ", " + pct(g.shape.descent_share) + " descend" +
                  (g.resolution.resolved() ? std::string() : " (coarse)"));
     std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
       const auto rank = [&](const std::string& c) {

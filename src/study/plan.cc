@@ -30,9 +30,14 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
 }
 
 // A method as it enters a unit's identity (refine only for the hybrid strategy, so that older ids stay).
+// A method without overrides of [fit] keeps the text it had before overrides existed (its units' ids stay valid).
 std::string method_text(const MethodSpec& m) {
   return m.strategy + "/" + m.optimizer + "/" + std::to_string(m.starts) +
-         (m.strategy == "hybrid" ? "/refine:" + m.refine : std::string());
+         (m.strategy == "hybrid" ? "/refine:" + m.refine : std::string()) +
+         (m.window.empty() ? std::string() : "/window:" + m.window) +
+         (m.frequency_weight.empty() ? std::string() : "/frequency_weight:" + m.frequency_weight) +
+         (m.eps1_factor == 1 ? std::string() : "/eps1_factor:" + io::round_trip(m.eps1_factor)) +
+         (m.eps2_factor == 1 ? std::string() : "/eps2_factor:" + io::round_trip(m.eps2_factor));
 }
 
 std::string fit_text(const StudySpec& spec) {

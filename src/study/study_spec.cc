@@ -172,7 +172,14 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost});
       if (r.has("refine") && m.strategy != fit::kHybrid)
         r.fail("refine", "'" + m.refine + "'", "applies to strategy = 'hybrid' only");
-      r.finish({"strategy", "optimizer", "starts", "refine"});
+      if (r.has("window")) m.window = r.string("window", std::nullopt, {"rectangular", "hann", "exponential"});
+      if (r.has("frequency_weight"))
+        m.frequency_weight = r.string("frequency_weight", std::nullopt, costs::frequency_weight_names().names());
+      const auto positive_factor = [](double v) { return v > 0 && v <= 1e6; };
+      m.eps1_factor = r.number("eps1_factor", 1.0, positive_factor, "must be in (0, 1e6]");
+      m.eps2_factor = r.number("eps2_factor", 1.0, positive_factor, "must be in (0, 1e6]");
+      r.finish(
+          {"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor"});
       spec.methods.push_back(m);
     }
   }

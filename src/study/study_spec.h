@@ -65,6 +65,13 @@ struct MethodSpec {
   std::string optimizer = "default";  // "default" (lm, or nelder-mead for spike) or an optimizer name
   int starts = 1;                     // > 1: the start plus Latin-hypercube starts in the bounds
   std::string refine = "time";        // "hybrid": the least-squares cost that refines the global fit (time | freq-band)
+  // Overrides of [fit] for this method's fits (issue 15 item 6: windows and weights compared on the same records):
+  // the DFT window, the spike costs' weighting of frequency errors across spikes, and factors on the (3.5) weights
+  // eps1 (frequencies) and eps2 (magnitudes), given or default (costs/cost.h).
+  std::string window;            // "": fit.window
+  std::string frequency_weight;  // "": fit.frequency_weight
+  double eps1_factor = 1;
+  double eps2_factor = 1;
 };
 
 struct SweepSpec {

@@ -232,6 +232,23 @@ TEST(SpikeCost, FrequencyWeightingsScaleEachSpikesFrequencyError) {
   const auto [v1, v2] = residuals(kInverseVarianceWeight);
   EXPECT_NEAR(v1, 2.0 * 2 / std::sqrt(2.5), 1e-9);
   EXPECT_NEAR(v2, 1.0 * 5 / std::sqrt(2.5), 1e-9);
+  // The weight factors (a study's variants) multiply eps1 and eps2: the frequency residuals by sqrt(eps1_factor),
+  // the magnitude residuals by sqrt(eps2_factor), and nothing else.
+  o.frequency_weight = kAbsoluteWeight;
+  const auto all = [&](double f1, double f2) {
+    o.eps1_factor = f1;
+    o.eps2_factor = f2;
+    auto cost = make_cost(o, z, kDt);
+    return evaluate(*cost, y).residuals;
+  };
+  const Eigen::VectorXd base = all(1, 1), scaled = all(4, 9);
+  ASSERT_EQ(base.size(), scaled.size());
+  EXPECT_NEAR(scaled(0), 2 * base(0), 1e-12);
+  EXPECT_NEAR(scaled(1), 2 * base(1), 1e-12);
+  for (Eigen::Index i = 2; i < base.size(); ++i) EXPECT_NEAR(scaled(i), 3 * base(i), 1e-12 * (1 + std::abs(base(i))));
+  o.eps1_factor = 0;
+  EXPECT_EQ(*validation_error(o), "eps1_factor = 0: must be finite and > 0");
+  o.eps1_factor = 1;
   o.frequency_weight = "hertz";
   EXPECT_EQ(*validation_error(o), "frequency_weight = 'hertz': must be one of absolute, relative, inverse-variance");
 }

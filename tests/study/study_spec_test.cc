@@ -100,6 +100,10 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
             "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
+  EXPECT_EQ(error_of(replaced(kValid, "[methods.direct]", "[methods.direct]\nwindow = \"kaiser\"")).substr(0, 75),
+            "s.toml:20: methods.direct.window = 'kaiser': must be one of rectangular, ha");
+  EXPECT_EQ(error_of(replaced(kValid, "[methods.direct]", "[methods.direct]\neps2_factor = 0")),
+            "s.toml:20: methods.direct.eps2_factor = 0: must be in (0, 1e6]");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nnoise = [0.0, 1.5]\n"),
             "s.toml:32: landscape.noise element 1.5: must be in [0, 1] (a fraction of the clean RMS)");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nzoom_range_factor = 1.03\n"),
