@@ -111,6 +111,10 @@ fi
 
 # start_distance: start_distance/curves.csv and radius.csv
 if [[ -f $res/start_distance/curves.csv && -f $res/start_distance/radius.csv ]]; then plot start_distance start_distance; fi
+# radius_vs_modes: start_distance/radius.csv, when it holds more than one experiment (column 14)
+if [[ -f $res/start_distance/radius.csv ]] && (( $(awk -F, 'NR > 1 {print $14}' "$res/start_distance/radius.csv" | sort -u | wc -l) > 1 )); then
+  plot radius_vs_modes radius_vs_modes
+fi
 
 # spectrum: spectrum.csv (+ spikes.csv for the marks); overlay: overlay.csv + spectrum.csv
 if [[ -f $res/spectrum.csv ]]; then plot spectrum spectrum; fi

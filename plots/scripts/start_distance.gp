@@ -3,7 +3,9 @@
 # predicts for least squares, 1/(2 f T) of the highest fitted mode over the record length T (dashed vertical line)
 # and over the time the mode is visible, T_eff = min(T, 1/sigma) (dotted).
 # Input: dir/start_distance/curves.csv (cost,method,offset,reached,fits,rate,wilson_low,wilson_high,...) and
-#        dir/start_distance/radius.csv (...,predicted_basin in column 8, decay-limited in column 10).
+#        dir/start_distance/radius.csv (...,predicted_basin in column 8, decay-limited in column 10). With several
+#        experiments (start_distance.experiments = "all"), the first one's curves (column 11 = 0; radius_vs_modes.gp
+#        draws the radii of all of them).
 # Variables: dir, out, lib, name.
 load lib.'/common.gp'
 set datafile separator comma
@@ -35,7 +37,7 @@ do for [fmt in "png svg"] {
   eval term(fmt, 1200, 800, name)
   set title "Start-distance curves: reaching the minimum from farther away\n".prov noenhanced
   plot for [k = 1:nr] f skip 1 using \
-         ((strcol(1)."/".strcol(2)) eq word(runs, k) ? 100 * $3 * shift(k) : NaN):6:7:8 \
+         ((strcol(1)."/".strcol(2)) eq word(runs, k) && $11 == 0 ? 100 * $3 * shift(k) : NaN):6:7:8 \
          with yerrorlines lw 2 ps 1.4 pt mpt(run_method(word(runs, k))) dt midx(run_method(word(runs, k))) \
          lc rgb costcolor(run_cost(word(runs, k))) title word(runs, k)
 }

@@ -250,10 +250,16 @@ RenderedFiles render_efficiency(const std::vector<EfficiencyRow>& rows) {
   if (rows.empty()) return {};
   std::ostringstream csv, md;
   csv << "pulse_width_s,samples,cost,method,start,elements,noise,parameter,fits,stayed,bias,bias_mcse,"
-         "bias_significant,sd,rmse,crb_relative_sd,rmse_over_crb,sd_over_crb\n";
-  md << "| cost | method | N | noise | parameter | stayed at the minimum | bias ± MCSE | RMSE | bound | RMSE / bound "
+         "bias_significant,sd,rmse,crb_relative_sd,rmse_over_crb,sd_over_crb,modes_in_data\n";
+  // With several experiments (pulse widths or record lengths), each row opens with its modes in the data.
+  bool several = false;
+  for (const EfficiencyRow& r : rows)
+    several =
+        several || r.key.pulse_width_s != rows.front().key.pulse_width_s || r.key.samples != rows.front().key.samples;
+  md << (several ? "| modes in data " : "")
+     << "| cost | method | N | noise | parameter | stayed at the minimum | bias ± MCSE | RMSE | bound | RMSE / bound "
         "|\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+     << (several ? "|---" : "") << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const EfficiencyRow& r : rows) {
     const GroupKey& k = r.key;
     csv << io::round_trip(k.pulse_width_s) << "," << k.samples << "," << k.cost << "," << k.method << "," << k.start
@@ -261,7 +267,8 @@ RenderedFiles render_efficiency(const std::vector<EfficiencyRow>& rows) {
         << "," << io::round_trip(r.errors.mean) << "," << io::round_trip(r.mcse) << ","
         << (r.significant_bias() ? 1 : 0) << "," << io::round_trip(r.errors.std) << "," << io::round_trip(r.errors.rmse)
         << "," << io::round_trip(r.bound) << "," << io::round_trip(r.efficiency()) << ","
-        << io::round_trip(r.errors.std / r.bound) << "\n";
+        << io::round_trip(r.errors.std / r.bound) << "," << r.modes << "\n";
+    if (several) md << "| " << r.modes << " ";
     md << "| " << k.cost << " | " << k.method << " | " << k.elements << " | " << noise_label(k.noise) << " | "
        << r.parameter << " | " << count_with_interval(r.stayed, r.fits) << " | " << g3(r.errors.mean) << " ± "
        << g3(r.mcse) << (r.significant_bias() ? " (significant)" : "") << " | " << g3(r.errors.rmse) << " | "

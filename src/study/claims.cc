@@ -24,7 +24,13 @@ namespace {
 // predicted 1/(2 f T); every other run against the first (the study lists time/direct first).
 void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
   if (m.runs.empty()) return;
-  const auto name = [](const StartRun& r) { return r.cost + "/" + r.method; };
+  // With several experiments, a run is named with its experiment's modes in the data and pulse width.
+  const auto name = [&](const StartRun& r) {
+    return r.cost + "/" + r.method +
+           (m.experiments > 1 ? " (" + std::to_string(r.modes_in_data) + " modes in the data, pulse " +
+                                    g3(1e3 * r.pulse_width_s) + " ms)"
+                              : std::string());
+  };
   for (const auto& r : m.runs) {
     if (!r.reference_ok) {
       f.counts.push_back({name(r) + ": the fit from the truth failed, so no start can be judged", 0, 0});
@@ -40,36 +46,39 @@ void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
   }
   for (const auto& r : m.runs)
     if (r.reference_ok && (r.cost == "time" || r.cost == "freq-band") && r.method == "direct" && !r.radius.below &&
-        !r.radius.above && m.predicted_basin > 0) {
+        !r.radius.above && r.predicted_basin > 0) {
       const auto within = [&](double predicted) {
         return r.radius.value <= 3 * predicted && r.radius.value >= predicted / 3;
       };
-      f.claims.push_back(
-          {within(m.predicted_basin),
-           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
-               ", is within a factor 3 of the least-squares basin 1/(2 f T) = " + pct(m.predicted_basin) +
-               " predicted from the record length (f = " + g3(m.highest_mode_hz) + " Hz, mode " +
-               std::to_string(m.fitted_modes) + "; T = " + g3(m.record_s) + " s)",
-           -1, -1});
-      f.claims.push_back({within(m.predicted_basin_decay),
+      f.claims.push_back({within(r.predicted_basin),
                           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
-                              ", is within a factor 3 of min_k 1/(2 f_k T_eff,k) = " + pct(m.predicted_basin_decay) +
-                              ", predicted from the time each fitted mode is visible, T_eff = min(T, 1/sigma), and " +
-                              "reached at mode " + std::to_string(m.limiting_mode) + " (f = " + g3(m.limiting_mode_hz) +
-                              " Hz, sigma = " + g3(m.decay_rate_1_s) +
-                              " 1/s, T_eff = " + g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s)",
+                              ", is within a factor 3 of the least-squares basin 1/(2 f T) = " +
+                              pct(r.predicted_basin) + " predicted from the record length (f of mode " +
+                              std::to_string(r.fitted_modes) + ", T = " + g3(r.record_s) + " s)",
                           -1, -1});
+      f.claims.push_back(
+          {within(r.predicted_basin_decay),
+           name(r) + "'s 50 % radius, " + radius_text(r.radius) +
+               ", is within a factor 3 of min_k 1/(2 f_k T_eff,k) = " + pct(r.predicted_basin_decay) +
+               ", predicted from the time each fitted mode is visible, T_eff = min(T, 1/sigma), and " +
+               "reached at mode " + std::to_string(r.limiting_mode) +
+               (r.experiment == 0 ? " (f = " + g3(m.limiting_mode_hz) + " Hz, sigma = " + g3(m.decay_rate_1_s) +
+                                        " 1/s, T_eff = " + g3(std::min(m.record_s, 1 / m.decay_rate_1_s)) + " s)"
+                                  : std::string()),
+           -1, -1});
     }
-  const StartRun& first = m.runs.front();
-  if (!first.reference_ok) return;
-  for (std::size_t i = 1; i < m.runs.size(); ++i) {
-    const StartRun& r = m.runs[i];
-    if (!r.reference_ok) continue;
-    f.claims.push_back({r.radius_low.value > first.radius_high.value && !r.radius_low.below && !first.radius_high.above,
-                        name(r) + "'s 50 % radius is larger than " + name(first) + "'s, their 95 % intervals apart (" +
-                            radius_text(r.radius_low) + " to " + radius_text(r.radius_high) + " against " +
-                            radius_text(first.radius_low) + " to " + radius_text(first.radius_high) + ")",
-                        -1, -1});
+  // Every run against the first of its experiment (the study lists time/direct first).
+  for (const StartRun& first : m.runs) {
+    if (first.cost != m.runs.front().cost || first.method != m.runs.front().method || !first.reference_ok) continue;
+    for (const StartRun& r : m.runs) {
+      if (r.experiment != first.experiment || &r == &first || !r.reference_ok) continue;
+      f.claims.push_back(
+          {r.radius_low.value > first.radius_high.value && !r.radius_low.below && !first.radius_high.above,
+           name(r) + "'s 50 % radius is larger than " + name(first) + "'s, their 95 % intervals apart (" +
+               radius_text(r.radius_low) + " to " + radius_text(r.radius_high) + " against " +
+               radius_text(first.radius_low) + " to " + radius_text(first.radius_high) + ")",
+           -1, -1});
+    }
   }
 }
 

@@ -341,6 +341,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
     int modes = 0, spikes = 0;
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("fitted_modes", static_cast<double>(spikes));
+    r.set("modes_in_data", static_cast<double>(modes));
     if (unit.index >= 0) {
       // The fitted modes: the spikes of a spike cost; for the others the same number, so that every run is started
       // at the same frequency offset of the same modes.

@@ -345,6 +345,7 @@ std::vector<EfficiencyRow> efficiency_rows(const StudyResults& results, const Gr
     for (const auto& key : results.spec->fit.estimate) {
       EfficiencyRow row;
       row.key = k;
+      row.modes = members.empty() ? 0 : members.front()->modes();
       row.parameter = key;
       stayed_errors(members, key, row.fits, row.stayed, row.errors, row.mcse);
       if (bound->record.text("status") == "ok") row.bound = bound->record.number("relative_sd." + key);

@@ -131,6 +131,7 @@ bool first_setting(const StudySpec& spec, const Unit& u);
 // efficient unbiased estimator, and above 1 by the estimator's excess variance and its bias (squared, added).
 struct EfficiencyRow {
   GroupKey key;
+  int modes = 0;  // in the data of the group's experiment (0 when unknown)
   std::string parameter;
   int stayed = 0, fits = 0;
   Stats errors;                                             // relative errors of the fits that stayed

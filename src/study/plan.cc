@@ -204,37 +204,41 @@ Plan make_plan(const StudySpec& spec) {
             plan.units.push_back(u);
           }
   if (spec.start_distance.enabled) {
-    // Every run from the truth (index -1: the reference minimum), then from every offset in every direction, all on
-    // the first experiment's one record (start_distance.noise, replicate 0).
+    // Every run from the truth (index -1: the reference minimum), then from every offset in every direction, on one
+    // record per experiment (start_distance.noise, replicate 0): the first experiment's, or every one's.
     const auto& d = spec.start_distance;
-    const Unit& truth = plan.truths.front();
-    const std::string base = truth.canonical + ";record_samples=" + std::to_string(spec.sweep.samples.front()) +
-                             ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
-    const std::uint64_t noise_seed = record_noise_seed(spec, truth, spec.sweep.samples.front(), d.noise, 0);
-    for (const auto& [cost, method] : d.runs)
-      for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
-        for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
-          Unit u;
-          u.kind = "start";
-          u.truth = 0;
-          u.pulse_width_s = truth.pulse_width_s;
-          u.samples = spec.sweep.samples.front();
-          u.elements = d.elements;
-          u.cost = cost;
-          u.method = method;
-          u.noise = d.noise;
-          u.index = k;
-          u.offset = oi < 0 ? 0.0 : d.offsets[static_cast<std::size_t>(oi)];
-          u.noise_seed = noise_seed;
-          // The direction's identity is its index among `directions` (its seed derives from the study seed and
-          // the index alone, so every run and offset shares the directions).
-          u.canonical = "start;" + base + ";cost=" + cost + ";method=" + method_text(spec.method(method)) +
-                        (k < 0 ? std::string(";start=truth")
-                               : ";offset=" + io::round_trip(u.offset) + ";direction=" + std::to_string(k) + "/" +
-                                     std::to_string(d.directions));
-          identify(u, spec);
-          plan.units.push_back(u);
-        }
+    for (std::size_t ti = 0; ti < (d.every_experiment ? plan.truths.size() : 1); ++ti)
+      for (std::size_t si = 0; si < (d.every_experiment ? spec.sweep.samples.size() : 1); ++si) {
+        const Unit& truth = plan.truths[ti];
+        const int samples = spec.sweep.samples[si];
+        const std::string base = truth.canonical + ";record_samples=" + std::to_string(samples) +
+                                 ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
+        const std::uint64_t noise_seed = record_noise_seed(spec, truth, samples, d.noise, 0);
+        for (const auto& [cost, method] : d.runs)
+          for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
+            for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
+              Unit u;
+              u.kind = "start";
+              u.truth = static_cast<int>(ti);
+              u.pulse_width_s = truth.pulse_width_s;
+              u.samples = samples;
+              u.elements = d.elements;
+              u.cost = cost;
+              u.method = method;
+              u.noise = d.noise;
+              u.index = k;
+              u.offset = oi < 0 ? 0.0 : d.offsets[static_cast<std::size_t>(oi)];
+              u.noise_seed = noise_seed;
+              // The direction's identity is its index among `directions` (its seed derives from the study seed and
+              // the index alone, so every run, offset and experiment shares the directions).
+              u.canonical = "start;" + base + ";cost=" + cost + ";method=" + method_text(spec.method(method)) +
+                            (k < 0 ? std::string(";start=truth")
+                                   : ";offset=" + io::round_trip(u.offset) + ";direction=" + std::to_string(k) + "/" +
+                                         std::to_string(d.directions));
+              identify(u, spec);
+              plan.units.push_back(u);
+            }
+      }
   }
   // The overlay case of each cost: its fit is also shown in time and frequency (overlay.csv, spectrum.csv).
   for (const auto& cost : spec.sweep.cost)

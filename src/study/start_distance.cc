@@ -133,51 +133,87 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
   StartDistanceMetrics m;
   m.reached.assign(results.starts.size(), false);
   if (!d.enabled) return m;
-  for (const auto& [cost, method] : d.runs) {
-    StartRun run;
-    run.cost = cost;
-    run.method = method;
-    for (const auto& row : results.starts)
-      if (row.unit->cost == cost && row.unit->method == method && row.unit->index < 0) run.reference = &row;
-    run.reference_ok = run.reference && run.reference->record.text("status") != "failed";
-    for (double offset : d.offsets) {
-      StartCurvePoint p;
-      p.offset = offset;
-      std::vector<double> evaluations;
-      for (std::size_t i = 0; i < results.starts.size(); ++i) {
-        const LandscapeRow& row = results.starts[i];
-        const Unit& u = *row.unit;
-        if (u.cost != cost || u.method != method || u.index < 0 || u.offset != offset) continue;
-        if (!run.reference_ok) continue;
-        ++p.fits;
-        m.reached[i] = reaches(spec, run.reference->record, row.record);
-        p.reached += m.reached[i] ? 1 : 0;
-        p.shrunk += row.record.number("shrunk") > 0 ? 1 : 0;
-        evaluations.push_back(row.record.number("evaluations"));
-      }
-      p.median_evaluations = median(evaluations);
-      run.points.push_back(p);
-    }
-    if (run.reference_ok) {
-      std::vector<double> offsets, rates, lows, highs;
-      for (const auto& p : run.points) {
-        const auto [low, high] = wilson_interval(p.reached, p.fits);
-        offsets.push_back(p.offset);
-        rates.push_back(p.rate());
-        lows.push_back(low);
-        highs.push_back(high);
-      }
-      run.radius = half_radius(offsets, rates);
-      run.radius_low = half_radius(offsets, lows);
-      run.radius_high = half_radius(offsets, highs);
-      if (m.fitted_modes == 0) m.fitted_modes = static_cast<int>(run.reference->record.number("fitted_modes"));
-    }
-    m.runs.push_back(run);
+  // The experiments in plan order (the truth index and record length of the start units).
+  std::vector<std::pair<int, int>> experiments;
+  for (const auto& row : results.starts) {
+    const std::pair<int, int> e{row.unit->truth, row.unit->samples};
+    if (std::find(experiments.begin(), experiments.end(), e) == experiments.end()) experiments.push_back(e);
   }
-  if (!results.truths.empty() && m.fitted_modes > 0) {
-    const std::vector<double> f = results.truths.front().numbers("mode_frequency_hz");
-    const std::vector<double> zeta = results.truths.front().numbers("mode_damping_ratio");
-    predict_basins(f, zeta, spec.sweep.samples.front() * spec.truth.experiment.dt_s, m);
+  m.experiments = static_cast<int>(experiments.size());
+  for (std::size_t ei = 0; ei < experiments.size(); ++ei) {
+    const auto [truth, samples] = experiments[ei];
+    const auto in_experiment = [&](const Unit& u) { return u.truth == truth && u.samples == samples; };
+    for (const auto& [cost, method] : d.runs) {
+      StartRun run;
+      run.cost = cost;
+      run.method = method;
+      run.experiment = static_cast<int>(ei);
+      run.truth = truth;
+      run.samples = samples;
+      for (const auto& row : results.starts)
+        if (in_experiment(*row.unit) && row.unit->cost == cost && row.unit->method == method && row.unit->index < 0)
+          run.reference = &row;
+      run.reference_ok = run.reference && run.reference->record.text("status") != "failed";
+      for (double offset : d.offsets) {
+        StartCurvePoint p;
+        p.offset = offset;
+        std::vector<double> evaluations;
+        for (std::size_t i = 0; i < results.starts.size(); ++i) {
+          const LandscapeRow& row = results.starts[i];
+          const Unit& u = *row.unit;
+          if (!in_experiment(u) || u.cost != cost || u.method != method || u.index < 0 || u.offset != offset) continue;
+          run.pulse_width_s = u.pulse_width_s;
+          if (!run.reference_ok) continue;
+          ++p.fits;
+          m.reached[i] = reaches(spec, run.reference->record, row.record);
+          p.reached += m.reached[i] ? 1 : 0;
+          p.shrunk += row.record.number("shrunk") > 0 ? 1 : 0;
+          evaluations.push_back(row.record.number("evaluations"));
+        }
+        p.median_evaluations = median(evaluations);
+        run.points.push_back(p);
+      }
+      if (run.reference) {
+        const Record& r = run.reference->record;
+        run.pulse_width_s = run.reference->unit->pulse_width_s;
+        run.fitted_modes = r.has("fitted_modes") ? static_cast<int>(r.number("fitted_modes")) : 0;
+        run.modes_in_data = r.has("modes_in_data") ? static_cast<int>(r.number("modes_in_data")) : 0;
+      }
+      if (run.reference_ok) {
+        std::vector<double> offsets, rates, lows, highs;
+        for (const auto& p : run.points) {
+          const auto [low, high] = wilson_interval(p.reached, p.fits);
+          offsets.push_back(p.offset);
+          rates.push_back(p.rate());
+          lows.push_back(low);
+          highs.push_back(high);
+        }
+        run.radius = half_radius(offsets, rates);
+        run.radius_low = half_radius(offsets, lows);
+        run.radius_high = half_radius(offsets, highs);
+      }
+      const auto t = static_cast<std::size_t>(truth);
+      if (run.fitted_modes > 0 && t < results.truths.size() && results.truths[t].has("mode_frequency_hz") &&
+          results.truths[t].has("mode_damping_ratio")) {
+        const std::vector<double> f = results.truths[t].numbers("mode_frequency_hz");
+        const std::vector<double> zeta = results.truths[t].numbers("mode_damping_ratio");
+        const double record_s = samples * spec.truth.experiment.dt_s;
+        run.record_s = record_s;
+        StartDistanceMetrics prediction;
+        prediction.fitted_modes = run.fitted_modes;
+        predict_basins(f, zeta, record_s, prediction);
+        run.predicted_basin = prediction.predicted_basin;
+        run.predicted_basin_decay = prediction.predicted_basin_decay;
+        run.predicted_basin_highest_decay = prediction.predicted_basin_highest_decay;
+        run.limiting_mode = prediction.limiting_mode;
+        // The study-wide predictions are the first experiment's (from its first run with a known mode count).
+        if (ei == 0 && m.fitted_modes == 0) {
+          m.fitted_modes = run.fitted_modes;
+          predict_basins(f, zeta, record_s, m);
+        }
+      }
+      m.runs.push_back(run);
+    }
   }
   return m;
 }

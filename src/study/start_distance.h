@@ -59,6 +59,15 @@ struct StartCurvePoint {
 };
 struct StartRun {
   std::string cost, method;
+  // The experiment (study_spec.h: start_distance.experiments): its truth, record length and modes, and its own
+  // predicted basins (as StartDistanceMetrics's below, which are the first experiment's).
+  int experiment = 0;  // 0-based, in plan order (pulse widths, then record lengths)
+  int truth = 0, samples = 0;
+  double pulse_width_s = 0, record_s = 0;
+  int modes_in_data = 0, fitted_modes = 0;
+  double predicted_basin = std::nan(""), predicted_basin_decay = std::nan("");
+  double predicted_basin_highest_decay = std::nan("");
+  int limiting_mode = 0;
   const LandscapeRow* reference = nullptr;     // the fit from the truth (nullptr when missing)
   bool reference_ok = false;                   // it did not fail
   std::vector<StartCurvePoint> points;         // by offset
@@ -81,8 +90,9 @@ struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print
   double decay_rate_1_s = std::nan("");    // its sigma_k
   double predicted_basin_decay = std::nan("");
   double predicted_basin_highest_decay = std::nan("");  // 1 / (2 f T_eff) of mode `fitted_modes`
-  std::vector<StartRun> runs;                           // in the order of start_distance.runs
-  std::vector<bool> reached;                            // per results.starts row
+  int experiments = 1;
+  std::vector<StartRun> runs;  // experiment-major, then in the order of start_distance.runs
+  std::vector<bool> reached;   // per results.starts row
 };
 // Fills the predictions above (highest_mode_hz, record_s, predicted_basin, limiting_mode ...
 // predicted_basin_highest_decay) for the first m.fitted_modes modes of natural frequencies f (Hz) and damping ratios

@@ -279,7 +279,8 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       if (std::find(d.runs.begin(), d.runs.end(), std::pair(cost, method)) != d.runs.end()) bad("is listed twice");
       d.runs.emplace_back(cost, method);
     }
-    r.finish({"elements", "offsets", "directions", "noise", "agreement", "damping_agreement", "runs"});
+    d.every_experiment = r.string("experiments", "first", {"first", "all"}) == "all";
+    r.finish({"elements", "offsets", "directions", "noise", "agreement", "damping_agreement", "runs", "experiments"});
   }
   if (auto outputs = document.table("outputs", false)) {
     Table& r = *outputs;

@@ -120,6 +120,9 @@ struct StartDistanceSpec {
   double noise = 0;                                       // of the one record every fit sees
   double agreement = 1e-3;
   double damping_agreement = 1e-2;
+  // false: the first experiment only (truth pulse width and record length); true: every experiment of the sweep
+  // (pulse widths x record lengths), so that the radius can be set against the number of modes in the data.
+  bool every_experiment = false;
 };
 
 struct OutputsSpec {

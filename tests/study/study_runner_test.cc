@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "model/errors.h"
+#include "study/plan.h"
 #include "study/runner.h"
 #include "study/tables.h"
 
@@ -243,6 +244,62 @@ TEST(StudyValidation, EveryUnitIsCheckedBeforeAnyRuns) {
   }
   EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "store")) << "nothing may be written before validation";
   fs::remove_all(o.output_dir);
+}
+
+// Start-distance curves for every experiment (start_distance.experiments = "all"): one radius row per run and
+// experiment, each with its own modes in the data (a sin^2 pulse of width tau excites up to about 2/tau, so the 2 ms
+// pulse shows more of the thin beam's modes than the 50 ms one) and its own predicted basin; the first experiment's
+// units keep the ids they have with experiments = "first".
+TEST(StudyRunnerExperiments, StartDistanceCurvesForEveryExperiment) {
+  std::string text = std::string(kMini);
+  text = text.substr(0, text.find("[landscape]"));
+  text.replace(text.find("elements = [4]\n"), 15, "elements = [4]\npulse_width_s = [0.002, 0.05]\n");
+  const std::string sd =
+      "\n[start_distance]\nelements = 4\noffsets = [0.001, 0.01]\ndirections = 2\n"
+      "runs = [\"time/direct\"]\n";
+  const StudySpec first = parse_study(text + sd, "mini.toml", ".");
+  const StudySpec all = parse_study(text + sd + "experiments = \"all\"\n", "mini.toml", ".");
+  const Plan plan_first = make_plan(first), plan_all = make_plan(all);
+  std::vector<std::string> ids_first, ids_all;
+  for (const Unit& u : plan_first.units)
+    if (u.kind == "start") ids_first.push_back(u.id);
+  for (const Unit& u : plan_all.units)
+    if (u.kind == "start") ids_all.push_back(u.id);
+  ASSERT_EQ(ids_first.size(), 5u);  // the truth start and 2 offsets x 2 directions
+  ASSERT_EQ(ids_all.size(), 10u);
+  EXPECT_TRUE(std::equal(ids_first.begin(), ids_first.end(), ids_all.begin()));
+  const fs::path dir = fs::temp_directory_path() / ("beamid-experiments-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  RunOptions o;
+  o.output_dir = dir.string();
+  o.jobs = 1;
+  std::ostringstream log;
+  ASSERT_TRUE(run_study(all, o, log, false).tables);
+  const auto files = tables(dir);
+  fs::remove_all(dir);
+  std::istringstream radius(files.at("start_distance/radius.csv"));
+  std::string line;
+  std::getline(radius, line);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(radius, line)) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    std::string cell;
+    while (std::getline(row, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].size(), 18u);
+  EXPECT_EQ(rows[0][13], "0");  // experiment
+  EXPECT_EQ(rows[1][13], "1");
+  EXPECT_GT(std::stoi(rows[0][16]), std::stoi(rows[1][16]));  // modes in the data
+  EXPECT_GE(std::stoi(rows[1][16]), 2);
+  EXPECT_EQ(rows[0][17], "2");  // fitted modes: fit.spikes = 2 in both
+  // The predicted basins differ with the experiment's modes only through the fitted ones (the same two here), so
+  // they are equal; each is finite.
+  EXPECT_EQ(rows[0][7], rows[1][7]);
+  EXPECT_GT(std::stod(rows[0][7]), 0.0);
+  EXPECT_NE(files.at("start_distance.md").find("| modes in data (fitted) | pulse |"), std::string::npos);
 }
 
 }  // namespace
