@@ -52,42 +52,34 @@ if [[ -n $params ]]; then
   plot landscape_slices landscape_slices "params='$(ordered "$known_params" "$params")'; costs='$(ordered "$known_costs" "$costs")'"
 fi
 
-# landscape_grid_<a>_<b>: landscape/grid_<cost>_<a>_<b>.dat, one figure per pair (the last two fields)
-pairs=""
-for f in "$res"/landscape/grid_*_*_*.dat; do
-  b=${f##*/}; b=${b%.dat}
-  pb=${b##*_}; rest=${b%_*}; pa=${rest##*_}
-  pairs+=" ${pa}_${pb}"
-done
-for pair in $(printf '%s\n' $pairs | LC_ALL=C sort -u); do
-  a=${pair%_*} b=${pair#*_} costs=""
-  for f in "$res"/landscape/grid_*_"${a}_${b}".dat; do
-    c=${f##*/}; c=${c#grid_}; c=${c%_"${a}_${b}".dat}
-    costs+=" $c"
-  done
-  plot landscape_grid "landscape_grid_${a}_${b}" "a='$a'; b='$b'; costs='$(ordered "$known_costs" "$costs")'"
-done
-
-# landscape_zoom_<setting>_<a>_<b>: landscape/zoom/<setting>/grid_<cost>_<a>_<b>.dat, the fine grids around the truth
-# of one N and noise level (<setting> = N<n>-noise<level>), one figure per setting and pair
-for d in "$res"/landscape/zoom/*/; do
-  setting=${d%/}; setting=${setting##*/}
-  pairs=""
-  for f in "$d"grid_*_*_*.dat; do
+# grid_plots DIR PREFIX SUB WHAT: one landscape_grid figure PREFIX<a>_<b> per pair of DIR/grid_<cost>_<a>_<b>.dat (the
+# pair is the last two fields), with the costs present for it; SUB and WHAT go to landscape_grid.gp.
+grid_plots() {
+  local dir=$1 prefix=$2 sub=$3 what=$4 pairs="" f b pb rest pa pair a c costs
+  for f in "$dir"/grid_*_*_*.dat; do
     b=${f##*/}; b=${b%.dat}
     pb=${b##*_}; rest=${b%_*}; pa=${rest##*_}
     pairs+=" ${pa}_${pb}"
   done
   for pair in $(printf '%s\n' $pairs | LC_ALL=C sort -u); do
     a=${pair%_*} b=${pair#*_} costs=""
-    for f in "$d"grid_*_"${a}_${b}".dat; do
+    for f in "$dir"/grid_*_"${a}_${b}".dat; do
       c=${f##*/}; c=${c#grid_}; c=${c%_"${a}_${b}".dat}
       costs+=" $c"
     done
-    n=${setting%%-*}; level=${setting#*-noise}
-    plot landscape_grid "landscape_zoom_${setting}_${a}_${b}" \
-      "a='$a'; b='$b'; sub='zoom/$setting/'; what=' near the truth, ${n/N/N = }, noise $level'; costs='$(ordered "$known_costs" "$costs")'"
+    plot landscape_grid "${prefix}${a}_${b}" "a='$a'; b='$b'; sub='$sub'; what='$what'; costs='$(ordered "$known_costs" "$costs")'"
   done
+}
+
+# landscape_grid_<a>_<b>: landscape/grid_<cost>_<a>_<b>.dat, one figure per pair
+grid_plots "$res/landscape" landscape_grid_ "" ""
+
+# landscape_zoom_<setting>_<a>_<b>: landscape/zoom/<setting>/grid_<cost>_<a>_<b>.dat, the fine grids around the truth
+# of one N and noise level (<setting> = N<n>-noise<level>), one figure per setting and pair
+for d in "$res"/landscape/zoom/*/; do
+  setting=${d%/}; setting=${setting##*/}
+  n=${setting%%-*}; level=${setting#*-noise}
+  grid_plots "${d%/}" "landscape_zoom_${setting}_" "zoom/$setting/" " near the truth, ${n/N/N = }, noise $level"
 done
 
 # bias_<param>: bias_<param>.csv
