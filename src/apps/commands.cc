@@ -99,7 +99,11 @@ int run_simulate(const Flags& a, std::ostream& out) {
               << " samples, integrator " << s.integrator << ": steps " << s.steps << ", rhs " << s.rhs_evaluations
               << ", jacobians " << s.jacobian_evaluations << ", linear-solver setups " << s.linear_solver_setups
               << ", error-test failures " << s.error_test_failures << ", modes " << s.modes << ", eigenvector rcond "
-              << s.eigenvector_rcond << "\n";
+              << s.eigenvector_rcond;
+    if (!s.dominant_error_block.empty())
+      std::cerr << "; median step " << s.median_step_s << " s at order " << s.median_order
+                << ", largest weighted local error mostly in the " << s.dominant_error_block << " block";
+    std::cerr << "\n";
   }
   return 0;
 }

@@ -55,6 +55,13 @@ struct SimulationStats {
   long linear_solver_setups = 0;  // LU (dense) or Cholesky (structured) factorisations
   long error_test_failures = 0;
   long nonlinear_convergence_failures = 0;
+  // cvode: what set the step size. At every output time, the state component with the largest weighted local error
+  // estimate |e_i| w_i (CVodeGetEstLocalErrors, CVodeGetErrWeights) is counted by its block ("displacement",
+  // "rotation", "displacement velocity", "rotation velocity"; "state" for a one-block model); the block counted most
+  // often, and the median last step (s) and order over the output times.
+  std::string dominant_error_block;
+  double median_step_s = 0;
+  int median_order = 0;
   int modes = 0;  // fast: state-space modes kept
   double eigenvector_rcond =
       0;  // fast: galerkin::StateSpaceModes::eigenvector_rcond (1 / largest eigenvalue condition)
