@@ -10,7 +10,7 @@ BEAMID     := $(BUILD)/beamid
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
 # the 30 minutes `make study` may take on two cores. On a cluster, any of them runs as shards (README.md).
 STUDIES      ?= paper thick modes landscape start-distance efficiency bias
-FULL_STUDIES ?= start-distance-thick efficiency-thick windows
+FULL_STUDIES ?= start-distance-thick efficiency-thick windows modes-basin modes-efficiency
 STUDY_JOBS ?= 0
 
 all: build
