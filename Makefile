@@ -118,7 +118,7 @@ study: binary
 	$(MAKE) --no-print-directory plots
 	$(BEAMID) report --update REPORT.md --results results
 
-# Everything `make study` does, and the studies of FULL_STUDIES (about 14 minutes more on two cores).
+# Everything `make study` does, and the studies of FULL_STUDIES (about 80 minutes more on two cores).
 study-full: binary
 	@set -e; for s in $(FULL_STUDIES); do \
 	  echo "== beamid study studies/$$s.toml"; \

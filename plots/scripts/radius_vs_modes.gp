@@ -22,7 +22,7 @@ do for [fmt in "png svg"] {
   eval term(fmt, 1200, 760, name)
   set title "Start-distance radius against the number of modes in the data\n".prov noenhanced
   plot for [k = 1:nr] f skip 1 using \
-         ((strcol(1)."/".strcol(2)) eq word(runs, k) && strcol(3) ne "failed" ? $17 * shift(k) : NaN):(100 * $4):(100 * $5):(100 * $6) \
+         (((strcol(1)."/".strcol(2)) eq word(runs, k)) && (strcol(3) ne "failed") ? $17 * shift(k) : NaN):(100 * $4):(100 * $5):(100 * $6) \
          with yerrorlines lw 2 ps 1.3 pt 7 lc rgb costcolor(run_cost(word(runs, k))) title word(runs, k), \
        f skip 1 using ((strcol(1)."/".strcol(2)) eq word(runs, 1) ? $17 : NaN):(100 * $10) \
          with linespoints dt 2 lw 2 pt 6 lc rgb "#000000" title "predicted min_k 1/(2 f_k T_eff,k)"

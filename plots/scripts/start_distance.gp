@@ -37,7 +37,7 @@ do for [fmt in "png svg"] {
   eval term(fmt, 1200, 800, name)
   set title "Start-distance curves: reaching the minimum from farther away\n".prov noenhanced
   plot for [k = 1:nr] f skip 1 using \
-         ((strcol(1)."/".strcol(2)) eq word(runs, k) && $11 == 0 ? 100 * $3 * shift(k) : NaN):6:7:8 \
+         (((strcol(1)."/".strcol(2)) eq word(runs, k)) && ($11 == 0) ? 100 * $3 * shift(k) : NaN):6:7:8 \
          with yerrorlines lw 2 ps 1.4 pt mpt(run_method(word(runs, k))) dt midx(run_method(word(runs, k))) \
          lc rgb costcolor(run_cost(word(runs, k))) title word(runs, k)
 }
