@@ -186,16 +186,9 @@ Resolution landscape_resolution(const StudyResults& results, const Unit& u, cons
                                 const std::vector<double>& log_steps) {
   const StudySpec& spec = *results.spec;
   Resolution r;
-  const auto truth = static_cast<std::size_t>(u.truth);
-  if (truth >= results.truths.size() || !results.truths[truth].has("mode_frequency_hz") ||
-      !results.truths[truth].has("mode_damping_ratio"))
-    return r;
   StartDistanceMetrics prediction;
   prediction.fitted_modes = spec.fit.spikes;
-  predict_basins(results.truths[truth].numbers("mode_frequency_hz"),
-                 results.truths[truth].numbers("mode_damping_ratio"), u.samples * spec.truth.experiment.dt_s,
-                 prediction);
-  if (prediction.limiting_mode == 0) return r;
+  if (!predict_basins(results, u.truth, u.samples, prediction) || prediction.limiting_mode == 0) return r;
   try {
     const galerkin::BeamForms forms(galerkin::SplineSpace(u.elements), spec.truth.parameters.l);
     const Eigen::MatrixXd g = frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);

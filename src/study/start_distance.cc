@@ -116,6 +116,16 @@ void predict_basins(const std::vector<double>& f, const std::vector<double>& zet
     }
 }
 
+bool predict_basins(const StudyResults& results, int truth, int samples, StartDistanceMetrics& m) {
+  const auto t = static_cast<std::size_t>(truth);
+  if (t >= results.truths.size() || !results.truths[t].has("mode_frequency_hz") ||
+      !results.truths[t].has("mode_damping_ratio"))
+    return false;
+  predict_basins(results.truths[t].numbers("mode_frequency_hz"), results.truths[t].numbers("mode_damping_ratio"),
+                 samples * results.spec->truth.experiment.dt_s, m);
+  return true;
+}
+
 bool reaches(const StudySpec& spec, const Record& reference, const Record& fit) {
   if (fit.text("status") == "failed" || reference.text("status") == "failed") return false;
   for (const auto& key : spec.fit.estimate) {
@@ -150,6 +160,7 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
       run.experiment = static_cast<int>(ei);
       run.truth = truth;
       run.samples = samples;
+      run.pulse_width_s = results.plan->truths[static_cast<std::size_t>(truth)].pulse_width_s;
       for (const auto& row : results.starts)
         if (in_experiment(*row.unit) && row.unit->cost == cost && row.unit->method == method && row.unit->index < 0)
           run.reference = &row;
@@ -162,7 +173,6 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
           const LandscapeRow& row = results.starts[i];
           const Unit& u = *row.unit;
           if (!in_experiment(u) || u.cost != cost || u.method != method || u.index < 0 || u.offset != offset) continue;
-          run.pulse_width_s = u.pulse_width_s;
           if (!run.reference_ok) continue;
           ++p.fits;
           m.reached[i] = reaches(spec, run.reference->record, row.record);
@@ -175,7 +185,6 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
       }
       if (run.reference) {
         const Record& r = run.reference->record;
-        run.pulse_width_s = run.reference->unit->pulse_width_s;
         run.fitted_modes = r.has("fitted_modes") ? static_cast<int>(r.number("fitted_modes")) : 0;
         run.modes_in_data = r.has("modes_in_data") ? static_cast<int>(r.number("modes_in_data")) : 0;
       }
@@ -192,16 +201,10 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
         run.radius_low = half_radius(offsets, lows);
         run.radius_high = half_radius(offsets, highs);
       }
-      const auto t = static_cast<std::size_t>(truth);
-      if (run.fitted_modes > 0 && t < results.truths.size() && results.truths[t].has("mode_frequency_hz") &&
-          results.truths[t].has("mode_damping_ratio")) {
-        const std::vector<double> f = results.truths[t].numbers("mode_frequency_hz");
-        const std::vector<double> zeta = results.truths[t].numbers("mode_damping_ratio");
-        const double record_s = samples * spec.truth.experiment.dt_s;
-        run.record_s = record_s;
-        StartDistanceMetrics prediction;
-        prediction.fitted_modes = run.fitted_modes;
-        predict_basins(f, zeta, record_s, prediction);
+      run.record_s = samples * spec.truth.experiment.dt_s;
+      StartDistanceMetrics prediction;
+      prediction.fitted_modes = run.fitted_modes;
+      if (run.fitted_modes > 0 && predict_basins(results, truth, samples, prediction)) {
         run.predicted_basin = prediction.predicted_basin;
         run.predicted_basin_decay = prediction.predicted_basin_decay;
         run.predicted_basin_highest_decay = prediction.predicted_basin_highest_decay;
@@ -209,7 +212,7 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
         // The study-wide predictions are the first experiment's (from its first run with a known mode count).
         if (ei == 0 && m.fitted_modes == 0) {
           m.fitted_modes = run.fitted_modes;
-          predict_basins(f, zeta, record_s, m);
+          predict_basins(results, truth, samples, m);
         }
       }
       m.runs.push_back(run);

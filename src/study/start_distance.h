@@ -99,6 +99,10 @@ struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print
 // zeta, on a record of record_s.
 void predict_basins(const std::vector<double>& f, const std::vector<double>& zeta, double record_s,
                     StartDistanceMetrics& m);
+// The same for truth record `truth` of a finished study (its modes' frequencies and damping ratios) on a record of
+// `samples` samples, for m.fitted_modes modes; false, and m's predictions left unknown, when the truth's modes are not
+// recorded.
+bool predict_basins(const StudyResults& results, int truth, int samples, StartDistanceMetrics& m);
 // Whether `fit` reached the minimum of `reference`: not failed, and every estimate within start_distance.agreement
 // (damping parameters: damping_agreement) of the reference's, relatively.
 bool reaches(const StudySpec& spec, const Record& reference, const Record& fit);
