@@ -151,7 +151,9 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
   }
   m.experiments = static_cast<int>(experiments.size());
   for (std::size_t ei = 0; ei < experiments.size(); ++ei) {
-    const auto [truth, samples] = experiments[ei];
+    // Plain copies, not a structured binding: C++17 lambdas may not capture structured bindings (clang rejects it).
+    const int truth = experiments[ei].first;
+    const int samples = experiments[ei].second;
     const auto in_experiment = [&](const Unit& u) { return u.truth == truth && u.samples == samples; };
     for (const auto& [cost, method] : d.runs) {
       StartRun run;
