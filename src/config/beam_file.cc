@@ -1,12 +1,14 @@
 #include "config/beam_file.h"
 
 #include <array>
+#include <cmath>
 #include <fstream>
 
 #include "config/document.h"
 #include "io/files.h"
 #include "model/errors.h"
 #include "model/geometry.h"
+#include "model/limits.h"
 
 namespace beamid::config {
 namespace {
@@ -86,6 +88,37 @@ BeamParameters parse_geometry_table(Table r) {
   }
 }
 
+// [[attachment]] tables (model/beam_parameters.h): x (m from the clamp, required), m (kg, required), J (kg m^2 about
+// the body's centre, default 0), c (m, offset of its centre along the axis, default 0). Appended to beam.attachments
+// in file order; each key is checked where it is read, against the beam's length.
+void parse_attachments(Table root, BeamParameters& beam) {
+  const std::optional<std::vector<Node>> items = root.array("attachment", false);
+  if (!items) return;
+  const double l = beam.l;
+  // The cap (model/limits.h) keeps a generated file from sizing the exact reference's matrices.
+  if (items->size() > static_cast<std::size_t>(model::kMaxAttachments))
+    root.fail("attachment", "[" + std::to_string(items->size()) + " tables]",
+              "must hold at most " + std::to_string(model::kMaxAttachments) + " attachments");
+  for (std::size_t k = 0; k < items->size(); ++k) {
+    const std::string name = model::attachment_key(k);
+    Table t = (*items)[k].table(name + ".", "attachment");
+    const std::string of_length = " (l = " + format_value(l) + " m)";
+    model::Attachment a;
+    a.x = t.number(
+        "x", std::nullopt, [&](double v) { return v > 0 && v <= l; },
+        "must be in (0, l] m, measured from the clamp" + of_length);
+    a.m = t.number(
+        "m", std::nullopt, [](double v) { return v >= 0 && v <= 1e20; }, "must be >= 0 (kg)");
+    a.J = t.number(
+        "J", 0.0, [](double v) { return v >= 0 && v <= 1e20; }, "must be >= 0 (kg m^2, about the body's centre)");
+    a.c = t.number(
+        "c", 0.0, [&](double v) { return std::abs(v) <= l; },
+        "must be in [-l, l] m: the body's centre lies within a beam length of its fixing point" + of_length);
+    t.finish({"x", "m", "J", "c"});
+    beam.attachments.push_back(a);
+  }
+}
+
 }  // namespace
 
 BeamParameters parse_beam_toml(const std::string& text, const std::string& source_name) {
@@ -93,14 +126,17 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
   const Table root = document.root();
   const auto at = [&](int line) { return source_name + ":" + std::to_string(line); };
   for (const auto& [key, node] : root.entries())
-    if (key != "beam" && key != "geometry")
+    if (key != "beam" && key != "geometry" && key != "attachment")
       throw InputError(at(root.key_line(key)) + ": unknown top-level key '" + key +
-                       "': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
+                       "': a beam file holds one table, [beam] (lumped parameters) or [geometry], and any number "
+                       "of [[attachment]] tables");
   if (root.has("geometry")) {
     if (root.has("beam"))
       throw InputError(at(root.key_line("geometry")) +
                        ": give either [beam] (lumped parameters) or [geometry], not both");
-    return parse_geometry_table(document.required("geometry"));
+    BeamParameters beam = parse_geometry_table(document.required("geometry"));
+    parse_attachments(root, beam);
+    return beam;
   }
   if (!root.has("beam"))
     throw InputError(source_name + ":1: missing table [beam] with keys " + model::parameter_keys());
@@ -131,6 +167,7 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
   // The message opens with the key it is about ("c = ...", "kAG = ..."): the error names that key's line.
   if (auto e = model::implausibility(beam))
     throw InputError(at(table.key_line(e->substr(0, e->find(' ')))) + ": beam." + *e);
+  parse_attachments(root, beam);
   return beam;
 }
 

@@ -2,6 +2,12 @@
 // no other key may be, and each value must be an admissible number. Or from a [geometry] table (model/geometry.h:
 // length, section, material, shear coefficient, tip body, nominal damping), which gives the lumps. Errors are one
 // line naming file:line, key, value and constraint, e.g. "my_beam.toml:4: beam.EI = -1: must be > 0".
+// Either may be followed by [[attachment]] tables, rigid bodies on the span (x, m required; J, c default 0):
+//   [[attachment]]
+//   x = 0.397   # m from the clamp
+//   m = 0.012   # kg
+//   J = 2e-6    # kg m^2 about its centre (optional)
+//   c = 0.0     # m, its centre's offset along the axis (optional)
 #pragma once
 
 #include <string>

@@ -54,6 +54,16 @@ SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
   SecondOrderSystem s;
   s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + (p.m * p.c) * f.tip_ua +
         (p.J_o + p.m * p.c * p.c) * f.tip_aa;
+  // Attachments: the same inertia Lambda_k acting on (u(x_k), alpha(x_k)), with v = beta(x_k / l) in place of nu.
+  const Eigen::Index n = f.space.dimension();
+  for (const model::Attachment& a : p.attachments) {
+    const Eigen::VectorXd v = f.values_at(a.x);
+    const Eigen::MatrixXd vvt = v * v.transpose();
+    s.M.topLeftCorner(n, n) += a.m * vvt;
+    s.M.topRightCorner(n, n) += (a.m * a.c) * vvt;
+    s.M.bottomLeftCorner(n, n) += (a.m * a.c) * vvt;
+    s.M.bottomRightCorner(n, n) += (a.J + a.m * a.c * a.c) * vvt;
+  }
   s.K = p.kAG * f.shear + p.EI * f.bending;
   s.C = p.kAcs * f.shear + p.cDI * f.bending + p.gamma * f.translation;
   return s;

@@ -37,7 +37,8 @@ struct BeamForms {
   Eigen::VectorXd values_at(double x_m) const;
 };
 
-// M, C, K for the given parameters; beam.l must equal forms.length_m (InputError otherwise).
+// M, C, K for the given parameters; beam.l must equal forms.length_m (InputError otherwise). Each attachment adds
+// [m v v^T, m c v v^T; m c v v^T, (J + m c^2) v v^T] to M, v = beta(x/l) (model/beam_parameters.h).
 SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
 
 // dM/dq, dC/dq, dK/dq for the beam parameter `key` at `beam` (exact: M, C, K are linear in every parameter but the

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/errors.h"
+#include "model/limits.h"
 
 namespace beamid {
 
@@ -84,6 +85,22 @@ std::optional<std::string> constraint_violation(const ParameterInfo& info, doubl
   return std::nullopt;
 }
 
+std::string attachment_key(std::size_t index) { return "attachment" + std::to_string(index + 1); }
+
+std::optional<std::string> attachment_violation(const Attachment& a, double l) {
+  // Same magnitude cap as the beam's own parameters (constraint_violation).
+  const auto bad = [](double v) { return !std::isfinite(v) || std::abs(v) > 1e20; };
+  if (bad(a.x) || !(a.x > 0 && a.x <= l))
+    return "x = " + format_value(a.x) + ": must be in (0, l = " + format_value(l) +
+           "] m (measured from the clamp; a body at the clamp does not move)";
+  if (bad(a.m) || !(a.m >= 0)) return "m = " + format_value(a.m) + ": must be finite and >= 0 (kg)";
+  if (bad(a.J) || !(a.J >= 0)) return "J = " + format_value(a.J) + ": must be finite and >= 0 (kg m^2)";
+  if (bad(a.c) || !(std::abs(a.c) <= l))
+    return "c = " + format_value(a.c) + ": must be in [-l, l] = [-" + format_value(l) + ", " + format_value(l) +
+           "] m (the body's centre lies within a beam length of its fixing point)";
+  return std::nullopt;
+}
+
 std::optional<std::string> validation_error(const BeamParameters& beam) {
   for (const auto& info : parameter_table()) {
     const double value = beam.*info.member;
@@ -93,6 +110,12 @@ std::optional<std::string> validation_error(const BeamParameters& beam) {
   if (beam.c > beam.l)
     return "c = " + format_value(beam.c) + ": must be <= l = " + format_value(beam.l) +
            ": the tip body's centre lies within a beam length of the tip";
+  if (beam.attachments.size() > static_cast<std::size_t>(kMaxAttachments))
+    return "attachments: " + std::to_string(beam.attachments.size()) + " bodies on the span: must be at most " +
+           std::to_string(kMaxAttachments);
+  for (std::size_t k = 0; k < beam.attachments.size(); ++k) {
+    if (auto e = attachment_violation(beam.attachments[k], beam.l)) return attachment_key(k) + "." + *e;
+  }
   return std::nullopt;
 }
 

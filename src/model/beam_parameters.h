@@ -5,6 +5,12 @@
 //   clamped at x = 0; at x = l a tip body of mass m, offset c and inertia J_o about its centre of mass.
 //
 // Members carry the symbols of the equations (and the TOML keys); the unit of each is in parameter_table().
+//
+// Attachments (sensor boards, accelerometers, clamps of a shaker rod) are further rigid bodies fixed anywhere on the
+// span. One at x with mass m, offset c of its centre of mass along the axis and inertia J about its centre moves with
+// the section at x: its centre translates by u(x) + c alpha(x) and it rotates by alpha(x), so its kinetic energy is
+//   (1/2) [u_t(x), alpha_t(x)] Lambda [u_t(x), alpha_t(x)]^T,   Lambda = [[m, m c], [m c, J + m c^2]],
+// exactly the tip body's form with the tip trace replaced by the section at x.
 #pragma once
 
 #include <array>
@@ -15,18 +21,27 @@
 
 namespace beamid::model {
 
+struct Attachment {
+  double x = 0;  // m       position on the span, measured from the clamp, 0 < x <= l
+  double m = 0;  // kg      mass
+  double J = 0;  // kg m^2  rotary inertia about its own centre of mass
+  double c = 0;  // m       offset of its centre of mass along the beam axis from x (either sign), |c| <= l
+  bool operator==(const Attachment&) const = default;
+};
+
 struct BeamParameters {
-  double l = 0;       // m        length
-  double rho = 0;     // kg/m    linear mass density
-  double rho_r2 = 0;  // kg m    rotary inertia per length, rho I / A
-  double kAG = 0;     // N       shear stiffness kappa A G
-  double EI = 0;      // N m^2   bending stiffness
-  double gamma = 0;   // N s/m^2 viscous (air) damping
-  double cDI = 0;     // N m^2 s Kelvin-Voigt bending damping c_D I
-  double kAcs = 0;    // N s     Kelvin-Voigt shear damping kappa A c_s
-  double m = 0;       // kg      tip body mass
-  double c = 0;       // m       tip body centre of mass beyond the tip, on the axis
-  double J_o = 0;     // kg m^2  tip body inertia about its centre of mass
+  double l = 0;                         // m        length
+  double rho = 0;                       // kg/m    linear mass density
+  double rho_r2 = 0;                    // kg m    rotary inertia per length, rho I / A
+  double kAG = 0;                       // N       shear stiffness kappa A G
+  double EI = 0;                        // N m^2   bending stiffness
+  double gamma = 0;                     // N s/m^2 viscous (air) damping
+  double cDI = 0;                       // N m^2 s Kelvin-Voigt bending damping c_D I
+  double kAcs = 0;                      // N s     Kelvin-Voigt shear damping kappa A c_s
+  double m = 0;                         // kg      tip body mass
+  double c = 0;                         // m       tip body centre of mass beyond the tip, on the axis
+  double J_o = 0;                       // kg m^2  tip body inertia about its centre of mass
+  std::vector<Attachment> attachments;  // rigid bodies on the span, in the order the beam file gives them
 };
 
 // One row per parameter, in the canonical order l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o.
@@ -53,8 +68,14 @@ std::string parameter_keys();
 std::optional<std::string> constraint_violation(const ParameterInfo& info, double value);
 
 // The first violated constraint as "EI = -1: must be > 0", or nothing when all values are admissible:
-// all finite; l, rho, rho_r2, kAG, EI > 0; gamma, cDI, kAcs, m, c, J_o >= 0.
+// all finite; l, rho, rho_r2, kAG, EI > 0; gamma, cDI, kAcs, m, c, J_o >= 0; c <= l; and for attachment k (counted
+// from 1, named "attachmentK.x" etc.) 0 < x <= l, m >= 0, J >= 0, |c| <= l.
 std::optional<std::string> validation_error(const BeamParameters& beam);
+// "attachment1", "attachment2", ...: the name of attachment `index` (from 0) in messages and parameter keys.
+std::string attachment_key(std::size_t index);
+// The constraint attachment `a` of a beam of length l violates, as "x = 0: must be in (0, l = 0.3] m ...", or nothing.
+std::optional<std::string> attachment_violation(const Attachment& a, double l);
+
 // validation_error, then what no real beam has although the mathematics allows it (the exact determinant is tested
 // at l/r = 1e6): a section thinner than 1e-4 or thicker than 1 beam length (l/r outside [2 sqrt 3, 2 sqrt 3 1e4],
 // r = sqrt(rho_r2/rho)), or kAG r^2/EI = kappa G/E outside [1e-4, 10]. For parameters a user gives (beam files).

@@ -1,5 +1,6 @@
 #include "model/exact_frequencies.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -33,6 +34,15 @@ void require_count(int count) {
 
 void require_valid(const BeamParameters& beam) {
   if (const auto error = validation_error(beam)) throw InputError("beam parameters: " + *error);
+}
+
+void require_below_cutoff(const BeamParameters& beam, double omega_rad_s) {
+  const double cutoff = shear_cutoff_rad_s(beam);
+  const double s = omega_rad_s / cutoff;
+  // (1 - s)(1 + s) <= 0 catches omega that rounds onto the cut-off, where a = 0.
+  if (!(omega_rad_s > 0 && omega_rad_s < cutoff && (1 - s) * (1 + s) > 0))
+    throw InputError("omega_rad_s = " + format_value(omega_rad_s) + ": must be in (0, shear cut-off " +
+                     format_value(cutoff) + ")");
 }
 
 // Sign-change refinement by false position with the Illinois modification (halve the stale end's value when the
@@ -154,6 +164,90 @@ double scaled_determinant(const BeamParameters& beam, double omega_rad_s) {
   return r1_1 * r2_2 - r1_2 * r2_1;
 }
 
+// Inertia Lambda = [[m, m c], [m c, J + m c^2]] of rigid bodies at one point (their sum when several share it).
+struct PointInertia {
+  double m = 0, mc = 0, j = 0;
+  void add(double mass, double offset, double inertia) {
+    m += mass;
+    mc += mass * offset;
+    j += inertia + mass * offset * offset;
+  }
+};
+
+// The four free solutions of one segment at omega, in local coordinate xi in [0, L], as rows (U, Psi, S, M) with
+// S = kAG (U' - Psi) the shear force and M = EI Psi' the bending moment:
+//   U = exp(-a xi):        Psi = -d_a exp(-a xi),  S = -kAG (a - d_a) exp(-a xi),   M = a d_a EI exp(-a xi)
+//   U = exp(-a (L - xi)):  Psi = d_a exp(.),       S = kAG (a - d_a) exp(.),        M = a d_a EI exp(.)
+//   U = cos(b xi):         Psi = -d_b sin(b xi),   S = -kAG (b - d_b) sin(b xi),    M = -b d_b EI cos(b xi)
+//   U = sin(b xi):         Psi = d_b cos(b xi),    S = kAG (b - d_b) cos(b xi),     M = -b d_b EI sin(b xi)
+// (the cosh/sinh pairs of the clamped shapes above, rewritten as exponentials decaying away from each end, so that
+// no entry grows with a L). Rows are made dimensionless: Psi x l, S x l^3/EI, M x l^2/EI (l the beam's length).
+Eigen::Matrix4d segment_solutions(const BeamParameters& beam, const Wavenumbers& w, double L, double xi) {
+  const double l = beam.l, s_scale = l * l * l / beam.EI, m_scale = l * l;
+  const double e1 = std::exp(-w.a * xi), e2 = std::exp(-w.a * (L - xi));
+  const double c = std::cos(w.b * xi), s = std::sin(w.b * xi);
+  Eigen::Matrix4d r;
+  r << e1, e2, c, s,                                                   //
+      -w.d_a * e1 * l, w.d_a * e2 * l, -w.d_b * s * l, w.d_b * c * l,  //
+      -w.k_delta_a * e1 * s_scale, w.k_delta_a * e2 * s_scale, -w.k_delta_b * s * s_scale, w.k_delta_b * c * s_scale,
+      w.a * w.d_a * e1 * m_scale, w.a * w.d_a * e2 * m_scale, -w.b * w.d_b * c * m_scale, -w.b * w.d_b * s * m_scale;
+  return r;
+}
+
+// The frequency determinant of a beam cut into segments at its attachments (global-matrix method): four unknown
+// amplitudes per segment; two clamp rows U(0) = Psi(0) = 0; at each cut x_k continuity of U and Psi and the jumps
+//   S(x_k+) = S(x_k-) - omega^2 (m U + m c Psi),   M(x_k+) = M(x_k-) - omega^2 (m c U + (J + m c^2) Psi)
+// of the bodies there (virtual work of their inertia forces); and the tip rows of the 2x2 form with the tip body and
+// any attachment at x = l. Zero exactly when a nontrivial mode exists; continuous in omega, so its sign changes at
+// the natural frequencies. Inertia terms are scaled with their rows (S: l^3/EI, M: l^2/EI).
+double segmented_determinant_value(const BeamParameters& beam, double omega_rad_s) {
+  const Wavenumbers w = wavenumbers(beam, omega_rad_s);
+  const double omega2 = omega_rad_s * omega_rad_s, l = beam.l;
+  PointInertia tip;
+  tip.add(beam.m, beam.c, beam.J_o);
+  std::vector<Attachment> sorted = beam.attachments;
+  std::stable_sort(sorted.begin(), sorted.end(), [](const Attachment& p, const Attachment& q) { return p.x < q.x; });
+  std::vector<std::pair<double, PointInertia>> cuts;
+  for (const Attachment& a : sorted) {
+    if (a.x >= l) {
+      tip.add(a.m, a.c, a.J);
+    } else {
+      if (cuts.empty() || cuts.back().first != a.x) cuts.emplace_back(a.x, PointInertia{});
+      cuts.back().second.add(a.m, a.c, a.J);
+    }
+  }
+  const int segments = static_cast<int>(cuts.size()) + 1;
+  std::vector<double> ends{0.0};
+  for (const auto& cut : cuts) ends.push_back(cut.first);
+  ends.push_back(l);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(4 * segments, 4 * segments);
+  const double s_scale = l * l * l / beam.EI, m_scale = l * l / beam.EI;
+  // Rows S - omega^2 (m U + m c Psi) and M - omega^2 (m c U + j Psi) of a solution matrix r (Psi rows carry x l).
+  const auto loaded = [&](const Eigen::Matrix4d& r, const PointInertia& p) {
+    Eigen::Matrix<double, 2, 4> rows;
+    rows.row(0) = r.row(2) - omega2 * s_scale * (p.m * r.row(0) + p.mc / l * r.row(1));
+    rows.row(1) = r.row(3) - omega2 * m_scale * (p.mc * r.row(0) + p.j / l * r.row(1));
+    return rows;
+  };
+  int row = 0;
+  a.block<2, 4>(row, 0) = segment_solutions(beam, w, ends[1] - ends[0], 0.0).topRows<2>();
+  row += 2;
+  for (int k = 0; k + 1 < segments; ++k) {
+    const double left_length = ends[k + 1] - ends[k], right_length = ends[k + 2] - ends[k + 1];
+    const Eigen::Matrix4d left = segment_solutions(beam, w, left_length, left_length);
+    const Eigen::Matrix4d right = segment_solutions(beam, w, right_length, 0.0);
+    a.block<2, 4>(row, 4 * k) = left.topRows<2>();
+    a.block<2, 4>(row, 4 * (k + 1)) = -right.topRows<2>();
+    // S(x+) - S(x-) + omega^2 (...) = 0: -(loaded left rows) + right's S, M rows.
+    a.block<2, 4>(row + 2, 4 * k) = -loaded(left, cuts[static_cast<std::size_t>(k)].second);
+    a.block<2, 4>(row + 2, 4 * (k + 1)) = right.bottomRows<2>();
+    row += 4;
+  }
+  const double last_length = ends[segments] - ends[segments - 1];
+  a.block<2, 4>(row, 4 * (segments - 1)) = loaded(segment_solutions(beam, w, last_length, last_length), tip);
+  return a.partialPivLu().determinant();
+}
+
 // The Euler-Bernoulli tip-body equation divided by cosh L (bounded apart from its polynomial factors in L):
 //   sech L + cos L + mu L (cos L tanh L - sin L) - eta L^3 (sin L + tanh L cos L) + mu eta L^4 (sech L - cos L).
 double scaled_tip_equation(double mu, double eta, double L) {
@@ -166,14 +260,15 @@ double scaled_tip_equation(double mu, double eta, double L) {
 
 double timoshenko_determinant(const BeamParameters& beam, double omega_rad_s) {
   require_valid(beam);
-  const double cutoff = shear_cutoff_rad_s(beam);
-  const double s = omega_rad_s / cutoff;
-  // (1 - s)(1 + s) <= 0 catches omega that rounds onto the cut-off, where a = 0.
-  if (!(omega_rad_s > 0 && omega_rad_s < cutoff && (1 - s) * (1 + s) > 0))
-    throw InputError("omega_rad_s = " + format_value(omega_rad_s) + ": must be in (0, shear cut-off " +
-                     format_value(cutoff) + ")");
+  require_below_cutoff(beam, omega_rad_s);
   const double al = wavenumbers(beam, omega_rad_s).a * beam.l;
   return scaled_determinant(beam, omega_rad_s) / std::cosh(al);
+}
+
+double segmented_determinant(const BeamParameters& beam, double omega_rad_s) {
+  require_valid(beam);
+  require_below_cutoff(beam, omega_rad_s);
+  return segmented_determinant_value(beam, omega_rad_s);
 }
 
 std::vector<double> timoshenko_frequencies_rad_s(const BeamParameters& beam, int count) {
@@ -189,7 +284,12 @@ std::vector<double> timoshenko_frequencies_rad_s(const BeamParameters& beam, int
     const double bl = wavenumbers(beam, omega).b * beam.l;
     return std::min(omega + kStepFractionOfPi * kPi * omega / bl, omega_last);
   };
-  const auto f = [&](double omega) { return scaled_determinant(beam, omega); };
+  // Attachments on the span cut the beam into segments (segmented_determinant); without them the closed 2x2 form.
+  if (beam.attachments.empty()) {
+    const auto f = [&](double omega) { return scaled_determinant(beam, omega); };
+    return march_roots(f, omega_start, next, count);
+  }
+  const auto f = [&](double omega) { return segmented_determinant_value(beam, omega); };
   return march_roots(f, omega_start, next, count);
 }
 
@@ -207,6 +307,9 @@ std::vector<double> euler_bernoulli_tip_body_roots(double mu, double eta, int co
 
 std::vector<double> euler_bernoulli_frequencies_rad_s(const BeamParameters& beam, int count) {
   require_valid(beam);
+  if (!beam.attachments.empty())
+    throw InputError("the Euler-Bernoulli tip-body equation has no attachments on the span (" +
+                     std::to_string(beam.attachments.size()) + " given): use timoshenko_frequencies_rad_s");
   const double mu = beam.m / (beam.rho * beam.l);
   const double eta = (beam.J_o + beam.m * beam.c * beam.c) / (beam.rho * std::pow(beam.l, 3));
   const double scale = std::sqrt(beam.EI / (beam.rho * std::pow(beam.l, 4)));  // omega_n = L_n^2 scale

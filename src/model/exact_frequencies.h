@@ -24,7 +24,16 @@ namespace beamid::model {
 // Requires 0 < omega_rad_s < shear_cutoff_rad_s(beam).
 double timoshenko_determinant(const BeamParameters& beam, double omega_rad_s);
 
-// The first `count` roots of timoshenko_determinant in increasing order, rad/s, found by marching in steps small
+// With attachments on the span (BeamParameters::attachments) the beam is cut into segments at them and the
+// determinant is that of the global 4S x 4S system (S segments): four free solutions per segment, the clamp, U and
+// Psi continuous at each cut, the shear force and moment jumping by the inertia forces of the bodies there, and the
+// tip conditions above with the tip body and any attachment at x = l. Zero at the natural frequencies and
+// continuous (no poles) in (0, shear cut-off); equals the 2x2 form's roots when there are no attachments.
+// Requires 0 < omega_rad_s < shear_cutoff_rad_s(beam).
+double segmented_determinant(const BeamParameters& beam, double omega_rad_s);
+
+// The first `count` roots of timoshenko_determinant (segmented_determinant when the beam has attachments) in
+// increasing order, rad/s, found by marching in steps small
 // against the spacing of the roots (a fixed fraction of pi in b*l) and refining each sign change to full precision.
 // Returns fewer than `count` values when fewer roots lie below the shear cut-off. count >= 1.
 std::vector<double> timoshenko_frequencies_rad_s(const BeamParameters& beam, int count);
@@ -37,6 +46,7 @@ std::vector<double> euler_bernoulli_tip_body_roots(double mu, double eta, int co
 
 // Euler-Bernoulli frequencies of the beam (rho, EI, l), rad/s, with its tip body taken as a point mass m and
 // rotary inertia J_o + m c^2 about the tip (exact for c = 0; shear, rotary inertia of the beam and damping ignored).
+// InputError when the beam has attachments on the span.
 std::vector<double> euler_bernoulli_frequencies_rad_s(const BeamParameters& beam, int count);
 
 }  // namespace beamid::model

@@ -18,6 +18,9 @@ inline constexpr int kMaxSamples = 1 << 28;      // Nbar of a command (memory is
 inline constexpr int kMaxSpikes = 64;            // NM
 inline constexpr int kMaxStarts = 1000;          // starts of a multi-start fit
 inline constexpr int kMaxEvaluations = 1000000;  // per optimizer run
+// Rigid bodies on the span of one beam. Real beams carry a handful; the exact reference solves a dense
+// 4(K+1)-square system per trial frequency (K = 100: 404 x 404, ~40 ms, a few thousand trials per root march).
+inline constexpr int kMaxAttachments = 100;
 
 // Measured resource use (peak RSS and wall time on this machine, `/usr/bin/time`), for the estimates that guard a
 // run before it starts (apps/command_flags.cc, study/runner.cc):

@@ -75,6 +75,43 @@ TEST(BeamToml, ReadsAllKeysMatchingThePreset) {
   EXPECT_DOUBLE_EQ(config::parse_beam_toml(replace(kValid, "kAcs = 9.73", "kAcs = 10"), "b").kAcs, 10.0);
 }
 
+TEST(BeamToml, AttachmentsAreReadInFileOrderWithDefaults) {
+  const std::string text = std::string(kValid) +
+                           "\n[[attachment]]   # a sensor board 6 cm from the tip\nx = 0.3973\nm = 0.012\nJ = 1e-6\n"
+                           "\n[[attachment]]\nx = 0.2\nm = 0.004\nc = -0.01\n";
+  const BeamParameters p = config::parse_beam_toml(text, "beam.toml");
+  ASSERT_EQ(p.attachments.size(), 2u);
+  EXPECT_EQ(p.attachments[0], (Attachment{0.3973, 0.012, 1e-6, 0.0}));
+  EXPECT_EQ(p.attachments[1], (Attachment{0.2, 0.004, 0.0, -0.01}));
+  EXPECT_FALSE(validation_error(p));
+  EXPECT_TRUE(config::parse_beam_toml(kValid, "beam.toml").attachments.empty());
+}
+
+TEST(BeamToml, AttachmentErrorsNameLineKeyValueAndConstraint) {
+  const std::string base = std::string(kValid) + "[[attachment]]\n";  // the table opens on line 15
+  EXPECT_EQ(error_of(base + "x = 0.5\nm = 0.01\n"),
+            "beam.toml:16: attachment1.x = 0.5: must be in (0, l] m, measured from the clamp (l = 0.4573 m)");
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = -1\n"), "beam.toml:17: attachment1.m = -1: must be >= 0 (kg)");
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\nc = 0.5\n"),
+            "beam.toml:18: attachment1.c = 0.5: must be in [-l, l] m: the body's centre lies within a beam length of "
+            "its fixing point (l = 0.4573 m)");
+  EXPECT_EQ(error_of(base + "x = 0.1\n"), "beam.toml:15: [attachment1] is missing key 'm'");
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\nmass = 2\n"),
+            "beam.toml:18: unknown key attachment1.mass: valid keys are x, m, J, c");
+  EXPECT_EQ(error_of("attachment = 3\n" + kValid), "beam.toml:1: attachment = 3: must be an array");
+  // The second table is named attachment2.
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\n[[attachment]]\nx = 0\nm = 1\n"),
+            "beam.toml:19: attachment2.x = 0: must be in (0, l] m, measured from the clamp (l = 0.4573 m)");
+  // At most kMaxAttachments = 100 bodies (model/limits.h).
+  std::string many = kValid;
+  for (int k = 0; k < 101; ++k) many += "[[attachment]]\nx = 0.1\nm = 0.001\n";
+  EXPECT_EQ(error_of(many), "beam.toml:15: attachment = [101 tables]: must hold at most 100 attachments");
+  // The model's own check names the same constraint for beams built in code.
+  BeamParameters beam = preset("thick-steel");
+  beam.attachments.push_back({0.1, 1.0, -1.0, 0.0});
+  EXPECT_EQ(*validation_error(beam), "attachment1.J = -1: must be finite and >= 0 (kg m^2)");
+}
+
 TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replace(kValid, "EI = 0.491", "EI = -0.491")), "beam.toml:8: beam.EI = -0.491: must be > 0");
   EXPECT_EQ(error_of(replace(kValid, "gamma = 0.013", "gamma = -1")), "beam.toml:9: beam.gamma = -1: must be >= 0");
@@ -87,11 +124,12 @@ TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
             "beam.toml:15: unknown key beam.EA: valid keys are l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
   EXPECT_EQ(error_of(std::string(kValid) + "[fit]\nx = 1\n"),
             "beam.toml:15: unknown top-level key 'fit': a beam file holds one table, [beam] (lumped parameters) or "
-            "[geometry]");
+            "[geometry], and any number of [[attachment]] tables");
   EXPECT_NE(error_of("[beam\nl = 1").find("beam.toml:1: TOML syntax error"), std::string::npos);
   EXPECT_EQ(
       error_of("l = 1\n"),
-      "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry]");
+      "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry], "
+      "and any number of [[attachment]] tables");
   EXPECT_EQ(error_of(""),
             "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
 }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -316,6 +317,117 @@ TEST(ExactFrequencies, InvalidArgumentsThrow) {
     EXPECT_EQ(std::string(error.what()).rfind("omega_rad_s = -1: must be in (0, shear cut-off ", 0), 0u)
         << error.what();
   }
+}
+
+// ---- Attachments on the span (issue 11): the segmented determinant.
+
+// An Euler-Bernoulli cantilever (rho = EI = l = 1) with a point mass mu (no rotary inertia) at xi and nothing at the
+// tip, written independently of the library: two segments in the global coordinate s with the classical solutions
+// cosh, sinh, cos, sin of L s; conditions y1(0) = y1'(0) = 0; y, y', y'' continuous at xi and the shear jump
+// y2''' - y1''' = mu L^4 y(xi) (EI [y'''] = M omega^2 y with omega^2 = L^4 EI/(rho l^4)); y2''(1) = y2'''(1) = 0.
+double euler_bernoulli_point_mass_determinant(double mu, double xi, double L) {
+  const auto derivative = [L](double s, int order) {
+    const double ch = std::cosh(L * s), sh = std::sinh(L * s), c = std::cos(L * s), n = std::sin(L * s);
+    const double f = std::pow(L, order);
+    switch (order) {
+      case 0:
+        return Eigen::RowVector4d(ch, sh, c, n);
+      case 1:
+        return Eigen::RowVector4d(f * sh, f * ch, -f * n, f * c);
+      case 2:
+        return Eigen::RowVector4d(f * ch, f * sh, -f * c, -f * n);
+      default:
+        return Eigen::RowVector4d(f * sh, f * ch, f * n, -f * c);
+    }
+  };
+  Eigen::Matrix<double, 8, 8> a = Eigen::Matrix<double, 8, 8>::Zero();
+  a.block<1, 4>(0, 0) = derivative(0, 0);
+  a.block<1, 4>(1, 0) = derivative(0, 1);
+  for (int order = 0; order < 3; ++order) {
+    a.block<1, 4>(2 + order, 0) = derivative(xi, order);
+    a.block<1, 4>(2 + order, 4) = -derivative(xi, order);
+  }
+  a.block<1, 4>(5, 0) = -derivative(xi, 3) - mu * std::pow(L, 4) * derivative(xi, 0);
+  a.block<1, 4>(5, 4) = derivative(xi, 3);
+  a.block<1, 4>(6, 4) = derivative(1, 2);
+  a.block<1, 4>(7, 4) = derivative(1, 3);
+  return a.determinant();
+}
+
+// Roots of the above by a scan in steps of 1e-3 in L (far below their ~pi spacing) and bisection to 1e-14.
+std::vector<double> euler_bernoulli_point_mass_roots(double mu, double xi, int count) {
+  std::vector<double> roots;
+  const auto f = [&](double L) { return euler_bernoulli_point_mass_determinant(mu, xi, L); };
+  for (int step = 100; static_cast<int>(roots.size()) < count && step < 30000; ++step) {
+    double lo = step * 1e-3, hi = (step + 1) * 1e-3, f_lo = f(lo);
+    if ((f_lo < 0) == (f(hi) < 0)) continue;
+    while (hi - lo > 1e-14 * hi) {
+      const double mid = (lo + hi) / 2, f_mid = f(mid);
+      if ((f_mid < 0) == (f_lo < 0)) {
+        lo = mid;
+        f_lo = f_mid;
+      } else {
+        hi = mid;
+      }
+    }
+    roots.push_back((lo + hi) / 2);
+  }
+  return roots;
+}
+
+TEST(AttachedBodies, SlenderBeamWithAPointMassIsEulerBernoulli) {
+  // l/r = 3e4: Timoshenko's shear and rotary-inertia corrections are O((r/l)^2 (b l)^2 (1 + E/kG)) = 1.1e-9 x 121 x
+  // 4.1 = 5e-7 at mode 4 (b l ~ 11). 1e-6 relative bounds that; a wrong jump sign or a mass counted at the wrong
+  // point moves the frequencies by percents.
+  for (const double xi : {0.25, 0.6, 0.95}) {
+    const double mu = 0.5;
+    BeamParameters beam = nondimensional_beam(3e4);
+    beam.attachments.push_back({xi, mu, 0, 0});
+    const std::vector<double> timoshenko = timoshenko_frequencies_rad_s(beam, 4);
+    const std::vector<double> roots = euler_bernoulli_point_mass_roots(mu, xi, 4);
+    ASSERT_EQ(roots.size(), 4u);
+    ASSERT_EQ(timoshenko.size(), 4u);
+    for (int k = 0; k < 4; ++k)
+      EXPECT_NEAR(timoshenko[k] / (roots[k] * roots[k]), 1.0, 1e-6) << "xi = " << xi << ", mode " << k + 1;
+  }
+}
+
+TEST(AttachedBodies, MasslessAttachmentAndAttachmentAtTheTipMatchTheTwoByTwoForm) {
+  // The segmented determinant and the closed 2x2 form are different algebra for the same roots: they agree to the
+  // refinement's few ulps, amplified by the conditioning of each; 1e-12 allows that.
+  for (const auto& name : preset_names()) {
+    const BeamParameters plain = preset(name);
+    const std::vector<double> reference = timoshenko_frequencies_rad_s(plain, 6);
+    BeamParameters massless = plain;  // a body of no mass cuts the beam in two and changes nothing
+    massless.attachments.push_back({0.4 * plain.l, 0, 0, 0});
+    BeamParameters moved = plain;  // the tip body given as an attachment at x = l
+    moved.attachments.push_back({plain.l, plain.m, plain.J_o, plain.c});
+    moved.m = moved.c = moved.J_o = 0;
+    const std::vector<double> cut = timoshenko_frequencies_rad_s(massless, 6);
+    const std::vector<double> at_tip = timoshenko_frequencies_rad_s(moved, 6);
+    ASSERT_EQ(cut.size(), 6u);
+    ASSERT_EQ(at_tip.size(), 6u);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_NEAR(cut[k] / reference[k], 1.0, 1e-12) << name << " mode " << k + 1;
+      EXPECT_NEAR(at_tip[k] / reference[k], 1.0, 1e-12) << name << " mode " << k + 1;
+    }
+  }
+}
+
+TEST(AttachedBodies, OffsetAndInertiaEnterAsTheTipBodysDo) {
+  // Two bodies at one point act as one with the summed inertia Lambda = [[m, m c], [m c, J + m c^2]]: a 0.1 kg body
+  // with offset 0.01 m and J = 2e-6 plus a 0.05 kg body with offset -0.02 m equal one body with m = 0.15, m c = 0,
+  // J + m c^2 = 2e-6 + 1e-5 + 2e-5 (so J = 3.2e-5, c = 0). The same matrix up to the rounding of the sums: 1e-12.
+  BeamParameters two = preset("thick-steel"), one = two;
+  two.attachments = {{0.2, 0.1, 2e-6, 0.01}, {0.2, 0.05, 0, -0.02}};
+  one.attachments = {{0.2, 0.15, 3.2e-5, 0}};
+  const std::vector<double> a = timoshenko_frequencies_rad_s(two, 4), b = timoshenko_frequencies_rad_s(one, 4);
+  ASSERT_EQ(a.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 1e-12) << "mode " << k + 1;
+  // The segmented determinant refuses what the 2x2 one refuses; the Euler-Bernoulli tip equation has no span bodies.
+  EXPECT_THROW(segmented_determinant(two, 0.0), InputError);
+  EXPECT_THROW(segmented_determinant(two, shear_cutoff_rad_s(two)), InputError);
+  EXPECT_THROW(euler_bernoulli_frequencies_rad_s(two, 2), InputError);
 }
 
 }  // namespace
