@@ -58,7 +58,7 @@ int run_crb(const Flags& a, std::ostream& out) {
     const double level = a.number("noise-level");
     a.require(level > 0, "noise-level", "must be > 0");
     const galerkin::SplineSpace space(n);
-    const simulation::Trace clean = simulation::simulate(galerkin::BeamForms(space, beam.l), beam, e, {});
+    const simulation::Trace clean = simulation::simulate(galerkin::BeamForms(space, beam.l, beam.support), beam, e, {});
     if (!clean.ok()) throw NumericalError("beamid crb: the model could not be evaluated: " + clean.status);
     sigma = level * signal::rms(clean.y);
     a.require(sigma > 0, "noise-level", "the clean signal is zero, so a fraction of its RMS is no noise level");

@@ -84,7 +84,7 @@ int run_simulate(const Flags& a, std::ostream& out) {
   if (auto error = simulation::validation_error(options)) throw InputError("beamid simulate: " + *error);
 
   const galerkin::SplineSpace space(n);
-  const galerkin::BeamForms forms(space, beam.l);
+  const galerkin::BeamForms forms(space, beam.l, beam.support);
   const simulation::Trace trace = simulation::simulate(forms, beam, e, options);
   if (!trace.ok()) throw NumericalError("beamid simulate: " + trace.status);
 
@@ -131,7 +131,7 @@ int run_system(const Flags& a, std::ostream& out) {
   const int n = run.elements;
   const simulation::Experiment& e = run.experiment;
   const galerkin::SplineSpace space(n);
-  const galerkin::BeamForms forms(space, beam.l);
+  const galerkin::BeamForms forms(space, beam.l, beam.support);
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
   const simulation::ResponseProblem p = simulation::make_problem(forms, system, e);
   // The response problem in the terms of simulation/experiment.h: M w'' + C w' + K w = load P(t), P(t) =

@@ -108,7 +108,7 @@ void write_verification(const std::string& folder, std::ostream& log) {
   for (const auto& name : presets) {
     const model::BeamParameters beam = model::preset(name);
     const galerkin::SplineSpace space(16);
-    const galerkin::BeamForms forms(space, beam.l);
+    const galerkin::BeamForms forms(space, beam.l, beam.support);
     for (const std::string& output : simulation::output_names().names()) {
       simulation::Experiment e = experiment_for(name, beam.l);
       e.output = output;

@@ -119,6 +119,20 @@ void parse_attachments(Table root, BeamParameters& beam) {
   }
 }
 
+// [support]: the clamp's springs (model/beam_parameters.h), k_theta in N m/rad and k_w in N/m, each optional (absent:
+// rigid in that direction). The range spans any real clamp: from a beam on a soft hinge to a weld, with room for
+// fits; beyond 1e20 the matrices lose their digits.
+void parse_support(Table root, BeamParameters& beam) {
+  std::optional<Table> t = root.table("support");
+  if (!t) return;
+  const auto spring = [](double v) { return v > 0 && v <= 1e20; };
+  if (t->has("k_theta"))
+    beam.support.k_theta = t->number("k_theta", std::nullopt, spring, "must be in (0, 1e20] N m/rad (omit it: rigid)");
+  if (t->has("k_w"))
+    beam.support.k_w = t->number("k_w", std::nullopt, spring, "must be in (0, 1e20] N/m (omit it: rigid)");
+  t->finish({"k_theta", "k_w"});
+}
+
 }  // namespace
 
 BeamParameters parse_beam_toml(const std::string& text, const std::string& source_name) {
@@ -126,16 +140,17 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
   const Table root = document.root();
   const auto at = [&](int line) { return source_name + ":" + std::to_string(line); };
   for (const auto& [key, node] : root.entries())
-    if (key != "beam" && key != "geometry" && key != "attachment")
+    if (key != "beam" && key != "geometry" && key != "attachment" && key != "support")
       throw InputError(at(root.key_line(key)) + ": unknown top-level key '" + key +
-                       "': a beam file holds one table, [beam] (lumped parameters) or [geometry], and any number "
-                       "of [[attachment]] tables");
+                       "': a beam file holds one table, [beam] (lumped parameters) or [geometry], any number of "
+                       "[[attachment]] tables and an optional [support]");
   if (root.has("geometry")) {
     if (root.has("beam"))
       throw InputError(at(root.key_line("geometry")) +
                        ": give either [beam] (lumped parameters) or [geometry], not both");
     BeamParameters beam = parse_geometry_table(document.required("geometry"));
     parse_attachments(root, beam);
+    parse_support(root, beam);
     return beam;
   }
   if (!root.has("beam"))
@@ -168,6 +183,7 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
   if (auto e = model::implausibility(beam))
     throw InputError(at(table.key_line(e->substr(0, e->find(' ')))) + ": beam." + *e);
   parse_attachments(root, beam);
+  parse_support(root, beam);
   return beam;
 }
 

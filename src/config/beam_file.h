@@ -8,6 +8,10 @@
 //   m = 0.012   # kg
 //   J = 2e-6    # kg m^2 about its centre (optional)
 //   c = 0.0     # m, its centre's offset along the axis (optional)
+// and by one [support] table, the clamp's springs (each optional; absent: rigid):
+//   [support]
+//   k_theta = 350   # N m/rad
+//   k_w = 2e6       # N/m
 #pragma once
 
 #include <string>

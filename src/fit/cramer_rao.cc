@@ -136,7 +136,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
     log_q(static_cast<Eigen::Index>(k)) = std::log(value);
   }
   const galerkin::SplineSpace space(elements);
-  const galerkin::BeamForms forms(space, beam.l);
+  const galerkin::BeamForms forms(space, beam.l, beam.support);
   if (simulation::has_exact_sensitivities(experiment) && simulator.integrator == "fast") {
     check_noise(noise_sd);
     const simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, experiment, keys);

@@ -14,36 +14,60 @@ double checked_length(double length_m) {
 }
 }  // namespace
 
-BeamForms::BeamForms(const SplineSpace& s, double l) : space(s), length_m(checked_length(l)) {
-  const int n = space.dimension();
-  const Eigen::MatrixXd g0 = length_m * space.G0();    // int_0^l beta_i beta_j dx
-  const Eigen::MatrixXd g11 = space.G11() / length_m;  // int_0^l beta_i' beta_j' dx
-  const Eigen::MatrixXd& g10 = space.G10();            // int_0^l beta_i' beta_j dx (scale-free)
-  const Eigen::VectorXd& nu = space.tip_trace();
-  const Eigen::MatrixXd nnt = nu * nu.transpose();
-  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-
-  const auto blocks = [n](const Eigen::MatrixXd& uu, const Eigen::MatrixXd& ua, const Eigen::MatrixXd& au,
-                          const Eigen::MatrixXd& aa) {
-    Eigen::MatrixXd m(2 * n, 2 * n);
-    m << uu, ua, au, aa;
+BeamForms::BeamForms(const SplineSpace& s, double l, const model::Support& support)
+    : space(s),
+      length_m(checked_length(l)),
+      deflection_free(support.deflection_free()),
+      rotation_free(support.rotation_free()) {
+  const int full = space.elements() + 3;
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(full, full);
+  u_basis = deflection_free ? identity : space.clamping();
+  alpha_basis = rotation_free ? identity : space.clamping();
+  const Eigen::MatrixXd& pu = u_basis;
+  const Eigen::MatrixXd& pa = alpha_basis;
+  const int nu_dim = u_dimension(), na_dim = alpha_dimension();
+  // Gram matrices on [0, l] in each block's basis: int beta_i beta_j dx = l G0, int beta_i' beta_j' dx = G11 / l,
+  // int beta_i' beta_j dx = G10 (scale-free). A clamped block takes the space's own (symmetrised) clamped matrices,
+  // a free one the unclamped ones, and the mixed G10 is T_u G10_full T_a^T.
+  const Eigen::MatrixXd g0_uu = length_m * (deflection_free ? space.full_G0() : space.G0());
+  const Eigen::MatrixXd g0_aa = length_m * (rotation_free ? space.full_G0() : space.G0());
+  const Eigen::MatrixXd g11_uu = (deflection_free ? space.full_G11() : space.G11()) / length_m;
+  const Eigen::MatrixXd g11_aa = (rotation_free ? space.full_G11() : space.G11()) / length_m;
+  const Eigen::MatrixXd g10_ua =
+      (deflection_free || rotation_free) ? Eigen::MatrixXd(pu * space.full_G10() * pa.transpose()) : space.G10();
+  const Eigen::VectorXd nu_u = pu * space.full_values(1.0), nu_a = pa * space.full_values(1.0);
+  const Eigen::VectorXd e_u = pu * space.full_values(0.0), e_a = pa * space.full_values(0.0);
+  const auto blocks = [&](const Eigen::MatrixXd& uu, const Eigen::MatrixXd& ua, const Eigen::MatrixXd& aa) {
+    Eigen::MatrixXd m(nu_dim + na_dim, nu_dim + na_dim);
+    m << uu, ua, ua.transpose(), aa;
     return m;
   };
+  const Eigen::MatrixXd zero_uu = Eigen::MatrixXd::Zero(nu_dim, nu_dim),
+                        zero_ua = Eigen::MatrixXd::Zero(nu_dim, na_dim),
+                        zero_aa = Eigen::MatrixXd::Zero(na_dim, na_dim);
   // <u_x - alpha, phi1_x - phi2>: rows phi1 = beta_i give [G11, -G10], rows phi2 = beta_i give [-G10^T, G0].
-  shear = blocks(g11, -g10, -g10.transpose(), g0);
-  bending = blocks(zero, zero, zero, g11);
-  translation = blocks(g0, zero, zero, zero);
-  rotation = blocks(zero, zero, zero, g0);
-  tip_uu = blocks(nnt, zero, zero, zero);
-  tip_ua = blocks(zero, nnt, nnt, zero);
-  tip_aa = blocks(zero, zero, zero, nnt);
+  shear = blocks(g11_uu, -g10_ua, g0_aa);
+  bending = blocks(zero_uu, zero_ua, g11_aa);
+  translation = blocks(g0_uu, zero_ua, zero_aa);
+  rotation = blocks(zero_uu, zero_ua, g0_aa);
+  tip_uu = blocks(nu_u * nu_u.transpose(), zero_ua, zero_aa);
+  tip_ua = blocks(zero_uu, nu_u * nu_a.transpose(), zero_aa);
+  tip_aa = blocks(zero_uu, zero_ua, nu_a * nu_a.transpose());
+  // Clamped blocks have e = 0 (every clamped basis function vanishes at the root), so these are zero there.
+  root_uu = blocks(e_u * e_u.transpose(), zero_ua, zero_aa);
+  root_aa = blocks(zero_uu, zero_ua, e_a * e_a.transpose());
 }
 
 Eigen::VectorXd BeamForms::values_at(double x_m) const {
   if (!(x_m >= 0 && x_m <= length_m))
     throw InputError("position x = " + format_value(x_m) +
                      " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
-  return space.values(x_m / length_m);
+  return u_basis * space.full_values(x_m / length_m);
+}
+
+Eigen::VectorXd BeamForms::alpha_values_at(double x_m) const {
+  values_at(x_m);  // the same range check
+  return alpha_basis * space.full_values(x_m / length_m);
 }
 
 SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
@@ -51,20 +75,26 @@ SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
     throw InputError("beam length l = " + format_value(p.l) +
                      " differs from the length the Galerkin forms were made for (" + format_value(f.length_m) + ")");
   // Tip inertia Lambda = [[m, m c], [m c, m c^2 + J_o]] acting on (u(l), alpha(l)).
+  if (p.support.rotation_free() != f.rotation_free || p.support.deflection_free() != f.deflection_free)
+    throw InputError(std::string("the beam's clamp (") + (p.support.rigid() ? "rigid" : "compliant") +
+                     ") differs from the one the Galerkin forms were made for: build them with BeamForms(space, l, "
+                     "beam.support)");
   SecondOrderSystem s;
   s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + (p.m * p.c) * f.tip_ua +
         (p.J_o + p.m * p.c * p.c) * f.tip_aa;
-  // Attachments: the same inertia Lambda_k acting on (u(x_k), alpha(x_k)), with v = beta(x_k / l) in place of nu.
-  const Eigen::Index n = f.space.dimension();
+  // Attachments: the same inertia Lambda_k acting on (u(x_k), alpha(x_k)), with the blocks' values at x_k in place of
+  // the tip traces.
+  const Eigen::Index nu = f.u_dimension(), na = f.alpha_dimension();
   for (const model::Attachment& a : p.attachments) {
-    const Eigen::VectorXd v = f.values_at(a.x);
-    const Eigen::MatrixXd vvt = v * v.transpose();
-    s.M.topLeftCorner(n, n) += a.m * vvt;
-    s.M.topRightCorner(n, n) += (a.m * a.c) * vvt;
-    s.M.bottomLeftCorner(n, n) += (a.m * a.c) * vvt;
-    s.M.bottomRightCorner(n, n) += (a.J + a.m * a.c * a.c) * vvt;
+    const Eigen::VectorXd v = f.values_at(a.x), w = f.alpha_values_at(a.x);
+    s.M.topLeftCorner(nu, nu) += a.m * (v * v.transpose());
+    s.M.topRightCorner(nu, na) += (a.m * a.c) * (v * w.transpose());
+    s.M.bottomLeftCorner(na, nu) += (a.m * a.c) * (w * v.transpose());
+    s.M.bottomRightCorner(na, na) += (a.J + a.m * a.c * a.c) * (w * w.transpose());
   }
   s.K = p.kAG * f.shear + p.EI * f.bending;
+  if (f.rotation_free) s.K += p.support.k_theta * f.root_aa;
+  if (f.deflection_free) s.K += p.support.k_w * f.root_uu;
   s.C = p.kAcs * f.shear + p.cDI * f.bending + p.gamma * f.translation;
   return s;
 }
@@ -100,12 +130,12 @@ SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamPara
 }
 
 SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters& beam) {
-  return combine(BeamForms(space, beam.l), beam);
+  return combine(BeamForms(space, beam.l, beam.support), beam);
 }
 
 Eigen::VectorXd point_load(const BeamForms& forms, double x_m) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(forms.dimension());
-  f.head(forms.space.dimension()) = forms.values_at(x_m);
+  f.head(forms.u_dimension()) = forms.values_at(x_m);
   return f;
 }
 

@@ -1,7 +1,8 @@
 // The Galerkin second-order system  M w'' + C w' + K w = F(t),  w = (a; b) in R^{2(N+2)},
 // u^N = sum a_j beta_j (displacement), alpha^N = sum b_j beta_j (section rotation), model.md section 2:
 //
-//   M = [ rho G0 + m nu nu^T      m c nu nu^T                       ]
+//   M = [ rho G0 + m nu nu^T      m c nu nu^T                       ]   (rigid clamp; see BeamForms for a compliant
+//   one)
 //       [ m c nu nu^T             rho_r2 G0 + (J_o + m c^2) nu nu^T ]
 //   K = kAG S + EI B,   C = kAcs S + cDI B + gamma T,   M = rho T + rho_r2 R + tip terms, with the parameter-free
 //   S = [ G11  -G10 ; -G10^T  G0 ]  (shear form of <u_x - alpha, phi1_x - phi2>),
@@ -24,21 +25,33 @@ struct SecondOrderSystem {
 };
 
 struct BeamForms {
-  // Parameter-free forms of `space` mapped to [0, length_m] (InputError unless length_m is finite and > 0).
-  BeamForms(const SplineSpace& space, double length_m);
+  // Parameter-free forms of `space` mapped to [0, length_m] (InputError unless length_m is finite and > 0), for a
+  // clamp of the given kind: a block whose root spring is finite (support.rotation_free() for alpha,
+  // deflection_free() for u) takes the unclamped space B_{-1..N+1} (N + 3 functions), a rigid one the clamped space
+  // (N + 2). The springs' values enter in combine(); only which roots are free is fixed here.
+  BeamForms(const SplineSpace& space, double length_m, const model::Support& support = {});
 
   SplineSpace space;
   double length_m;
+  bool deflection_free = false, rotation_free = false;
+  Eigen::MatrixXd u_basis, alpha_basis;  // the blocks' bases in B_{-1..N+1}: clamping() or the identity
   Eigen::MatrixXd shear, bending, translation, rotation;  // S, B, T, R above
-  Eigen::MatrixXd tip_uu, tip_ua, tip_aa;                 // [nu nu^T 0; 0 0], [0 nnT; nnT 0], [0 0; 0 nu nu^T]
+  Eigen::MatrixXd tip_uu, tip_ua, tip_aa;  // [nu nu^T 0; 0 0], [0 nu nu_a^T; nu_a nu^T 0], [0 0; 0 nu_a nu_a^T]
+  Eigen::MatrixXd root_uu, root_aa;        // e e^T of the root values in the u and alpha blocks (zero when clamped)
 
-  int dimension() const { return 2 * space.dimension(); }
-  // beta(x/l): the u-block of point loads and displacement sensors; InputError unless 0 <= x_m <= l.
+  int u_dimension() const { return static_cast<int>(u_basis.rows()); }
+  int alpha_dimension() const { return static_cast<int>(alpha_basis.rows()); }
+  int dimension() const { return u_dimension() + alpha_dimension(); }
+  // beta(x/l) of the u block: the u-block of point loads and displacement sensors; InputError unless 0 <= x_m <= l.
   Eigen::VectorXd values_at(double x_m) const;
+  // The same for the alpha block (section rotation at x_m).
+  Eigen::VectorXd alpha_values_at(double x_m) const;
 };
 
-// M, C, K for the given parameters; beam.l must equal forms.length_m (InputError otherwise). Each attachment adds
-// [m v v^T, m c v v^T; m c v v^T, (J + m c^2) v v^T] to M, v = beta(x/l) (model/beam_parameters.h).
+// M, C, K for the given parameters; beam.l must equal forms.length_m and the support's free roots those of the forms
+// (InputError otherwise). Each attachment adds [m v v^T, m c v w^T; m c w v^T, (J + m c^2) w w^T] to M, v and w the
+// u- and alpha-block values at x (model/beam_parameters.h); a compliant clamp adds k_theta e_a e_a^T and k_w e_u e_u^T
+// to K (the springs' energy (1/2) k_theta alpha(0)^2 + (1/2) k_w u(0)^2).
 SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
 
 // dM/dq, dC/dq, dK/dq for the beam parameter `key` at `beam` (exact: M, C, K are linear in every parameter but the

@@ -72,7 +72,11 @@ SplineSpace::SplineSpace(int elements) : elements_(elements) {
         }
     }
   }
-  const Eigen::MatrixXd t = clamping_matrix(n);
+  full_G0_ = g0;
+  full_G11_ = g11;
+  full_G10_ = g10;
+  clamping_ = clamping_matrix(n);
+  const Eigen::MatrixXd& t = clamping_;
   G0_ = t * g0 * t.transpose();
   G11_ = t * g11 * t.transpose();
   G10_ = t * g10 * t.transpose();
@@ -92,10 +96,11 @@ Eigen::VectorXd SplineSpace::evaluate(double xi, bool derivative) const {
   const int k = static_cast<int>(std::floor(s));
   for (int j = std::max(-1, k - 1); j <= std::min(n + 1, k + 2); ++j)
     b(j + 1) = derivative ? cardinal_bspline_derivative(s - j) * n : cardinal_bspline(s - j);
-  return clamping_matrix(n) * b;
+  return b;
 }
 
-Eigen::VectorXd SplineSpace::values(double xi) const { return evaluate(xi, false); }
-Eigen::VectorXd SplineSpace::slopes(double xi) const { return evaluate(xi, true); }
+Eigen::VectorXd SplineSpace::values(double xi) const { return clamping_ * evaluate(xi, false); }
+Eigen::VectorXd SplineSpace::slopes(double xi) const { return clamping_ * evaluate(xi, true); }
+Eigen::VectorXd SplineSpace::full_values(double xi) const { return evaluate(xi, false); }
 
 }  // namespace beamid::galerkin

@@ -35,13 +35,23 @@ class SplineSpace {
   // Tip trace nu_j = beta_j(1): nu_{N-1} = 1/6, nu_N = 2/3, nu_{N+1} = 1/6, all others 0.
   const Eigen::VectorXd& tip_trace() const { return tip_; }
 
+  // The unclamped space B_{-1..N+1} (dimension N + 3), for a block whose root is free (a compliant clamp): its Gram
+  // matrices, and T with beta = T B (the clamped basis above), so that a clamped block's forms are T G T^T.
+  const Eigen::MatrixXd& full_G0() const { return full_G0_; }
+  const Eigen::MatrixXd& full_G11() const { return full_G11_; }
+  const Eigen::MatrixXd& full_G10() const { return full_G10_; }
+  const Eigen::MatrixXd& clamping() const { return clamping_; }
+  // B_j(xi), j = -1..N+1 (InputError outside [0, 1]).
+  Eigen::VectorXd full_values(double xi) const;
+
  private:
-  // Values (derivative = false) or slopes of B_{-1..N+1} at xi, mapped to the clamped basis.
+  // Values (derivative = false) or slopes of B_{-1..N+1} at xi (unclamped).
   Eigen::VectorXd evaluate(double xi, bool derivative) const;
 
   int elements_;
   Eigen::MatrixXd G0_, G11_, G10_;
   Eigen::VectorXd tip_;
+  Eigen::MatrixXd full_G0_, full_G11_, full_G10_, clamping_;
 };
 
 }  // namespace beamid::galerkin

@@ -110,6 +110,10 @@ std::optional<std::string> validation_error(const BeamParameters& beam) {
   if (beam.c > beam.l)
     return "c = " + format_value(beam.c) + ": must be <= l = " + format_value(beam.l) +
            ": the tip body's centre lies within a beam length of the tip";
+  for (const auto& [key, value] :
+       {std::pair{"support.k_theta", beam.support.k_theta}, std::pair{"support.k_w", beam.support.k_w}})
+    if (!(value > 0))
+      return std::string(key) + " = " + format_value(value) + ": must be > 0 (omit it for a rigid clamp)";
   if (beam.attachments.size() > static_cast<std::size_t>(kMaxAttachments))
     return "attachments: " + std::to_string(beam.attachments.size()) + " bodies on the span: must be at most " +
            std::to_string(kMaxAttachments);

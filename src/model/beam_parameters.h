@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -29,6 +30,18 @@ struct Attachment {
   bool operator==(const Attachment&) const = default;
 };
 
+// The clamp at x = 0. Rigid by default (u(0) = alpha(0) = 0); a finite spring lets the root rotate or deflect and
+// stores (1/2) k_theta alpha(0)^2 + (1/2) k_w u(0)^2, giving the natural conditions M(0) = k_theta alpha(0),
+// S(0) = k_w u(0) (M = EI alpha_x the bending moment, S = kAG beta the shear force).
+struct Support {
+  double k_theta = std::numeric_limits<double>::infinity();  // N m/rad  rotational spring; infinite: rigid
+  double k_w = std::numeric_limits<double>::infinity();      // N/m      translational spring; infinite: rigid
+  bool rotation_free() const { return k_theta < std::numeric_limits<double>::infinity(); }
+  bool deflection_free() const { return k_w < std::numeric_limits<double>::infinity(); }
+  bool rigid() const { return !rotation_free() && !deflection_free(); }
+  bool operator==(const Support&) const = default;
+};
+
 struct BeamParameters {
   double l = 0;                         // m        length
   double rho = 0;                       // kg/m    linear mass density
@@ -42,6 +55,7 @@ struct BeamParameters {
   double c = 0;                         // m       tip body centre of mass beyond the tip, on the axis
   double J_o = 0;                       // kg m^2  tip body inertia about its centre of mass
   std::vector<Attachment> attachments;  // rigid bodies on the span, in the order the beam file gives them
+  Support support;                      // the clamp (rigid unless a [support] table says otherwise)
 };
 
 // One row per parameter, in the canonical order l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o.
@@ -69,7 +83,8 @@ std::optional<std::string> constraint_violation(const ParameterInfo& info, doubl
 
 // The first violated constraint as "EI = -1: must be > 0", or nothing when all values are admissible:
 // all finite; l, rho, rho_r2, kAG, EI > 0; gamma, cDI, kAcs, m, c, J_o >= 0; c <= l; and for attachment k (counted
-// from 1, named "attachmentK.x" etc.) 0 < x <= l, m >= 0, J >= 0, |c| <= l.
+// from 1, named "attachmentK.x" etc.) 0 < x <= l, m >= 0, J >= 0, |c| <= l; support.k_theta, support.k_w > 0 (+inf
+// is the rigid clamp).
 std::optional<std::string> validation_error(const BeamParameters& beam);
 // "attachment1", "attachment2", ...: the name of attachment `index` (from 0) in messages and parameter keys.
 std::string attachment_key(std::size_t index);

@@ -229,8 +229,14 @@ double segmented_determinant_value(const BeamParameters& beam, double omega_rad_
     rows.row(1) = r.row(3) - omega2 * m_scale * (p.mc * r.row(0) + p.j / l * r.row(1));
     return rows;
   };
+  // The root: U(0) = 0 or S(0) = k_w U(0); Psi(0) = 0 or M(0) = k_theta Psi(0) (rows scaled as above).
   int row = 0;
-  a.block<2, 4>(row, 0) = segment_solutions(beam, w, ends[1] - ends[0], 0.0).topRows<2>();
+  const Eigen::Matrix4d root = segment_solutions(beam, w, ends[1] - ends[0], 0.0);
+  a.block<1, 4>(row, 0) = root.row(0);
+  if (beam.support.deflection_free()) a.block<1, 4>(row, 0) = root.row(2) - beam.support.k_w * s_scale * root.row(0);
+  a.block<1, 4>(row + 1, 0) = root.row(1);
+  if (beam.support.rotation_free())
+    a.block<1, 4>(row + 1, 0) = root.row(3) - beam.support.k_theta * m_scale / l * root.row(1);
   row += 2;
   for (int k = 0; k + 1 < segments; ++k) {
     const double left_length = ends[k + 1] - ends[k], right_length = ends[k + 2] - ends[k + 1];
@@ -260,6 +266,10 @@ double scaled_tip_equation(double mu, double eta, double L) {
 
 double timoshenko_determinant(const BeamParameters& beam, double omega_rad_s) {
   require_valid(beam);
+  if (!beam.attachments.empty() || !beam.support.rigid())
+    throw InputError(
+        "the 2x2 frequency determinant has a rigid clamp and no attachments on the span: use "
+        "segmented_determinant");
   require_below_cutoff(beam, omega_rad_s);
   const double al = wavenumbers(beam, omega_rad_s).a * beam.l;
   return scaled_determinant(beam, omega_rad_s) / std::cosh(al);
@@ -285,7 +295,7 @@ std::vector<double> timoshenko_frequencies_rad_s(const BeamParameters& beam, int
     return std::min(omega + kStepFractionOfPi * kPi * omega / bl, omega_last);
   };
   // Attachments on the span cut the beam into segments (segmented_determinant); without them the closed 2x2 form.
-  if (beam.attachments.empty()) {
+  if (beam.attachments.empty() && beam.support.rigid()) {
     const auto f = [&](double omega) { return scaled_determinant(beam, omega); };
     return march_roots(f, omega_start, next, count);
   }
@@ -307,9 +317,10 @@ std::vector<double> euler_bernoulli_tip_body_roots(double mu, double eta, int co
 
 std::vector<double> euler_bernoulli_frequencies_rad_s(const BeamParameters& beam, int count) {
   require_valid(beam);
-  if (!beam.attachments.empty())
-    throw InputError("the Euler-Bernoulli tip-body equation has no attachments on the span (" +
-                     std::to_string(beam.attachments.size()) + " given): use timoshenko_frequencies_rad_s");
+  if (!beam.attachments.empty() || !beam.support.rigid())
+    throw InputError(
+        "the Euler-Bernoulli tip-body equation has a rigid clamp and no attachments on the span: use "
+        "timoshenko_frequencies_rad_s");
   const double mu = beam.m / (beam.rho * beam.l);
   const double eta = (beam.J_o + beam.m * beam.c * beam.c) / (beam.rho * std::pow(beam.l, 3));
   const double scale = std::sqrt(beam.EI / (beam.rho * std::pow(beam.l, 4)));  // omega_n = L_n^2 scale

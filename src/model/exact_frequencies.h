@@ -20,11 +20,13 @@
 
 namespace beamid::model {
 
-// The frequency determinant above divided by cosh^2(a l), so that it stays O(1) as omega grows.
+// The frequency determinant above divided by cosh^2(a l), so that it stays O(1) as omega grows. For the rigid clamp
+// and the tip body only: InputError when the beam has attachments or a compliant support.
 // Requires 0 < omega_rad_s < shear_cutoff_rad_s(beam).
 double timoshenko_determinant(const BeamParameters& beam, double omega_rad_s);
 
-// With attachments on the span (BeamParameters::attachments) the beam is cut into segments at them and the
+// With attachments on the span (BeamParameters::attachments) or a compliant clamp (BeamParameters::support: the root
+// rows become S(0) = k_w U(0) and M(0) = k_theta Psi(0)) the beam is cut into segments at them and the
 // determinant is that of the global 4S x 4S system (S segments): four free solutions per segment, the clamp, U and
 // Psi continuous at each cut, the shear force and moment jumping by the inertia forces of the bodies there, and the
 // tip conditions above with the tip body and any attachment at x = l. Zero at the natural frequencies and

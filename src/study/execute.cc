@@ -135,7 +135,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
   try {
     const model::BeamParameters beam = spec.truth.parameters;
     const galerkin::SplineSpace space(spec.truth.elements);
-    const galerkin::BeamForms forms(space, beam.l);
+    const galerkin::BeamForms forms(space, beam.l, beam.support);
     // The truth is the exact modal closed form at N_truth (simulation/modal_simulator.h: no time-stepping error, about
     // 0.05 s at N = 48); it differs from every fitted model by the discretisation N_truth against N, which is what
     // keeps the study clear of the inverse crime. CVODE, an independent integrator of the same equations, checks it
@@ -346,7 +346,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       // The fitted modes: the spikes of a spike cost; for the others the same number, so that every run is started
       // at the same frequency offset of the same modes.
       const galerkin::SplineSpace space(unit.elements);
-      const galerkin::BeamForms forms(space, spec.truth.parameters.l);
+      const galerkin::BeamForms forms(space, spec.truth.parameters.l, spec.truth.parameters.support);
       const Eigen::VectorXd u =
           random_direction(signal::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
                            static_cast<int>(spec.fit.estimate.size()));

@@ -190,7 +190,8 @@ Resolution landscape_resolution(const StudyResults& results, const Unit& u, cons
   prediction.fitted_modes = spec.fit.spikes;
   if (!predict_basins(results, u.truth, u.samples, prediction) || prediction.limiting_mode == 0) return r;
   try {
-    const galerkin::BeamForms forms(galerkin::SplineSpace(u.elements), spec.truth.parameters.l);
+    const galerkin::BeamForms forms(galerkin::SplineSpace(u.elements), spec.truth.parameters.l,
+                                    spec.truth.parameters.support);
     const Eigen::MatrixXd g = frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);
     double step = 0;
     for (std::size_t i = 0; i < keys.size(); ++i)

@@ -87,6 +87,26 @@ TEST(BeamToml, AttachmentsAreReadInFileOrderWithDefaults) {
   EXPECT_TRUE(config::parse_beam_toml(kValid, "beam.toml").attachments.empty());
 }
 
+TEST(BeamToml, SupportSpringsAreReadAndAbsentMeansRigid) {
+  const BeamParameters rigid = config::parse_beam_toml(kValid, "beam.toml");
+  EXPECT_TRUE(rigid.support.rigid());
+  const BeamParameters both = config::parse_beam_toml(kValid + "[support]\nk_theta = 350\nk_w = 2e6\n", "beam.toml");
+  EXPECT_EQ(both.support.k_theta, 350.0);
+  EXPECT_EQ(both.support.k_w, 2e6);
+  const BeamParameters rotation = config::parse_beam_toml(kValid + "[support]\nk_theta = 350\n", "beam.toml");
+  EXPECT_TRUE(rotation.support.rotation_free());
+  EXPECT_FALSE(rotation.support.deflection_free());
+  EXPECT_EQ(error_of(kValid + "[support]\nk_theta = 0\n"),
+            "beam.toml:16: support.k_theta = 0: must be in (0, 1e20] N m/rad (omit it: rigid)");
+  EXPECT_EQ(error_of(kValid + "[support]\nk_w = -3\n"),
+            "beam.toml:16: support.k_w = -3: must be in (0, 1e20] N/m (omit it: rigid)");
+  EXPECT_EQ(error_of(kValid + "[support]\nk_x = 3\n"),
+            "beam.toml:16: unknown key support.k_x: valid keys are k_theta, k_w");
+  BeamParameters beam = preset("thick-steel");
+  beam.support.k_w = 0;
+  EXPECT_EQ(*validation_error(beam), "support.k_w = 0: must be > 0 (omit it for a rigid clamp)");
+}
+
 TEST(BeamToml, AttachmentErrorsNameLineKeyValueAndConstraint) {
   const std::string base = std::string(kValid) + "[[attachment]]\n";  // the table opens on line 15
   EXPECT_EQ(error_of(base + "x = 0.5\nm = 0.01\n"),
@@ -124,12 +144,12 @@ TEST(BeamToml, ErrorsNameFileLineKeyValueAndConstraint) {
             "beam.toml:15: unknown key beam.EA: valid keys are l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
   EXPECT_EQ(error_of(std::string(kValid) + "[fit]\nx = 1\n"),
             "beam.toml:15: unknown top-level key 'fit': a beam file holds one table, [beam] (lumped parameters) or "
-            "[geometry], and any number of [[attachment]] tables");
+            "[geometry], any number of [[attachment]] tables and an optional [support]");
   EXPECT_NE(error_of("[beam\nl = 1").find("beam.toml:1: TOML syntax error"), std::string::npos);
   EXPECT_EQ(
       error_of("l = 1\n"),
       "beam.toml:1: unknown top-level key 'l': a beam file holds one table, [beam] (lumped parameters) or [geometry], "
-      "and any number of [[attachment]] tables");
+      "any number of [[attachment]] tables and an optional [support]");
   EXPECT_EQ(error_of(""),
             "beam.toml:1: missing table [beam] with keys l, rho, rho_r2, kAG, EI, gamma, cDI, kAcs, m, c, J_o");
 }

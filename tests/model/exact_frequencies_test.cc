@@ -430,5 +430,47 @@ TEST(AttachedBodies, OffsetAndInertiaEnterAsTheTipBodysDo) {
   EXPECT_THROW(euler_bernoulli_frequencies_rad_s(two, 2), InputError);
 }
 
+// ---- A compliant clamp (issue 11): root springs k_theta, k_w in the segmented determinant.
+
+TEST(CompliantClamp, StiffSpringsAreTheRigidClamp) {
+  // Springs of 1e18 (N m/rad, N/m) against EI/l ~ 1e0-1e4: the clamp yields by ~1e-14 of the beam's own
+  // compliance; what remains is the rounding of rows scaled by k l/EI ~ 1e14-1e18 (measured 8e-12): 1e-10.
+  for (const auto& name : preset_names()) {
+    BeamParameters beam = preset(name);
+    const std::vector<double> rigid = timoshenko_frequencies_rad_s(beam, 4);
+    beam.support.k_theta = beam.support.k_w = 1e18;
+    const std::vector<double> stiff = timoshenko_frequencies_rad_s(beam, 4);
+    ASSERT_EQ(stiff.size(), 4u);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(stiff[k] / rigid[k], 1.0, 1e-10) << name << " mode " << k + 1;
+  }
+}
+
+TEST(CompliantClamp, SofterSpringsLowerEveryFrequency) {
+  // Rayleigh: less stiffness, lower (or equal) eigenvalues; strictly lower here since every mode rotates the root.
+  BeamParameters beam = preset("thick-steel");
+  std::vector<double> previous = timoshenko_frequencies_rad_s(beam, 4);
+  for (const double k_theta : {1e6, 1e4, 1e2}) {
+    beam.support.k_theta = k_theta;
+    const std::vector<double> f = timoshenko_frequencies_rad_s(beam, 4);
+    for (int k = 0; k < 4; ++k) EXPECT_LT(f[k], previous[k]) << "k_theta = " << k_theta << ", mode " << k + 1;
+    previous = f;
+  }
+}
+
+TEST(CompliantClamp, FreeRotationIsThePinnedFreeBeam) {
+  // A slender beam (l/r = 3e4, Euler-Bernoulli to ~1e-7) whose root may rotate against a vanishing spring
+  // (k_theta l/EI = 1e-9) is a pinned-free beam: a rigid rotation at ~sqrt(3 k_theta/(rho l^3)) = 5.5e-5 and then
+  // the flexible modes of tan L = tanh L, L = 3.9266023120, 7.0685827560, 10.2101761242 (each to 1e-10), with
+  // omega = L^2 for rho = EI = l = 1. 1e-6 bounds the shear and spring corrections.
+  BeamParameters beam = nondimensional_beam(3e4);
+  beam.support.k_theta = 1e-9;
+  const std::vector<double> f = timoshenko_frequencies_rad_s(beam, 4);
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_NEAR(f[0], std::sqrt(3e-9), 1e-3 * std::sqrt(3e-9));  // a rigid bar on a rotational spring, to O(k)
+  const double pinned_free[] = {3.9266023120, 7.0685827560, 10.2101761242};
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(f[k + 1] / (pinned_free[k] * pinned_free[k]), 1.0, 1e-6) << "flexible mode " << k + 1;
+}
+
 }  // namespace
 }  // namespace beamid::model
