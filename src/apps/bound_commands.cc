@@ -39,8 +39,8 @@ int run_crb(const Flags& a, std::ostream& out) {
   std::vector<std::string> keys;
   std::stringstream list(a.text("estimate"));
   for (std::string key; std::getline(list, key, ',');) {
-    a.require(model::find_parameter(key) != nullptr, "estimate",
-              "'" + key + "' is not a beam parameter (valid: " + model::parameter_keys() + ")");
+    a.require(key == "l" || model::describe_parameter(beam, key).has_value(), "estimate",
+              "'" + key + "' is not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
     keys.push_back(key);
   }
   a.require(!keys.empty(), "estimate", "must name at least one parameter");
@@ -75,7 +75,7 @@ int run_crb(const Flags& a, std::ostream& out) {
   csv << "parameter,value,crb_sd,crb_relative_sd\n";
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
-    csv << keys[k] << "," << io::full_precision(beam.*(model::find_parameter(keys[k])->member)) << ","
+    csv << keys[k] << "," << io::full_precision(model::parameter_value(beam, keys[k])) << ","
         << io::full_precision(b.sd(i)) << "," << io::full_precision(b.relative_sd(i)) << "\n";
   }
   out << csv.str();

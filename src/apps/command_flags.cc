@@ -109,16 +109,15 @@ std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model:
   std::stringstream keys(a.text("estimate"));
   std::string key;
   while (std::getline(keys, key, ',')) {
-    const model::ParameterInfo* info = model::find_parameter(key);
-    if (!info)
+    if (key != "l" && !model::describe_parameter(nominal, key))
       throw InputError(where + "--estimate = '" + a.text("estimate") + "': '" + key +
-                       "' is not a beam parameter (valid: " + model::parameter_keys() + ")");
+                       "' is not a parameter of this beam (valid: " + model::estimable_keys(nominal) + ")");
     fit::EstimatedParameter p{key, 0, 0};
     if (auto b = explicit_bounds.find(key); b != explicit_bounds.end()) {
       std::tie(p.lower, p.upper) = b->second;
       explicit_bounds.erase(b);
     } else {
-      const double v = nominal.*(info->member);
+      const double v = model::parameter_value(nominal, key);
       if (!(v > 0))
         throw InputError(where + "--estimate " + key + ": the --beam value is " + format_value(v) +
                          ", so --bound-factor gives no range: give --bounds " + key + "=LO:HI");

@@ -141,6 +141,15 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     }
     md << "\n";
   }
+  const fit::Identifiability& id = r.identifiability;
+  if (id.status == "ok")
+    md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
+       << id.verdict << "); the weakest combination is " << id.combination() << ", formal standard deviation "
+       << g(id.weakest_sd, 3) << " (relative)."
+       << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
+       << "\n\n";
+  else
+    md << "Identifiability: not computed (" << id.status << ").\n\n";
   md << "| stage | parameters | status | cost | evaluations | termination |\n|---|---|---|---|---|---|\n";
   for (const auto& s : r.stages) {
     std::string keys;

@@ -53,9 +53,9 @@ std::vector<FlagSpec> cost_flags(bool required) {
                               "excitation amplitude unknown: solved in closed form (time, freq-band), scale-free "
                               "magnitudes (spike costs)"));
   flags.push_back(text_flag("model-poles", "spike-smooth: dft | eigenvalues (default dft)"));
-  flags.push_back(text_flag("frequency-weight",
-                            "spike costs: " + costs::frequency_weight_names().alternatives() +
-                                " (default relative: a record read from a file is a measured one)"));
+  flags.push_back(
+      text_flag("frequency-weight", "spike costs: " + costs::frequency_weight_names().alternatives() +
+                                        " (default relative: a record read from a file is a measured one)"));
   return flags;
 }
 
@@ -187,7 +187,8 @@ int run_fit(const Flags& a, std::ostream& out) {
   a.require(factor > 1, "bound-factor", "must be > 1");
   o.estimate = parse_estimate(a, nominal, factor);
   o.start = nominal;
-  for (const auto& e : o.estimate) o.start.*(model::find_parameter(e.key)->member) *= start_scale;
+  for (const auto& e : o.estimate)
+    model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * start_scale);
 
   const fit::FitResult result = fit::fit(o, data.values);
   out << "parameter,estimate,standard_error,start,lower,upper,status\n";
@@ -210,6 +211,10 @@ int run_fit(const Flags& a, std::ostream& out) {
             << ": " << result.status << " (" << result.termination << "), cost " << result.cost << ", "
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
+  if (result.identifiability.status == "ok" && result.identifiability.verdict != "identifiable")
+    std::cerr << "beamid fit: " << result.identifiability.verdict << ": condition number of J (in ln q) "
+              << result.identifiability.condition << "; the record hardly constrains "
+              << result.identifiability.combination() << " (formal sd " << result.identifiability.weakest_sd << ")\n";
   const FitReportInput input{o, result, data, beam_name, a.arguments()};
   std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
   if (a.has("report")) write_fit_report(a.text("report"), input);

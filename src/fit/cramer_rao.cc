@@ -119,20 +119,19 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
                                      double noise_sd, const simulation::SimulatorOptions& simulator,
                                      const SensitivityOptions& options) {
   if (keys.empty()) throw InputError("Cramér-Rao bound: no parameter to bound");
-  std::vector<double model::BeamParameters::*> members;
   Eigen::VectorXd log_q(static_cast<Eigen::Index>(keys.size()));
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const model::ParameterInfo* info = model::find_parameter(keys[k]);
-    if (!info) throw InputError("Cramér-Rao bound: parameter '" + keys[k] + "': not a beam parameter");
     if (keys[k] == "l")
       throw InputError("Cramér-Rao bound: parameter 'l': the Galerkin forms are built for one length");
+    if (!model::describe_parameter(beam, keys[k]))
+      throw InputError("Cramér-Rao bound: parameter '" + keys[k] +
+                       "': not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
     for (std::size_t j = 0; j < k; ++j)
       if (keys[j] == keys[k]) throw InputError("Cramér-Rao bound: parameter '" + keys[k] + "' is given twice");
-    const double value = beam.*(info->member);
+    const double value = model::parameter_value(beam, keys[k]);
     if (!(value > 0))
       throw InputError("Cramér-Rao bound: " + keys[k] + " = " + format_value(value) +
                        ": must be > 0 (the bound is relative, in ln " + keys[k] + ")");
-    members.push_back(info->member);
     log_q(static_cast<Eigen::Index>(k)) = std::log(value);
   }
   const galerkin::SplineSpace space(elements);
@@ -146,13 +145,15 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
     b.method = "exact";
     b.noise_sd = noise_sd;
     b.values.resize(log_q.size());  // the beam's own values, not exp(ln q)
-    for (std::size_t k = 0; k < keys.size(); ++k) b.values(static_cast<Eigen::Index>(k)) = beam.*members[k];
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      b.values(static_cast<Eigen::Index>(k)) = model::parameter_value(beam, keys[k]);
     b.sensitivities = s.dy_dq * b.values.asDiagonal();  // d y / d ln q = q d y / d q
     return bound_from_sensitivities(std::move(b));
   }
   const LogModel model = [&](const Eigen::VectorXd& x) {
     model::BeamParameters b = beam;
-    for (std::size_t k = 0; k < members.size(); ++k) b.*members[k] = std::exp(x(static_cast<Eigen::Index>(k)));
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      model::set_parameter_value(b, keys[k], std::exp(x(static_cast<Eigen::Index>(k))));
     simulation::Trace trace = simulation::simulate(forms, b, experiment, simulator);
     if (!trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + trace.status);
     return std::move(trace.y);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 
 #include "galerkin/modes.h"
@@ -305,7 +306,7 @@ void validate(const FitOptions& o) {
   const ParameterMap map(o.start, o.estimate, o.scaling);
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
-    const double s = o.start.*(model::find_parameter(e.key)->member);
+    const double s = model::parameter_value(o.start, e.key);
     if (!(s >= e.lower && s <= e.upper))
       throw InputError("start " + e.key + " = " + format_value(s) + ": outside its bounds [" + format_value(e.lower) +
                        ", " + format_value(e.upper) + "]");
@@ -349,6 +350,59 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<double>& data) {
 
 }  // namespace
 
+namespace {
+
+// The information in ln-parameter coordinates: x_i -> ln q_i has d x_i / d ln q_i = q_i / (d q_i / d x_i).
+Identifiability identifiability_of(const Covariance& covariance, const ParameterMap& map, const Eigen::VectorXd& x) {
+  Identifiability id;
+  if (covariance.information.size() == 0) {
+    id.status = covariance.status;
+    return id;
+  }
+  const int n = map.size();
+  Eigen::VectorXd d(n);
+  for (int i = 0; i < n; ++i) d(i) = map.value(i, x(i)) / map.derivative(i, x(i));
+  const Eigen::MatrixXd information = d.asDiagonal() * covariance.information * d.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+  if (eigen.info() != Eigen::Success || !information.allFinite()) {
+    id.status = "the information matrix has no eigen-decomposition";
+    return id;
+  }
+  const Eigen::VectorXd lambda = eigen.eigenvalues();  // ascending
+  id.status = "ok";
+  id.condition = lambda(0) > 0 ? std::sqrt(lambda(n - 1) / lambda(0)) : std::numeric_limits<double>::infinity();
+  // Sign: the first component that combination() prints (|v_i| >= 0.05) is positive, so the text reads the same
+  // whichever sign the eigensolver returned.
+  Eigen::VectorXd v = eigen.eigenvectors().col(0);
+  for (int i = 0; i < n; ++i)
+    if (std::abs(v(i)) >= 0.05) {
+      if (v(i) < 0) v = -v;
+      break;
+    }
+  for (int i = 0; i < n; ++i) {
+    id.keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
+    id.weakest.push_back(v(i));
+  }
+  id.weakest_sd =
+      lambda(0) > 0 ? std::sqrt(covariance.residual_variance / lambda(0)) : std::numeric_limits<double>::infinity();
+  id.verdict = id.condition <= 1e3 ? "identifiable" : id.condition <= 1e7 ? "ill-conditioned" : "not identifiable";
+  return id;
+}
+
+}  // namespace
+
+std::string Identifiability::combination() const {
+  std::string out;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (std::abs(weakest[i]) < 0.05) continue;
+    char number[32];
+    std::snprintf(number, sizeof number, "%.2f", std::abs(weakest[i]));
+    out += (out.empty() ? (weakest[i] < 0 ? "-" : "") : (weakest[i] < 0 ? " - " : " + ")) + std::string(number) +
+           " ln " + keys[i];
+  }
+  return out;
+}
+
 FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   validate(o);
   if (o.strategy == kHybrid) return fit_hybrid(o, data);
@@ -389,6 +443,7 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
   const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x);
   result.covariance_status = covariance.status;
+  result.identifiability = identifiability_of(covariance, map, best.x);
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
   if (covariance.ok()) {
     Eigen::VectorXd d(map.size());
@@ -407,9 +462,9 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
     ParameterEstimate p{e.key,
-                        result.beam.*(model::find_parameter(e.key)->member),
+                        model::parameter_value(result.beam, e.key),
                         standard_error(i),
-                        o.start.*(model::find_parameter(e.key)->member),
+                        model::parameter_value(o.start, e.key),
                         e.lower,
                         e.upper};
     const double margin = 1e-6 * (upper(i) - lower(i));

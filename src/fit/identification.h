@@ -77,11 +77,30 @@ struct StageResult {
   OptimizerResult result;
 };
 
+// What the data determine, from the Gauss-Newton information J^T J at the estimate in relative coordinates
+// (ln q for every estimated q): its condition number kappa = sqrt(lambda_max / lambda_min) (that of J), and the
+// weakest combination, the unit eigenvector of lambda_min, with the formal standard deviation s / sqrt(lambda_min)
+// of a step along it (relative). kappa > 1e7 (lambda ratio beyond 1e-14, where the covariance is refused) means the
+// record cannot separate that combination: for example EI and rho in a free decay, whose frequencies depend on EI/rho
+// only.
+struct Identifiability {
+  std::string status = "not computed";  // "ok", or why not (no residual vector, too few residuals, ...)
+  double condition = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> keys;
+  std::vector<double> weakest;  // per key, unit norm, the first component of magnitude >= 0.05 positive
+  double weakest_sd = std::numeric_limits<double>::quiet_NaN();
+  // "identifiable" (kappa <= 1e3), "ill-conditioned" (1e3 < kappa <= 1e7) or "not identifiable" (kappa > 1e7).
+  std::string verdict;
+  // "0.71 ln EI - 0.71 ln rho": the weakest combination, components under 0.05 left out.
+  std::string combination() const;
+};
+
 struct FitResult {
   std::vector<ParameterEstimate> parameters;
   model::BeamParameters beam;   // the estimate with the fixed parameters
   Eigen::MatrixXd correlation;  // of the estimates (empty when the covariance is unavailable)
   std::string covariance_status = "not computed";
+  Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages
   double wall_time_s = 0;

@@ -194,6 +194,8 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
     return c;
   }
   const Eigen::MatrixXd information = jacobian.transpose() * jacobian;
+  c.information = information;
+  c.residual_variance = r.squaredNorm() / (m - n);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
   const Eigen::VectorXd lambda = eigen.eigenvalues();  // ascending
   if (eigen.info() != Eigen::Success || !(lambda(n - 1) > 0) || !(lambda(0) > 1e-14 * lambda(n - 1))) {
@@ -201,7 +203,7 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
     return c;
   }
   const Eigen::MatrixXd& v = eigen.eigenvectors();
-  c.matrix = v * lambda.cwiseInverse().asDiagonal() * v.transpose() * (r.squaredNorm() / (m - n));
+  c.matrix = v * lambda.cwiseInverse().asDiagonal() * v.transpose() * c.residual_variance;
   return c;
 }
 

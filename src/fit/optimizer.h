@@ -69,6 +69,10 @@ struct Covariance {
   Eigen::MatrixXd matrix;     // in the optimizer's coordinates
   std::string status = "ok";  // "ok" or why not (no residuals, m <= n, singular information matrix)
   bool ok() const { return status == "ok"; }
+  // J^T J at the estimate and s^2 = |r|^2 / (m - n), kept also when J^T J is singular (empty when J was not formed),
+  // so that a caller can say which combination of parameters the data do not determine.
+  Eigen::MatrixXd information;
+  double residual_variance = 0;
 };
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x);
 

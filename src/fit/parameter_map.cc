@@ -14,10 +14,11 @@ ParameterMap::ParameterMap(const model::BeamParameters& beam, std::vector<Estima
     throw InputError("scaling = '" + scaling_ + "': must be one of linear, log");
   if (estimated_.empty()) throw InputError("estimate: no parameter to estimate");
   for (const auto& e : estimated_) {
-    const model::ParameterInfo* info = model::find_parameter(e.key);
-    if (!info)
-      throw InputError("estimate: '" + e.key + "' is not a beam parameter (valid: " + model::parameter_keys() + ")");
     if (e.key == "l") throw InputError("estimate: l cannot be estimated (the Galerkin forms are built for one length)");
+    const std::optional<model::ParameterDescription> info = model::describe_parameter(beam, e.key);
+    if (!info)
+      throw InputError("estimate: '" + e.key +
+                       "' is not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
     if (std::count_if(estimated_.begin(), estimated_.end(), [&](const auto& o) { return o.key == e.key; }) > 1)
       throw InputError("estimate: '" + e.key + "' is listed twice");
     const std::string where = "bounds of " + e.key + " [" + format_value(e.lower) + ", " + format_value(e.upper) + "]";
@@ -27,8 +28,7 @@ ParameterMap::ParameterMap(const model::BeamParameters& beam, std::vector<Estima
       throw InputError(where + ": lower must be " +
                        std::string(info->strictly_positive || scaling_ == "log" ? "> 0" : ">= 0") +
                        (scaling_ == "log" ? " (log scaling)" : ""));
-    info_.push_back(info);
-    const double given = beam.*(info->member);
+    const double given = model::parameter_value(beam, e.key);
     reference_.push_back(given > 0 ? given : (e.lower > 0 ? std::sqrt(e.lower * e.upper) : e.upper));
   }
 }
@@ -42,7 +42,7 @@ model::BeamParameters ParameterMap::estimate(const Eigen::VectorXd& x) const {
   model::BeamParameters b = base_;
   for (int i = 0; i < size(); ++i) {
     const auto& e = estimated_[static_cast<std::size_t>(i)];
-    b.*(info_[static_cast<std::size_t>(i)]->member) = std::clamp(value(i, x(i)), e.lower, e.upper);
+    model::set_parameter_value(b, e.key, std::clamp(value(i, x(i)), e.lower, e.upper));
   }
   return b;
 }
@@ -56,13 +56,15 @@ double ParameterMap::derivative(int i, double x) const { return scaling_ == "log
 
 model::BeamParameters ParameterMap::beam(const Eigen::VectorXd& x) const {
   model::BeamParameters b = base_;
-  for (int i = 0; i < size(); ++i) b.*(info_[static_cast<std::size_t>(i)]->member) = value(i, x(i));
+  for (int i = 0; i < size(); ++i)
+    model::set_parameter_value(b, estimated_[static_cast<std::size_t>(i)].key, value(i, x(i)));
   return b;
 }
 
 Eigen::VectorXd ParameterMap::coordinates(const model::BeamParameters& b) const {
   Eigen::VectorXd x(size());
-  for (int i = 0; i < size(); ++i) x(i) = coordinate(i, b.*(info_[static_cast<std::size_t>(i)]->member));
+  for (int i = 0; i < size(); ++i)
+    x(i) = coordinate(i, model::parameter_value(b, estimated_[static_cast<std::size_t>(i)].key));
   return x;
 }
 
@@ -81,7 +83,8 @@ Eigen::VectorXd ParameterMap::upper() const {
 std::vector<int> ParameterMap::with_roles(const std::vector<std::string>& roles) const {
   std::vector<int> indices;
   for (int i = 0; i < size(); ++i)
-    if (std::find(roles.begin(), roles.end(), info_[static_cast<std::size_t>(i)]->role) != roles.end())
+    if (std::find(roles.begin(), roles.end(), model::parameter_role(estimated_[static_cast<std::size_t>(i)].key)) !=
+        roles.end())
       indices.push_back(i);
   return indices;
 }

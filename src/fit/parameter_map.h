@@ -15,7 +15,7 @@
 namespace beamid::fit {
 
 struct EstimatedParameter {
-  std::string key;   // a beam key other than l (the Galerkin forms are built for one length)
+  std::string key;   // an estimable key of the beam (model::describe_parameter): not l, whose forms are built once
   double lower = 0;  // physical bounds: 0 <= lower < upper (lower > 0 for log scaling and for > 0 keys)
   double upper = 0;
 };
@@ -50,7 +50,6 @@ class ParameterMap {
  private:
   model::BeamParameters base_;
   std::vector<EstimatedParameter> estimated_;
-  std::vector<const model::ParameterInfo*> info_;
   std::vector<double> reference_;
   std::string scaling_;
 };

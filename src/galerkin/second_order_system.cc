@@ -70,6 +70,26 @@ Eigen::VectorXd BeamForms::alpha_values_at(double x_m) const {
   return alpha_basis * space.full_values(x_m / length_m);
 }
 
+Eigen::VectorXd BeamForms::slopes_at(double x_m, bool alpha_block) const {
+  values_at(x_m);  // the same range check
+  return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(x_m / length_m) / length_m;
+}
+
+namespace {
+
+// The inertia form of a rigid body, [m v v^T, m c v w^T; m c w v^T, (J + m c^2) w w^T], with v, w the u- and
+// alpha-block vectors it acts through; with (v, w) and (v', w') it is the symmetric part needed for d/dx.
+void add_body(Eigen::MatrixXd& m, const BeamForms& f, double mass, double mc, double j, const Eigen::VectorXd& v,
+              const Eigen::VectorXd& w, const Eigen::VectorXd& v2, const Eigen::VectorXd& w2) {
+  const Eigen::Index nu = f.u_dimension(), na = f.alpha_dimension();
+  m.topLeftCorner(nu, nu) += mass * (v * v2.transpose());
+  m.topRightCorner(nu, na) += mc * (v * w2.transpose());
+  m.bottomLeftCorner(na, nu) += mc * (w * v2.transpose());
+  m.bottomRightCorner(na, na) += j * (w * w2.transpose());
+}
+
+}  // namespace
+
 SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
   if (p.l != f.length_m)
     throw InputError("beam length l = " + format_value(p.l) +
@@ -84,13 +104,9 @@ SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
         (p.J_o + p.m * p.c * p.c) * f.tip_aa;
   // Attachments: the same inertia Lambda_k acting on (u(x_k), alpha(x_k)), with the blocks' values at x_k in place of
   // the tip traces.
-  const Eigen::Index nu = f.u_dimension(), na = f.alpha_dimension();
   for (const model::Attachment& a : p.attachments) {
     const Eigen::VectorXd v = f.values_at(a.x), w = f.alpha_values_at(a.x);
-    s.M.topLeftCorner(nu, nu) += a.m * (v * v.transpose());
-    s.M.topRightCorner(nu, na) += (a.m * a.c) * (v * w.transpose());
-    s.M.bottomLeftCorner(na, nu) += (a.m * a.c) * (w * v.transpose());
-    s.M.bottomRightCorner(na, na) += (a.J + a.m * a.c * a.c) * (w * w.transpose());
+    add_body(s.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, v, w, v, w);
   }
   s.K = p.kAG * f.shear + p.EI * f.bending;
   if (f.rotation_free) s.K += p.support.k_theta * f.root_aa;
@@ -122,6 +138,24 @@ SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamPara
     d.C = f.bending;
   } else if (key == "gamma") {
     d.C = f.translation;
+  } else if (key == "support.k_theta" && f.rotation_free) {
+    d.K = f.root_aa;
+  } else if (key == "support.k_w" && f.deflection_free) {
+    d.K = f.root_uu;
+  } else if (const auto body = model::describe_parameter(p, key); body && key.rfind("attachment", 0) == 0) {
+    // attachmentK.m, .J, .x: K from the key (describe_parameter checked that the beam has it).
+    const std::size_t k = std::stoul(key.substr(10, key.find('.') - 10)) - 1;
+    const model::Attachment& a = p.attachments[k];
+    const Eigen::VectorXd v = f.values_at(a.x), w = f.alpha_values_at(a.x);
+    const char field = key.back();
+    if (field == 'm') add_body(d.M, f, 1, a.c, a.c * a.c, v, w, v, w);
+    if (field == 'J') add_body(d.M, f, 0, 0, 1, v, w, v, w);
+    if (field == 'x') {
+      // d/dx of Lambda-weighted outer products: (v' v^T + v v'^T) and likewise, v' = d beta(x/l)/dx.
+      const Eigen::VectorXd dv = f.slopes_at(a.x, false), dw = f.slopes_at(a.x, true);
+      add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, dv, dw, v, w);
+      add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, v, w, dv, dw);
+    }
   } else {
     throw InputError("parameter '" + key + "': the Galerkin matrices have no derivative with respect to it (" +
                      (key == "l" ? std::string("the forms are built for one length") : "not a beam parameter") + ")");

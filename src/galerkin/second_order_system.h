@@ -46,6 +46,8 @@ struct BeamForms {
   Eigen::VectorXd values_at(double x_m) const;
   // The same for the alpha block (section rotation at x_m).
   Eigen::VectorXd alpha_values_at(double x_m) const;
+  // d/dx of values_at (alpha_block false) or alpha_values_at (true), per metre.
+  Eigen::VectorXd slopes_at(double x_m, bool alpha_block) const;
 };
 
 // M, C, K for the given parameters; beam.l must equal forms.length_m and the support's free roots those of the forms
@@ -55,8 +57,9 @@ struct BeamForms {
 SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
 
 // dM/dq, dC/dq, dK/dq for the beam parameter `key` at `beam` (exact: M, C, K are linear in every parameter but the
-// tip offset c, which enters M as m c and m c^2). InputError for "l" (the forms are built for one length) or an
-// unknown key.
+// tip offset c, which enters M as m c and m c^2, and an attachment's position x, which enters through beta(x/l)),
+// for the lumped keys, "support.k_theta", "support.k_w" (when the forms' root is free) and "attachmentK.m", ".J",
+// ".x". InputError for "l" (the forms are built for one length) or a key the beam does not have.
 SecondOrderSystem parameter_derivative(const BeamForms& forms, const model::BeamParameters& beam,
                                        const std::string& key);
 

@@ -102,5 +102,6 @@ Eigen::VectorXd SplineSpace::evaluate(double xi, bool derivative) const {
 Eigen::VectorXd SplineSpace::values(double xi) const { return clamping_ * evaluate(xi, false); }
 Eigen::VectorXd SplineSpace::slopes(double xi) const { return clamping_ * evaluate(xi, true); }
 Eigen::VectorXd SplineSpace::full_values(double xi) const { return evaluate(xi, false); }
+Eigen::VectorXd SplineSpace::full_slopes(double xi) const { return evaluate(xi, true); }
 
 }  // namespace beamid::galerkin

@@ -41,8 +41,9 @@ class SplineSpace {
   const Eigen::MatrixXd& full_G11() const { return full_G11_; }
   const Eigen::MatrixXd& full_G10() const { return full_G10_; }
   const Eigen::MatrixXd& clamping() const { return clamping_; }
-  // B_j(xi), j = -1..N+1 (InputError outside [0, 1]).
+  // B_j(xi) and d B_j / d xi, j = -1..N+1 (InputError outside [0, 1]).
   Eigen::VectorXd full_values(double xi) const;
+  Eigen::VectorXd full_slopes(double xi) const;
 
  private:
   // Values (derivative = false) or slopes of B_{-1..N+1} at xi (unclamped).

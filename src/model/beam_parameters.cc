@@ -75,6 +75,99 @@ std::string parameter_keys() {
   return keys;
 }
 
+namespace {
+
+// "attachmentK.field" -> (K - 1, field), or nothing when the key has another form.
+std::optional<std::pair<std::size_t, std::string>> attachment_field(std::string_view key) {
+  constexpr std::string_view prefix = "attachment";
+  if (key.substr(0, prefix.size()) != prefix) return std::nullopt;
+  const std::size_t dot = key.find('.');
+  if (dot == std::string_view::npos || dot == prefix.size()) return std::nullopt;
+  std::size_t index = 0;
+  for (std::size_t i = prefix.size(); i < dot; ++i) {
+    if (key[i] < '0' || key[i] > '9' || index > 1000000) return std::nullopt;
+    index = 10 * index + static_cast<std::size_t>(key[i] - '0');
+  }
+  if (index == 0 || key[prefix.size()] == '0') return std::nullopt;
+  return std::pair{index - 1, std::string(key.substr(dot + 1))};
+}
+
+}  // namespace
+
+std::string_view parameter_role(std::string_view key) {
+  if (const ParameterInfo* info = find_parameter(key)) return info->role;
+  if (key == "support.k_theta" || key == "support.k_w") return "stiffness";
+  if (const auto a = attachment_field(key)) {
+    if (a->second == "m" || a->second == "J") return "inertia";
+    if (a->second == "x") return "geometry";
+  }
+  return {};
+}
+
+std::optional<ParameterDescription> describe_parameter(const BeamParameters& beam, std::string_view key) {
+  if (const ParameterInfo* info = find_parameter(key))
+    return ParameterDescription{std::string(key), info->unit, info->meaning, info->role, info->strictly_positive};
+  if (key == "support.k_theta" && beam.support.rotation_free())
+    return ParameterDescription{std::string(key), "N m/rad", "rotational spring of the clamp", "stiffness", true};
+  if (key == "support.k_w" && beam.support.deflection_free())
+    return ParameterDescription{std::string(key), "N/m", "translational spring of the clamp", "stiffness", true};
+  if (const auto a = attachment_field(key); a && a->first < beam.attachments.size()) {
+    if (a->second == "m") return ParameterDescription{std::string(key), "kg", "attachment mass", "inertia", false};
+    if (a->second == "J")
+      return ParameterDescription{std::string(key), "kg m^2", "attachment inertia about its centre", "inertia", false};
+    if (a->second == "x")
+      return ParameterDescription{std::string(key), "m", "attachment position from the clamp", "geometry", true};
+  }
+  return std::nullopt;
+}
+
+std::string estimable_keys(const BeamParameters& beam) {
+  std::string keys;
+  const auto add = [&](const std::string& key) { keys += (keys.empty() ? "" : ", ") + key; };
+  for (const auto& info : parameter_table())
+    if (info.key != "l") add(std::string(info.key));
+  if (beam.support.rotation_free()) add("support.k_theta");
+  if (beam.support.deflection_free()) add("support.k_w");
+  for (std::size_t k = 0; k < beam.attachments.size(); ++k)
+    for (const char* field : {".m", ".J", ".x"}) add(attachment_key(k) + field);
+  return keys;
+}
+
+namespace {
+
+// The member holding `key` (const or not with the beam), or nullptr when the beam has no such quantity.
+template <class Beam>
+auto parameter_slot(Beam& beam, std::string_view key) -> decltype(&beam.l) {
+  if (const ParameterInfo* info = find_parameter(key)) return &(beam.*info->member);
+  if (!describe_parameter(beam, key)) return nullptr;
+  if (key == "support.k_theta") return &beam.support.k_theta;
+  if (key == "support.k_w") return &beam.support.k_w;
+  const auto a = attachment_field(key);
+  auto& body = beam.attachments[a->first];
+  return a->second == "m" ? &body.m : a->second == "J" ? &body.J : &body.x;
+}
+
+[[noreturn]] void no_such_parameter(const BeamParameters& beam, std::string_view key) {
+  throw InputError("parameter '" + std::string(key) +
+                   "': this beam has no such quantity (estimable: " + estimable_keys(beam) +
+                   (beam.support.rigid() ? "; a clamp spring needs a [support] value" : "") + ")");
+}
+
+}  // namespace
+
+double parameter_value(const BeamParameters& beam, std::string_view key) {
+  const double* slot = parameter_slot(beam, key);
+  if (slot == nullptr) no_such_parameter(beam, key);
+  return *slot;
+}
+
+void set_parameter_value(BeamParameters& beam, std::string_view key, double value) {
+  if (key == "l") throw InputError("parameter 'l' cannot be set here: the Galerkin forms are built for one length");
+  double* slot = parameter_slot(beam, key);
+  if (slot == nullptr) no_such_parameter(beam, key);
+  *slot = value;
+}
+
 std::optional<std::string> constraint_violation(const ParameterInfo& info, double value) {
   if (!std::isfinite(value)) return "must be finite";
   if (info.strictly_positive && !(value > 0)) return "must be > 0";

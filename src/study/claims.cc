@@ -261,7 +261,7 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
     // magnitudes, which (3.5) compares continuously.
     int flat_holds = 0, flat_total = 0;
     for (const auto& s : slice_rows)
-      if (s.cost == kSpike && model::find_parameter(s.parameter)->role != "damping")
+      if (s.cost == kSpike && model::parameter_role(s.parameter) != "damping")
         for (const auto& t : slice_rows)
           if (t.cost == kSmooth && t.parameter == s.parameter)
             ++flat_total, flat_holds += s.shape.flat_share > t.shape.flat_share ? 1 : 0;

@@ -20,12 +20,8 @@
 namespace beamid::study {
 namespace {
 
-double& member(model::BeamParameters& beam, const std::string& key) {
-  return beam.*(model::find_parameter(key)->member);
-}
-double value(const model::BeamParameters& beam, const std::string& key) {
-  return beam.*(model::find_parameter(key)->member);
-}
+void set(model::BeamParameters& beam, const std::string& key, double v) { model::set_parameter_value(beam, key, v); }
+double value(const model::BeamParameters& beam, const std::string& key) { return model::parameter_value(beam, key); }
 
 simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
   simulation::Experiment e = spec.truth.experiment;
@@ -80,7 +76,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
     o.cost.eps2_factor = m.eps2_factor;
   }
   if (unit.kind == "case")
-    for (const auto& [key, factor] : spec.start(unit.start).factor) member(o.start, key) *= factor;
+    for (const auto& [key, factor] : spec.start(unit.start).factor) set(o.start, key, value(o.start, key) * factor);
   return o;
 }
 
@@ -122,7 +118,7 @@ Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& trut
   model::BeamParameters estimate = spec.truth.parameters;
   for (const auto& key : spec.fit.estimate) {
     const double v = result.number("estimate." + key);
-    if (std::isfinite(v)) member(estimate, key) = v;
+    if (std::isfinite(v)) set(estimate, key, v);
   }
   return compute_overlay(o, data, estimate);
 }
@@ -279,7 +275,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         std::vector<double> c;
         for (double v : x) {
           model::BeamParameters b = beam;
-          member(b, unit.parameters[0]) = v;
+          set(b, unit.parameters[0], v);
           c.push_back(cost_at(b));
         }
         r.set("x", x);
@@ -291,8 +287,8 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         for (double u : x)
           for (double v : y) {
             model::BeamParameters b = beam;
-            member(b, unit.parameters[0]) = u;
-            member(b, unit.parameters[1]) = v;
+            set(b, unit.parameters[0], u);
+            set(b, unit.parameters[1], v);
             c.push_back(cost_at(b));
           }
         r.set("x", x);
@@ -310,8 +306,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         const auto points = fit::space_filling_starts(lower, upper, spec.landscape.multistarts, "lhs",
                                                       signal::derive_seed(spec.seed, "multistart;" + unit.cost));
         for (std::size_t i = 0; i < o.estimate.size(); ++i)
-          member(o.start, o.estimate[i].key) =
-              std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]);
+          set(o.start, o.estimate[i].key, std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]));
       }
       for (const auto& e : o.estimate) r.set("start." + e.key, value(o.start, e.key));
       const fit::FitResult result = fit::fit(o, data);
@@ -352,7 +347,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
                            static_cast<int>(spec.fit.estimate.size()));
       const OffsetStart s =
           offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset, spec.fit.bound_factor);
-      for (const auto& key : spec.fit.estimate) member(o.start, key) = value(s.start, key);
+      for (const auto& key : spec.fit.estimate) set(o.start, key, value(s.start, key));
       r.set("frequency_offset", s.frequency_offset);
       r.set("shrunk", s.shrunk ? 1.0 : 0.0);
     }

@@ -16,7 +16,7 @@ namespace {
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double true_value(const StudySpec& spec, const std::string& key) {
-  return spec.truth.parameters.*(model::find_parameter(key)->member);
+  return model::parameter_value(spec.truth.parameters, key);
 }
 
 // (min, max) of the finite values.

@@ -222,7 +222,7 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
     const std::vector<double> x = list("x"), c = list("cost");
     if (u.kind == "slice") {
       if (c.empty() || x.size() != c.size()) continue;
-      const double v = beam.*(model::find_parameter(u.parameters[0])->member);
+      const double v = model::parameter_value(beam, u.parameters[0]);
       const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
       m.slices.push_back(
           {&l, rec.has("modes_in_data") ? static_cast<int>(rec.number("modes_in_data")) : 0, u.cost, u.parameters[0],

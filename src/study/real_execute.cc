@@ -44,7 +44,7 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
   base.cost.frequency_weight = spec.frequency_weight;
   base.optimizer.max_evaluations = spec.max_evaluations;
   for (const auto& key : spec.estimate) {
-    const double v = nominal.*(model::find_parameter(key)->member);
+    const double v = model::parameter_value(nominal, key);
     const auto b = spec.bounds.count(key) ? spec.bounds.at(key) : std::make_pair(v / 2, v * 2);
     base.estimate.push_back({key, b.first, b.second});
   }

@@ -31,7 +31,7 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
       continue;
     }
     for (const auto& p : f.parameters) {
-      const double v = nominal.*(model::find_parameter(p.key)->member);
+      const double v = model::parameter_value(nominal, p.key);
       fits << f.cost << "," << f.status << "," << io::round_trip(f.cost_value) << "," << f.evaluations << "," << p.key
            << "," << io::round_trip(p.estimate) << "," << io::round_trip(p.standard_error) << "," << io::round_trip(v)
            << "," << io::round_trip(p.estimate / v) << "," << p.status << "\n";
@@ -79,7 +79,7 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
         md << " - |";
         continue;
       }
-      const double v = nominal.*(model::find_parameter(spec.estimate[i])->member);
+      const double v = model::parameter_value(nominal, spec.estimate[i]);
       md << " " << g4(o.parameters[i].estimate) << " (" << g4(o.parameters[i].estimate / v) << ") |";
     }
     md << "\n";

@@ -23,7 +23,7 @@ double CaseRow::max_abs_error(const std::vector<std::string>& keys) const {
 }
 
 double tolerance(const StudySpec& spec, const std::string& key) {
-  return model::find_parameter(key)->role == "damping" ? spec.fit.damping_tolerance : spec.fit.success_tolerance;
+  return model::parameter_role(key) == "damping" ? spec.fit.damping_tolerance : spec.fit.success_tolerance;
 }
 
 bool case_succeeded(const StudySpec& spec, const Record& record) {

@@ -12,10 +12,6 @@
 namespace beamid::study {
 namespace {
 
-double& member(model::BeamParameters& beam, const std::string& key) {
-  return beam.*(model::find_parameter(key)->member);
-}
-
 // The first `modes` undamped frequencies (rad/s) of the model.
 Eigen::VectorXd frequencies(const galerkin::BeamForms& forms, const model::BeamParameters& beam, int modes) {
   const auto m = galerkin::undamped_modes(galerkin::combine(forms, beam));
@@ -43,7 +39,7 @@ Eigen::MatrixXd frequency_sensitivities(const galerkin::BeamForms& forms, const 
   Eigen::MatrixXd g(modes, static_cast<Eigen::Index>(keys.size()));
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const galerkin::SecondOrderSystem d = galerkin::parameter_derivative(forms, beam, keys[i]);
-    const double q = beam.*(model::find_parameter(keys[i])->member);
+    const double q = model::parameter_value(beam, keys[i]);
     for (int k = 0; k < modes; ++k) {
       const Eigen::VectorXd phi = m.shapes.col(k);
       const double w2 = m.omega_rad_s(k) * m.omega_rad_s(k);
@@ -64,7 +60,9 @@ OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamPara
   if (!(slope > 0) || out.step > limit) out.step = limit, out.shrunk = true;
   out.start = truth;
   for (std::size_t i = 0; i < keys.size(); ++i)
-    member(out.start, keys[i]) *= std::exp(out.step * direction(static_cast<Eigen::Index>(i)));
+    model::set_parameter_value(
+        out.start, keys[i],
+        model::parameter_value(out.start, keys[i]) * std::exp(out.step * direction(static_cast<Eigen::Index>(i))));
   const Eigen::VectorXd f0 = frequencies(forms, truth, modes), f1 = frequencies(forms, out.start, modes);
   out.frequency_offset = (f1.array() / f0.array() - 1).abs().maxCoeff();
   return out;
@@ -130,8 +128,8 @@ bool reaches(const StudySpec& spec, const Record& reference, const Record& fit) 
   if (fit.text("status") == "failed" || reference.text("status") == "failed") return false;
   for (const auto& key : spec.fit.estimate) {
     const double a = reference.number("estimate." + key), b = fit.number("estimate." + key);
-    const double tolerance = model::find_parameter(key)->role == "damping" ? spec.start_distance.damping_agreement
-                                                                           : spec.start_distance.agreement;
+    const double tolerance =
+        model::parameter_role(key) == "damping" ? spec.start_distance.damping_agreement : spec.start_distance.agreement;
     if (!(std::abs(b - a) <= tolerance * std::abs(a))) return false;  // NaN: not reached
   }
   return true;

@@ -103,7 +103,7 @@ check "fit: modes at the estimate" grep -q "modes at the estimate (data by matri
 check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
-expect_error "fit unknown key" "'EJ' is not a beam parameter" fit --data "$tmp/z.csv" --beam banks-aluminium \
+expect_error "fit unknown key" "'EJ' is not a parameter of this beam" fit --data "$tmp/z.csv" --beam banks-aluminium \
   --elements 4 --estimate EJ --cost time
 expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band, modal" fit --data "$tmp/z.csv" \
   --beam banks-aluminium --elements 4 --estimate EI --cost freq
@@ -123,7 +123,7 @@ check "crb positive" awk -F, 'NR > 1 && !($3 > 0 && $4 > 0) { bad = 1 } END { ex
 check "crb scales with the noise" awk -F, 'NR == FNR { if (FNR > 1) a[$1] = $4; next }
     FNR > 1 { r = $4 / a[$1] / 10 - 1; if (r < 0) r = -r; if (r > 1e-6) bad = 1 } END { exit bad }' "$tmp/c1.csv" "$tmp/c2.csv"
 expect_error "crb needs a noise" "give one of --noise-sd S (absolute) and --noise-level L" crb $crb_flags
-expect_error "crb unknown key" "'EJ' is not a beam parameter" crb --beam banks-aluminium --elements 4 --estimate EJ \
+expect_error "crb unknown key" "'EJ' is not a parameter of this beam" crb --beam banks-aluminium --elements 4 --estimate EJ \
   --noise-sd 1e-6
 printf '[beam]\nl = 0.4573\nrho = 0.093\nrho_r2 = 1.984e-8\nkAG = 7.363e5\nEI = 0.491\ngamma = 0\ncDI = 0.649e-5\nkAcs = 9.73\nm = 0.05\nc = 0.0125\nJ_o = 5.208e-6\n' >"$tmp/nogamma.toml"
 expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/nogamma.toml" --elements 4 --estimate gamma \

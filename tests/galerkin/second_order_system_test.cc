@@ -332,5 +332,38 @@ TEST(CompliantClamp, SpringsEnterKAtTheRootAndFormsMustMatchTheClamp) {
   EXPECT_THROW(combine(forms, model::preset("thick-steel")), InputError);
 }
 
+// ---- Estimable clamp springs and attachment parameters (issue 11 item 3)
+
+TEST(AttachedBodies, DerivativesOfSpringsAndAttachmentsEqualCentralDifferences) {
+  // dM/dq, dK/dq against central differences of combine() at a relative step h = 1e-5: M and K are linear in
+  // k_theta, k_w, m and J (the difference is exact to rounding, ~1e-16 / h = 1e-11 of the entries) and C^1 in the
+  // position x (cubic splines are C^2; truncation O(h^2) = 1e-10 of the entries). 1e-8 of the largest entry of the
+  // derivative bounds both; a wrong block or factor is O(1) wrong.
+  BeamParameters beam = model::preset("thick-steel");
+  beam.support.k_theta = 2e4;
+  beam.support.k_w = 3e7;
+  beam.attachments = {{0.173, 0.1, 2e-6, 0.01}, {0.25, 0.05, 1e-6, -0.005}};
+  const BeamForms forms(SplineSpace(8), beam.l, beam.support);
+  for (const char* key : {"support.k_theta", "support.k_w", "attachment1.m", "attachment1.J", "attachment1.x",
+                          "attachment2.m", "attachment2.x"}) {
+    const SecondOrderSystem analytic = parameter_derivative(forms, beam, key);
+    const double value = model::parameter_value(beam, key), h = 1e-5 * value;
+    BeamParameters up = beam, down = beam;
+    model::set_parameter_value(up, key, value + h);
+    model::set_parameter_value(down, key, value - h);
+    const SecondOrderSystem plus = combine(forms, up), minus = combine(forms, down);
+    const Eigen::MatrixXd dm = (plus.M - minus.M) / (2 * h), dk = (plus.K - minus.K) / (2 * h);
+    const double scale = std::max(analytic.M.cwiseAbs().maxCoeff(), analytic.K.cwiseAbs().maxCoeff());
+    ASSERT_GT(scale, 0) << key;
+    EXPECT_LT((analytic.M - dm).cwiseAbs().maxCoeff(), 1e-8 * scale) << key;
+    EXPECT_LT((analytic.K - dk).cwiseAbs().maxCoeff(), 1e-8 * scale) << key;
+    EXPECT_EQ(analytic.C.cwiseAbs().maxCoeff(), 0.0) << key;
+  }
+  // A key the beam does not have is refused, naming what it has.
+  EXPECT_THROW(parameter_derivative(forms, beam, "attachment3.m"), InputError);
+  EXPECT_THROW(parameter_derivative(BeamForms(SplineSpace(8), beam.l), model::preset("thick-steel"), "support.k_theta"),
+               InputError);
+}
+
 }  // namespace
 }  // namespace beamid::galerkin
