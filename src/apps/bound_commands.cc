@@ -39,7 +39,7 @@ int run_crb(const Flags& a, std::ostream& out) {
   std::vector<std::string> keys;
   std::stringstream list(a.text("estimate"));
   for (std::string key; std::getline(list, key, ',');) {
-    a.require(key == "l" || model::describe_parameter(beam, key).has_value(), "estimate",
+    a.require(model::describe_parameter(beam, key).has_value(), "estimate",
               "'" + key + "' is not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
     keys.push_back(key);
   }

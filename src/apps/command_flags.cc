@@ -109,7 +109,7 @@ std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model:
   std::stringstream keys(a.text("estimate"));
   std::string key;
   while (std::getline(keys, key, ',')) {
-    if (key != "l" && !model::describe_parameter(nominal, key))
+    if (!model::describe_parameter(nominal, key))
       throw InputError(where + "--estimate = '" + a.text("estimate") + "': '" + key +
                        "' is not a parameter of this beam (valid: " + model::estimable_keys(nominal) + ")");
     fit::EstimatedParameter p{key, 0, 0};

@@ -121,8 +121,6 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   if (keys.empty()) throw InputError("Cramér-Rao bound: no parameter to bound");
   Eigen::VectorXd log_q(static_cast<Eigen::Index>(keys.size()));
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    if (keys[k] == "l")
-      throw InputError("Cramér-Rao bound: parameter 'l': the Galerkin forms are built for one length");
     if (!model::describe_parameter(beam, keys[k]))
       throw InputError("Cramér-Rao bound: parameter '" + keys[k] +
                        "': not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
@@ -136,7 +134,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   }
   const galerkin::SplineSpace space(elements);
   const galerkin::BeamForms forms(space, beam.l, beam.support);
-  if (simulation::has_exact_sensitivities(experiment) && simulator.integrator == "fast") {
+  if (simulation::has_exact_sensitivities(experiment, keys) && simulator.integrator == "fast") {
     check_noise(noise_sd);
     const simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, experiment, keys);
     if (!s.trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + s.trace.status);

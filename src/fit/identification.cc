@@ -65,8 +65,10 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
                                       o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
   const bool fast = o.simulator.integrator == "fast";
   impl_->pole_jacobian = cost_->has_pole_jacobian() && o.experiment.excitation != "free-decay" && fast;
-  impl_->exact_jacobian = impl_->pole_jacobian ||
-                          (cost_->has_output_jacobian() && simulation::has_exact_sensitivities(o.experiment) && fast);
+  std::vector<std::string> keys;
+  for (const auto& e : o.estimate) keys.push_back(e.key);
+  impl_->exact_jacobian = impl_->pole_jacobian || (cost_->has_output_jacobian() &&
+                                                   simulation::has_exact_sensitivities(o.experiment, keys) && fast);
 }
 
 bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
@@ -114,7 +116,7 @@ Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParame
     return out;
   }
   const galerkin::StateSpaceModes& modes = *decomposed;
-  const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
+  const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
   simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
   if (!trace.ok()) {
     out.evaluation.status = trace.status;
@@ -160,7 +162,8 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
       out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
       return out;
     }
-    const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment);
+    const simulation::ResponseProblem problem =
+        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
@@ -304,6 +307,17 @@ void validate(const FitOptions& o) {
   if (o.start_design != "lhs" && o.start_design != "random")
     throw InputError("start_design = '" + o.start_design + "': must be one of lhs, random");
   const ParameterMap map(o.start, o.estimate, o.scaling);
+  // A length below a force, sensor or body position would take it off the beam mid-fit.
+  for (const auto& e : o.estimate) {
+    if (e.key != "l") continue;
+    double farthest = 0;
+    if (o.experiment.force_x_m) farthest = std::max(farthest, *o.experiment.force_x_m);
+    if (o.experiment.sensor_x_m) farthest = std::max(farthest, *o.experiment.sensor_x_m);
+    for (const auto& a : o.start.attachments) farthest = std::max(farthest, a.x);
+    if (e.lower < farthest)
+      throw InputError("bounds of l [" + format_value(e.lower) + ", " + format_value(e.upper) + "]: lower must be >= " +
+                       format_value(farthest) + " m, the farthest force, sensor or attachment position from the clamp");
+  }
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
     const double s = model::parameter_value(o.start, e.key);

@@ -14,7 +14,6 @@ ParameterMap::ParameterMap(const model::BeamParameters& beam, std::vector<Estima
     throw InputError("scaling = '" + scaling_ + "': must be one of linear, log");
   if (estimated_.empty()) throw InputError("estimate: no parameter to estimate");
   for (const auto& e : estimated_) {
-    if (e.key == "l") throw InputError("estimate: l cannot be estimated (the Galerkin forms are built for one length)");
     const std::optional<model::ParameterDescription> info = model::describe_parameter(beam, e.key);
     if (!info)
       throw InputError("estimate: '" + e.key +

@@ -15,14 +15,14 @@
 namespace beamid::fit {
 
 struct EstimatedParameter {
-  std::string key;   // an estimable key of the beam (model::describe_parameter): not l, whose forms are built once
+  std::string key;   // an estimable key of the beam (model::describe_parameter)
   double lower = 0;  // physical bounds: 0 <= lower < upper (lower > 0 for log scaling and for > 0 keys)
   double upper = 0;
 };
 
 class ParameterMap {
  public:
-  // InputError naming the key, bound and constraint for an unknown or repeated key, "l", or bad bounds.
+  // InputError naming the key, bound and constraint for an unknown or repeated key, or bad bounds.
   ParameterMap(const model::BeamParameters& beam, std::vector<EstimatedParameter> estimated,
                std::string scaling = "linear");
 

@@ -47,6 +47,9 @@ BeamForms::BeamForms(const SplineSpace& s, double l, const model::Support& suppo
                         zero_aa = Eigen::MatrixXd::Zero(na_dim, na_dim);
   // <u_x - alpha, phi1_x - phi2>: rows phi1 = beta_i give [G11, -G10], rows phi2 = beta_i give [-G10^T, G0].
   shear = blocks(g11_uu, -g10_ua, g0_aa);
+  shear_uu = blocks(g11_uu, zero_ua, zero_aa);
+  shear_ua = blocks(zero_uu, -g10_ua, zero_aa);
+  shear_aa = blocks(zero_uu, zero_ua, g0_aa);
   bending = blocks(zero_uu, zero_ua, g11_aa);
   translation = blocks(g0_uu, zero_ua, zero_aa);
   rotation = blocks(zero_uu, zero_ua, g0_aa);
@@ -70,6 +73,14 @@ Eigen::VectorXd BeamForms::alpha_values_at(double x_m) const {
   return alpha_basis * space.full_values(x_m / length_m);
 }
 
+Eigen::VectorXd BeamForms::block_values(double xi, bool alpha_block) const {
+  return (alpha_block ? alpha_basis : u_basis) * space.full_values(xi);
+}
+
+Eigen::VectorXd BeamForms::block_slopes(double xi, bool alpha_block) const {
+  return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(xi);
+}
+
 Eigen::VectorXd BeamForms::slopes_at(double x_m, bool alpha_block) const {
   values_at(x_m);  // the same range check
   return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(x_m / length_m) / length_m;
@@ -90,38 +101,66 @@ void add_body(Eigen::MatrixXd& m, const BeamForms& f, double mass, double mc, do
 
 }  // namespace
 
+namespace {
+
+void require_on_beam(double x_m, double length_m) {
+  if (!(x_m >= 0 && x_m <= length_m))
+    throw InputError("position x = " + format_value(x_m) +
+                     " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
+}
+
+}  // namespace
+
 SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
-  if (p.l != f.length_m)
-    throw InputError("beam length l = " + format_value(p.l) +
-                     " differs from the length the Galerkin forms were made for (" + format_value(f.length_m) + ")");
-  // Tip inertia Lambda = [[m, m c], [m c, m c^2 + J_o]] acting on (u(l), alpha(l)).
+  if (!(p.l > 0) || !std::isfinite(p.l)) throw InputError("beam length l = " + format_value(p.l) + ": must be > 0");
   if (p.support.rotation_free() != f.rotation_free || p.support.deflection_free() != f.deflection_free)
     throw InputError(std::string("the beam's clamp (") + (p.support.rigid() ? "rigid" : "compliant") +
                      ") differs from the one the Galerkin forms were made for: build them with BeamForms(space, l, "
                      "beam.support)");
   SecondOrderSystem s;
-  s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + (p.m * p.c) * f.tip_ua +
-        (p.J_o + p.m * p.c * p.c) * f.tip_aa;
+  // Tip inertia Lambda = [[m, m c], [m c, m c^2 + J_o]] acting on (u(l), alpha(l)). (Each sum is written out in one
+  // expression, in the same order in both branches, so that the unscaled one rounds as it always has.)
+  const double mc = p.m * p.c, j_tip = p.J_o + p.m * p.c * p.c;
+  if (p.l == f.length_m) {
+    s.M = p.rho * f.translation + p.rho_r2 * f.rotation + p.m * f.tip_uu + mc * f.tip_ua + j_tip * f.tip_aa;
+    s.K = p.kAG * f.shear + p.EI * f.bending;
+    s.C = p.kAcs * f.shear + p.cDI * f.bending + p.gamma * f.translation;
+  } else {
+    const double up = p.l / f.length_m, down = f.length_m / p.l;  // G0 ~ l, G11 ~ 1/l
+    const Eigen::MatrixXd shear = down * f.shear_uu + f.shear_ua + up * f.shear_aa;
+    s.M =
+        (p.rho * up) * f.translation + (p.rho_r2 * up) * f.rotation + p.m * f.tip_uu + mc * f.tip_ua + j_tip * f.tip_aa;
+    s.K = p.kAG * shear + (p.EI * down) * f.bending;
+    s.C = p.kAcs * shear + (p.cDI * down) * f.bending + (p.gamma * up) * f.translation;
+  }
   // Attachments: the same inertia Lambda_k acting on (u(x_k), alpha(x_k)), with the blocks' values at x_k in place of
   // the tip traces.
   for (const model::Attachment& a : p.attachments) {
-    const Eigen::VectorXd v = f.values_at(a.x), w = f.alpha_values_at(a.x);
+    require_on_beam(a.x, p.l);
+    const double xi = a.x / p.l;
+    const Eigen::VectorXd v = f.block_values(xi, false), w = f.block_values(xi, true);
     add_body(s.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, v, w, v, w);
   }
-  s.K = p.kAG * f.shear + p.EI * f.bending;
   if (f.rotation_free) s.K += p.support.k_theta * f.root_aa;
   if (f.deflection_free) s.K += p.support.k_w * f.root_uu;
-  s.C = p.kAcs * f.shear + p.cDI * f.bending + p.gamma * f.translation;
   return s;
 }
 
 SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamParameters& p, const std::string& key) {
   const Eigen::Index n = f.dimension();
   SecondOrderSystem d{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
+  // The forms at the beam's length (combine): factors of 1 when it is the forms' own.
+  const double up = p.l / f.length_m, down = f.length_m / p.l;
+  const auto shear = [&] { return Eigen::MatrixXd(down * f.shear_uu + f.shear_ua + up * f.shear_aa); };
+  const auto body_vectors = [&](const model::Attachment& a, Eigen::VectorXd& v, Eigen::VectorXd& w) {
+    require_on_beam(a.x, p.l);
+    v = f.block_values(a.x / p.l, false);
+    w = f.block_values(a.x / p.l, true);
+  };
   if (key == "rho") {
-    d.M = f.translation;
+    d.M = up * f.translation;
   } else if (key == "rho_r2") {
-    d.M = f.rotation;
+    d.M = up * f.rotation;
   } else if (key == "m") {
     d.M = f.tip_uu + p.c * f.tip_ua + p.c * p.c * f.tip_aa;
   } else if (key == "c") {
@@ -129,15 +168,31 @@ SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamPara
   } else if (key == "J_o") {
     d.M = f.tip_aa;
   } else if (key == "kAG") {
-    d.K = f.shear;
+    d.K = shear();
   } else if (key == "EI") {
-    d.K = f.bending;
+    d.K = down * f.bending;
   } else if (key == "kAcs") {
-    d.C = f.shear;
+    d.C = shear();
   } else if (key == "cDI") {
-    d.C = f.bending;
+    d.C = down * f.bending;
   } else if (key == "gamma") {
-    d.C = f.translation;
+    d.C = up * f.translation;
+  } else if (key == "l") {
+    // d up / dl = 1 / l_0, d down / dl = -down / l; bodies stay at x from the clamp, so beta(x/l) moves with l:
+    // d/dl beta(x/l) = -(x / l^2) beta'(x/l).
+    const Eigen::MatrixXd d_shear = (-down / p.l) * f.shear_uu + (1 / f.length_m) * f.shear_aa;
+    d.M = (p.rho / f.length_m) * f.translation + (p.rho_r2 / f.length_m) * f.rotation;
+    d.K = p.kAG * d_shear - (p.EI * down / p.l) * f.bending;
+    d.C = p.kAcs * d_shear - (p.cDI * down / p.l) * f.bending + (p.gamma / f.length_m) * f.translation;
+    for (const model::Attachment& a : p.attachments) {
+      Eigen::VectorXd v, w;
+      body_vectors(a, v, w);
+      const double factor = -a.x / (p.l * p.l);
+      const Eigen::VectorXd dv = factor * f.block_slopes(a.x / p.l, false);
+      const Eigen::VectorXd dw = factor * f.block_slopes(a.x / p.l, true);
+      add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, dv, dw, v, w);
+      add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, v, w, dv, dw);
+    }
   } else if (key == "support.k_theta" && f.rotation_free) {
     d.K = f.root_aa;
   } else if (key == "support.k_w" && f.deflection_free) {
@@ -146,19 +201,21 @@ SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamPara
     // attachmentK.m, .J, .x: K from the key (describe_parameter checked that the beam has it).
     const std::size_t k = std::stoul(key.substr(10, key.find('.') - 10)) - 1;
     const model::Attachment& a = p.attachments[k];
-    const Eigen::VectorXd v = f.values_at(a.x), w = f.alpha_values_at(a.x);
+    Eigen::VectorXd v, w;
+    body_vectors(a, v, w);
     const char field = key.back();
     if (field == 'm') add_body(d.M, f, 1, a.c, a.c * a.c, v, w, v, w);
     if (field == 'J') add_body(d.M, f, 0, 0, 1, v, w, v, w);
     if (field == 'x') {
-      // d/dx of Lambda-weighted outer products: (v' v^T + v v'^T) and likewise, v' = d beta(x/l)/dx.
-      const Eigen::VectorXd dv = f.slopes_at(a.x, false), dw = f.slopes_at(a.x, true);
+      // d/dx of Lambda-weighted outer products: (v' v^T + v v'^T) and likewise, v' = d beta(x/l)/dx = beta'(x/l)/l.
+      const Eigen::VectorXd dv = f.block_slopes(a.x / p.l, false) / p.l;
+      const Eigen::VectorXd dw = f.block_slopes(a.x / p.l, true) / p.l;
       add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, dv, dw, v, w);
       add_body(d.M, f, a.m, a.m * a.c, a.J + a.m * a.c * a.c, v, w, dv, dw);
     }
   } else {
-    throw InputError("parameter '" + key + "': the Galerkin matrices have no derivative with respect to it (" +
-                     (key == "l" ? std::string("the forms are built for one length") : "not a beam parameter") + ")");
+    throw InputError("parameter '" + key + "': the Galerkin matrices have no derivative with respect to it (not a " +
+                     "parameter of this beam: " + model::estimable_keys(p) + ")");
   }
   return d;
 }
@@ -167,9 +224,12 @@ SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters
   return combine(BeamForms(space, beam.l, beam.support), beam);
 }
 
-Eigen::VectorXd point_load(const BeamForms& forms, double x_m) {
+Eigen::VectorXd point_load(const BeamForms& forms, double x_m) { return point_load(forms, x_m, forms.length_m); }
+
+Eigen::VectorXd point_load(const BeamForms& forms, double x_m, double length_m) {
+  require_on_beam(x_m, length_m);
   Eigen::VectorXd f = Eigen::VectorXd::Zero(forms.dimension());
-  f.head(forms.u_dimension()) = forms.values_at(x_m);
+  f.head(forms.u_dimension()) = forms.block_values(x_m / length_m, false);
   return f;
 }
 

@@ -38,6 +38,9 @@ struct BeamForms {
   Eigen::MatrixXd shear, bending, translation, rotation;  // S, B, T, R above
   Eigen::MatrixXd tip_uu, tip_ua, tip_aa;  // [nu nu^T 0; 0 0], [0 nu nu_a^T; nu_a nu^T 0], [0 0; 0 nu_a nu_a^T]
   Eigen::MatrixXd root_uu, root_aa;        // e e^T of the root values in the u and alpha blocks (zero when clamped)
+  // The shear form's parts by their scaling with the length: S = S_uu + S_ua + S_aa at length_m, and at another
+  // length l, S(l) = (length_m / l) S_uu + S_ua + (l / length_m) S_aa (G11 scales as 1/l, G10 not at all, G0 as l).
+  Eigen::MatrixXd shear_uu, shear_ua, shear_aa;
 
   int u_dimension() const { return static_cast<int>(u_basis.rows()); }
   int alpha_dimension() const { return static_cast<int>(alpha_basis.rows()); }
@@ -48,18 +51,26 @@ struct BeamForms {
   Eigen::VectorXd alpha_values_at(double x_m) const;
   // d/dx of values_at (alpha_block false) or alpha_values_at (true), per metre.
   Eigen::VectorXd slopes_at(double x_m, bool alpha_block) const;
+  // The blocks' values and d/d xi at the fraction xi = x / l of the span (InputError unless 0 <= xi <= 1): for a
+  // beam whose length differs from length_m.
+  Eigen::VectorXd block_values(double xi, bool alpha_block) const;
+  Eigen::VectorXd block_slopes(double xi, bool alpha_block) const;
 };
 
-// M, C, K for the given parameters; beam.l must equal forms.length_m and the support's free roots those of the forms
-// (InputError otherwise). Each attachment adds [m v v^T, m c v w^T; m c w v^T, (J + m c^2) w w^T] to M, v and w the
-// u- and alpha-block values at x (model/beam_parameters.h); a compliant clamp adds k_theta e_a e_a^T and k_w e_u e_u^T
-// to K (the springs' energy (1/2) k_theta alpha(0)^2 + (1/2) k_w u(0)^2).
+// M, C, K for the given parameters; the support's free roots must be those of the forms (InputError otherwise).
+// A beam length other than forms.length_m scales the forms in closed form (the spline space lives on [0, 1]):
+// T, R and G0 blocks by l / l_0, bending by l_0 / l, the shear form by parts (BeamForms::shear_uu ...), and bodies
+// on the span are placed at x / l; at l = l_0 the result is the unscaled one exactly. Each attachment adds [m v v^T, m
+// c v w^T; m c w v^T, (J + m c^2) w w^T] to M, v and w the u- and alpha-block values at x (model/beam_parameters.h); a
+// compliant clamp adds k_theta e_a e_a^T and k_w e_u e_u^T to K (the springs' energy (1/2) k_theta alpha(0)^2 + (1/2)
+// k_w u(0)^2).
 SecondOrderSystem combine(const BeamForms& forms, const model::BeamParameters& beam);
 
 // dM/dq, dC/dq, dK/dq for the beam parameter `key` at `beam` (exact: M, C, K are linear in every parameter but the
 // tip offset c, which enters M as m c and m c^2, and an attachment's position x, which enters through beta(x/l)),
 // for the lumped keys, "support.k_theta", "support.k_w" (when the forms' root is free) and "attachmentK.m", ".J",
-// ".x". InputError for "l" (the forms are built for one length) or a key the beam does not have.
+// ".x", and "l" (the derivative of the closed-form scaling, bodies held at their distance from the clamp).
+// InputError for a key the beam does not have.
 SecondOrderSystem parameter_derivative(const BeamForms& forms, const model::BeamParameters& beam,
                                        const std::string& key);
 
@@ -68,5 +79,7 @@ SecondOrderSystem assemble(const SplineSpace& space, const model::BeamParameters
 
 // Generalised load of a unit transverse point force at x_m: F = [beta(x_m); 0] (also the displacement sensor row).
 Eigen::VectorXd point_load(const BeamForms& forms, double x_m);
+// The same on a beam of length length_m (the forms' own length or another, see combine): beta(x_m / length_m).
+Eigen::VectorXd point_load(const BeamForms& forms, double x_m, double length_m);
 
 }  // namespace beamid::galerkin

@@ -124,8 +124,7 @@ std::optional<ParameterDescription> describe_parameter(const BeamParameters& bea
 std::string estimable_keys(const BeamParameters& beam) {
   std::string keys;
   const auto add = [&](const std::string& key) { keys += (keys.empty() ? "" : ", ") + key; };
-  for (const auto& info : parameter_table())
-    if (info.key != "l") add(std::string(info.key));
+  for (const auto& info : parameter_table()) add(std::string(info.key));
   if (beam.support.rotation_free()) add("support.k_theta");
   if (beam.support.deflection_free()) add("support.k_w");
   for (std::size_t k = 0; k < beam.attachments.size(); ++k)
@@ -162,7 +161,6 @@ double parameter_value(const BeamParameters& beam, std::string_view key) {
 }
 
 void set_parameter_value(BeamParameters& beam, std::string_view key, double value) {
-  if (key == "l") throw InputError("parameter 'l' cannot be set here: the Galerkin forms are built for one length");
   double* slot = parameter_slot(beam, key);
   if (slot == nullptr) no_such_parameter(beam, key);
   *slot = value;

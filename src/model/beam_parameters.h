@@ -78,7 +78,8 @@ const ParameterInfo* find_parameter(std::string_view key);
 // Comma-separated list of all keys, for "valid names are ..." messages.
 std::string parameter_keys();
 
-// Every quantity of a beam a fit may estimate: the lumped parameters of parameter_table() but l, the clamp's springs
+// Every quantity of a beam a fit may estimate: the lumped parameters of parameter_table() (l too: the Galerkin forms
+// scale with it in closed form, galerkin::combine), the clamp's springs
 // "support.k_theta" and "support.k_w" (when the beam's clamp has them: a rigid direction has no finite value to start
 // from), and attachment K's mass, inertia and position "attachmentK.m", "attachmentK.J", "attachmentK.x" (K from 1).
 struct ParameterDescription {
@@ -92,7 +93,7 @@ std::optional<ParameterDescription> describe_parameter(const BeamParameters& bea
 // inertias "inertia", positions "geometry"; empty for an unknown key.
 std::string_view parameter_role(std::string_view key);
 // The value of `key` in `beam`, and setting it: InputError naming the key and this beam's keys when it has no such
-// quantity (l is readable but not settable here: the Galerkin forms are built for one length).
+// quantity.
 double parameter_value(const BeamParameters& beam, std::string_view key);
 void set_parameter_value(BeamParameters& beam, std::string_view key, double value);
 // This beam's estimable keys, comma-separated, for messages.

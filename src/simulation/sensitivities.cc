@@ -1,5 +1,6 @@
 #include "simulation/sensitivities.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <optional>
@@ -70,17 +71,26 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
 
 bool has_exact_sensitivities(const Experiment& e) { return e.excitation == kPulse; }
 
+bool has_exact_sensitivities(const Experiment& e, const std::vector<std::string>& keys) {
+  const bool length = std::find(keys.begin(), keys.end(), "l") != keys.end();
+  return has_exact_sensitivities(e) && !(length && (e.force_x_m || e.sensor_x_m));
+}
+
 SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
                                              const Experiment& experiment, const std::vector<std::string>& keys) {
   if (!has_exact_sensitivities(experiment))
     throw InputError("excitation = '" + experiment.excitation +
                      "': exact sensitivities are available for a pulse from rest only");
+  if (!has_exact_sensitivities(experiment, keys))
+    throw InputError(
+        "sensitivities with respect to l: the force or sensor is given in metres, so its place on the "
+        "span moves with l, which the modal derivatives do not include (use differences)");
   std::vector<galerkin::SecondOrderSystem> derivatives;  // dM, dC, dK per key (InputError for a bad key, first)
   for (const auto& key : keys) derivatives.push_back(galerkin::parameter_derivative(forms, beam, key));
   SensitivityTrace out;
   out.keys = keys;
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  const ResponseProblem p = make_problem(forms, system, experiment);
+  const ResponseProblem p = make_problem(forms, system, experiment, beam.l);
   std::optional<galerkin::StateSpaceModes> modes;  // decomposed once, for the output and its derivatives
   try {
     modes.emplace(system);

@@ -38,8 +38,12 @@ struct SensitivityTrace {
 
 // Whether an experiment's sensitivities are available in closed form (a pulse from rest; not a pluck or free decay).
 bool has_exact_sensitivities(const Experiment& experiment);
+// And for these keys: not for l when the force or sensor position is given in metres (its place on the span then
+// moves with l, and the modal derivatives hold the load and sensor vectors fixed); absent positions (the tip) are
+// fractions 1 whatever l.
+bool has_exact_sensitivities(const Experiment& experiment, const std::vector<std::string>& keys);
 
-// y and d y / d q for the parameters `keys` (beam keys other than l). InputError for an experiment without closed
+// y and d y / d q for the parameters `keys` (estimable beam keys). InputError for an experiment without closed
 // form sensitivities or a bad key; a failed decomposition is a trace with that status (dy_dq then empty).
 SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
                                              const Experiment& experiment, const std::vector<std::string>& keys);

@@ -30,14 +30,19 @@ std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options) {
 
 ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
                              const Experiment& e) {
-  if (auto error = validation_error(e, forms.length_m)) throw InputError(*error);
+  return make_problem(forms, system, e, forms.length_m);
+}
+
+ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
+                             const Experiment& e, double length_m) {
+  if (auto error = validation_error(e, length_m)) throw InputError(*error);
   if (e.excitation == kFreeDecay)
     throw InputError(
         "excitation = 'free-decay': the initial state is unknown, so it can be fitted but not simulated "
         "(use pulse or pluck)");
   ResponseProblem p;
-  p.load = galerkin::point_load(forms, e.force_x_m.value_or(forms.length_m));
-  p.sensor = galerkin::point_load(forms, e.sensor_x_m.value_or(forms.length_m));
+  p.load = galerkin::point_load(forms, e.force_x_m.value_or(length_m), length_m);
+  p.sensor = galerkin::point_load(forms, e.sensor_x_m.value_or(length_m), length_m);
   p.derivative = output_derivative(e.output);
   p.dt_s = e.dt_s;
   p.samples = e.samples;
@@ -57,7 +62,7 @@ ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::S
 Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,
                const SimulatorOptions& options) {
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  return make_simulator(options)->run(system, make_problem(forms, system, experiment));
+  return make_simulator(options)->run(system, make_problem(forms, system, experiment, beam.l));
 }
 
 }  // namespace beamid::simulation

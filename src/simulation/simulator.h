@@ -87,8 +87,12 @@ class Simulator {
 std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options);
 
 // Load, sensor and initial state of `experiment` for the beam; InputError if the experiment is not admissible.
+// Positions are in metres from the clamp on a beam of length length_m (the forms' own length unless given: a fit
+// that estimates l keeps the force and sensor where they are; absent positions mean the tip, whatever l).
 ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
                              const Experiment& experiment);
+ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,
+                             const Experiment& experiment, double length_m);
 
 // Convenience for one-off runs: assemble, build the problem, run.
 Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,

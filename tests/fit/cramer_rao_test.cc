@@ -99,7 +99,7 @@ TEST(CramerRao, RefusesWhatHasNoBound) {
   EXPECT_TRUE(std::isnan(b.relative_sd(4)));
   const auto beam = model::preset("banks-aluminium");
   simulation::Experiment e;
-  EXPECT_THROW(beam_cramer_rao_bound(beam, 4, e, {"l"}, 1e-6), InputError);
+  EXPECT_THROW(beam_cramer_rao_bound(beam, 4, e, {"support.k_theta"}, 1e-6), InputError);  // a rigid clamp
   EXPECT_THROW(beam_cramer_rao_bound(beam, 4, e, {"EI", "EI"}, 1e-6), InputError);
   model::BeamParameters undamped = beam;
   undamped.gamma = 0;  // no relative bound for a parameter that is 0

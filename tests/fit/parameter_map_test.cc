@@ -51,8 +51,8 @@ TEST(ParameterMap, PhysicalValuesNeverLeaveTheirBounds) {
 
 TEST(ParameterMap, RefusesWhatCannotBeEstimated) {
   const model::BeamParameters beam = model::preset("banks-aluminium");
-  EXPECT_THROW(ParameterMap(beam, {{"l", 0.4, 0.5}}), InputError);   // the forms are built for one length
-  EXPECT_THROW(ParameterMap(beam, {{"EJ", 0.4, 0.5}}), InputError);  // no such parameter
+  EXPECT_THROW(ParameterMap(beam, {{"support.k_theta", 0.4, 0.5}}), InputError);       // a rigid clamp has no spring
+  EXPECT_THROW(ParameterMap(beam, {{"EJ", 0.4, 0.5}}), InputError);                    // no such parameter
   EXPECT_THROW(ParameterMap(beam, {{"EI", 0.4, 0.5}, {"EI", 0.4, 0.5}}), InputError);  // repeated
   EXPECT_THROW(ParameterMap(beam, {{"EI", 0.5, 0.4}}), InputError);                    // lower above upper
   EXPECT_THROW(ParameterMap(beam, {{"gamma", 0, 1}}, "log"), InputError);              // log of a zero bound
