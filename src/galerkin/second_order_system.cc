@@ -61,29 +61,12 @@ BeamForms::BeamForms(const SplineSpace& s, double l, const model::Support& suppo
   root_aa = blocks(zero_uu, zero_ua, e_a * e_a.transpose());
 }
 
-Eigen::VectorXd BeamForms::values_at(double x_m) const {
-  if (!(x_m >= 0 && x_m <= length_m))
-    throw InputError("position x = " + format_value(x_m) +
-                     " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
-  return u_basis * space.full_values(x_m / length_m);
-}
-
-Eigen::VectorXd BeamForms::alpha_values_at(double x_m) const {
-  values_at(x_m);  // the same range check
-  return alpha_basis * space.full_values(x_m / length_m);
-}
-
 Eigen::VectorXd BeamForms::block_values(double xi, bool alpha_block) const {
   return (alpha_block ? alpha_basis : u_basis) * space.full_values(xi);
 }
 
 Eigen::VectorXd BeamForms::block_slopes(double xi, bool alpha_block) const {
   return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(xi);
-}
-
-Eigen::VectorXd BeamForms::slopes_at(double x_m, bool alpha_block) const {
-  values_at(x_m);  // the same range check
-  return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(x_m / length_m) / length_m;
 }
 
 namespace {

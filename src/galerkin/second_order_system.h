@@ -45,14 +45,8 @@ struct BeamForms {
   int u_dimension() const { return static_cast<int>(u_basis.rows()); }
   int alpha_dimension() const { return static_cast<int>(alpha_basis.rows()); }
   int dimension() const { return u_dimension() + alpha_dimension(); }
-  // beta(x/l) of the u block: the u-block of point loads and displacement sensors; InputError unless 0 <= x_m <= l.
-  Eigen::VectorXd values_at(double x_m) const;
-  // The same for the alpha block (section rotation at x_m).
-  Eigen::VectorXd alpha_values_at(double x_m) const;
-  // d/dx of values_at (alpha_block false) or alpha_values_at (true), per metre.
-  Eigen::VectorXd slopes_at(double x_m, bool alpha_block) const;
-  // The blocks' values and d/d xi at the fraction xi = x / l of the span (InputError unless 0 <= xi <= 1): for a
-  // beam whose length differs from length_m.
+  // The u block's (alpha_block false) or alpha block's basis values beta(xi) and d beta / d xi at the fraction
+  // xi = x / l of the span (InputError unless 0 <= xi <= 1): loads, sensors and bodies on a beam of any length.
   Eigen::VectorXd block_values(double xi, bool alpha_block) const;
   Eigen::VectorXd block_slopes(double xi, bool alpha_block) const;
 };
