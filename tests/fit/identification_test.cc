@@ -225,6 +225,28 @@ TEST(Identification, BadSetupsAreInputErrorsBeforeAnyWork) {
   EXPECT_THROW(fit(o, std::vector<double>(data.begin(), data.begin() + 100)), InputError);  // samples mismatch
 }
 
+// A time-cost fit of `truth` at N = kElements on noise-free data from the same model (fast integrator): the truth is
+// the exact minimum, so these fits check keys, derivatives and reports, not the model. Starts at the truth.
+struct SameModelFit {
+  FitOptions options;
+  std::vector<double> data;
+};
+SameModelFit same_model_fit(const model::BeamParameters& truth, bool tip_force = false) {
+  SameModelFit f;
+  f.options.elements = kElements;
+  f.options.experiment = experiment_for("thick-steel", truth.l);
+  if (tip_force) f.options.experiment.force_x_m.reset();
+  f.options.cost.name = "time";
+  f.options.optimizer.method = default_optimizer("time");
+  f.options.start = truth;
+  const galerkin::SplineSpace space(kElements);
+  const auto trace =
+      simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth, f.options.experiment, {});
+  EXPECT_TRUE(trace.ok()) << trace.status;
+  f.data = trace.y;
+  return f;
+}
+
 TEST(Identification, RecoversAClampSpringAndAnAttachmentsMassAndPosition) {
   // Issue 11 item 3: the new keys go through the parameter map, the exact Jacobian (galerkin::parameter_derivative)
   // and the report like the lumped ones. The data come from the same model (fast integrator, N = 8, no noise), so
@@ -234,21 +256,13 @@ TEST(Identification, RecoversAClampSpringAndAnAttachmentsMassAndPosition) {
   model::BeamParameters truth = model::preset("thick-steel");
   truth.support.k_theta = 5e4;                 // N m/rad: 10x EI/l, a clamp that lowers mode 1 by ~15 %
   truth.attachments = {{0.2, 0.1, 0.0, 0.0}};  // 100 g at 2/3 of the span
-  FitOptions o;
-  o.elements = kElements;
-  o.experiment = experiment_for("thick-steel", truth.l);
-  o.cost.name = "time";
-  o.optimizer.method = default_optimizer("time");
-  o.start = truth;
+  auto [o, data] = same_model_fit(truth);
   for (const char* key : {"EI", "support.k_theta", "attachment1.m", "attachment1.x"}) {
     const double v = model::parameter_value(truth, key);
     o.estimate.push_back({key, v / 2, std::min(2 * v, key == std::string("attachment1.x") ? truth.l : 2 * v)});
     model::set_parameter_value(o.start, key, v * 1.003);
   }
-  const galerkin::SplineSpace space(kElements);
-  const auto data = simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth, o.experiment, {});
-  ASSERT_TRUE(data.ok()) << data.status;
-  const FitResult r = fit(o, data.y);
+  const FitResult r = fit(o, data);
   EXPECT_EQ(r.status, "converged") << r.termination;
   ASSERT_EQ(r.parameters.size(), 4u);
   for (const auto& p : r.parameters) {
@@ -260,7 +274,7 @@ TEST(Identification, RecoversAClampSpringAndAnAttachmentsMassAndPosition) {
   // A key this beam does not have is an input error naming the ones it has.
   o.estimate = {{"attachment2.m", 0.01, 1}};
   try {
-    fit(o, data.y);
+    fit(o, data);
     ADD_FAILURE() << "attachment2.m was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("attachment1.x"), std::string::npos) << e.what();
@@ -274,18 +288,10 @@ TEST(Identification, ReportsTheCombinationARecordCannotSeparate) {
   // vector (0.71, -0.71)); its condition number is set by rounding (measured ~1e8-1e9), far above the 1e7 limit.
   model::BeamParameters truth = model::preset("thick-steel");
   truth.attachments = {{truth.l, truth.m, 0.0, truth.c}};
-  FitOptions o;
-  o.elements = kElements;
-  o.experiment = experiment_for("thick-steel", truth.l);
-  o.cost.name = "time";
-  o.optimizer.method = default_optimizer("time");
-  o.start = truth;
+  auto [o, data] = same_model_fit(truth);
   o.estimate = {
       {"EI", truth.EI / 2, truth.EI * 2}, {"m", truth.m / 2, truth.m * 2}, {"attachment1.m", truth.m / 2, truth.m * 2}};
-  const galerkin::SplineSpace space(kElements);
-  const auto data = simulation::simulate(galerkin::BeamForms(space, truth.l), truth, o.experiment, {});
-  ASSERT_TRUE(data.ok()) << data.status;
-  const FitResult r = fit(o, data.y);
+  const FitResult r = fit(o, data);
   const Identifiability& id = r.identifiability;
   ASSERT_EQ(id.status, "ok");
   EXPECT_GT(id.condition, 1e7);
@@ -303,27 +309,18 @@ TEST(Identification, RecoversTheLengthWithTheStiffnessFromATipPulse) {
   // frequencies ~ sqrt(EI / (rho l^4)) separate l from EI. Noise-free data from the same model: the truth is the
   // exact minimum, recovered to 1e-6 from 0.3 % off (measured: 1e-9 or better).
   const model::BeamParameters truth = model::preset("thick-steel");
-  FitOptions o;
-  o.elements = kElements;
-  o.experiment = experiment_for("thick-steel", truth.l);
-  o.experiment.force_x_m.reset();  // the tip
-  o.cost.name = "time";
-  o.optimizer.method = default_optimizer("time");
-  o.start = truth;
+  auto [o, data] = same_model_fit(truth, true);  // the force at the tip
   o.start.l *= 1.003;
   o.start.EI *= 0.997;
   o.estimate = {{"l", 0.25, 0.35}, {"EI", truth.EI / 2, truth.EI * 2}};
-  const galerkin::SplineSpace space(kElements);
-  const auto data = simulation::simulate(galerkin::BeamForms(space, truth.l), truth, o.experiment, {});
-  ASSERT_TRUE(data.ok()) << data.status;
-  const FitResult r = fit(o, data.y);
+  const FitResult r = fit(o, data);
   EXPECT_EQ(r.status, "converged") << r.termination;
   ASSERT_EQ(r.parameters.size(), 2u);
   EXPECT_NEAR(r.parameters[0].estimate / truth.l, 1.0, 1e-6);
   EXPECT_NEAR(r.parameters[1].estimate / truth.EI, 1.0, 1e-6);
   // A force given in metres must stay on the beam: l's lower bound cannot fall below it.
   o.experiment.force_x_m = 0.28;
-  EXPECT_THROW(fit(o, data.y), InputError);
+  EXPECT_THROW(fit(o, data), InputError);
 }
 
 }  // namespace
