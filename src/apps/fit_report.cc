@@ -148,7 +148,14 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
        << g(id.weakest_sd, 3) << " (relative)."
        << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
        << "\n\n";
-  else
+  if (id.status == "ok" && id.weak.size() > 1) {
+    md << "Every combination with sqrt(lambda_max / lambda) above 1e3, weakest first:\n\n| combination | ratio | "
+          "formal sd "
+          "(relative) |\n|---|---|---|\n";
+    for (const auto& w : id.weak)
+      md << "| " << id.combination(w.components) << " | " << g(w.ratio, 3) << " | " << g(w.sd, 3) << " |\n";
+    md << "\n";
+  } else
     md << "Identifiability: not computed (" << id.status << ").\n\n";
   md << "| stage | parameters | status | cost | evaluations | termination |\n|---|---|---|---|---|---|\n";
   for (const auto& s : r.stages) {

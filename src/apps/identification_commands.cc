@@ -214,7 +214,12 @@ int run_fit(const Flags& a, std::ostream& out) {
   if (result.identifiability.status == "ok" && result.identifiability.verdict != "identifiable")
     std::cerr << "beamid fit: " << result.identifiability.verdict << ": condition number of J (in ln q) "
               << result.identifiability.condition << "; the record hardly constrains "
-              << result.identifiability.combination() << " (formal sd " << result.identifiability.weakest_sd << ")\n";
+              << result.identifiability.combination() << " (formal sd " << result.identifiability.weakest_sd << ")"
+              << (result.identifiability.weak.size() > 1
+                      ? " and " + std::to_string(result.identifiability.weak.size() - 1) +
+                            " further combination(s) above 1e3 (listed in --report)"
+                      : std::string())
+              << "\n";
   const FitReportInput input{o, result, data, beam_name, a.arguments()};
   std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
   if (a.has("report")) write_fit_report(a.text("report"), input);

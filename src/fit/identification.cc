@@ -387,32 +387,39 @@ Identifiability identifiability_of(const Covariance& covariance, const Parameter
   id.condition = lambda(0) > 0 ? std::sqrt(lambda(n - 1) / lambda(0)) : std::numeric_limits<double>::infinity();
   // Sign: the first component that combination() prints (|v_i| >= 0.05) is positive, so the text reads the same
   // whichever sign the eigensolver returned.
-  Eigen::VectorXd v = eigen.eigenvectors().col(0);
-  for (int i = 0; i < n; ++i)
-    if (std::abs(v(i)) >= 0.05) {
-      if (v(i) < 0) v = -v;
-      break;
-    }
-  for (int i = 0; i < n; ++i) {
-    id.keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
-    id.weakest.push_back(v(i));
+  const auto signed_direction = [&](int k) {
+    Eigen::VectorXd v = eigen.eigenvectors().col(k);
+    for (int i = 0; i < n; ++i)
+      if (std::abs(v(i)) >= 0.05) {
+        if (v(i) < 0) v = -v;
+        break;
+      }
+    return std::vector<double>(v.data(), v.data() + n);
+  };
+  const auto sd = [&](int k) {
+    return lambda(k) > 0 ? std::sqrt(covariance.residual_variance / lambda(k))
+                         : std::numeric_limits<double>::infinity();
+  };
+  for (int i = 0; i < n; ++i) id.keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
+  id.weakest = signed_direction(0);
+  id.weakest_sd = sd(0);
+  for (int k = 0; k < n; ++k) {
+    const double ratio = lambda(k) > 0 ? std::sqrt(lambda(n - 1) / lambda(k)) : std::numeric_limits<double>::infinity();
+    if (ratio > 1e3) id.weak.push_back({signed_direction(k), ratio, sd(k)});
   }
-  id.weakest_sd =
-      lambda(0) > 0 ? std::sqrt(covariance.residual_variance / lambda(0)) : std::numeric_limits<double>::infinity();
   id.verdict = id.condition <= 1e3 ? "identifiable" : id.condition <= 1e7 ? "ill-conditioned" : "not identifiable";
   return id;
 }
 
 }  // namespace
 
-std::string Identifiability::combination() const {
+std::string Identifiability::combination(const std::vector<double>& v) const {
   std::string out;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    if (std::abs(weakest[i]) < 0.05) continue;
+  for (std::size_t i = 0; i < keys.size() && i < v.size(); ++i) {
+    if (std::abs(v[i]) < 0.05) continue;
     char number[32];
-    std::snprintf(number, sizeof number, "%.2f", std::abs(weakest[i]));
-    out += (out.empty() ? (weakest[i] < 0 ? "-" : "") : (weakest[i] < 0 ? " - " : " + ")) + std::string(number) +
-           " ln " + keys[i];
+    std::snprintf(number, sizeof number, "%.2f", std::abs(v[i]));
+    out += (out.empty() ? (v[i] < 0 ? "-" : "") : (v[i] < 0 ? " - " : " + ")) + std::string(number) + " ln " + keys[i];
   }
   return out;
 }

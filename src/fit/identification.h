@@ -91,8 +91,18 @@ struct Identifiability {
   double weakest_sd = std::numeric_limits<double>::quiet_NaN();
   // "identifiable" (kappa <= 1e3), "ill-conditioned" (1e3 < kappa <= 1e7) or "not identifiable" (kappa > 1e7).
   std::string verdict;
-  // "0.71 ln EI - 0.71 ln rho": the weakest combination, components under 0.05 left out.
-  std::string combination() const;
+  // Every eigen-direction of the information whose sqrt(lambda_max / lambda) exceeds 1e3, weakest first (the
+  // first is `weakest`): a record can leave several combinations undetermined at once (a free decay: EI with l,
+  // and the damping), and the weakest alone would hide the others.
+  struct Direction {
+    std::vector<double> components;  // per key, signed as `weakest`
+    double ratio = 0;                // sqrt(lambda_max / lambda)
+    double sd = 0;                   // formal standard deviation along it (relative)
+  };
+  std::vector<Direction> weak;
+  // "0.71 ln EI - 0.71 ln rho": a combination (the weakest by default), components under 0.05 left out.
+  std::string combination() const { return combination(weakest); }
+  std::string combination(const std::vector<double>& components) const;
 };
 
 struct FitResult {

@@ -303,6 +303,38 @@ TEST(Identification, ReportsTheCombinationARecordCannotSeparate) {
   EXPECT_NE(id.combination().find("0.71 ln m - 0.71 ln attachment1.m"), std::string::npos) << id.combination();
 }
 
+TEST(Identification, ListsEveryCombinationARecordCannotSeparate) {
+  // Two exact degeneracies at once: a body of the tip body's mass at the tip (beside the tip mass m), and two equal
+  // bodies at one point of the span. J has two pairs of equal columns (in ln q), so the information has two
+  // vanishing eigenvalues; the weakest alone would hide one of them. Both must be listed (ratio > 1e7 each, set by
+  // rounding; measured 2.9e8 and 2.6e7) as combinations of the pair differences, and EI must be in neither.
+  model::BeamParameters truth = model::preset("thick-steel");
+  truth.attachments = {{truth.l, truth.m, 0.0, truth.c}, {0.2, 0.05, 0.0, 0.0}, {0.2, 0.05, 0.0, 0.0}};
+  auto [o, data] = same_model_fit(truth);
+  o.estimate = {{"EI", truth.EI / 2, truth.EI * 2},
+                {"m", truth.m / 2, truth.m * 2},
+                {"attachment1.m", truth.m / 2, truth.m * 2},
+                {"attachment2.m", 0.025, 0.1},
+                {"attachment3.m", 0.025, 0.1}};
+  const Identifiability id = fit(o, data).identifiability;
+  ASSERT_EQ(id.status, "ok");
+  // Weakest first; the two null directions (any basis of the null space), then a third that is only
+  // ill-conditioned: the two span bodies' total mass (measured ratio 1.9e3).
+  ASSERT_GE(id.weak.size(), 2u) << id.combination();
+  int null_directions = 0;
+  for (std::size_t k = 0; k + 1 < id.weak.size(); ++k) EXPECT_GE(id.weak[k].ratio, id.weak[k + 1].ratio);
+  for (const auto& w : id.weak) {
+    if (w.ratio <= 1e7) continue;
+    ++null_directions;
+    EXPECT_NEAR(w.components[0], 0.0, 1e-3);  // EI is determined
+    // The null directions span {(0,1,-1,0,0), (0,0,0,1,-1)}/sqrt 2: equal-and-opposite pair components.
+    EXPECT_NEAR(w.components[1], -w.components[2], 1e-3);
+    EXPECT_NEAR(w.components[3], -w.components[4], 1e-3);
+  }
+  EXPECT_EQ(null_directions, 2);
+  EXPECT_EQ(id.weak[0].components, id.weakest);
+}
+
 TEST(Identification, RecoversTheLengthWithTheStiffnessFromATipPulse) {
   // l is estimable: the forms scale with it in closed form. A pulse at the tip, read at the tip (both fractions 1
   // whatever l, so the exact sensitivities hold), with the force known: the static compliance l^3/(3 EI) and the
