@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "costs/cost.h"
+#include "fit/identifiability.h"
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
 #include "model/beam_parameters.h"
@@ -75,34 +76,6 @@ struct StageResult {
   std::string name;  // "direct", "stiffness and inertia", "damping", "all"
   std::vector<std::string> keys;
   OptimizerResult result;
-};
-
-// What the data determine, from the Gauss-Newton information J^T J at the estimate in relative coordinates
-// (ln q for every estimated q): its condition number kappa = sqrt(lambda_max / lambda_min) (that of J), and the
-// weakest combination, the unit eigenvector of lambda_min, with the formal standard deviation s / sqrt(lambda_min)
-// of a step along it (relative). kappa > 1e7 (lambda ratio beyond 1e-14, where the covariance is refused) means the
-// record cannot separate that combination: for example EI and rho in a free decay, whose frequencies depend on EI/rho
-// only.
-struct Identifiability {
-  std::string status = "not computed";  // "ok", or why not (no residual vector, too few residuals, ...)
-  double condition = std::numeric_limits<double>::quiet_NaN();
-  std::vector<std::string> keys;
-  std::vector<double> weakest;  // per key, unit norm, the first component of magnitude >= 0.05 positive
-  double weakest_sd = std::numeric_limits<double>::quiet_NaN();
-  // "identifiable" (kappa <= 1e3), "ill-conditioned" (1e3 < kappa <= 1e7) or "not identifiable" (kappa > 1e7).
-  std::string verdict;
-  // Every eigen-direction of the information whose sqrt(lambda_max / lambda) exceeds 1e3, weakest first (the
-  // first is `weakest`): a record can leave several combinations undetermined at once (a free decay: EI with l,
-  // and the damping), and the weakest alone would hide the others.
-  struct Direction {
-    std::vector<double> components;  // per key, signed as `weakest`
-    double ratio = 0;                // sqrt(lambda_max / lambda)
-    double sd = 0;                   // formal standard deviation along it (relative)
-  };
-  std::vector<Direction> weak;
-  // "0.71 ln EI - 0.71 ln rho": a combination (the weakest by default), components under 0.05 left out.
-  std::string combination() const { return combination(weakest); }
-  std::string combination(const std::vector<double>& components) const;
 };
 
 struct FitResult {

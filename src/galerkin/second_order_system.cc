@@ -12,6 +12,24 @@ double checked_length(double length_m) {
     throw InputError("beam length l = " + format_value(length_m) + ": must be finite and > 0");
   return length_m;
 }
+
+// The inertia form of a rigid body, [m v v^T, m c v w^T; m c w v^T, (J + m c^2) w w^T], with v, w the u- and
+// alpha-block vectors it acts through; with (v, w) and (v', w') it is the symmetric part needed for d/dx.
+void add_body(Eigen::MatrixXd& m, const BeamForms& f, double mass, double mc, double j, const Eigen::VectorXd& v,
+              const Eigen::VectorXd& w, const Eigen::VectorXd& v2, const Eigen::VectorXd& w2) {
+  const Eigen::Index nu = f.u_dimension(), na = f.alpha_dimension();
+  m.topLeftCorner(nu, nu) += mass * (v * v2.transpose());
+  m.topRightCorner(nu, na) += mc * (v * w2.transpose());
+  m.bottomLeftCorner(na, nu) += mc * (w * v2.transpose());
+  m.bottomRightCorner(na, na) += j * (w * w2.transpose());
+}
+
+void require_on_beam(double x_m, double length_m) {
+  if (!(x_m >= 0 && x_m <= length_m))
+    throw InputError("position x = " + format_value(x_m) +
+                     " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
+}
+
 }  // namespace
 
 BeamForms::BeamForms(const SplineSpace& s, double l, const model::Support& support)
@@ -68,31 +86,6 @@ Eigen::VectorXd BeamForms::block_values(double xi, bool alpha_block) const {
 Eigen::VectorXd BeamForms::block_slopes(double xi, bool alpha_block) const {
   return (alpha_block ? alpha_basis : u_basis) * space.full_slopes(xi);
 }
-
-namespace {
-
-// The inertia form of a rigid body, [m v v^T, m c v w^T; m c w v^T, (J + m c^2) w w^T], with v, w the u- and
-// alpha-block vectors it acts through; with (v, w) and (v', w') it is the symmetric part needed for d/dx.
-void add_body(Eigen::MatrixXd& m, const BeamForms& f, double mass, double mc, double j, const Eigen::VectorXd& v,
-              const Eigen::VectorXd& w, const Eigen::VectorXd& v2, const Eigen::VectorXd& w2) {
-  const Eigen::Index nu = f.u_dimension(), na = f.alpha_dimension();
-  m.topLeftCorner(nu, nu) += mass * (v * v2.transpose());
-  m.topRightCorner(nu, na) += mc * (v * w2.transpose());
-  m.bottomLeftCorner(na, nu) += mc * (w * v2.transpose());
-  m.bottomRightCorner(na, na) += j * (w * w2.transpose());
-}
-
-}  // namespace
-
-namespace {
-
-void require_on_beam(double x_m, double length_m) {
-  if (!(x_m >= 0 && x_m <= length_m))
-    throw InputError("position x = " + format_value(x_m) +
-                     " m: must lie on the beam, 0 <= x <= l = " + format_value(length_m));
-}
-
-}  // namespace
 
 SecondOrderSystem combine(const BeamForms& f, const model::BeamParameters& p) {
   if (!(p.l > 0) || !std::isfinite(p.l)) throw InputError("beam length l = " + format_value(p.l) + ": must be > 0");
@@ -180,16 +173,15 @@ SecondOrderSystem parameter_derivative(const BeamForms& f, const model::BeamPara
     d.K = f.root_aa;
   } else if (key == "support.k_w" && f.deflection_free) {
     d.K = f.root_uu;
-  } else if (const auto body = model::describe_parameter(p, key); body && key.rfind("attachment", 0) == 0) {
-    // attachmentK.m, .J, .x: K from the key (describe_parameter checked that the beam has it).
-    const std::size_t k = std::stoul(key.substr(10, key.find('.') - 10)) - 1;
-    const model::Attachment& a = p.attachments[k];
+  } else if (const auto body = model::attachment_field(key); body && model::describe_parameter(p, key)) {
+    // attachmentK.m, .J, .x (describe_parameter checked that the beam has body K and the field is estimable).
+    const model::Attachment& a = p.attachments[body->first];
     Eigen::VectorXd v, w;
     body_vectors(a, v, w);
-    const char field = key.back();
-    if (field == 'm') add_body(d.M, f, 1, a.c, a.c * a.c, v, w, v, w);
-    if (field == 'J') add_body(d.M, f, 0, 0, 1, v, w, v, w);
-    if (field == 'x') {
+    const std::string& field = body->second;
+    if (field == "m") add_body(d.M, f, 1, a.c, a.c * a.c, v, w, v, w);
+    if (field == "J") add_body(d.M, f, 0, 0, 1, v, w, v, w);
+    if (field == "x") {
       // d/dx of Lambda-weighted outer products: (v' v^T + v v'^T) and likewise, v' = d beta(x/l)/dx = beta'(x/l)/l.
       const Eigen::VectorXd dv = f.block_slopes(a.x / p.l, false) / p.l;
       const Eigen::VectorXd dw = f.block_slopes(a.x / p.l, true) / p.l;

@@ -75,9 +75,6 @@ std::string parameter_keys() {
   return keys;
 }
 
-namespace {
-
-// "attachmentK.field" -> (K - 1, field), or nothing when the key has another form.
 std::optional<std::pair<std::size_t, std::string>> attachment_field(std::string_view key) {
   constexpr std::string_view prefix = "attachment";
   if (key.substr(0, prefix.size()) != prefix) return std::nullopt;
@@ -91,8 +88,6 @@ std::optional<std::pair<std::size_t, std::string>> attachment_field(std::string_
   if (index == 0 || key[prefix.size()] == '0') return std::nullopt;
   return std::pair{index - 1, std::string(key.substr(dot + 1))};
 }
-
-}  // namespace
 
 std::string_view parameter_role(std::string_view key) {
   if (const ParameterInfo* info = find_parameter(key)) return info->role;

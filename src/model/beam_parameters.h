@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace beamid::model {
@@ -96,6 +97,8 @@ std::string_view parameter_role(std::string_view key);
 // quantity.
 double parameter_value(const BeamParameters& beam, std::string_view key);
 void set_parameter_value(BeamParameters& beam, std::string_view key, double value);
+// "attachmentK.field" -> (K - 1, field), or nothing when the key has another form (K from 1, no leading zero).
+std::optional<std::pair<std::size_t, std::string>> attachment_field(std::string_view key);
 // This beam's estimable keys, comma-separated, for messages.
 std::string estimable_keys(const BeamParameters& beam);
 
