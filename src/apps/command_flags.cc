@@ -30,18 +30,29 @@ ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
   return run;
 }
 
-io::TimeSeries read_data(const Flags& a) {
+std::vector<io::TimeSeries> read_channels(const Flags& a) {
   io::ImportOptions o;
-  o.channel = a.text_or("channel", "");
   o.units = a.text_or("units", o.units);
   o.start_s = a.optional_number("start");
   o.duration_s = a.optional_number("duration");
   o.resample = a.has("resample");
-  try {
-    return io::read_time_series(a.text("data"), o);
-  } catch (const InputError& e) {
-    throw InputError("beamid " + a.command() + ": --data: " + e.what());
+  std::vector<std::string> channels = a.texts("channel");
+  if (channels.empty()) channels.emplace_back();  // the only signal column
+  std::vector<io::TimeSeries> records;
+  for (const std::string& channel : channels) {
+    o.channel = channel;
+    try {
+      records.push_back(io::read_time_series(a.text("data"), o));
+    } catch (const InputError& e) {
+      throw InputError("beamid " + a.command() + ": --data: " + e.what());
+    }
   }
+  return records;
+}
+
+io::TimeSeries read_data(const Flags& a) {
+  a.require(a.texts("channel").size() <= 1, "channel", "must name one channel (several are for beamid fit)");
+  return read_channels(a).front();
 }
 
 std::vector<FlagSpec> experiment_flag_specs() {
@@ -61,7 +72,8 @@ simulation::Experiment read_experiment(const Flags& a, double length_m) {
   simulation::Experiment e;
   e.dt_s = a.optional_number("dt").value_or(e.dt_s);
   e.samples = a.optional_integer("samples").value_or(e.samples);
-  e.sensor_x_m = a.optional_number("sensor-x");
+  // fit takes a list, one position per --channel: the experiment holds the first (the caller places the others).
+  if (a.has("sensor-x")) e.sensor_x_m = a.numbers("sensor-x").front();
   e.output = a.text_or("output", e.output);
   e.excitation = a.text_or("excitation", e.excitation);
   e.force_x_m = a.optional_number("force-x");

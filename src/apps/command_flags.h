@@ -16,6 +16,8 @@ namespace beamid::apps {
 // --data with the import flags (channel, units, start, duration, resample): the record, or an InputError naming the
 // command and the flag.
 io::TimeSeries read_data(const Flags& a);
+// The same for a --channel list (fit): one record per channel, in the order given, each with the import flags.
+std::vector<io::TimeSeries> read_channels(const Flags& a);
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
 // A model run as the flags describe it: --beam, --elements N and the experiment flags, with the run's size guarded

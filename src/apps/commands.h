@@ -35,8 +35,8 @@ int run_system(const Flags& flags, std::ostream& out);
 int run_spikes(const Flags& flags, std::ostream& out);
 // beamid cost --data FILE --prediction FILE --cost NAME: the cost value
 int run_cost(const Flags& flags, std::ostream& out);
-// beamid fit --data FILE --beam B --elements N --estimate KEYS --cost NAME: parameter,estimate,standard_error,...,status;
-// exit 3 when the fit failed
+// beamid fit --data FILE --beam B --elements N --estimate KEYS --cost NAME:
+// parameter,estimate,standard_error,...,status; exit 3 when the fit failed
 int run_fit(const Flags& flags, std::ostream& out);
 // beamid crb --beam B --elements N --estimate KEYS (--noise-sd S | --noise-level L) [experiment flags]:
 // parameter,value,crb_sd,crb_relative_sd (the Cramér-Rao bound, fit/cramer_rao.h)

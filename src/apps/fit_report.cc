@@ -81,13 +81,17 @@ std::string modes_line(const ModeComparison& c) {
 void write_fit_report(const std::string& path, const FitReportInput& in) {
   const auto& o = in.options;
   const auto& r = in.result;
+  // The first record's own evaluation (a single record's is the fit's): its amplitude scale, spikes and (A4).
+  const costs::Evaluation& first = r.records.empty() ? r.final_evaluation : r.records.front().evaluation;
   std::ostringstream md;
   md << "# beamid fit report\n\n";
   md << "beamid " << io::version() << " (commit " << io::commit_label() << "): `beamid fit";
   for (const auto& arg : in.arguments) md << " " << arg;
   md << "`\n\n";
   md << "- data: `" << in.data.path << "`, " << in.data.values.size() << " samples at dt = " << g(in.data.dt_s)
-     << " s (column `" << in.data.value_column << "`)\n";
+     << " s (column `" << in.data.value_column << "`";
+  for (std::size_t k = 1; k < in.channels.size(); ++k) md << ", `" << in.channels[k].value_column << "`";
+  md << (in.channels.size() > 1 ? ", fitted jointly: the modes and spikes below are the first's" : "") << ")\n";
   md << "- model: beam `" << in.beam_name << "` (known parameters and start), N = " << o.elements << ", "
      << o.experiment.excitation << " excitation, " << o.experiment.output << " output, integrator "
      << o.simulator.integrator << "\n";
@@ -95,8 +99,7 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   if (costs::is_spike_cost(o.cost.name))
     md << ", NM = " << o.cost.spikes.count << " spikes (rule " << o.cost.spikes.rule << "), window "
        << o.cost.window.name;
-  if (o.cost.unknown_amplitude)
-    md << ", unknown excitation amplitude (scale " << g(r.final_evaluation.amplitude_scale) << ")";
+  if (o.cost.unknown_amplitude) md << ", unknown excitation amplitude (scale " << g(first.amplitude_scale) << ")";
   md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
      << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
 
@@ -141,6 +144,18 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     }
     md << "\n";
   }
+  if (r.records.size() > 1) {
+    md << "Records of the joint fit, each with its own cost at the estimate (the joint cost is the sum of weight^2 x "
+          "cost: time-domain residuals relative to each record's RMS):\n\n| record | name | status | cost | weight | "
+          "amplitude scale | (A4) |\n|---|---|---|---|---|---|---|\n";
+    for (std::size_t k = 0; k < r.records.size(); ++k) {
+      const fit::RecordResult& part = r.records[k];
+      md << "| " << k + 1 << " | " << part.name << " | " << part.evaluation.status << " | "
+         << g(part.evaluation.value, 6) << " | " << g(part.weight, 6) << " | " << g(part.evaluation.amplitude_scale, 6)
+         << " | " << part.evaluation.a4 << " |\n";
+    }
+    md << "\n";
+  }
   const fit::Identifiability& id = r.identifiability;
   if (id.status == "ok")
     md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
@@ -170,9 +185,9 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   const signal::Spectrum z = dft.transform(in.data.values);
   const bool have_model = r.model_output.size() == in.data.values.size();
   const signal::Spectrum u = have_model ? dft.transform(r.model_output) : z;
-  const auto& pairs = r.final_evaluation.pairs;
+  const auto& pairs = first.pairs;
   if (!pairs.empty()) {
-    md << "\n## Spikes and (A4)\n\n(A4) check at the estimate: " << r.final_evaluation.a4 << ".\n\n";
+    md << "\n## Spikes and (A4)\n\n(A4) check at the estimate: " << first.a4 << ".\n\n";
     md << "| spike | data bin | data f (Hz) | data sigma (1/s) | n_l | N_l | model bin | model f (Hz) | model sigma "
           "(1/s) | data abs Z | model abs U | jumps |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|\n";

@@ -17,6 +17,7 @@ struct FitReportInput {
   const io::TimeSeries& data;
   const std::string& beam_name;
   const std::vector<std::string>& arguments;
+  const std::vector<io::TimeSeries>& channels;  // every record of a joint fit (data is the first)
 };
 
 // The identified modes beside the data's: the model's underdamped modes at the estimate, each paired by frequency

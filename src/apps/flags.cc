@@ -130,6 +130,33 @@ std::optional<int> Flags::optional_integer(const std::string& flag) const {
   return integer(flag);
 }
 
+std::vector<std::string> Flags::texts(const std::string& flag) const {
+  std::vector<std::string> items;
+  if (!has(flag)) return items;
+  const std::string value = text(flag);
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = value.find(',', begin);
+    items.push_back(value.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
+    if (items.back().empty())
+      fail("--" + flag + " = '" + value + "': must be a comma-separated list without empty items");
+    if (comma == std::string::npos) return items;
+    begin = comma + 1;
+  }
+}
+
+std::vector<double> Flags::numbers(const std::string& flag) const {
+  std::vector<double> values;
+  for (const std::string& item : texts(flag)) {
+    const auto v = parse_number(item);
+    if (!v)
+      fail("--" + flag + " = '" + text(flag) + "': must be a comma-separated list of finite numbers ('" + item +
+           "' is not)");
+    values.push_back(*v);
+  }
+  return values;
+}
+
 void Flags::require(bool ok, const std::string& flag, const std::string& constraint) const {
   if (!ok) fail("--" + flag + " = '" + text_or(flag, "") + "': " + constraint);
 }

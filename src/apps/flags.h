@@ -62,6 +62,10 @@ class Flags {
   std::optional<double> optional_number(const std::string& flag) const;
   int integer(const std::string& flag) const;
   std::optional<int> optional_integer(const std::string& flag) const;
+  // A comma-separated list ("a,b" or "0.3,0.5"); empty when absent. An empty item, or an item that is not a finite
+  // number, is an InputError naming the flag and the item.
+  std::vector<std::string> texts(const std::string& flag) const;
+  std::vector<double> numbers(const std::string& flag) const;
   // InputError "beamid <command>: --flag = 'value': constraint" unless ok.
   void require(bool ok, const std::string& flag, const std::string& constraint) const;
 

@@ -68,15 +68,9 @@ signal::SpikeOptions read_spike_options(const Flags& a) {
   o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
   o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
   if (a.has("spike-frequencies")) {
-    std::stringstream list(a.text("spike-frequencies"));
-    std::string item;
-    while (std::getline(list, item, ',')) {
-      char* end = nullptr;
-      const double f = std::strtod(item.c_str(), &end);
-      a.require(!item.empty() && end == item.c_str() + item.size() && f > 0, "spike-frequencies",
-                "must be a comma-separated list of frequencies > 0 in Hz ('" + item + "' is not)");
-      o.frequencies_hz.push_back(f);
-    }
+    o.frequencies_hz = a.numbers("spike-frequencies");
+    for (const double f : o.frequencies_hz)
+      a.require(f > 0, "spike-frequencies", "must be a comma-separated list of frequencies > 0 in Hz");
     std::sort(o.frequencies_hz.begin(), o.frequencies_hz.end());
     a.require(!a.has("spikes") || a.integer("spikes") == static_cast<int>(o.frequencies_hz.size()), "spikes",
               "must equal the number of --spike-frequencies (or be left out)");
@@ -150,14 +144,16 @@ int run_cost(const Flags& a, std::ostream& out) {
 }
 
 int run_fit(const Flags& a, std::ostream& out) {
-  const io::TimeSeries data = read_data(a);
+  const std::vector<io::TimeSeries> channels = read_channels(a);
+  const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");
   const model::BeamParameters nominal = read_beam(a);
 
   fit::FitOptions o;
   o.elements = a.integer("elements");
   o.experiment = read_experiment(a, nominal.l);
-  guard_run_size(a, o.elements, static_cast<double>(data.values.size()), model::kRecordBytesPerSample);
+  guard_run_size(a, o.elements, static_cast<double>(data.values.size() * channels.size()),
+                 model::kRecordBytesPerSample);
   // A forced experiment starts at t = 0; a free decay is timed from its first sample.
   if (o.experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
     throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
@@ -190,7 +186,21 @@ int run_fit(const Flags& a, std::ostream& out) {
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * start_scale);
 
-  const fit::FitResult result = fit::fit(o, data.values);
+  // Several channels: one record each, at its own --sensor-x, fitted jointly (fit/identification.h).
+  const std::vector<double> sensors = a.numbers("sensor-x");
+  std::vector<fit::Record> records;
+  if (channels.size() > 1 || sensors.size() > 1) {
+    a.require(sensors.size() == channels.size(), "sensor-x",
+              "must list one position per --channel (" + std::to_string(channels.size()) + " channel(s))");
+    for (std::size_t k = 0; k < channels.size(); ++k) {
+      fit::Record record{channels[k].value_column, o.start, o.experiment, channels[k].values, {}};
+      record.experiment.sensor_x_m = sensors[k];
+      if (auto error = simulation::validation_error(record.experiment, o.start.l))
+        a.require(false, "sensor-x", "channel " + std::to_string(k + 1) + ": " + *error);
+      records.push_back(std::move(record));
+    }
+  }
+  const fit::FitResult result = records.empty() ? fit::fit(o, data.values) : fit::fit(o, records);
   out << "parameter,estimate,standard_error,start,lower,upper,status\n";
   std::string at_bound;
   for (const auto& p : result.parameters) {
@@ -220,7 +230,17 @@ int run_fit(const Flags& a, std::ostream& out) {
                             " further combination(s) above 1e3 (listed in --report)"
                       : std::string())
               << "\n";
-  const FitReportInput input{o, result, data, beam_name, a.arguments()};
+  if (result.records.size() > 1)
+    for (std::size_t k = 0; k < result.records.size(); ++k) {
+      const fit::RecordResult& part = result.records[k];
+      std::cerr << "beamid fit: record " << k + 1 << " '" << part.name << "' (sensor at " << sensors[k]
+                << " m): " << part.evaluation.status << ", cost " << part.evaluation.value << " x weight^2 "
+                << part.weight * part.weight
+                << (o.cost.unknown_amplitude ? ", amplitude scale " + format_value(part.evaluation.amplitude_scale)
+                                             : std::string())
+                << (part.evaluation.a4 != "ok" ? ", " + part.evaluation.a4 : std::string()) << "\n";
+    }
+  const FitReportInput input{o, result, data, beam_name, a.arguments(), channels};
   std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
   if (a.has("report")) write_fit_report(a.text("report"), input);
   return result.status == "failed" ? 3 : 0;
@@ -228,7 +248,10 @@ int run_fit(const Flags& a, std::ostream& out) {
 
 std::vector<FlagSpec> fit_flags() {
   std::vector<FlagSpec> flags = {
-      text_flag("data", "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar", true),
+      text_flag("data",
+                "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar; with a --channel "
+                "list, every channel is a record of one joint fit (one --sensor-x each)",
+                true),
       text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),
       integer_flag("elements", "Galerkin order N of the fitted model", model::kMinElements, model::kMaxElements, true),
       text_flag("estimate", "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma", true),
@@ -248,6 +271,14 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("report", "write a Markdown fit report to this file")};
   for (const auto& more : {experiment_flag_specs(), cost_flags(true), import_flags()})
     flags.insert(flags.end(), more.begin(), more.end());
+  for (FlagSpec& f : flags) {  // lists: one record per channel, each at its own sensor position
+    if (f.name == "sensor-x")
+      f = text_flag("sensor-x", "sensor position(s) xbar, m: one per --channel, e.g. 0.15,0.3 (default: the tip)");
+    if (f.name == "channel")
+      f = text_flag("channel",
+                    "signal column(s) by name or 1-based index: a comma-separated list fits the channels jointly, "
+                    "with shared parameters and each channel's residuals relative to its RMS (default: the only one)");
+  }
   return flags;
 }
 

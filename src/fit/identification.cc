@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "fit/joint_objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"
@@ -183,7 +184,7 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
 namespace {
 
 // The optimizer problem over a subset `active` of the estimated coordinates, the others held at `x_fixed`.
-Problem subproblem(Objective& objective, const ParameterMap& map, const std::vector<int>& active,
+Problem subproblem(JointObjective& objective, const ParameterMap& map, const std::vector<int>& active,
                    const Eigen::VectorXd& x_fixed) {
   Problem p;
   const auto n = static_cast<Eigen::Index>(active.size());
@@ -197,9 +198,9 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
     for (std::size_t i = 0; i < active.size(); ++i) coordinates(active[i]) = x(static_cast<Eigen::Index>(i));
     return coordinates;
   };
-  auto full = [&map, all](const Eigen::VectorXd& x) { return map.beam(all(x)); };
+  auto full = [&map, all](const Eigen::VectorXd& x) { return map.beams(all(x)); };
   p.cost = [&objective, full](const Eigen::VectorXd& x) { return objective.evaluate(full(x)).evaluation.value; };
-  p.residual_count = objective.cost().residual_count();
+  p.residual_count = objective.residual_count();
   p.residuals = [&objective, full](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
     auto out = objective.evaluate(full(x));
     if (!out.evaluation.ok()) return false;
@@ -207,13 +208,10 @@ Problem subproblem(Objective& objective, const ParameterMap& map, const std::vec
     return true;
   };
   if (objective.has_exact_jacobian()) {
-    std::vector<std::string> keys;
-    for (int i : active) keys.push_back(map.estimated()[static_cast<std::size_t>(i)].key);
     // d r / d x_i = d r / d q_i  d q_i / d x_i (the coordinate map is diagonal).
-    p.jacobian = [&objective, &map, all, active, keys](const Eigen::VectorXd& x, Eigen::VectorXd& r,
-                                                       Eigen::MatrixXd& j) {
+    p.jacobian = [&objective, &map, all, active](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& j) {
       const Eigen::VectorXd coordinates = all(x);
-      auto out = objective.evaluate_with_jacobian(map.beam(coordinates), keys, j);
+      auto out = objective.evaluate_with_jacobian(map.beams(coordinates), active, j);
       if (!out.evaluation.ok() || j.size() == 0) return false;
       r = std::move(out.evaluation.residuals);
       for (std::size_t i = 0; i < active.size(); ++i)
@@ -231,8 +229,8 @@ struct StrategyRun {
   std::vector<StageResult> stages;
 };
 
-StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const FitOptions& o, Eigen::VectorXd x,
-                         const std::vector<double>& data) {
+StrategyRun run_strategy(JointObjective& objective, const ParameterMap& map, const FitOptions& o, Eigen::VectorXd x,
+                         const std::vector<Record>& records) {
   std::vector<std::pair<std::string, std::vector<int>>> plan;
   std::vector<int> all(static_cast<std::size_t>(map.size()));
   for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
@@ -240,17 +238,22 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
   run.x = x;
   if (o.strategy == kContinuation) {
     // Record-length continuation: all parameters on the first Nbar/16, Nbar/8, Nbar/4, Nbar/2 samples (at least
-    // 64), each from the previous estimate; the full record follows as the final stage below. A record of length T
-    // has a basin about 1/(2 f T) wide in relative frequency for a lightly damped mode at f (model.md section 4),
-    // so short records make the start good enough for the next.
+    // 64) of every record, each from the previous estimate; the full records follow as the final stage below. A
+    // record of length T has a basin about 1/(2 f T) wide in relative frequency for a lightly damped mode at f
+    // (model.md section 4), so short records make the start good enough for the next.
     for (int divisor = 16; divisor >= 2; divisor /= 2) {
-      FitOptions prefix = o;
-      prefix.experiment.samples = o.experiment.samples / divisor;
-      if (prefix.experiment.samples < 64) continue;
-      const std::vector<double> head(data.begin(), data.begin() + prefix.experiment.samples);
-      Objective part(prefix, head);
+      std::vector<Record> heads = records;
+      bool long_enough = true;
+      for (Record& head : heads) {
+        head.experiment.samples /= divisor;
+        long_enough = long_enough && head.experiment.samples >= 64;
+        head.data.resize(static_cast<std::size_t>(head.experiment.samples));
+      }
+      if (!long_enough) continue;
+      JointObjective part(o, heads, map);
       StageResult stage;
-      stage.name = "first " + std::to_string(prefix.experiment.samples) + " samples";
+      stage.name = "first " + std::to_string(heads.front().experiment.samples) + " samples";
+      if (heads.size() > 1) stage.name = "first 1/" + std::to_string(divisor) + " of every record";
       for (const auto& e : map.estimated()) stage.keys.push_back(e.key);
       run.x = run.x.cwiseMax(map.lower()).cwiseMin(map.upper());
       stage.result = minimize(subproblem(part, map, all, run.x), run.x, o.optimizer);
@@ -295,6 +298,20 @@ StrategyRun run_strategy(Objective& objective, const ParameterMap& map, const Fi
   return run;
 }
 
+// The records' start beams, each holding record 1's start of every shared estimated parameter (the value the fit
+// starts from, and the one its bounds are checked against).
+std::vector<model::BeamParameters> record_starts(const std::vector<Record>& records,
+                                                 const std::vector<EstimatedParameter>& estimate) {
+  std::vector<model::BeamParameters> starts;
+  for (const Record& r : records) starts.push_back(r.start);
+  for (const auto& e : estimate)
+    if (!record_key(e.key) && model::describe_parameter(starts.front(), e.key))
+      for (auto& b : starts)
+        if (model::describe_parameter(b, e.key))
+          model::set_parameter_value(b, e.key, model::parameter_value(starts.front(), e.key));
+  return starts;
+}
+
 }  // namespace
 
 void validate(const FitOptions& o) {
@@ -308,18 +325,19 @@ void validate(const FitOptions& o) {
   const ParameterMap map(o.start, o.estimate, o.scaling);
   // A length below a force, sensor or body position would take it off the beam mid-fit.
   for (const auto& e : o.estimate) {
-    if (e.key != "l") continue;
+    if (local_key(e.key) != "l") continue;
     double farthest = 0;
     if (o.experiment.force_x_m) farthest = std::max(farthest, *o.experiment.force_x_m);
     if (o.experiment.sensor_x_m) farthest = std::max(farthest, *o.experiment.sensor_x_m);
     for (const auto& a : o.start.attachments) farthest = std::max(farthest, a.x);
     if (e.lower < farthest)
-      throw InputError("bounds of l [" + format_value(e.lower) + ", " + format_value(e.upper) + "]: lower must be >= " +
-                       format_value(farthest) + " m, the farthest force, sensor or attachment position from the clamp");
+      throw InputError("bounds of " + e.key + " [" + format_value(e.lower) + ", " + format_value(e.upper) +
+                       "]: lower must be >= " + format_value(farthest) +
+                       " m, the farthest force, sensor or attachment position from the clamp");
   }
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
-    const double s = model::parameter_value(o.start, e.key);
+    const double s = model::parameter_value(o.start, local_key(e.key));
     if (!(s >= e.lower && s <= e.upper))
       throw InputError("start " + e.key + " = " + format_value(s) + ": outside its bounds [" + format_value(e.lower) +
                        ", " + format_value(e.upper) + "]");
@@ -331,19 +349,38 @@ void validate(const FitOptions& o) {
 
 namespace {
 
+// Every check of validate() for each record's own options (naming the record when there are several), and the
+// estimated keys against all the records.
+ParameterMap validated_map(const FitOptions& o, const std::vector<Record>& records) {
+  if (records.empty()) throw InputError("records: none to fit");
+  const ParameterMap map(record_starts(records, o.estimate), o.estimate, o.scaling);
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    Record record = records[r];
+    record.start = record_starts(records, o.estimate)[r];
+    try {
+      validate(record_options(o, record, map, static_cast<int>(r)));
+    } catch (const InputError& error) {
+      if (records.size() == 1) throw;
+      throw InputError("record " + std::to_string(r + 1) + " (" + records[r].name + "): " + error.what());
+    }
+  }
+  return map;
+}
+
 // The hybrid strategy: the global fit (direct, from every start), then the refinement from its estimate. The result
 // is the refinement's, with the stages and evaluations of both.
-FitResult fit_hybrid(const FitOptions& o, const std::vector<double>& data) {
+FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
   FitOptions global = o;
   global.strategy = kDirect;
-  const FitResult first = fit(global, data);
+  const FitResult first = fit(global, records);
   FitOptions fine = o;
   fine.strategy = kDirect;
   fine.cost.name = o.refine;
   fine.optimizer.method = default_optimizer(o.refine);
   fine.starts = 1;
-  fine.start = first.beam;  // inside the bounds, always
-  FitResult second = fit(fine, data);
+  std::vector<Record> from_first = records;
+  for (std::size_t r = 0; r < records.size(); ++r) from_first[r].start = first.records[r].beam;  // inside the bounds
+  FitResult second = fit(fine, from_first);
   std::vector<StageResult> stages;
   for (StageResult stage : first.stages) {
     stage.name = o.cost.name + ": " + stage.name;
@@ -364,22 +401,29 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<double>& data) {
 }  // namespace
 
 FitResult fit(const FitOptions& o, const std::vector<double>& data) {
-  validate(o);
-  if (o.strategy == kHybrid) return fit_hybrid(o, data);
-  const ParameterMap map(o.start, o.estimate, o.scaling);
-  Objective objective(o, data);
+  return fit(o, std::vector<Record>{Record{"record1", o.start, o.experiment, data, {}}});
+}
+
+FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
+  validated_map(o, given);
+  std::vector<Record> records = given;
+  const std::vector<model::BeamParameters> starts = record_starts(given, o.estimate);
+  for (std::size_t r = 0; r < records.size(); ++r) records[r].start = starts[r];
+  if (o.strategy == kHybrid) return fit_hybrid(o, records);
+  const ParameterMap map(starts, o.estimate, o.scaling);
+  JointObjective objective(o, records, map);
 
   const auto begin = std::chrono::steady_clock::now();
-  std::vector<Eigen::VectorXd> starts{map.coordinates(o.start)};
+  std::vector<Eigen::VectorXd> x_starts{map.coordinates(starts)};
   if (o.starts > 1)
     for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed))
-      starts.push_back(x);
+      x_starts.push_back(x);
   FitResult result;
   StrategyRun best;
-  for (std::size_t s = 0; s < starts.size(); ++s) {
+  for (std::size_t s = 0; s < x_starts.size(); ++s) {
     FitOptions seeded = o;
     seeded.optimizer.seed = o.seed + s;  // a distinct, reproducible stream per start
-    StrategyRun run = run_strategy(objective, map, seeded, starts[s], data);
+    StrategyRun run = run_strategy(objective, map, seeded, x_starts[s], records);
     result.evaluations += run.evaluations;
     if (s == 0 || run.cost < best.cost) {
       best = std::move(run);
@@ -390,12 +434,23 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   result.stages = best.stages;
   result.status = best.stages.empty() ? "failed" : best.stages.back().result.status;
   result.termination = best.stages.empty() ? "no stage ran" : best.stages.back().result.termination;
-  result.beam = map.estimate(best.x);  // inside the bounds, always
+  const std::vector<model::BeamParameters> estimates = map.estimates(best.x);  // inside the bounds, always
+  result.beam = estimates.front();
   result.cost = best.cost;
 
-  const Objective::Output final_output = objective.evaluate(result.beam);
+  JointObjective::Output final_output = objective.evaluate(estimates);
   result.final_evaluation = final_output.evaluation;
-  result.model_output = final_output.y;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    RecordResult part{records[r].name, estimates[r], {}, {}, objective.weight(static_cast<int>(r))};
+    if (r < final_output.records.size()) {
+      part.evaluation = final_output.records[r].evaluation;
+      part.model_output = std::move(final_output.records[r].y);
+    } else {
+      part.evaluation.status = "not evaluated: an earlier record failed";
+    }
+    result.records.push_back(std::move(part));
+  }
+  result.model_output = result.records.front().model_output;
   if (result.final_evaluation.ok()) result.cost = result.final_evaluation.value;
 
   // Standard errors from the formal covariance on all estimated coordinates, mapped to physical units.
@@ -421,10 +476,13 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   bool at_bound = false;
   for (int i = 0; i < map.size(); ++i) {
     const auto& e = map.estimated()[static_cast<std::size_t>(i)];
+    const auto split = record_key(e.key);
+    const std::size_t r = split ? static_cast<std::size_t>(split->first) : 0;
+    const std::string local = local_key(e.key);
     ParameterEstimate p{e.key,
-                        model::parameter_value(result.beam, e.key),
+                        model::parameter_value(estimates[r], local),
                         standard_error(i),
-                        model::parameter_value(o.start, e.key),
+                        model::parameter_value(starts[r], local),
                         e.lower,
                         e.upper};
     const double margin = 1e-6 * (upper(i) - lower(i));

@@ -13,6 +13,17 @@
 // each run from the given start and, with starts > 1, from further space-filling starts in the bounds (the lowest
 // final cost wins; ties go to the earlier start, so the outcome does not depend on timing).
 // A failed model evaluation (integration, eigen-decomposition, (A4)) is an infinite cost; a failed fit is a status.
+//
+// A joint fit identifies one parameter set from several records at once: several channels of one test (sensors at
+// different points), or several tests of one beam (one strip clamped at four lengths). Each record has its own
+// experiment, data and beam (its values of every parameter that is not estimated, and its own estimated ones); an
+// estimated key is shared by every record ("EI") or belongs to one ("record2.l": fit/parameter_map.h). The records'
+// residual vectors are stacked into one sum of squares. With more than one record, each record's residuals are made
+// dimensionless so that a channel in g and one in m/s, or two gains, weigh alike: the time-domain costs' (time,
+// freq-band) are divided by the RMS of the record's data (times sqrt(Nbar) for freq-band, whose J_B = J_T / Nbar on
+// the full band), which weights records of equal signal-to-noise ratio by their number of samples, as maximum
+// likelihood does; the spike and modal costs' residuals are dimensionless already. A gain unknown per channel is
+// --unknown-amplitude, solved per record.
 #pragma once
 
 #include <cstdint>
@@ -55,6 +66,15 @@ struct FitOptions {
   std::uint64_t seed = 1;            // for the extra starts and stochastic optimizers
 };
 
+// One record of a joint fit (above).
+struct Record {
+  std::string name;                   // "record1", or a channel's or file's name, for reports
+  model::BeamParameters start;        // this record's beam: its fixed values and the start of its estimates
+  simulation::Experiment experiment;  // dt_s and samples must match the data
+  std::vector<double> data;
+  std::vector<double> spike_frequencies_hz;  // this record's --spike-frequencies (empty: the fit's cost options')
+};
+
 // The default optimizer for a cost: "lm" for the sums of squares with a usable Jacobian (time, spike-smooth),
 // "nelder-mead" for the paper's spike cost, whose frequency term has zero gradient almost everywhere.
 std::string default_optimizer(const std::string& cost);
@@ -78,9 +98,18 @@ struct StageResult {
   OptimizerResult result;
 };
 
+// A record's part of a joint fit's result.
+struct RecordResult {
+  std::string name;
+  model::BeamParameters beam;        // the estimate with the record's fixed parameters
+  costs::Evaluation evaluation;      // of the record's own cost, unweighted, at the estimate
+  std::vector<double> model_output;  // y at the estimate
+  double weight = 1;                 // the factor on the record's residuals in the joint cost (above)
+};
+
 struct FitResult {
   std::vector<ParameterEstimate> parameters;
-  model::BeamParameters beam;   // the estimate with the fixed parameters
+  model::BeamParameters beam;   // the estimate with the fixed parameters (record 1's in a joint fit)
   Eigen::MatrixXd correlation;  // of the estimates (empty when the covariance is unavailable)
   std::string covariance_status = "not computed";
   Identifiability identifiability;
@@ -93,8 +122,9 @@ struct FitResult {
   std::string termination;
   int best_start = 0;                  // 0: the given start
   std::vector<StageResult> stages;     // of the best start
-  costs::Evaluation final_evaluation;  // at the estimate (spike table, (A4), amplitude scale)
-  std::vector<double> model_output;    // y at the estimate
+  costs::Evaluation final_evaluation;  // at the estimate (spike table, (A4), amplitude scale); joint: stacked residuals
+  std::vector<double> model_output;    // y at the estimate (record 1's in a joint fit)
+  std::vector<RecordResult> records;   // one per record (a single-record fit has one)
 };
 
 // Model output and cost of one parameter set against fixed data, with the forms, simulator and DFT plans built once.
@@ -133,5 +163,8 @@ void validate(const FitOptions& options);
 
 // Validates everything first (InputError naming the option, value and constraint), then fits.
 FitResult fit(const FitOptions& options, const std::vector<double>& data);
+// A joint fit of several records (at least one; above): options.start and options.experiment are replaced by each
+// record's, and a shared parameter starts from record 1's value. One record gives exactly fit(options, data).
+FitResult fit(const FitOptions& options, const std::vector<Record>& records);
 
 }  // namespace beamid::fit

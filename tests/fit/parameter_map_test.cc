@@ -58,5 +58,46 @@ TEST(ParameterMap, RefusesWhatCannotBeEstimated) {
   EXPECT_THROW(ParameterMap(beam, {{"gamma", 0, 1}}, "log"), InputError);              // log of a zero bound
 }
 
+TEST(ParameterMap, SharedKeysActOnEveryRecordAndRecordKeysOnTheirOwn) {
+  // Two records of one bar at two lengths: EI shared, each record's own length (fit/parameter_map.h).
+  model::BeamParameters a = model::preset("thick-steel");
+  model::BeamParameters b = a;
+  b.l = 0.8 * a.l;
+  b.EI = 3 * a.EI;  // a shared parameter's reference is record 1's value
+  const ParameterMap map({a, b}, {{"EI", a.EI / 2, a.EI * 2}, {"record2.l", 0.2, 0.3}});
+  EXPECT_EQ(map.records(), 2);
+  EXPECT_EQ(map.reference(0), a.EI);
+  EXPECT_EQ(map.reference(1), b.l);
+  Eigen::VectorXd x(2);
+  x << 1.1, 1.05;
+  const auto beams = map.beams(x);
+  ASSERT_EQ(beams.size(), 2u);
+  EXPECT_EQ(beams[0].EI, 1.1 * a.EI);
+  EXPECT_EQ(beams[1].EI, 1.1 * a.EI) << "a shared value is set in every record";
+  EXPECT_EQ(beams[0].l, a.l) << "a record's own key leaves the other records alone";
+  EXPECT_EQ(beams[1].l, 1.05 * b.l);
+  EXPECT_EQ(map.coordinates(beams), x);
+  ASSERT_EQ(map.acting_on(0).size(), 1u);
+  ASSERT_EQ(map.acting_on(1).size(), 2u);
+  EXPECT_EQ(map.acting_on(1)[1].key, "l");
+  EXPECT_EQ(map.with_roles({"geometry"}), std::vector<int>{1}) << "the role of record2.l is l's";
+  EXPECT_EQ(record_key("record12.attachment1.m")->first, 11);
+  EXPECT_EQ(record_key("record12.attachment1.m")->second, "attachment1.m");
+  EXPECT_FALSE(record_key("attachment1.m"));
+}
+
+TEST(ParameterMap, RefusesRecordKeysThatDoNotFitTheRecords) {
+  model::BeamParameters a = model::preset("thick-steel");
+  model::BeamParameters b = a;
+  b.attachments = {{0.1, 0.01, 0, 0}};
+  EXPECT_THROW(ParameterMap({a, b}, {{"record3.l", 0.2, 0.3}}), InputError);                   // two records only
+  EXPECT_THROW(ParameterMap({a, b}, {{"record0.l", 0.2, 0.3}}), InputError);                   // numbered from 1
+  EXPECT_THROW(ParameterMap({a, b}, {{"recordx.l", 0.2, 0.3}}), InputError);                   // not a number
+  EXPECT_THROW(ParameterMap({a, b}, {{"attachment1.m", 0.005, 0.02}}), InputError);            // record 1 has no body
+  EXPECT_NO_THROW(ParameterMap({a, b}, {{"record2.attachment1.m", 0.005, 0.02}}));             // record 2 has one
+  EXPECT_THROW(ParameterMap({a, b}, {{"l", 0.2, 0.4}, {"record1.l", 0.2, 0.4}}), InputError);  // shared and own
+  EXPECT_THROW(ParameterMap(std::vector<model::BeamParameters>{}, {{"EI", 1, 2}}), InputError);
+}
+
 }  // namespace
 }  // namespace beamid::fit
