@@ -121,15 +121,39 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   md << "## Result\n\n";
   md << "Status **" << r.status << "** (" << r.termination << "); cost " << g(r.cost, 10) << "; " << r.evaluations
      << " model evaluations; " << g(r.wall_time_s, 3) << " s.\n\n";
-  md << "| parameter | estimate | standard error | start | lower | upper | status |\n|---|---|---|---|---|---|---|\n";
-  for (const auto& p : r.parameters)
-    md << "| " << p.key << " | " << g(p.estimate, 10) << " | "
-       << (std::isnan(p.standard_error) ? "-" : g(p.standard_error, 3)) << " | " << g(p.start) << " | " << g(p.lower)
-       << " | " << g(p.upper) << " | " << p.status << " |\n";
-  md << "\nStandard errors and correlations are formal: (J^T J)^-1 |r|^2/(m - n) at the estimate, valid only if the "
-        "residuals are independent Gaussian noise of equal variance, which is not so for the spike costs' mixed "
-        "terms nor for model error. Covariance: "
+  const auto sd_text = [](double v) { return std::isnan(v) ? std::string("-") : g(v, 3); };
+  md << "| parameter | estimate | standard error | sandwich | window sd | start | lower | upper | status "
+        "|\n|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const auto& p = r.parameters[i];
+    md << "| " << p.key << " | " << g(p.estimate, 10) << " | " << sd_text(p.standard_error) << " | "
+       << sd_text(p.robust_standard_error) << " | " << (in.spread ? sd_text(in.spread->sd[i]) : "-") << " | "
+       << g(p.start) << " | " << g(p.lower) << " | " << g(p.upper) << " | " << p.status << " |\n";
+  }
+  md << "\nThree uncertainties (`src/fit/optimizer.h`, `src/fit/window_spread.h`). The standard error and the "
+        "correlations are formal: (J^T J)^-1 |r|^2/(m - n) at the estimate, valid only if the residuals are "
+        "independent noise of equal variance, which is not so for the spike costs' mixed terms nor for model error. "
+        "The sandwich admits residuals of unequal variance and, for the time cost, correlated over "
+     << fit::robust_lags(o.cost.name, static_cast<int>(r.final_evaluation.residuals.size()))
+     << " samples. The window sd is the scatter of the estimates over disjoint windows of the record (`--windows K`), "
+        "which contains what the model gets wrong along the record. When the three agree, quote the formal one; "
+        "when the sandwich or the window sd is several times larger, the residuals are model error, not noise: "
+        "quote the window sd (the conservative one). Covariance: "
      << r.covariance_status << ".\n\n";
+  if (in.spread) {
+    md << "Estimates in each of the " << in.spread->windows << " windows (the first keeps the excitation; the others "
+       << "are free decays from an unknown state):\n\n| window | status |";
+    for (const auto& k : in.spread->keys) md << " " << k << " |";
+    md << "\n|---|---|";
+    for (std::size_t i = 0; i < in.spread->keys.size(); ++i) md << "---|";
+    md << "\n";
+    for (std::size_t w = 0; w < in.spread->estimates.size(); ++w) {
+      md << "| " << w + 1 << " | " << in.spread->statuses[w] << " |";
+      for (const double v : in.spread->estimates[w]) md << " " << g(v, 8) << " |";
+      md << "\n";
+    }
+    md << "\n";
+  }
   if (r.correlation.size() > 0) {
     md << "| correlation |";
     for (const auto& p : r.parameters) md << " " << p.key << " |";

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fit/identification.h"
+#include "fit/window_spread.h"
 #include "io/time_series.h"
 
 namespace beamid::apps {
@@ -18,6 +19,7 @@ struct FitReportInput {
   const std::string& beam_name;
   const std::vector<std::string>& arguments;
   const std::vector<io::TimeSeries>& channels;  // every record of a joint fit (data is the first)
+  const fit::WindowSpread* spread = nullptr;    // --windows, when given
 };
 
 // The identified modes beside the data's: the model's underdamped modes at the estimate, each paired by frequency

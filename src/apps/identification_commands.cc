@@ -11,6 +11,7 @@
 #include "config/beam_file.h"
 #include "costs/cost.h"
 #include "fit/identification.h"
+#include "fit/window_spread.h"
 #include "io/provenance.h"
 #include "io/text.h"
 #include "io/time_series.h"
@@ -201,12 +202,26 @@ int run_fit(const Flags& a, std::ostream& out) {
     }
   }
   const fit::FitResult result = records.empty() ? fit::fit(o, data.values) : fit::fit(o, records);
-  out << "parameter,estimate,standard_error,start,lower,upper,status\n";
+  // --windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
+  std::optional<fit::WindowSpread> spread;
+  if (a.has("windows") && result.status != "failed") {
+    try {
+      spread = records.empty() ? fit::window_spread(o, data.values, result, a.integer("windows"))
+                               : fit::window_spread(o, records, result, a.integer("windows"));
+    } catch (const InputError& error) {
+      a.require(false, "windows", error.what());
+    }
+  }
+  out << "parameter,estimate,standard_error,start,lower,upper,status,robust_standard_error,window_sd,"
+         "window_standard_error\n";
   std::string at_bound;
-  for (const auto& p : result.parameters) {
+  for (std::size_t i = 0; i < result.parameters.size(); ++i) {
+    const fit::ParameterEstimate& p = result.parameters[i];
     out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
         << io::full_precision(p.start) << "," << io::full_precision(p.lower) << "," << io::full_precision(p.upper)
-        << "," << p.status << "\n";
+        << "," << p.status << "," << io::full_precision(p.robust_standard_error) << ","
+        << io::full_precision(spread ? spread->sd[i] : std::nan("")) << ","
+        << io::full_precision(spread ? spread->standard_error[i] : std::nan("")) << "\n";
     if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
       at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
   }
@@ -240,7 +255,15 @@ int run_fit(const Flags& a, std::ostream& out) {
                                              : std::string())
                 << (part.evaluation.a4 != "ok" ? ", " + part.evaluation.a4 : std::string()) << "\n";
     }
-  const FitReportInput input{o, result, data, beam_name, a.arguments(), channels};
+  if (spread) {
+    std::cerr << "beamid fit: " << spread->used << " of " << spread->windows << " windows fitted; sd over them:";
+    for (std::size_t i = 0; i < spread->keys.size(); ++i)
+      std::cerr << (i ? "," : "") << " " << spread->keys[i] << " " << spread->sd[i] << " (formal "
+                << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error
+                << ")";
+    std::cerr << "\n";
+  }
+  const FitReportInput input{o, result, data, beam_name, a.arguments(), channels, spread ? &*spread : nullptr};
   std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
   if (a.has("report")) write_fit_report(a.text("report"), input);
   return result.status == "failed" ? 3 : 0;
@@ -268,7 +291,11 @@ std::vector<FlagSpec> fit_flags() {
                    std::numeric_limits<int>::max()),
       integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, model::kMaxEvaluations),
       text_flag("integrator", "fast | cvode model integrator (default fast)"),
-      text_flag("report", "write a Markdown fit report to this file")};
+      text_flag("report", "write a Markdown fit report to this file"),
+      integer_flag("windows",
+                   "also fit K disjoint windows of the record(s) and report the estimates' spread over them, an "
+                   "uncertainty that admits model error (default: not done)",
+                   2, 64)};
   for (const auto& more : {experiment_flag_specs(), cost_flags(true), import_flags()})
     flags.insert(flags.end(), more.begin(), more.end());
   for (FlagSpec& f : flags) {  // lists: one record per channel, each at its own sensor position

@@ -400,6 +400,10 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
 
 }  // namespace
 
+int robust_lags(const std::string& cost, int residuals) {
+  return cost == costs::kTimeCost ? static_cast<int>(std::floor(4 * std::pow(residuals / 100.0, 2.0 / 9.0))) : 0;
+}
+
 FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   return fit(o, std::vector<Record>{Record{"record1", o.start, o.experiment, data, {}}});
 }
@@ -456,15 +460,18 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
   // Standard errors from the formal covariance on all estimated coordinates, mapped to physical units.
   std::vector<int> all(static_cast<std::size_t>(map.size()));
   for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
-  const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x);
+  const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x,
+                                              robust_lags(o.cost.name, objective.residual_count()));
   result.covariance_status = covariance.status;
   result.identifiability = identifiability_of(covariance, map, best.x);
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
+  Eigen::VectorXd robust_error = standard_error;
   if (covariance.ok()) {
     Eigen::VectorXd d(map.size());
     for (int i = 0; i < map.size(); ++i) d(i) = map.derivative(i, best.x(i));
     const Eigen::MatrixXd physical = d.asDiagonal() * covariance.matrix * d.asDiagonal();
     standard_error = physical.diagonal().cwiseMax(0.0).cwiseSqrt();
+    robust_error = (d.asDiagonal() * covariance.robust * d.asDiagonal()).diagonal().cwiseMax(0.0).cwiseSqrt();
     result.correlation = physical;
     for (int i = 0; i < map.size(); ++i)
       for (int j = 0; j < map.size(); ++j) {
@@ -484,14 +491,17 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
                         standard_error(i),
                         model::parameter_value(starts[r], local),
                         e.lower,
-                        e.upper};
+                        e.upper,
+                        kFree,
+                        robust_error(i)};
     const double margin = 1e-6 * (upper(i) - lower(i));
     if (best.x(i) - lower(i) <= margin) p.status = kAtLowerBound;
     if (upper(i) - best.x(i) <= margin) p.status = kAtUpperBound;
-    if (p.status != kFree) p.standard_error = std::numeric_limits<double>::quiet_NaN(), at_bound = true;
+    if (p.status != kFree) p.standard_error = p.robust_standard_error = std::numeric_limits<double>::quiet_NaN();
+    at_bound = at_bound || p.status != kFree;
     if (result.status == "failed") {
       p.status = "failed";
-      p.estimate = p.standard_error = std::numeric_limits<double>::quiet_NaN();
+      p.estimate = p.standard_error = p.robust_standard_error = std::numeric_limits<double>::quiet_NaN();
     }
     result.parameters.push_back(p);
   }

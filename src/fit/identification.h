@@ -90,7 +90,16 @@ struct ParameterEstimate {
   std::string key;
   double estimate = 0, standard_error = 0, start = 0, lower = 0, upper = 0;  // standard_error NaN when unknown
   std::string status = kFree;  // standard_error is NaN at a bound: the formal covariance assumes an interior minimum
+  // The sandwich (robust) standard error (fit/optimizer.h), NaN where standard_error is: it admits residuals of
+  // unequal variance and, for the time cost, correlated over robust_lags() samples. A ratio robust / formal well
+  // above 1 says that the residuals are not the white noise the formal one assumes (model error).
+  double robust_standard_error = 0;
 };
+
+// The sandwich's bandwidth for `residuals` residuals of `cost`: Newey and West's (1994) rule floor(4 (m/100)^(2/9))
+// for the time cost, whose residuals are ordered in time; 0 (White) for the costs whose residuals are per spike,
+// mode or DFT bin.
+int robust_lags(const std::string& cost, int residuals);
 
 struct StageResult {
   std::string name;  // "direct", "stiffness and inertia", "damping", "all"

@@ -153,7 +153,7 @@ std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, 
   return points;
 }
 
-Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
+Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int lags) {
   // cov = s^2 (J^T J)^-1 with s^2 = |r|^2 / (m - n), J by central differences with steps 1e-6 max(|x_i|, 1) (the
   // optimizer's coordinates are of order one). Computed here rather than by ceres::Covariance: its dense SVD
   // crashed (SIGSEGV inside Eigen's BDCSVD) on a Jacobian from a study case, and a non-finite Jacobian must be a
@@ -203,7 +203,17 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at) {
     return c;
   }
   const Eigen::MatrixXd& v = eigen.eigenvectors();
-  c.matrix = v * lambda.cwiseInverse().asDiagonal() * v.transpose() * c.residual_variance;
+  const Eigen::MatrixXd inverse = v * lambda.cwiseInverse().asDiagonal() * v.transpose();
+  c.matrix = inverse * c.residual_variance;
+  // The sandwich (optimizer.h): the scores g_i = r_i J_i as the rows of G, S = G^T G plus the weighted lag products.
+  const Eigen::MatrixXd scores = r.asDiagonal() * jacobian;
+  Eigen::MatrixXd meat = scores.transpose() * scores;
+  const int bandwidth = std::clamp(lags, 0, m - 1);
+  for (int l = 1; l <= bandwidth; ++l) {
+    const Eigen::MatrixXd lagged = scores.topRows(m - l).transpose() * scores.bottomRows(m - l);
+    meat += (1.0 - static_cast<double>(l) / (bandwidth + 1)) * (lagged + lagged.transpose());
+  }
+  c.robust = static_cast<double>(m) / (m - n) * inverse * meat * inverse;
   return c;
 }
 

@@ -65,8 +65,17 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
 // Formal covariance of the least-squares estimate x: (J^T J)^-1 |r|^2 / (m - n), J by central differences
 // (computed here; optimizer.cc says why not by ceres::Covariance). Valid for independent Gaussian residuals of
 // equal variance; status says why when unavailable.
+//
+// Beside it the sandwich (robust) covariance, which holds whatever the residuals' variances and, within `lags`
+// rows, their correlation (White 1980; Newey & West 1987):
+//   robust = m/(m - n) B^-1 S B^-1,  B = J^T J,  S = sum_{|l| <= L} (1 - |l|/(L + 1)) sum_i g_i g_{i+l}^T,
+// g_i = r_i J_i^T (row i's score), L = lags (0: White's HC1, for residuals that are independent but of unequal
+// variance). With independent residuals of equal variance it tends to the formal one; with model error, whose
+// residuals are systematic, it does not, and the ratio says how far the formal one can be trusted. Residuals
+// correlated over more than L rows (a model error in a lightly damped mode lasts 1/sigma) are still understated.
 struct Covariance {
   Eigen::MatrixXd matrix;     // in the optimizer's coordinates
+  Eigen::MatrixXd robust;     // the sandwich, in the same coordinates (empty when matrix is)
   std::string status = "ok";  // "ok" or why not (no residuals, m <= n, singular information matrix)
   bool ok() const { return status == "ok"; }
   // J^T J at the estimate and s^2 = |r|^2 / (m - n), kept also when J^T J is singular (empty when J was not formed),
@@ -74,7 +83,7 @@ struct Covariance {
   Eigen::MatrixXd information;
   double residual_variance = 0;
 };
-Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x);
+Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x, int lags = 0);
 
 // Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
 // independent uniform points ("random"). Uniforms are drawn as (engine() >> 11) 2^-53 over std::mt19937_64 and the

@@ -96,7 +96,7 @@ for c in time spike spike-smooth; do
 done
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --start-scale 1.02 \
   --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>"$tmp/f.err"
-check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper,status"
+check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper,status,robust_standard_error,window_sd,window_standard_error"
 check "fit: a recovered parameter is free" awk -F, 'NR == 2 { exit !($7 == "free") }' "$tmp/f.csv"
 # The modes line: data (matrix pencil) and model at the recovered estimate agree on mode 1, 2.4638 Hz.
 check "fit: modes at the estimate" grep -q "modes at the estimate (data by matrix pencil | model): 2.46383 | 2.46383 Hz" "$tmp/f.err"

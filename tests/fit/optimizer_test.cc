@@ -75,6 +75,19 @@ TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
   const Eigen::MatrixXd expected = (X.transpose() * X).inverse() * (r.squaredNorm() / 8);
   // Central differences of a linear function are exact up to round-off: 1e-8 relative is ample.
   EXPECT_LT((c.matrix - expected).norm(), 1e-8 * expected.norm());
+  // White's sandwich (HC1) by its textbook formula, m/(m - n) (X^T X)^-1 X^T diag(r^2) X (X^T X)^-1 ...
+  const Eigen::MatrixXd bread = (X.transpose() * X).inverse();
+  const Eigen::MatrixXd white = 10.0 / 8 * bread * X.transpose() * r.cwiseAbs2().asDiagonal() * X * bread;
+  EXPECT_LT((c.robust - white).norm(), 1e-8 * white.norm());
+  // ... and Newey-West's with 2 lags, summed term by term: sum_i sum_j w(|i - j|) r_i r_j x_i x_j^T, w = 1 - |l|/3.
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(2, 2);
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      if (std::abs(i - j) <= 2) meat += (1 - std::abs(i - j) / 3.0) * r(i) * r(j) * X.row(i).transpose() * X.row(j);
+  const Eigen::MatrixXd newey_west = 10.0 / 8 * bread * meat * bread;
+  const auto lagged = covariance_at(p, fit.x, 2);
+  EXPECT_LT((lagged.robust - newey_west).norm(), 1e-8 * newey_west.norm());
+  EXPECT_LT((lagged.matrix - expected).norm(), 1e-8 * expected.norm()) << "the formal one does not depend on lags";
 }
 
 TEST(Optimizers, FailuresBecomeStatusesNotCrashes) {

@@ -1,0 +1,72 @@
+#include "fit/window_spread.h"
+
+#include <cmath>
+#include <limits>
+
+#include "model/errors.h"
+
+namespace beamid::fit {
+
+WindowSpread window_spread(const FitOptions& options, const std::vector<Record>& records, const FitResult& full,
+                           int windows) {
+  if (windows < 2) throw InputError("windows = " + std::to_string(windows) + ": must be >= 2");
+  for (const Record& r : records)
+    if (r.experiment.samples / windows < kMinWindowSamples)
+      throw InputError("windows = " + std::to_string(windows) + ": a window of record '" + r.name + "' would have " +
+                       std::to_string(r.experiment.samples / windows) +
+                       " samples: must be >= " + std::to_string(kMinWindowSamples));
+  if (full.records.size() != records.size()) throw InputError("window_spread: the full fit is of other records");
+  WindowSpread spread;
+  spread.windows = windows;
+  for (const ParameterEstimate& p : full.parameters) spread.keys.push_back(p.key);
+  const std::size_t n = spread.keys.size();
+  FitOptions o = options;
+  o.strategy = o.strategy == kHybrid ? kHybrid : kDirect;  // the hybrid's refinement is part of its estimate
+  o.starts = 1;
+  for (int k = 0; k < windows; ++k) {
+    std::vector<Record> cut = records;
+    for (std::size_t r = 0; r < cut.size(); ++r) {
+      const int length = records[r].experiment.samples / windows;
+      cut[r].experiment.samples = length;
+      cut[r].data.assign(records[r].data.begin() + static_cast<std::ptrdiff_t>(k) * length,
+                         records[r].data.begin() + static_cast<std::ptrdiff_t>(k + 1) * length);
+      if (k > 0) cut[r].experiment.excitation = simulation::kFreeDecay;  // the state at the window's start is unknown
+      cut[r].start = full.records[r].beam;                               // inside the bounds, always
+    }
+    std::vector<double> estimate(n, std::numeric_limits<double>::quiet_NaN());
+    std::string status;
+    try {
+      const FitResult r = fit(o, cut);
+      status = r.status;
+      if (status != "failed")
+        for (std::size_t i = 0; i < n; ++i) estimate[i] = r.parameters[i].estimate;
+    } catch (const std::exception& error) {  // a window the cost cannot use (too few spikes in it, for example)
+      status = std::string("failed: ") + error.what();
+    }
+    spread.estimates.push_back(estimate);
+    spread.statuses.push_back(status);
+  }
+  spread.mean.assign(n, std::numeric_limits<double>::quiet_NaN());
+  spread.sd = spread.standard_error = spread.mean;
+  for (const auto& e : spread.estimates) spread.used += std::isnan(e.empty() ? 0.0 : e.front()) ? 0 : 1;
+  if (spread.used < 2) return spread;
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0, squares = 0;
+    for (const auto& e : spread.estimates)
+      if (!std::isnan(e.front())) sum += e[i];
+    const double mean = sum / spread.used;
+    for (const auto& e : spread.estimates)
+      if (!std::isnan(e.front())) squares += (e[i] - mean) * (e[i] - mean);
+    spread.mean[i] = mean;
+    spread.sd[i] = std::sqrt(squares / (spread.used - 1));
+    spread.standard_error[i] = spread.sd[i] / std::sqrt(static_cast<double>(spread.used));
+  }
+  return spread;
+}
+
+WindowSpread window_spread(const FitOptions& options, const std::vector<double>& data, const FitResult& full,
+                           int windows) {
+  return window_spread(options, {Record{"record1", options.start, options.experiment, data, {}}}, full, windows);
+}
+
+}  // namespace beamid::fit

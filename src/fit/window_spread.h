@@ -1,0 +1,45 @@
+// An uncertainty that admits model error: the spread of the estimates over K disjoint windows of the record(s).
+//
+// The formal standard error assumes that the residuals are white noise; with model error they are systematic, and
+// the formal error can be 40-600x smaller than the scatter between repeated records (issue 11). Fitting K disjoint,
+// consecutive windows of the same record (each 1/K of it, every record of a joint fit cut alike) gives K estimates
+// whose scatter contains whatever the model gets wrong in a way that changes along the record (amplitude-dependent
+// damping, a drifting clamp, a mode the model lacks beating with one it has), as well as the noise. Reported:
+//   sd   = the sample standard deviation of the K window estimates: the uncertainty of one window's estimate;
+//   standard_error = sd / sqrt(K): that of the full record's estimate, if the windows carried equal, independent
+//        information. A free decay's later windows carry less (the signal decays), so this is a lower estimate of
+//        the window-based error; sd is the conservative one.
+// Each window after the first starts from an unknown state, so it is fitted as a free decay (simulation/
+// experiment.h: mode amplitudes solved in closed form), from the full record's estimate, by the direct strategy with
+// the fit's cost and optimizer. A pulse record's first window keeps its pulse; its later windows cannot separate EI
+// from rho (the force is not in them), which the spread then shows. A window whose fit fails is listed with its
+// status and left out of the statistics.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fit/identification.h"
+
+namespace beamid::fit {
+
+struct WindowSpread {
+  int windows = 0;                               // K
+  std::vector<std::string> keys;                 // the estimated parameters, in the fit's order
+  std::vector<std::vector<double>> estimates;    // [window][parameter] (NaN for a failed window)
+  std::vector<std::string> statuses;             // per window: the fit's status
+  std::vector<double> mean, sd, standard_error;  // per parameter, over the windows that did not fail
+  int used = 0;                                  // windows that did not fail
+};
+
+// The smallest window, in samples: shorter windows resolve no mode below a few hundred bins.
+inline constexpr int kMinWindowSamples = 256;
+
+// InputError when K < 2 or a window would have fewer than kMinWindowSamples samples (naming both), or when the
+// options are not admissible (as fit()).
+WindowSpread window_spread(const FitOptions& options, const std::vector<Record>& records, const FitResult& full,
+                           int windows);
+WindowSpread window_spread(const FitOptions& options, const std::vector<double>& data, const FitResult& full,
+                           int windows);
+
+}  // namespace beamid::fit

@@ -1,0 +1,105 @@
+// Uncertainty that admits model error (issue 11 item 7): the sandwich standard error beside the formal one, and the
+// spread over disjoint windows. With white noise and the right model, all three agree with the formal error; with
+// model error the formal error understates the scatter and the other two must say so.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fit/identification.h"
+#include "fit/window_spread.h"
+#include "galerkin/second_order_system.h"
+#include "model/errors.h"
+#include "signal/noise.h"
+#include "simulation/simulator.h"
+
+namespace beamid::fit {
+namespace {
+
+constexpr int kElements = 8;
+
+// thick-steel's pulse test at the tip (model.md section 5's sampling), EI, rho and cDI estimated by least squares
+// from the truth's values (the basin is not what is tested here).
+struct PulseFit {
+  FitOptions options;
+  std::vector<double> clean;
+};
+PulseFit pulse_fit(const model::BeamParameters& truth, const model::BeamParameters& model) {
+  PulseFit s;
+  s.options.elements = kElements;
+  s.options.experiment.dt_s = 1e-4;
+  s.options.experiment.samples = 8192;
+  s.options.experiment.pulse_width_s = 4e-4;
+  s.options.experiment.force_x_m = 0.7 * truth.l;
+  s.options.cost.name = "time";
+  s.options.optimizer.method = default_optimizer("time");
+  s.options.start = model;
+  for (const char* key : {"EI", "rho", "cDI"}) {
+    const double v = model::parameter_value(truth, key);
+    s.options.estimate.push_back({key, v / 2, v * 2});
+  }
+  const galerkin::SplineSpace space(kElements);
+  const auto trace =
+      simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth, s.options.experiment, {});
+  EXPECT_TRUE(trace.ok()) << trace.status;
+  s.clean = trace.y;
+  return s;
+}
+
+TEST(Uncertainty, WithWhiteNoiseAndTheRightModelTheSandwichIsTheFormalError) {
+  // 1 % white noise: the residuals at the estimate are that noise, so the sandwich's meat S estimates s^2 J^T J. Its
+  // relative sampling error is about sqrt(2 (2L + 1) / m) = sqrt(42 / 8192) = 7 % for L = 10 lags (Newey-West's
+  // rule at m = 8192); asserted within 20 % (measured: 0.99, 0.99, 1.04 for EI, rho, cDI).
+  const model::BeamParameters truth = model::preset("thick-steel");
+  const PulseFit s = pulse_fit(truth, truth);
+  const FitResult r = fit(s.options, signal::add_noise(s.clean, 0.01, 7));
+  ASSERT_EQ(r.status, "converged") << r.termination;
+  EXPECT_EQ(robust_lags("time", 8192), 10);
+  for (const auto& p : r.parameters) {
+    ASSERT_GT(p.standard_error, 0) << p.key;
+    EXPECT_NEAR(p.robust_standard_error / p.standard_error, 1.0, 0.2) << p.key;
+  }
+}
+
+TEST(Uncertainty, NoiseFreeWindowsOfTheRightModelAllRecoverTheTruth) {
+  // Four windows of 2048 samples of a noise-free record of the fitted model: the first keeps its pulse, the others
+  // are free decays; every window's minimum is the truth, so the spread is round-off (measured ~1e-10 relative;
+  // asserted 1e-6). EI and rho are separable only with the pulse, so they are estimated with cDI only in window 1:
+  // here EI and cDI, which a free decay determines (frequencies and decay rates).
+  const model::BeamParameters truth = model::preset("thick-steel");
+  PulseFit s = pulse_fit(truth, truth);
+  s.options.estimate = {{"EI", truth.EI / 2, truth.EI * 2}, {"cDI", truth.cDI / 2, truth.cDI * 2}};
+  const FitResult full = fit(s.options, s.clean);
+  const WindowSpread w = window_spread(s.options, s.clean, full, 4);
+  ASSERT_EQ(w.used, 4) << w.statuses[0] << " " << w.statuses[1] << " " << w.statuses[2] << " " << w.statuses[3];
+  for (std::size_t i = 0; i < w.keys.size(); ++i) {
+    EXPECT_LT(w.sd[i] / w.mean[i], 1e-6) << w.keys[i];
+    EXPECT_NEAR(w.mean[i] / model::parameter_value(truth, w.keys[i]), 1.0, 1e-6) << w.keys[i];
+  }
+  EXPECT_THROW(window_spread(s.options, s.clean, full, 1), InputError);   // K >= 2
+  EXPECT_THROW(window_spread(s.options, s.clean, full, 64), InputError);  // 128-sample windows
+}
+
+TEST(Uncertainty, WithModelErrorTheWindowsAndTheSandwichExceedTheFormalError) {
+  // The data's beam has a tip mass 20 % heavier than the model's (fixed at the nominal value): a model error that
+  // moves the modes by different fractions, so the least-squares compromise between them depends on which modes are
+  // strong, and they decay at different rates along the record. The windows' EI then scatters by far more than the
+  // formal error of the full fit (measured: EI 1450 in the pulse window, 1483 in the three free-decay windows, whose
+  // free amplitudes absorb the error differently; sd 16.6 against a formal 0.21, 78x), and the sandwich exceeds the
+  // formal error (measured 2.6x): asserted > 5x and > 1.2x. 0.1 % noise keeps the noise from hiding the model error.
+  model::BeamParameters truth = model::preset("thick-steel");
+  const model::BeamParameters nominal = truth;
+  truth.m *= 1.2;
+  PulseFit s = pulse_fit(truth, nominal);
+  s.options.estimate = {{"EI", truth.EI / 2, truth.EI * 2}, {"cDI", truth.cDI / 2, truth.cDI * 2}};
+  const std::vector<double> data = signal::add_noise(s.clean, 0.001, 11);
+  const FitResult full = fit(s.options, data);
+  ASSERT_NE(full.status, "failed");
+  const WindowSpread w = window_spread(s.options, data, full, 4);
+  ASSERT_GE(w.used, 3);
+  const ParameterEstimate& ei = full.parameters[0];
+  EXPECT_GT(w.sd[0], 5 * ei.standard_error);
+  EXPECT_GT(ei.robust_standard_error, 1.2 * ei.standard_error);
+}
+
+}  // namespace
+}  // namespace beamid::fit
