@@ -10,6 +10,7 @@ BEAMID     := $(BUILD)/beamid
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
 # the 30 minutes `make study` may take on two cores. On a cluster, any of them runs as shards (README.md).
 STUDIES      ?= paper thick modes landscape start-distance efficiency bias
+REAL_STUDIES ?= real-steel real-steel-candidates synthetic-strip
 FULL_STUDIES ?= start-distance-thick efficiency-thick windows windows-thick modes-basin modes-basin-thick modes-efficiency modes-efficiency-thick landscape-thick
 STUDY_JOBS ?= 0
 
@@ -113,8 +114,10 @@ study: binary
 	  echo "== beamid study studies/$$s.toml"; \
 	  $(BEAMID) study studies/$$s.toml --jobs $(STUDY_JOBS); \
 	done
-	@echo "== beamid real studies/real-steel.toml"
-	$(BEAMID) real studies/real-steel.toml
+	@set -e; for s in $(REAL_STUDIES); do \
+	  echo "== beamid real studies/$$s.toml"; \
+	  $(BEAMID) real studies/$$s.toml; \
+	done
 	$(MAKE) --no-print-directory plots
 	$(BEAMID) report --update REPORT.md --results results
 
@@ -134,7 +137,7 @@ study-smoke: binary
 
 # gnuplot, from the CSVs alone (plots/make_plots.sh), for every study that has results.
 plots: deps
-	@set -e; for s in $(STUDIES) $(FULL_STUDIES) real-steel smoke; do \
+	@set -e; for s in $(STUDIES) $(FULL_STUDIES) $(REAL_STUDIES) smoke; do \
 	  if [ -f results/$$s/provenance.csv ]; then bash plots/make_plots.sh results/$$s plots/$$s; fi; \
 	done
 

@@ -19,6 +19,7 @@
 #include "model/errors.h"
 #include "model/exact_frequencies.h"
 #include "model/limits.h"
+#include "signal/noise.h"
 #include "simulation/simulator.h"
 
 namespace beamid::apps {
@@ -88,9 +89,15 @@ int run_simulate(const Flags& a, std::ostream& out) {
   const simulation::Trace trace = simulation::simulate(forms, beam, e, options);
   if (!trace.ok()) throw NumericalError("beamid simulate: " + trace.status);
 
+  // A synthetic lab record: white noise of --noise-level times the clean signal's RMS (signal/noise.h).
+  const double noise = a.optional_number("noise-level").value_or(0.0);
+  a.require(noise >= 0 && noise <= 10, "noise-level", "must be in [0, 10] (times the signal's RMS)");
+  a.require(!a.has("seed") || a.has("noise-level"), "seed", "seeds the noise: give --noise-level too");
+  const std::vector<double> y =
+      signal::add_noise(trace.y, noise, static_cast<std::uint64_t>(a.optional_integer("seed").value_or(1)));
   std::ostringstream csv;
   csv << "t_s," << simulation::output_column(e.output) << "\n";
-  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, trace.y[static_cast<std::size_t>(i)]});
+  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, y[static_cast<std::size_t>(i)]});
   out << csv.str();
   if (a.has("verbose")) {
     const auto& s = trace.stats;

@@ -41,6 +41,10 @@ std::vector<Command> make_commands() {
                        number_flag("rtol", "CVODE relative tolerance (default 1e-10)"),
                        number_flag("atol", "CVODE absolute tolerance (default: rtol times the state's natural size)"),
                        integer_flag("max-order", "CVODE BDF order limit (default 5)", 1, 5),
+                       number_flag("noise-level",
+                                   "add white Gaussian noise of this many times the signal's RMS, e.g. 0.01 (default "
+                                   "0: none)"),
+                       integer_flag("seed", "seed of the noise (default 1)", 0, std::numeric_limits<int>::max()),
                        switch_flag("verbose", "say on stderr what ran, with the integrator statistics")}),
                {},
                run_simulate});

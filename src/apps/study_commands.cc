@@ -98,7 +98,7 @@ int run_real(const Flags& a, std::ostream& out) {
   const std::string output = a.text_or("output", "results/" + spec.name);
   const int failed = study::run_real_study(spec, output, std::cerr);
   out << "study,fits,failed,output\n"
-      << spec.name << "," << spec.costs.size() << "," << failed << "," << output << "\n";
+      << spec.name << "," << spec.costs.size() * spec.candidates.size() << "," << failed << "," << output << "\n";
   return failed > 0 ? 3 : 0;
 }
 

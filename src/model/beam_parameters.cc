@@ -161,6 +161,15 @@ void set_parameter_value(BeamParameters& beam, std::string_view key, double valu
   *slot = value;
 }
 
+void set_nominal_value(BeamParameters& beam, std::string_view key, double value) {
+  if (key == "support.k_theta")
+    beam.support.k_theta = value;
+  else if (key == "support.k_w")
+    beam.support.k_w = value;
+  else
+    set_parameter_value(beam, key, value);
+}
+
 std::optional<std::string> constraint_violation(const ParameterInfo& info, double value) {
   if (!std::isfinite(value)) return "must be finite";
   if (info.strictly_positive && !(value > 0)) return "must be > 0";

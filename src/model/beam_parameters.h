@@ -97,6 +97,9 @@ std::string_view parameter_role(std::string_view key);
 // quantity.
 double parameter_value(const BeamParameters& beam, std::string_view key);
 void set_parameter_value(BeamParameters& beam, std::string_view key, double value);
+// The same for a nominal value of a candidate model: a clamp spring (support.k_theta, support.k_w) may also be given
+// to a clamp that is rigid in that direction, which makes it compliant. InputError for any other key the beam lacks.
+void set_nominal_value(BeamParameters& beam, std::string_view key, double value);
 // "attachmentK.field" -> (K - 1, field), or nothing when the key has another form (K from 1, no leading zero).
 std::optional<std::pair<std::size_t, std::string>> attachment_field(std::string_view key);
 // This beam's estimable keys, comma-separated, for messages.

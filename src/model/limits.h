@@ -21,6 +21,8 @@ inline constexpr int kMaxEvaluations = 1000000;  // per optimizer run
 // Rigid bodies on the span of one beam. Real beams carry a handful; the exact reference solves a dense
 // 4(K+1)-square system per trial frequency (K = 100: 404 x 404, ~40 ms, a few thousand trials per root march).
 inline constexpr int kMaxAttachments = 100;
+// Records of one joint fit (a real study's [[record]]s): far more than a lab series, and each is a full fit's work.
+inline constexpr int kMaxRecords = 64;
 
 // Measured resource use (peak RSS and wall time on this machine, `/usr/bin/time`), for the estimates that guard a
 // run before it starts (apps/command_flags.cc, study/runner.cc):

@@ -12,7 +12,6 @@
 namespace beamid::study {
 namespace {
 
-
 bool several_experiments(const StudySpec& spec) {
   return spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1;
 }

@@ -1,18 +1,31 @@
-// A real-data study (studies/real-steel.toml): one measured free-decay record fitted with each cost, reported
-// against the record's own spectral peaks. There is no truth: what is compared is the model at the estimate with the
-// measurement (identified against measured peak frequencies, damping ratios per mode, the identified parameters
-// against their nominal values, residuals in time and frequency).
+// A real-data study (studies/real-*.toml): measured free-decay records fitted with each cost, and with each
+// candidate model, reported against the records' own spectral peaks. There is no truth: what is compared is the
+// model at the estimate with the measurement (identified against measured peak frequencies, damping ratios per mode,
+// the identified parameters against their nominal values, their three uncertainties, and what each candidate model
+// leaves undetermined).
 //
-//   [study]   name, question
-//   [record]  file (relative to the study file), channel, units, start_s, duration_s, resample,
-//             peaks_hz: the measured peak frequencies of the modes the model has (the spikes are chosen near them,
-//             and data and model are paired by frequency, so torsion modes and mains lines are left out)
-//   [beam]    file: a beam TOML ([beam] or [geometry]) giving the nominal values and the starts
-//   [fit]     elements, estimate, costs, bounds (a table KEY = [lo, hi]; default [v/2, 2v]), max_evaluations
+//   [study]        name, question
+//   [record]       file (relative to the study file), channel, units, start_s, duration_s, resample,
+//                  peaks_hz: the measured peak frequencies of the modes the model has (the spikes are chosen near
+//                  them, and data and model are paired by frequency, so torsion modes and mains lines are left out),
+//                  name, beam (a beam file of this record's own: its length, attachments; default [beam].file).
+//                  [[record]] instead: several records fitted jointly (fit/identification.h), e.g. one strip at
+//                  several lengths, sharing the parameters in fit.estimate.
+//   [beam]         file: a beam TOML ([beam] or [geometry]) giving the nominal values and the starts
+//   [fit]          elements, estimate (shared by every record), per_record (estimated for each record: recordK.KEY),
+//                  costs, bounds (a table KEY = [lo, hi]; default [v/2, 2v] around each record's nominal v),
+//                  max_evaluations, frequency_weight, windows (K >= 2: also the spread over K disjoint windows,
+//                  fit/window_spread.h; 0: not done)
+//   [[candidate]]  optional alternative models, each fitted with every cost: name, and any of beam (file, replacing
+//                  every record's), values (a table KEY = nominal value, e.g. "support.k_theta" = 6000 makes the
+//                  clamp compliant), estimate, per_record, bounds (over [fit]'s), records (the names of the records
+//                  it fits; default all). Without candidates, [fit] is the one model ("as given"). A position's
+//                  default bounds end at the beam's length.
 //
-// Writes to results/<name>/: fits.csv (cost, parameter, estimate, standard_error, nominal, ratio), modes.csv
-// (cost, mode, measured_frequency_hz, identified_frequency_hz, identified_damping_ratio), overlay.csv,
-// spectrum.csv, spikes.csv, manifest.json, provenance.csv, report.md (the REPORT.md block) and timings.csv.
+// Writes to results/<name>/: fits.csv (candidate, cost, parameter, estimate, three standard errors, nominal, ratio),
+// modes.csv (candidate, cost, record, mode, measured and identified frequency, damping ratio), candidates.csv (fit
+// quality and identifiability per candidate and cost), overlay.csv, spectrum.csv, spikes.csv (the first candidate
+// and record), manifest.json, provenance.csv, report.md (the REPORT.md block) and timings.csv.
 #pragma once
 
 #include <limits>
@@ -31,43 +44,68 @@
 
 namespace beamid::study {
 
-struct RealStudySpec {
-  std::string path, name, question, file_hash;
-  std::string record_file, channel, units = "auto";
+struct RealRecordSpec {
+  std::string name;  // given, or "record1", "record2", ...
+  std::string file, channel, units = "auto";
   std::optional<double> start_s, duration_s;
   bool resample = false;
   std::vector<double> peaks_hz;
+  std::string beam_file;  // empty: the study's [beam] file
+};
+
+struct CandidateSpec {
+  std::string name = "as given";
+  std::string beam_file;                               // empty: each record's
+  std::vector<std::pair<std::string, double>> values;  // nominal values set on every record's beam
+  std::vector<std::string> estimate, per_record;       // shared keys; keys estimated for each record
+  std::vector<int> records;                            // indices of the records it fits (all by default)
+  std::map<std::string, std::pair<double, double>> bounds;
+};
+
+struct RealStudySpec {
+  std::string path, name, question, file_hash;
+  std::vector<RealRecordSpec> records;  // at least one
   std::string beam_file;
   int elements = 16;
-  std::vector<std::string> estimate;
+  std::vector<CandidateSpec> candidates;  // at least one
   std::vector<std::string> costs;
-  std::map<std::string, std::pair<double, double>> bounds;
   int max_evaluations = 3000;
   std::string frequency_weight = "relative";  // spike costs (costs/cost.h): a measured record's default
+  int windows = 0;                            // 0: no window spread
 };
 
 // Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).
 RealStudySpec load_real_study(const std::string& path);
 
-// One cost's fit of the record (a failed fit has its status and nothing else).
+// One candidate's fit of the records with one cost (a failed fit has its status and nothing else).
 struct RealFit {
-  std::string cost, status;
+  std::string candidate, cost, status;
   double cost_value = std::numeric_limits<double>::infinity();
   long evaluations = 0;
   double wall_time_s = 0;
   std::vector<fit::ParameterEstimate> parameters;
-  std::vector<double> identified_hz, zeta;  // the model's modes paired with each measured peak
-  std::optional<Overlay> overlay;
+  std::vector<double> window_sd;  // per parameter (empty without windows; NaN where too few windows converged)
+  int windows_used = 0;
+  fit::Identifiability identifiability;
+  std::vector<int> records;                              // the study's records it fitted (indices)
+  std::vector<std::vector<double>> identified_hz, zeta;  // [its record][mode]: the model's modes nearest each peak
+  std::optional<Overlay> overlay;                        // of the first record
+  // RMS and largest |f_identified / f_measured - 1| over every record's modes (NaN for a failed fit).
+  double rms_misfit = std::numeric_limits<double>::quiet_NaN(), worst_misfit = rms_misfit;
+};
+
+struct RealRecordData {
+  io::TimeSeries series;
+  model::BeamParameters nominal;                   // the record's beam file
+  std::vector<double> measured_hz, measured_zeta;  // 3-bin estimates at the record's peaks near peaks_hz
 };
 
 struct RealResults {
-  io::TimeSeries record;
-  model::BeamParameters nominal;
-  std::vector<double> measured_hz, measured_zeta;  // 3-bin estimates at the record's peaks near peaks_hz
-  std::vector<RealFit> fits;                       // in the order of fit.costs
+  std::vector<RealRecordData> records;
+  std::vector<RealFit> fits;  // candidate-major, in the order of the candidates and of fit.costs
 };
 
-// Imports the record and fits it with each cost (real_execute.cc); progress on `log`.
+// Imports the records and fits them with each candidate and cost (real_execute.cc); progress on `log`.
 RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log);
 // Every table of the study (real_tables.cc), from its results alone.
 RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results);

@@ -1,5 +1,5 @@
-// The rendering half of a real-data study (real_study.h): fits.csv, modes.csv, timings.csv, the overlay files, the
-// manifest and the report block, from its results alone.
+// The rendering half of a real-data study (real_study.h): fits.csv, modes.csv, candidates.csv, timings.csv, the
+// overlay files, the manifest and the report block, from its results alone.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -12,103 +12,170 @@
 #include "study/real_study.h"
 
 namespace beamid::study {
+namespace {
+
+bool failed(const RealFit& f) { return f.status.rfind("failed", 0) == 0; }
+
+// "spike" with one candidate, "clamp spring, spike" with several.
+std::string fit_label(const RealStudySpec& spec, const RealFit& f) {
+  return spec.candidates.size() > 1 ? f.candidate + ", " + f.cost : f.cost;
+}
+
+std::string sd_text(double v) { return std::isnan(v) ? "-" : g3(v); }
+
+// The record's window and units, from the importer's notes ("window of ... ; converted ...; ").
+std::string notes_text(const io::TimeSeries& series) {
+  return series.notes.substr(0, series.notes.size() >= 2 ? series.notes.size() - 2 : 0);
+}
+
+}  // namespace
 
 RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results) {
-  const io::TimeSeries& record = results.record;
-  const model::BeamParameters& nominal = results.nominal;
-  const std::vector<double>& measured = results.measured_hz;
-  const std::vector<double>& measured_zeta = results.measured_zeta;
-  std::ostringstream fits, modes, timings, md;
-  fits << "cost,status,cost_value,evaluations,parameter,estimate,standard_error,nominal,ratio_to_nominal,"
-          "parameter_status\n";
-  modes << "cost,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio\n";
-  timings << "cost,wall_time_s\n";
+  std::ostringstream fits, modes, candidates, timings, md;
+  fits << "candidate,cost,status,cost_value,evaluations,parameter,estimate,standard_error,robust_standard_error,"
+          "window_sd,nominal,ratio_to_nominal,parameter_status\n";
+  modes << "candidate,cost,record,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio\n";
+  candidates << "candidate,cost,status,parameters,rms_frequency_misfit,worst_frequency_misfit,condition_number,"
+                "verdict,weakest_combination\n";
+  timings << "candidate,cost,wall_time_s\n";
   std::vector<std::pair<std::string, Overlay>> overlays;
   for (const RealFit& f : results.fits) {
-    timings << f.cost << "," << io::round_trip(f.wall_time_s) << "\n";
-    if (f.status.rfind("failed", 0) == 0) {
-      fits << f.cost << "," << io::json_string(f.status) << ",inf,0,,,,,,\n";
+    const std::string label = io::json_string(f.candidate) + "," + f.cost;
+    timings << label << "," << io::round_trip(f.wall_time_s) << "\n";
+    if (failed(f)) {
+      fits << label << "," << io::json_string(f.status) << ",inf,0,,,,,,,,,\n";
+      candidates << label << "," << io::json_string(f.status) << ",0,,,,,\n";
       continue;
     }
-    for (const auto& p : f.parameters) {
-      const double v = model::parameter_value(nominal, p.key);
-      fits << f.cost << "," << f.status << "," << io::round_trip(f.cost_value) << "," << f.evaluations << "," << p.key
-           << "," << io::round_trip(p.estimate) << "," << io::round_trip(p.standard_error) << "," << io::round_trip(v)
-           << "," << io::round_trip(p.estimate / v) << "," << p.status << "\n";
+    for (std::size_t i = 0; i < f.parameters.size(); ++i) {
+      const fit::ParameterEstimate& p = f.parameters[i];
+      const double window = i < f.window_sd.size() ? f.window_sd[i] : std::nan("");
+      fits << label << "," << f.status << "," << io::round_trip(f.cost_value) << "," << f.evaluations << "," << p.key
+           << "," << io::round_trip(p.estimate) << "," << io::round_trip(p.standard_error) << ","
+           << io::round_trip(p.robust_standard_error) << "," << io::round_trip(window) << "," << io::round_trip(p.start)
+           << "," << io::round_trip(p.estimate / p.start) << "," << p.status << "\n";
     }
-    for (std::size_t m = 0; m < measured.size(); ++m)
-      modes << f.cost << "," << m + 1 << "," << io::round_trip(measured[m]) << "," << io::round_trip(f.identified_hz[m])
-            << "," << io::round_trip(f.zeta[m]) << "\n";
-    if (f.overlay) overlays.emplace_back(f.cost, *f.overlay);
+    for (std::size_t j = 0; j < f.records.size(); ++j) {
+      const auto k = static_cast<std::size_t>(f.records[j]);
+      for (std::size_t m = 0; m < results.records[k].measured_hz.size(); ++m)
+        modes << label << "," << io::json_string(spec.records[k].name) << "," << m + 1 << ","
+              << io::round_trip(results.records[k].measured_hz[m]) << "," << io::round_trip(f.identified_hz[j][m])
+              << "," << io::round_trip(f.zeta[j][m]) << "\n";
+    }
+    const fit::Identifiability& id = f.identifiability;
+    candidates << label << "," << f.status << "," << f.parameters.size() << "," << io::round_trip(f.rms_misfit) << ","
+               << io::round_trip(f.worst_misfit) << "," << io::round_trip(id.condition) << ","
+               << io::json_string(id.status == "ok" ? id.verdict : id.status) << ","
+               << io::json_string(id.status == "ok" ? id.combination() : "") << "\n";
+    if (f.overlay && f.candidate == spec.candidates.front().name) overlays.emplace_back(f.cost, *f.overlay);
   }
+
   // report.md: the generated block.
-  md << "*Study `" << spec.name << "` (`" << spec.path << "`), commit " << io::commit_label() << ": "
-     << record.values.size() << " samples at " << g4(1 / record.dt_s) << " Hz of `" << record.value_column << "` ("
-     << record.notes.substr(0, record.notes.size() >= 2 ? record.notes.size() - 2 : 0)
-     << "), free decay with unknown initial state (mode amplitudes solved in closed form), "
-     << "Galerkin N = " << spec.elements << "; estimated ";
-  for (std::size_t i = 0; i < spec.estimate.size(); ++i) md << (i ? ", " : "") << spec.estimate[i];
+  md << "*Study `" << spec.name << "` (`" << spec.path << "`), commit " << io::commit_label() << ": ";
+  for (std::size_t k = 0; k < results.records.size(); ++k) {
+    const io::TimeSeries& series = results.records[k].series;
+    md << (k ? "; " : "") << (results.records.size() > 1 ? "record `" + spec.records[k].name + "`: " : "")
+       << series.values.size() << " samples at " << g4(1 / series.dt_s) << " Hz of `" << series.value_column << "`"
+       << (series.notes.empty() ? "" : " (" + notes_text(series) + ")");
+  }
+  md << "; free decay" << (results.records.size() > 1 ? "s fitted jointly" : "")
+     << " with unknown initial state (mode amplitudes solved in closed form), Galerkin N = " << spec.elements;
+  if (spec.candidates.size() == 1) {
+    md << "; estimated ";
+    const CandidateSpec& c = spec.candidates.front();
+    for (std::size_t i = 0; i < c.estimate.size(); ++i) md << (i ? ", " : "") << c.estimate[i];
+    for (const auto& key : c.per_record) md << ", " << key << " (per record)";
+  } else {
+    md << "; " << spec.candidates.size() << " candidate models (below)";
+  }
   md << "; the other parameters at their nominal values (`" << std::filesystem::path(spec.beam_file).filename().string()
-     << "`).*\n\n";
+     << "`)" << (spec.windows >= 2 ? "; window sd over " + std::to_string(spec.windows) + " disjoint windows" : "")
+     << ".*\n\n";
   md << "Computed claims:\n\n";
-  for (const RealFit& o : results.fits) {
-    if (o.identified_hz.empty()) {
-      md << "- `[false]` " << o.cost << " fits the record (" << o.status << ")\n";
+  for (const RealFit& f : results.fits) {
+    if (failed(f)) {
+      md << "- `[false]` " << fit_label(spec, f) << " fits the record (" << f.status << ")\n";
       continue;
     }
-    int within = 0;
-    double worst = 0;
-    for (std::size_t m = 0; m < measured.size(); ++m) {
-      const double e = std::abs(o.identified_hz[m] / measured[m] - 1);
-      worst = std::max(worst, e);
-      within += e <= 0.015 ? 1 : 0;
+    int within = 0, total = 0;
+    for (std::size_t j = 0; j < f.records.size(); ++j) {
+      const auto& measured = results.records[static_cast<std::size_t>(f.records[j])].measured_hz;
+      for (std::size_t m = 0; m < measured.size(); ++m, ++total)
+        within += std::abs(f.identified_hz[j][m] / measured[m] - 1) <= 0.015 ? 1 : 0;
     }
-    md << "- `[" << (within == static_cast<int>(measured.size()) ? "true" : "false") << "]` " << o.cost
-       << ": every identified frequency within 1.5 % of its measured peak (" << within << "/" << measured.size()
-       << "; worst " << g4(100 * worst) << " %)\n";
+    md << "- `[" << (within == total ? "true" : "false") << "]` " << fit_label(spec, f)
+       << ": every identified frequency within 1.5 % of its measured peak (" << within << "/" << total << "; worst "
+       << g4(100 * f.worst_misfit) << " %)\n";
   }
-  md << "\n| cost | status |";
-  for (const auto& k : spec.estimate) md << " " << k << " (x nominal) |";
-  md << "\n|---|---|";
-  for (std::size_t i = 0; i < spec.estimate.size(); ++i) md << "---|";
-  md << "\n";
-  for (const RealFit& o : results.fits) {
-    md << "| " << o.cost << " | " << o.status << " |";
-    for (std::size_t i = 0; i < spec.estimate.size(); ++i) {
-      if (i >= o.parameters.size()) {
-        md << " - |";
-        continue;
+  if (spec.candidates.size() > 1) {
+    md << "\n| candidate | cost | status | estimated | RMS misfit (%) | worst (%) | condition (ln q) | verdict | "
+          "weakest "
+          "combination |\n|---|---|---|---|---|---|---|---|---|\n";
+    for (const RealFit& f : results.fits) {
+      std::string keys;
+      for (const auto& p : f.parameters) keys += (keys.empty() ? "" : ", ") + p.key;
+      const fit::Identifiability& id = f.identifiability;
+      md << "| " << f.candidate << " | " << f.cost << " | " << f.status << " | " << keys << " | "
+         << (failed(f) ? "-" : g3(100 * f.rms_misfit)) << " | " << (failed(f) ? "-" : g3(100 * f.worst_misfit)) << " | "
+         << (id.status == "ok" ? g3(id.condition) : "-") << " | " << (id.status == "ok" ? id.verdict : "-") << " | "
+         << (id.status == "ok" ? id.combination() : "-") << " |\n";
+    }
+  }
+  md << "\nThree uncertainties per estimate (REPORT 3 says which to quote): formal, sandwich (both from J at the "
+        "estimate) and the sd over the disjoint windows (none for an estimate on its bound).\n";
+  md << "\n| " << (spec.candidates.size() > 1 ? "candidate | " : "")
+     << "cost | parameter | estimate | x nominal | formal sd | sandwich sd | window sd | status |\n|"
+     << (spec.candidates.size() > 1 ? "---|" : "") << "---|---|---|---|---|---|---|---|\n";
+  for (const RealFit& f : results.fits)
+    for (std::size_t i = 0; i < f.parameters.size(); ++i) {
+      const fit::ParameterEstimate& p = f.parameters[i];
+      md << "| " << (spec.candidates.size() > 1 ? f.candidate + " | " : "") << f.cost << " | " << p.key << " | "
+         << g4(p.estimate) << " | " << g4(p.estimate / p.start) << " | " << sd_text(p.standard_error) << " | "
+         << sd_text(p.robust_standard_error) << " | "
+         << (i < f.window_sd.size() && p.status == fit::kFree ? sd_text(f.window_sd[i]) : std::string("-")) << " | "
+         << p.status << " |\n";
+    }
+  for (std::size_t k = 0; k < results.records.size(); ++k) {
+    const RealRecordData& record = results.records[k];
+    md << "\n| " << (results.records.size() > 1 ? "`" + spec.records[k].name + "` mode" : "mode")
+       << " | measured f (Hz) | measured zeta |";
+    for (const RealFit& f : results.fits) md << " " << fit_label(spec, f) << " f (Hz) | zeta |";
+    md << "\n|---|---|---|";
+    for (std::size_t i = 0; i < results.fits.size(); ++i) md << "---|---|";
+    md << "\n";
+    for (std::size_t m = 0; m < record.measured_hz.size(); ++m) {
+      md << "| " << m + 1 << " | " << g4(record.measured_hz[m]) << " | " << g4(record.measured_zeta[m]) << " |";
+      for (const RealFit& f : results.fits) {
+        const auto j = static_cast<std::size_t>(std::find(f.records.begin(), f.records.end(), k) - f.records.begin());
+        md << " " << (j < f.identified_hz.size() ? g4(f.identified_hz[j][m]) : "-") << " | "
+           << (j < f.zeta.size() ? g4(f.zeta[j][m]) : "-") << " |";
       }
-      const double v = model::parameter_value(nominal, spec.estimate[i]);
-      md << " " << g4(o.parameters[i].estimate) << " (" << g4(o.parameters[i].estimate / v) << ") |";
+      md << "\n";
     }
-    md << "\n";
-  }
-  md << "\n| mode | measured f (Hz) | measured zeta |";
-  for (const RealFit& o : results.fits) md << " " << o.cost << " f (Hz) | " << o.cost << " zeta |";
-  md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < results.fits.size(); ++i) md << "---|---|";
-  md << "\n";
-  for (std::size_t m = 0; m < measured.size(); ++m) {
-    md << "| " << m + 1 << " | " << g4(measured[m]) << " | " << g4(measured_zeta[m]) << " |";
-    for (const RealFit& o : results.fits)
-      md << " " << (m < o.identified_hz.size() ? g4(o.identified_hz[m]) : "-") << " | "
-         << (m < o.zeta.size() ? g4(o.zeta[m]) : "-") << " |";
-    md << "\n";
   }
   md << "\nPlots: [residuals in time and frequency](plots/" << spec.name << "/overlay.png), [the record's spectrum "
-     << "with the chosen spikes](plots/" << spec.name << "/spectrum.png).\n";
+     << "with the chosen spikes](plots/" << spec.name << "/spectrum.png)"
+     << (spec.candidates.size() > 1 || results.records.size() > 1 ? " (the first candidate's fits of the first record)"
+                                                                  : "")
+     << ".\n";
 
   Manifest manifest{spec.name, spec.question, spec.path, spec.file_hash, {}, {}};
-  manifest.before = {{"record", io::json_string(spec.record_file)}, {"record_notes", io::json_string(record.notes)}};
-  RenderedFiles files = {{"manifest.json", manifest_json(manifest)},
-                         {"provenance.csv", provenance_csv(spec.name, static_cast<int>(spec.costs.size()))},
-                         {"fits.csv", fits.str()},
-                         {"modes.csv", modes.str()},
-                         {"timings.csv", timings.str()},
-                         {"report.md", md.str()}};
-  for (auto& f : render_overlay_files(overlays)) files.push_back(std::move(f));
-  return files;
+  std::string files, notes;
+  for (std::size_t k = 0; k < results.records.size(); ++k) {
+    files += (k ? "; " : "") + spec.records[k].file;
+    notes += (k ? "; " : "") + results.records[k].series.notes;
+  }
+  manifest.before = {{"record", io::json_string(files)}, {"record_notes", io::json_string(notes)}};
+  RenderedFiles out = {
+      {"manifest.json", manifest_json(manifest)},
+      {"provenance.csv", provenance_csv(spec.name, static_cast<int>(spec.costs.size() * spec.candidates.size()))},
+      {"fits.csv", fits.str()},
+      {"modes.csv", modes.str()},
+      {"candidates.csv", candidates.str()},
+      {"timings.csv", timings.str()},
+      {"report.md", md.str()}};
+  for (auto& f : render_overlay_files(overlays)) out.push_back(std::move(f));
+  return out;
 }
 
 }  // namespace beamid::study
