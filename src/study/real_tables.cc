@@ -121,7 +121,7 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
          << (id.status == "ok" ? id.combination() : "-") << " |\n";
     }
   }
-  md << "\nThree uncertainties per estimate (REPORT 3 says which to quote): formal, sandwich (both from J at the "
+  md << "\nThree uncertainties per estimate (REPORT 2.8 says which to quote): formal, sandwich (both from J at the "
         "estimate) and the sd over the disjoint windows (none for an estimate on its bound).\n";
   md << "\n| " << (spec.candidates.size() > 1 ? "candidate | " : "")
      << "cost | parameter | estimate | x nominal | formal sd | sandwich sd | window sd | status |\n|"
