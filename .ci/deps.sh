@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   g++ make cmake pkgconf git
   libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
-  libcli11-dev libgtest-dev libbenchmark-dev
+  libcli11-dev libgtest-dev libbenchmark-dev libmatio-dev
   gnuplot-nox
 )
 

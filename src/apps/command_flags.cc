@@ -36,6 +36,10 @@ std::vector<io::TimeSeries> read_channels(const Flags& a) {
   o.start_s = a.optional_number("start");
   o.duration_s = a.optional_number("duration");
   o.resample = a.has("resample");
+  o.sample_rate_hz = a.optional_number("sample-rate");
+  o.variable = a.text_or("variable", "");
+  o.time_variable = a.text_or("time-variable", "");
+  o.resample_rate_hz = a.optional_number("resample-rate");
   std::vector<std::string> channels = a.texts("channel");
   if (channels.empty()) channels.emplace_back();  // the only signal column
   std::vector<io::TimeSeries> records;

@@ -35,13 +35,19 @@ std::vector<FlagSpec> spike_flags() {
                 "(pairs model and data by frequency)")};
 }
 
-// Reading the --data record: CSV or LabVIEW .lvm, a channel, units, a time window (io/time_series.h).
+// Reading the --data record: CSV, LabVIEW .lvm, .npy, .mat or UFF 58, a channel, units, a time window, a rate
+// (io/time_series.h).
 std::vector<FlagSpec> import_flags() {
   return {text_flag("channel", "signal column by name or 1-based index (default: the only one)"),
           text_flag("units", "auto | g | as-is (default auto: records in g are converted to m/s^2)"),
           number_flag("start", "keep samples from this time, s (default: the first)"),
           number_flag("duration", "keep this many seconds from --start (default: to the end)"),
-          switch_flag("resample", "interpolate a non-uniform time base onto a uniform one instead of refusing it")};
+          switch_flag("resample", "interpolate a non-uniform time base onto a uniform one instead of refusing it"),
+          number_flag("sample-rate", "the sampling rate of a record without a time base (.npy, .mat), Hz"),
+          text_flag("variable", ".mat: the record's variable, a dotted path into structs (default: the only one)"),
+          text_flag("time-variable", ".mat: a time vector of the record's length, instead of --sample-rate"),
+          number_flag("resample-rate",
+                      "resample the record onto this rate, Hz (windowed sinc; a low-pass first when it falls)")};
 }
 
 std::vector<FlagSpec> cost_flags(bool required) {

@@ -5,12 +5,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iterator>
+#include <numbers>
 #include <sstream>
 
 #include "io/files.h"
+#include "io/mat_file.h"
+#include "io/npy.h"
 #include "io/resources.h"
+#include "io/uff58.h"
 #include "model/errors.h"
 
 namespace beamid::io {
@@ -52,7 +57,7 @@ std::string shown(const std::string& text, std::size_t limit = 40) {
 // The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
 // about 50 million samples), checked against the memory that parsing it takes before it is parsed.
 std::string read_text(const std::string& path) {
-  std::string text = read_file(path, "cannot read the file (expected a CSV or LabVIEW .lvm record)");
+  std::string text = read_file(path, "cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF)");
   // Parsing holds the text, a table of fields and the numbers: about 5 bytes per byte of file (measured: 800 MB
   // for a 186 MB CSV of 4e6 samples).
   check_memory(path + ": reading " + bytes_text(static_cast<double>(text.size())),
@@ -215,11 +220,41 @@ TimeSeries read_time_series(const std::string& path, const ImportOptions& o) {
   return parse_time_series(read_text(path), path, o);
 }
 
-TimeSeries parse_time_series(const std::string& text, const std::string& path, const ImportOptions& o) {
-  if (o.units != "auto" && o.units != "g" && o.units != "as-is")
-    throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
-  if (o.duration_s && !(*o.duration_s > 0))
-    throw InputError("duration = " + format_value(*o.duration_s) + ": must be > 0");
+namespace {
+
+// One channel's samples with their times, as a reader found them, before the checks every format shares.
+struct Samples {
+  TimeSeries series;  // path, format, column names and the file's unit
+  std::vector<double> t, v;
+  bool time_in_file = false;   // t read from the file (checked for uniformity), else t0 + i dt
+  double time_resolution = 0;  // the file's resolution of its times (a text column's last printed decimal)
+  std::function<std::string(std::size_t)> where;  // sample i's place: "path:line" or "path: sample i"
+  long declared_samples = 0;                      // LVM "Samples" of the segment header (0: not given)
+};
+
+// The channel a reader's names offer: by name, or by 1-based index; the only one when none is asked for.
+std::size_t choose_channel(const std::vector<std::string>& names, const std::string& channel, const std::string& path,
+                           const std::string& what) {
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  list = shown(list, 160);  // room for the names of a multi-channel record, not for a binary file's bytes
+  if (channel.empty()) {
+    if (names.size() != 1)
+      throw InputError(path + ": " + std::to_string(names.size()) + " " + what + " (" + list +
+                       "): choose one with --channel NAME or --channel INDEX");
+    return 0;
+  }
+  for (std::size_t c = 0; c < names.size(); ++c)
+    if (names[c] == channel) return c;
+  char* end = nullptr;
+  const long index = std::strtol(channel.c_str(), &end, 10);
+  if (end == channel.c_str() + channel.size() && index >= 1 && index <= static_cast<long>(names.size()))
+    return static_cast<std::size_t>(index - 1);
+  throw InputError(path + ": channel = '" + channel + "': must be one of " + list + " (or 1.." +
+                   std::to_string(names.size()) + ")");
+}
+
+Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
   // Text holds no control characters but tab, line feed and carriage return (and form feed, harmlessly).
   const auto binary = std::find_if(text.begin(), text.end(), [](char c) {
     const auto u = static_cast<unsigned char>(c);
@@ -229,44 +264,25 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
     throw InputError(path + ": byte " + std::to_string(binary - text.begin()) + " is 0x" +
                      "0123456789abcdef"[(static_cast<unsigned char>(*binary) >> 4) & 15] +
                      "0123456789abcdef"[static_cast<unsigned char>(*binary) & 15] +
-                     ": a binary file, not CSV or LabVIEW .lvm text (export the record as text)");
+                     ": a binary file of no format beamid reads (it reads CSV and LabVIEW .lvm text, NumPy .npy, "
+                     "MATLAB .mat v5 and v7.3, and UFF dataset 58 ASCII or binary)");
   std::istringstream in(text);
   const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
   const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);
 
-  TimeSeries s;
+  Samples out;
+  TimeSeries& s = out.series;
   s.path = path;
   s.format = table.format;
-  // The channel: by name, or by 1-based index among the signal columns.
   std::vector<int> signals;
+  std::vector<std::string> names;
   for (int c = 0; c < static_cast<int>(table.names.size()); ++c)
-    if (c != table.time_column) signals.push_back(c);
-  std::string list;
-  for (int c : signals) list += (list.empty() ? "" : ", ") + table.names[static_cast<std::size_t>(c)];
-  list = shown(list, 160);  // room for the names of a multi-channel record, not for a binary file's bytes
-  int column = -1;
-  if (o.channel.empty()) {
-    if (signals.size() != 1)
-      throw InputError(path + ": " + std::to_string(signals.size()) + " signal columns (" + list +
-                       "): choose one with --channel NAME or --channel INDEX");
-    column = signals[0];
-  } else {
-    for (int c : signals)
-      if (table.names[static_cast<std::size_t>(c)] == o.channel) column = c;
-    char* end = nullptr;
-    const long index = std::strtol(o.channel.c_str(), &end, 10);
-    if (column < 0 && end == o.channel.c_str() + o.channel.size() && index >= 1 &&
-        index <= static_cast<long>(signals.size()))
-      column = signals[static_cast<std::size_t>(index - 1)];
-    if (column < 0)
-      throw InputError(path + ": channel = '" + o.channel + "': must be one of " + list + " (or 1.." +
-                       std::to_string(signals.size()) + ")");
-  }
+    if (c != table.time_column) signals.push_back(c), names.push_back(table.names[static_cast<std::size_t>(c)]);
+  const int column = signals[choose_channel(names, o.channel, path, "signal columns")];
   s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
   s.value_column = table.names[static_cast<std::size_t>(column)];
-  const std::string file_unit = table.units[static_cast<std::size_t>(column)];
+  s.unit = table.units[static_cast<std::size_t>(column)];
 
-  std::vector<double> t, v;
   int time_decimals = 0;  // the finest printed resolution (trailing zeros may be dropped on some lines)
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
@@ -276,41 +292,179 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
       throw InputError(path + ":" + std::to_string(line) + ": " + std::to_string(row.size()) + " fields: must be " +
                        std::to_string(table.names.size()) + " (" + s.time_column + ", ..., " + s.value_column + ")");
     if (table.time_column >= 0) {
-      const std::string& text = row[static_cast<std::size_t>(table.time_column)];
-      t.push_back(parse(path, line, s.time_column, text));
-      time_decimals = std::max(time_decimals, decimals(text));
+      const std::string& field = row[static_cast<std::size_t>(table.time_column)];
+      out.t.push_back(parse(path, line, s.time_column, field));
+      time_decimals = std::max(time_decimals, decimals(field));
     } else {
-      t.push_back(table.x0 + static_cast<double>(r) * table.delta);
+      out.t.push_back(table.x0 + static_cast<double>(r) * table.delta);
     }
-    v.push_back(parse(path, line, s.value_column, row[static_cast<std::size_t>(column)]));
+    out.v.push_back(parse(path, line, s.value_column, row[static_cast<std::size_t>(column)]));
   }
-  if (table.declared_samples > 0 && static_cast<long>(v.size()) < table.declared_samples)
-    throw InputError(path + ": " + std::to_string(v.size()) + " samples, but the header says Samples = " +
-                     std::to_string(table.declared_samples) + ": the file is cut short");
-  if (v.size() < 8) throw InputError(path + ": " + std::to_string(v.size()) + " samples: at least 8 are needed");
+  out.time_in_file = table.time_column >= 0;
+  out.time_resolution = out.time_in_file ? std::pow(10.0, -time_decimals) : 0;
+  const std::vector<int> line_of = table.line_of;
+  out.where = [path, line_of](std::size_t i) { return path + ":" + std::to_string(line_of.at(i)); };
+  out.declared_samples = table.declared_samples;
+  return out;
+}
 
+// An array of samples x channels (either way round: the samples run along the longer dimension) with its time base
+// from --sample-rate, or from a time vector of the same length.
+Samples array_samples(const std::string& path, const std::string& format, const std::string& what, std::size_t rows,
+                      std::size_t columns, const std::function<double(std::size_t, std::size_t)>& at,
+                      const std::vector<double>* time, const ImportOptions& o) {
+  Samples out;
+  TimeSeries& s = out.series;
+  s.path = path;
+  s.format = format;
+  const bool by_row = rows >= columns;  // samples along the rows: a channel is a column
+  const std::size_t samples = by_row ? rows : columns, channels = by_row ? columns : rows;
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < channels; ++c) names.push_back(std::to_string(c + 1));
+  const std::size_t channel = choose_channel(names, o.channel, path, what + " channels");
+  s.value_column = channels == 1 ? what : what + " channel " + names[channel];
+  s.time_column = "time";
+  for (std::size_t i = 0; i < samples; ++i) out.v.push_back(by_row ? at(i, channel) : at(channel, i));
+  if (time) {
+    if (time->size() != samples)
+      throw InputError(path + ": the time vector has " + std::to_string(time->size()) + " values: must have " +
+                       std::to_string(samples) + ", one per sample of " + what);
+    out.t = *time;
+    out.time_in_file = true;
+  } else {
+    if (!o.sample_rate_hz)
+      throw InputError(path + ": " + format + " holds no time base: give --sample-rate HZ" +
+                       (format == "mat" ? " or --time-variable NAME" : ""));
+    for (std::size_t i = 0; i < samples; ++i) out.t.push_back(static_cast<double>(i) / *o.sample_rate_hz);
+  }
+  out.where = [path](std::size_t i) { return path + ": sample " + std::to_string(i + 1); };
+  for (std::size_t i = 0; i < out.v.size(); ++i)
+    if (!std::isfinite(out.v[i]))
+      throw InputError(out.where(i) + ": " + s.value_column + " = " + format_value(out.v[i]) + ": must be finite");
+  return out;
+}
+
+Samples uff_samples(const std::string& bytes, const std::string& path, const ImportOptions& o) {
+  const std::vector<UffFunction> functions = parse_uff58(bytes, path);
+  std::vector<std::string> names;
+  std::vector<std::size_t> records;
+  std::string other;
+  for (std::size_t k = 0; k < functions.size(); ++k) {
+    if (functions[k].function_type == 1 && !functions[k].complex) {
+      names.push_back(functions[k].name);
+      records.push_back(k);
+    } else {
+      other += (other.empty() ? "" : "; ") + std::string("line ") + std::to_string(functions[k].dataset_line) +
+               ": function type " + std::to_string(functions[k].function_type) +
+               (functions[k].complex ? ", complex" : "");
+    }
+  }
+  if (names.empty())
+    throw InputError(path + ": no real time record (dataset 58 of function type 1) among its " +
+                     std::to_string(functions.size()) + " dataset(s) 58" + (other.empty() ? "" : " (" + other + ")"));
+  const UffFunction& f = functions[records[choose_channel(names, o.channel, path, "time records (datasets 58)")]];
+  Samples out;
+  out.series.path = path;
+  out.series.format = "uff58";
+  out.series.time_column = "time";
+  out.series.value_column = f.name;
+  out.series.unit = f.unit == "g" || f.unit == "G" ? "g" : f.unit;
+  out.v = f.y;
+  if (f.even) {
+    if (!(f.dx > 0))
+      throw InputError(path + ":" + std::to_string(f.dataset_line + 7) + ": abscissa increment " + format_value(f.dx) +
+                       ": must be > 0");
+    for (std::size_t i = 0; i < f.y.size(); ++i) out.t.push_back(f.x0 + static_cast<double>(i) * f.dx);
+  } else {
+    out.t = f.x;
+    out.time_in_file = true;
+    double largest = 0;
+    for (double x : f.x) largest = std::max(largest, std::abs(x));
+    out.time_resolution = 5e-6 * largest;  // E13.5: six significant digits
+  }
+  const int first_line = f.first_value_line;
+  out.where = [path, first_line](std::size_t i) {
+    return first_line > 0
+               ? path + ": value " + std::to_string(i + 1) + " (from line " + std::to_string(first_line) + ")"
+               : path + ": value " + std::to_string(i + 1);
+  };
+  return out;
+}
+
+// Band-limited resampling onto t0 + i / rate (time_series.h): y(tau) = sum_k x_k h(tau - t_k) / sum_k h(tau - t_k),
+// h a Blackman-windowed sinc of cutoff fc = fs/2 when the rate rises (interpolation) and 0.45 rate when it falls (an
+// anti-alias low-pass first, with the last 10 % below the new Nyquist frequency as transition band), spanning +-16
+// periods of the lower rate. Dividing by the weights' sum keeps a constant constant, also at the record's ends.
+void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
+  const double fs = 1 / s.dt_s;
+  const auto n = static_cast<double>(s.values.size());
+  const double duration = (n - 1) * s.dt_s;
+  const double count = std::floor(duration * rate + 1e-9) + 1;
+  if (count < 8)
+    throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz leaves " + format_value(count) +
+                     " samples of the " + format_value(duration) + " s record: at least 8 are needed");
+  if (count > 1 << 28)
+    throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz would make " + format_value(count) +
+                     " samples: at most 2^28");
+  check_memory(path + ": resampling to " + format_value(count) + " samples", 8 * count, std::cerr);
+  const double cutoff = rate < fs ? 0.45 * rate : 0.5 * fs;
+  const double half = 16 / std::min(fs, rate);  // s
+  std::vector<double> y(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double tau = static_cast<double>(i) / rate;
+    const auto first = static_cast<long>(std::max(0.0, std::ceil((tau - half) * fs)));
+    const auto last = static_cast<long>(std::min(n - 1, std::floor((tau + half) * fs)));
+    double sum = 0, weights = 0;
+    for (long k = first; k <= last; ++k) {
+      const double u = tau - static_cast<double>(k) * s.dt_s;
+      const double x = 2 * cutoff * u;
+      const double sinc = std::abs(x) < 1e-12 ? 1.0 : std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
+      const double r = u / half;  // in [-1, 1]
+      const double blackman = 0.42 + 0.5 * std::cos(std::numbers::pi * r) + 0.08 * std::cos(2 * std::numbers::pi * r);
+      const double h = sinc * blackman;
+      sum += h * s.values[static_cast<std::size_t>(k)];
+      weights += h;
+    }
+    y[i] = sum / weights;
+  }
+  s.notes += "resampled from " + format_value(fs) + " Hz to " + format_value(rate) +
+             " Hz by windowed-sinc interpolation" +
+             (rate < fs ? " after a low-pass at " + format_value(cutoff) + " Hz" : "") + "; ";
+  s.values = std::move(y);
+  s.dt_s = 1 / rate;
+}
+
+// The checks and cuts every format shares (time_series.h): uniform time base or resampling, clipping, the window,
+// the units and the rate.
+TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
+  TimeSeries s = std::move(in.series);
+  std::vector<double>& t = in.t;
+  std::vector<double>& v = in.v;
+  if (in.declared_samples > 0 && static_cast<long>(v.size()) < in.declared_samples)
+    throw InputError(path + ": " + std::to_string(v.size()) + " samples, but the header says Samples = " +
+                     std::to_string(in.declared_samples) + ": the file is cut short");
+  if (v.size() < 8) throw InputError(path + ": " + std::to_string(v.size()) + " samples: at least 8 are needed");
   // Uniform time base, to the printed resolution of the time column.
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
   if (!(dt > 0)) throw InputError(path + ": time column " + s.time_column + " does not increase");
-  const double tolerance =
-      std::max(1e-6 * dt, (table.time_column >= 0 ? std::pow(10.0, -time_decimals) : 0) + 1e-9 * dt);
+  const double tolerance = std::max(1e-6 * dt, in.time_resolution + 1e-9 * dt);
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double expected = t0 + static_cast<double>(i) * dt;
     if (std::abs(t[i] - expected) > tolerance) {
       if (o.resample) break;
-      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.time_column + " = " +
-                       format_value(t[i]) + ": non-uniform time base (expected " + format_value(expected) + " = t0 + " +
-                       std::to_string(i) + " dt with dt = " + format_value(dt) + " s, to within " +
-                       format_value(tolerance) + " s; --resample interpolates instead)");
+      throw InputError(in.where(i) + ": " + s.time_column + " = " + format_value(t[i]) +
+                       ": non-uniform time base (expected " + format_value(expected) + " = t0 + " + std::to_string(i) +
+                       " dt with dt = " + format_value(dt) + " s, to within " + format_value(tolerance) +
+                       " s; --resample interpolates instead)");
     }
   }
   if (o.resample) {
     // Linear interpolation onto t0 + i dt (the time column must increase strictly).
     for (std::size_t i = 1; i < t.size(); ++i)
       if (!(t[i] > t[i - 1]))
-        throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.time_column + " = " +
-                         format_value(t[i]) + ": must increase to be resampled");
+        throw InputError(in.where(i) + ": " + s.time_column + " = " + format_value(t[i]) +
+                         ": must increase to be resampled");
     std::vector<double> u(v.size());
     std::size_t j = 0;
     for (std::size_t i = 0; i < u.size(); ++i) {
@@ -332,8 +486,7 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
   const bool constant = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
   for (std::size_t i = 0; i + 2 < v.size() && peak > 0 && !constant; ++i)
     if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
-      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": " + s.value_column + " = " +
-                       format_value(v[i]) +
+      throw InputError(in.where(i) + ": " + s.value_column + " = " + format_value(v[i]) +
                        " on 3 or more consecutive samples at the record's peak: the signal is "
                        "clipped (the DAQ range was exceeded), so its spectrum is distorted");
 
@@ -360,15 +513,61 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
   if (o.start_s || o.duration_s)
     s.notes += "window of " + std::to_string(s.values.size()) + " samples from t = " + format_value(s.t0_s) + " s; ";
 
-  const bool in_g = o.units == "g" || (o.units == "auto" && file_unit == "g");
+  const bool in_g = o.units == "g" || (o.units == "auto" && s.unit == "g");
   if (in_g) {
     for (double& x : s.values) x *= kStandardGravity;
     s.unit = "m/s^2";
     s.notes += "converted from g to m/s^2 (x 9.80665); ";
-  } else {
-    s.unit = file_unit;
   }
+  if (o.resample_rate_hz) resample_to_rate(s, *o.resample_rate_hz, path);
   return s;
+}
+
+}  // namespace
+
+TimeSeries parse_time_series(const std::string& bytes, const std::string& path, const ImportOptions& o) {
+  if (o.units != "auto" && o.units != "g" && o.units != "as-is")
+    throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
+  if (o.duration_s && !(*o.duration_s > 0))
+    throw InputError("duration = " + format_value(*o.duration_s) + ": must be > 0");
+  if (o.sample_rate_hz && !(*o.sample_rate_hz > 0 && std::isfinite(*o.sample_rate_hz)))
+    throw InputError("sample rate = " + format_value(*o.sample_rate_hz) + " Hz: must be > 0");
+  if (o.resample_rate_hz && !(*o.resample_rate_hz > 0 && std::isfinite(*o.resample_rate_hz)))
+    throw InputError("resample rate = " + format_value(*o.resample_rate_hz) + " Hz: must be > 0");
+  // The format from the content: NumPy's magic, a MAT-file's header text, UFF's "-1" delimiter; else text by the
+  // file's ending (.lvm, else CSV).
+  const bool npy = is_npy(bytes), mat = !npy && is_mat(bytes), uff = !npy && !mat && is_uff(bytes);
+  if (!mat && (!o.variable.empty() || !o.time_variable.empty()))
+    throw InputError(path + ": --variable and --time-variable name variables of a MAT-file; this is not one");
+  if (!npy && !mat && o.sample_rate_hz)
+    throw InputError(path + ": --sample-rate is for records without a time base (.npy, .mat); this file has one");
+  if (npy) {
+    const NpyArray a = parse_npy(bytes, path);
+    const std::size_t rows = a.shape[0], columns = a.shape.size() == 2 ? a.shape[1] : 1;
+    return finish(
+        array_samples(
+            path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); }, nullptr, o),
+        path, o);
+  }
+  if (mat) {
+    const MatArray a = read_mat_variable(path, bytes, o.variable);
+    std::vector<double> time;
+    if (!o.time_variable.empty()) {
+      if (o.sample_rate_hz) throw InputError(path + ": give --time-variable or --sample-rate, not both");
+      const MatArray t = read_mat_variable(path, bytes, o.time_variable);
+      if (t.rows != 1 && t.columns != 1)
+        throw InputError(path + ": time variable '" + t.path + "' is " + std::to_string(t.rows) + " x " +
+                         std::to_string(t.columns) + ": must be a vector");
+      time = t.values;
+    }
+    Samples samples = array_samples(
+        path, "mat", a.path, a.rows, a.columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
+        o.time_variable.empty() ? nullptr : &time, o);
+    samples.series.format = "mat v" + a.version;
+    return finish(std::move(samples), path, o);
+  }
+  if (uff) return finish(uff_samples(bytes, path, o), path, o);
+  return finish(text_samples(bytes, path, o), path, o);
 }
 
 }  // namespace beamid::io

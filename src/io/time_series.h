@@ -1,7 +1,11 @@
 // Reading a sampled record: CSV (as written by `beamid simulate`, or a DAQ export with a header line naming the
 // columns: time in seconds first, then one or more channels) or LabVIEW measurement text (.lvm: "***End_of_Header***"
 // blocks, tab- or comma-separated, X_Columns One, Multi or No; the channel names from the column header line, units
-// from Y_Unit_Label).
+// from Y_Unit_Label); NumPy .npy (io/npy.h) and MATLAB .mat v5/v7.3 (io/mat_file.h) arrays of samples x channels
+// either way round, whose time base is --sample-rate (or a .mat time vector); UFF dataset 58, ASCII or binary
+// (io/uff58.h), one channel per time record, named by its ID line, with its unit. The format is recognised from the
+// content (NumPy's magic, "MATLAB" in a MAT-file's header, UFF's "-1" delimiter), else from the ending (.lvm, else
+// CSV); a binary file of another kind is an error saying which formats are read.
 //
 // The file must be a regular text file of at most 1 GiB (a folder, a device such as /dev/zero, or a binary file is
 // named as such at once, before anything large is read).
@@ -12,8 +16,10 @@
 //   decimals of a 605.47 us step, and 0.0096875 appears as 0.009687) or 1e-6 dt, whichever is larger; unless `resample`
 //   is set, which instead interpolates the record linearly onto the uniform grid with the mean step (and says so in
 //   `notes`); no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was exceeded.
-// Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples) and, for records in
-// g, values are converted to m/s^2 (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3).
+// Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples), for records in
+// g values are converted to m/s^2 (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3), and with a resample
+// rate the record is resampled by windowed-sinc interpolation (a low-pass at 0.45 of the new rate first when the rate
+// falls).
 #pragma once
 
 #include <optional>
@@ -23,16 +29,19 @@
 namespace beamid::io {
 
 struct ImportOptions {
-  std::string channel;               // name or 1-based index among the signal columns; "": the only one
-  std::string units = "auto";        // "auto": convert when the file says g; "g": the values are in g; "as-is"
-  std::optional<double> start_s;     // first sample: the one nearest to this time (default: the first)
-  std::optional<double> duration_s;  // round(duration / dt) samples from there (default: to the last)
-  bool resample = false;             // interpolate a non-uniform time base instead of refusing it
+  std::string channel;                     // name or 1-based index among the signal columns; "": the only one
+  std::string units = "auto";              // "auto": convert when the file says g; "g": the values are in g; "as-is"
+  std::optional<double> start_s;           // first sample: the one nearest to this time (default: the first)
+  std::optional<double> duration_s;        // round(duration / dt) samples from there (default: to the last)
+  bool resample = false;                   // interpolate a non-uniform time base instead of refusing it
+  std::optional<double> sample_rate_hz;    // the time base of a record that has none (.npy, .mat without a time)
+  std::string variable, time_variable;     // .mat: the record's and its time vector's dotted paths
+  std::optional<double> resample_rate_hz;  // band-limited resampling onto this rate after everything else
 };
 
 struct TimeSeries {
   std::string path;
-  std::string format;                     // "csv" | "lvm"
+  std::string format;                     // "csv" | "lvm" | "npy" | "mat v5" | "mat v7.3" | "uff58"
   std::string time_column, value_column;  // names as in the file
   std::string unit;                       // of `values` after conversion ("m/s^2", or as the file says, or "")
   double t0_s = 0;                        // time of values[0]
@@ -41,9 +50,10 @@ struct TimeSeries {
   std::string notes;  // what was done to the record (window, conversion, resampling)
 };
 
-// Format from the extension (".lvm", else CSV).
+// The format from the content, else from the ending (above).
 TimeSeries read_time_series(const std::string& path, const ImportOptions& options = {});
-// The same from text in memory; `path` names it in messages and its ending (.lvm) chooses the format.
+// The same from bytes in memory; `path` names it in messages and its ending (.lvm) chooses a text format (a .mat
+// file is opened by libmatio from `path`).
 TimeSeries parse_time_series(const std::string& text, const std::string& path, const ImportOptions& options = {});
 
 }  // namespace beamid::io

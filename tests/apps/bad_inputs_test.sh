@@ -47,7 +47,7 @@ expect_error "beam /dev/zero" "(not a regular file)" modes --beam /dev/zero --el
 expect_error "data folder" "is a folder" spikes --data "$tmp"
 head -c 4096 /dev/urandom >"$tmp/random.csv"
 printf '\001' >>"$tmp/random.csv"
-expect_error "random bytes" "a binary file, not CSV" spikes --data "$tmp/random.csv"
+expect_error "random bytes" "a binary file of no format beamid reads" spikes --data "$tmp/random.csv"
 { printf 't_s,y\n0,'; head -c 2000000 /dev/zero | tr '\0' '7'; printf 'x\n'; } >"$tmp/wide.csv"
 for i in $(seq 1 9); do echo "0.00$i,1" >>"$tmp/wide.csv"; done
 expect_error "2 MB field" "(2000001 characters)" spikes --data "$tmp/wide.csv"

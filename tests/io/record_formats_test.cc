@@ -1,0 +1,377 @@
+// The binary and modal-test formats labs write (issue 11 item 5): NumPy .npy (versions 1-3, both byte orders, C and
+// Fortran order), MATLAB .mat v5 and v7.3 (written here by libmatio itself, including a struct), UFF dataset 58
+// (ASCII and binary, beside a dataset of another type), and band-limited resampling. Each file is built in the test
+// from known samples, so that what is read can be compared exactly; each malformed file must give an InputError that
+// locates the fault (byte offset, line or variable path).
+#include <gtest/gtest.h>
+#include <matio.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <numbers>
+
+#include "io/time_series.h"
+#include "model/errors.h"
+
+namespace beamid::io {
+namespace {
+
+std::string write(const std::string& name, const std::string& bytes) {
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+std::string error_of(const std::string& path, const ImportOptions& o = {}) {
+  try {
+    read_time_series(path, o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// The test signal: a decaying 37 Hz sine plus a 3 Hz one, at 1 kHz.
+double signal_at(double t) {
+  return std::exp(-2 * t) * std::sin(2 * std::numbers::pi * 37 * t) + 0.3 * std::sin(2 * std::numbers::pi * 3 * t);
+}
+
+// An .npy file of `values` (row-major, `rows` x `columns`, columns 0 for a 1-D array) in format `major`.
+std::string npy(const std::vector<double>& values, std::size_t rows, std::size_t columns, int major,
+                const std::string& descr = "<f8", bool fortran = false) {
+  std::string header = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': (" +
+                       std::to_string(rows) + (columns ? ", " + std::to_string(columns) : ",") + "), }";
+  const std::size_t preamble = major == 1 ? 10 : 12;
+  while ((preamble + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string out = "\x93NUMPY";
+  out += static_cast<char>(major);
+  out += '\0';
+  const std::size_t n = header.size();
+  for (std::size_t b = 0; b < (major == 1 ? 2u : 4u); ++b) out += static_cast<char>((n >> (8 * b)) & 0xff);
+  out += header;
+  const std::size_t count = values.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    // Fortran order writes column after column.
+    const std::size_t c = columns ? columns : 1;
+    const std::size_t index = fortran ? (k % rows) * c + k / rows : k;
+    const double v = values[index];
+    char bytes[8];
+    std::size_t size = 8;
+    if (descr.substr(1) == "f4") {
+      const float f = static_cast<float>(v);
+      std::memcpy(bytes, &f, 4);
+      size = 4;
+    } else if (descr.substr(1) == "i2") {
+      const auto i = static_cast<std::int16_t>(v);
+      std::memcpy(bytes, &i, 2);
+      size = 2;
+    } else {
+      std::memcpy(bytes, &v, 8);
+    }
+    if (descr[0] == '>') std::reverse(bytes, bytes + size);  // this machine is little-endian (x86-64)
+    out.append(bytes, size);
+  }
+  return out;
+}
+
+TEST(RecordFormats, NpyArraysOfEveryVersionOrderAndByteOrder) {
+  const std::size_t n = 512;
+  std::vector<double> two(2 * n), one(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    one[i] = signal_at(static_cast<double>(i) * 1e-3);
+    two[2 * i] = 100 + static_cast<double>(i);  // channel 1: a ramp
+    two[2 * i + 1] = one[i];                    // channel 2: the signal
+  }
+  ImportOptions o;
+  o.sample_rate_hz = 1000;
+  // Version 1, little-endian doubles, samples x channels: exact.
+  o.channel = "2";
+  const TimeSeries a = read_time_series(write("two.npy", npy(two, n, 2, 1)), o);
+  EXPECT_EQ(a.format, "npy");
+  EXPECT_EQ(a.values, one);
+  EXPECT_EQ(a.dt_s, 1e-3);
+  // Version 2, big-endian singles, 1-D: the singles' rounding only (relative 6e-8 of the largest value, 1.3).
+  o.channel.clear();
+  const TimeSeries b = read_time_series(write("one.npy", npy(one, n, 0, 2, ">f4")), o);
+  ASSERT_EQ(b.values.size(), n);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(b.values[i], one[i], 1e-7) << i;
+  // Version 3, Fortran order, channels x samples (2 x n, the samples along the longer dimension): exact.
+  std::vector<double> transposed(2 * n);
+  for (std::size_t i = 0; i < n; ++i) transposed[i] = two[2 * i], transposed[n + i] = two[2 * i + 1];
+  o.channel = "2";
+  const TimeSeries c = read_time_series(write("fortran.npy", npy(transposed, 2, n, 3, "<f8", true)), o);
+  EXPECT_EQ(c.values, one);
+  // Integers (a DAQ's raw counts) are read as numbers.
+  std::vector<double> counts(n);
+  for (std::size_t i = 0; i < n; ++i) counts[i] = std::round(1000 * one[i]);
+  o.channel.clear();
+  EXPECT_EQ(read_time_series(write("counts.npy", npy(counts, n, 0, 1, "<i2")), o).values, counts);
+}
+
+TEST(RecordFormats, MalformedNpyFilesNameTheByte) {
+  std::vector<double> v(64, 1.0);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.3 * static_cast<double>(i));
+  ImportOptions o;
+  o.sample_rate_hz = 100;
+  const std::string good = npy(v, 64, 0, 1);
+  std::string version = good;
+  version[6] = 4;
+  EXPECT_NE(error_of(write("v4.npy", version), o).find("byte 6: format version 4"), std::string::npos)
+      << error_of(write("v4.npy", version), o);
+  const std::string cut = good.substr(0, good.size() - 8);
+  EXPECT_NE(error_of(write("cut.npy", cut), o).find("byte 128:"), std::string::npos)
+      << error_of(write("cut.npy", cut), o);
+  EXPECT_NE(error_of(write("cut.npy", cut), o).find("cut short"), std::string::npos);
+  EXPECT_NE(error_of(write("complex.npy", npy(v, 32, 0, 1, "<c16")), o).find("descr = '<c16'"), std::string::npos);
+  std::string long_header = good;
+  long_header[8] = '\xff', long_header[9] = '\x7f';
+  EXPECT_NE(error_of(write("long.npy", long_header), o).find("header length 32767 runs past"), std::string::npos);
+  std::string cube = npy(v, 16, 4, 1);
+  cube.replace(cube.find("(16, 4)"), 7, "(4,4,4)");
+  EXPECT_NE(error_of(write("cube.npy", cube), o).find("one or two dimensions"), std::string::npos)
+      << error_of(write("cube.npy", cube), o);
+  EXPECT_NE(error_of(write("norate.npy", good)).find("give --sample-rate"), std::string::npos);
+  std::vector<double> nan_inside = v;
+  nan_inside[10] = std::nan("");
+  EXPECT_NE(error_of(write("nan.npy", npy(nan_inside, 64, 0, 1)), o).find("sample 11"), std::string::npos);
+}
+
+// A MAT-file written by libmatio: `record` (samples x 2) and `t` at the top level, and the same record in a struct
+// test.accel.data.
+std::string write_mat(const std::string& name, mat_ft version, const std::vector<double>& column_major, std::size_t n,
+                      const std::vector<double>& t) {
+  const std::string path = testing::TempDir() + name;
+  std::remove(path.c_str());
+  mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, version);
+  EXPECT_NE(mat, nullptr);
+  size_t dims[2] = {n, 2};
+  matvar_t* record =
+      Mat_VarCreate("record", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, const_cast<double*>(column_major.data()), 0);
+  Mat_VarWrite(mat, record, MAT_COMPRESSION_NONE);
+  Mat_VarFree(record);
+  size_t time_dims[2] = {1, n};
+  matvar_t* time = Mat_VarCreate("t", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, time_dims, const_cast<double*>(t.data()), 0);
+  Mat_VarWrite(mat, time, MAT_COMPRESSION_NONE);
+  Mat_VarFree(time);
+  size_t one[2] = {1, 1};
+  const char* data_field[] = {"data"};
+  const char* accel_field[] = {"accel"};
+  matvar_t* accel = Mat_VarCreateStruct("accel", 2, one, data_field, 1);
+  Mat_VarSetStructFieldByName(
+      accel, "data", 0,
+      Mat_VarCreate("data", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, const_cast<double*>(column_major.data()), 0));
+  matvar_t* test = Mat_VarCreateStruct("test", 2, one, accel_field, 1);
+  Mat_VarSetStructFieldByName(test, "accel", 0, accel);
+  Mat_VarWrite(mat, test, MAT_COMPRESSION_NONE);
+  Mat_VarFree(test);
+  Mat_Close(mat);
+  return path;
+}
+
+TEST(RecordFormats, MatFilesOfVersions5And73WithStructsAndTimeVectors) {
+  const std::size_t n = 256;
+  std::vector<double> column_major(2 * n), t(n), expected(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    t[i] = 0.5 + static_cast<double>(i) * 1e-3;
+    expected[i] = signal_at(t[i]);
+    column_major[i] = static_cast<double>(i);  // column 1
+    column_major[n + i] = expected[i];         // column 2
+  }
+  for (const auto& [version, label] : {std::pair{MAT_FT_MAT5, "5"}, std::pair{MAT_FT_MAT73, "7.3"}}) {
+    const std::string path = write_mat(std::string("record") + label + ".mat", version, column_major, n, t);
+    ImportOptions o;
+    o.variable = "test.accel.data";
+    o.channel = "2";
+    o.time_variable = "t";
+    const TimeSeries s = read_time_series(path, o);
+    EXPECT_EQ(s.format, std::string("mat v") + label);
+    EXPECT_EQ(s.values, expected) << label;
+    EXPECT_NEAR(s.dt_s, 1e-3, 1e-15) << label;
+    EXPECT_NEAR(s.t0_s, 0.5, 1e-15) << label;
+    o.variable = "record";
+    o.time_variable.clear();
+    o.sample_rate_hz = 1000;
+    EXPECT_EQ(read_time_series(path, o).values, expected) << label;
+    // What is not there is named with what is.
+    o.variable = "test.accel.dat";
+    EXPECT_NE(error_of(path, o).find("variable 'test.accel' has no field 'dat' (its fields: data)"), std::string::npos)
+        << error_of(path, o);
+    o.variable = "recrd";
+    EXPECT_NE(error_of(path, o).find("not in the file, which holds record, t, test"), std::string::npos)
+        << error_of(path, o);
+    o.variable = "test";
+    EXPECT_NE(error_of(path, o).find("is a struct"), std::string::npos) << error_of(path, o);
+    o.variable.clear();
+    EXPECT_NE(error_of(path, o).find("2 numeric variables"), std::string::npos) << error_of(path, o);
+  }
+}
+
+TEST(RecordFormats, MalformedMatFilesAreErrorsNotCrashes) {
+  std::string header = "MATLAB 5.0 MAT-file, Platform: GLNXA64, Created on: test";
+  header.resize(124, ' ');
+  header += std::string("\x00\x01", 2) + "IM";
+  ImportOptions o;
+  o.sample_rate_hz = 1000;
+  // A header and nothing else, a header and garbage, a wrong endian indicator.
+  EXPECT_NE(error_of(write("empty.mat", header), o).find("0 numeric variables"), std::string::npos)
+      << error_of(write("empty.mat", header), o);
+  const std::string garbage = header + std::string("\x0e\x00\x00\x00\xff\xff\xff\x7f", 8) + std::string(64, 'x');
+  EXPECT_NE(error_of(write("garbage.mat", garbage), o), "no error");
+  std::string endian = header;
+  endian[126] = 'X';
+  EXPECT_NE(error_of(write("endian.mat", endian), o).find("byte 126: endian indicator"), std::string::npos);
+  // --variable on a file that is not a MAT-file.
+  o.variable = "x";
+  EXPECT_NE(error_of(write("plain.csv", "t_s,y\n0,1\n1,2\n"), o).find("not one"), std::string::npos);
+}
+
+// A UFF file: a dataset 151 (a header, skipped), a time response as ASCII double precision with even spacing, and
+// the same as binary 58b (little-endian doubles), then a frequency response (type 4) that is not a time record.
+std::string uff_header(const std::string& id, int type, int count, double dx, const std::string& unit,
+                       int data_type = 4) {
+  char line[256];
+  std::string h;
+  h += id + std::string(80 - id.size(), ' ') + "\n";
+  for (int k = 0; k < 4; ++k) h += "NONE\n";
+  std::snprintf(line, sizeof line, "%5d%10d%5d%10d %-10s%10d%4d %-10s%10d%4d\n", type, 1, 0, 0, "NONE", 12, 3, "NONE",
+                1, 3);
+  h += line;
+  std::snprintf(line, sizeof line, "%10d%10d%10d%13.5e%13.5e%13.5e\n", data_type, count, 1, 0.0, dx, 0.0);
+  h += line;
+  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 17, 0, 0, 0, "Time", "s");
+  h += line;
+  std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 12, 1, 0, 0, "Acceleration", unit.c_str());
+  h += line;
+  for (int k = 0; k < 2; ++k) {
+    std::snprintf(line, sizeof line, "%10d%5d%5d%5d %-20s %-20s\n", 0, 0, 0, 0, "NONE", "NONE");
+    h += line;
+  }
+  return h;
+}
+
+std::string uff_file(const std::vector<double>& y, double dx) {
+  std::string f = "    -1\n   151\nmodel\ndescription\nprogram\ndate\n    -1\n";
+  f += "    -1\n    58\n" + uff_header("tip accelerometer", 1, static_cast<int>(y.size()), dx, "g");
+  char value[32];
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    std::snprintf(value, sizeof value, "%20.11E", y[i]);
+    f += value;
+    if (i % 4 == 3 || i + 1 == y.size()) f += "\n";
+  }
+  f += "    -1\n";
+  char binary_line[128];
+  std::snprintf(binary_line, sizeof binary_line, "    58b%6d%6d%12d%12d%6d%6d%12d%12d\n", 1, 2, 11,
+                static_cast<int>(8 * y.size()), 0, 0, 0, 0);
+  f += std::string("    -1\n") + binary_line +
+       uff_header("mid-span accelerometer", 1, static_cast<int>(y.size()), dx, "m/s^2");
+  for (const double v : y) f.append(reinterpret_cast<const char*>(&v), 8);  // little-endian (x86-64)
+  f += "\n    -1\n";
+  f += "    -1\n    58\n" + uff_header("FRF 12:+Z/1:+Z", 4, 2, 1.0, "g/N") +
+       "  1.00000000000E+00  2.00000000000E+00\n    -1\n";
+  return f;
+}
+
+TEST(RecordFormats, UffDataset58AsciiAndBinary) {
+  const std::size_t n = 300;
+  std::vector<double> y(n);
+  for (std::size_t i = 0; i < n; ++i) y[i] = signal_at(static_cast<double>(i) * 1e-3);
+  const std::string path = write("record.uff", uff_file(y, 1e-3));
+  ImportOptions o;
+  o.channel = "tip accelerometer";
+  const TimeSeries ascii = read_time_series(path, o);
+  EXPECT_EQ(ascii.format, "uff58");
+  EXPECT_EQ(ascii.unit, "m/s^2") << "a record in g is converted";
+  ASSERT_EQ(ascii.values.size(), n);
+  // E20.11: 12 significant digits, then x 9.80665.
+  for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(ascii.values[i], 9.80665 * y[i], 1e-10) << i;
+  EXPECT_NEAR(ascii.dt_s, 1e-3, 1e-15);
+  o.channel = "2";
+  const TimeSeries binary = read_time_series(path, o);
+  EXPECT_EQ(binary.value_column, "mid-span accelerometer");
+  EXPECT_EQ(binary.values, y) << "binary doubles are exact";
+  // The frequency response is not offered as a channel; choosing among the two time records is required.
+  o.channel.clear();
+  EXPECT_NE(error_of(path, o).find("2 time records (datasets 58) (tip accelerometer, mid-span accelerometer)"),
+            std::string::npos)
+      << error_of(path, o);
+}
+
+TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
+  std::vector<double> y(40);
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] = signal_at(static_cast<double>(i) * 1e-3);
+  const std::string good = uff_file(y, 1e-3);
+  ImportOptions o;
+  o.channel = "1";
+  // A value that is not a number: its line (the 151 dataset takes lines 1-7, the 58's delimiter and number lines 8-9,
+  // its header lines 10-20, so the first value is on line 21).
+  std::string bad_value = good;
+  const std::size_t first = bad_value.find("  0.00000000000E+00", bad_value.find("tip accelerometer"));
+  bad_value.replace(first, 19, "  0.0000000000XE+00");
+  const std::string value_error = error_of(write("value.uff", bad_value), o);
+  EXPECT_NE(value_error.find("value.uff:21: value 1 = '0.0000000000XE+00': must be a finite number"), std::string::npos)
+      << value_error;
+  // The binary dataset cut short: its byte offset.
+  const std::string cut = good.substr(0, good.find("mid-span accelerometer") + 700);
+  o.channel = "2";
+  const std::string cut_error = error_of(write("cut.uff", cut), o);
+  EXPECT_NE(cut_error.find(": byte "), std::string::npos) << cut_error;
+  EXPECT_NE(cut_error.find("cut short"), std::string::npos) << cut_error;
+  // Fewer values than the header says.
+  std::string short_count = good;
+  short_count.replace(short_count.find("        40         1"), 20, "        41         1");
+  o.channel = "1";
+  EXPECT_NE(error_of(write("count.uff", short_count), o).find("header says 41 points"), std::string::npos)
+      << error_of(write("count.uff", short_count), o);
+  // Only a frequency response: no time record.
+  const std::string frf =
+      "    -1\n    58\n" + uff_header("FRF", 4, 2, 1.0, "g/N") + "  1.00000000000E+00  2.00000000000E+00\n    -1\n";
+  EXPECT_NE(error_of(write("frf.uff", frf)).find("no real time record"), std::string::npos);
+  // A binary file of no known kind says which formats are read.
+  EXPECT_NE(error_of(write("mystery.bin", std::string("\x01\x02\x03\x04", 4) + std::string(100, 'a'))).find(".npy"),
+            std::string::npos);
+}
+
+TEST(RecordFormats, ResamplingToARateKeepsTheBandAndRemovesWhatAliases) {
+  // 2 s at 1 kHz of a 10 Hz tone and a 150 Hz tone. Resampled up to 2.5 kHz both are kept; down to 200 Hz the 150 Hz
+  // tone lies above the new Nyquist frequency (100 Hz) and must be removed, not aliased to 50 Hz. Away from the ends
+  // (16 periods of the lower rate, where the kernel is cut) the windowed sinc is accurate to its stop-band level,
+  // about -70 dB for a Blackman window: asserted to 2e-3 of the tones' amplitude.
+  const std::size_t n = 2000;
+  std::string text = "t_s,y_m\n";
+  char row[96];
+  const auto tone = [](double t, bool high) {
+    return std::sin(2 * std::numbers::pi * 10 * t) + (high ? 0.5 * std::sin(2 * std::numbers::pi * 150 * t) : 0.0);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * 1e-3;
+    std::snprintf(row, sizeof row, "%.6f,%.17g\n", t, tone(t, true));
+    text += row;
+  }
+  const std::string path = write("tones.csv", text);
+  for (const double rate : {2500.0, 200.0}) {
+    ImportOptions o;
+    o.resample_rate_hz = rate;
+    const TimeSeries s = read_time_series(path, o);
+    EXPECT_NEAR(s.dt_s, 1 / rate, 1e-15);
+    EXPECT_EQ(s.values.size(), static_cast<std::size_t>(std::floor(1.999 * rate + 1e-9)) + 1);
+    double worst = 0;
+    const double margin = 16 / std::min(1000.0, rate) + 0.02;
+    for (std::size_t i = 0; i < s.values.size(); ++i) {
+      const double t = static_cast<double>(i) / rate;
+      if (t < margin || t > 1.999 - margin) continue;
+      worst = std::max(worst, std::abs(s.values[i] - tone(t, rate > 1000)));
+    }
+    EXPECT_LT(worst, 2e-3) << rate;
+    EXPECT_NE(s.notes.find("resampled from 1000 Hz"), std::string::npos) << s.notes;
+  }
+  ImportOptions o;
+  o.resample_rate_hz = 2;  // 2 s at 2 Hz: 4 samples
+  EXPECT_NE(error_of(path, o).find("at least 8 are needed"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beamid::io
