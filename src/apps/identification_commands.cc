@@ -32,7 +32,14 @@ std::vector<FlagSpec> spike_flags() {
                   "highest spike frequency considered (freq-band: the band's high end), Hz (default Nyquist)"),
       text_flag("spike-frequencies",
                 "choose the spikes: F1,F2,... Hz, the largest peak within +-5 % of each "
-                "(pairs model and data by frequency)")};
+                "(pairs model and data by frequency)"),
+      text_flag("artefacts",
+                "reject | keep: skip peaks at harmonics or sidebands of stronger ones and the offset's leakage, "
+                "listed with the reason (default reject: a record read from a file is a measured one)"),
+      integer_flag("welch",
+                   "pick the spikes on Welch's average of K half-overlapping Hann segments (default: the "
+                   "whole record's DFT)",
+                   2, 1000)};
 }
 
 // Reading the --data record: CSV, LabVIEW .lvm, .npy, .mat or UFF 58, a channel, units, a time window, a rate
@@ -73,6 +80,9 @@ signal::SpikeOptions read_spike_options(const Flags& a) {
   o.count = a.optional_integer("spikes").value_or(o.count);
   o.rule = a.text_or("spike-rule", o.rule);
   o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
+  const std::string artefacts = a.text_or("artefacts", "reject");
+  a.require(artefacts == "reject" || artefacts == "keep", "artefacts", "must be one of reject, keep");
+  o.reject_artefacts = artefacts == "reject";
   o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
   if (a.has("spike-frequencies")) {
     o.frequencies_hz = a.numbers("spike-frequencies");
@@ -116,17 +126,37 @@ costs::CostOptions read_cost_options(const Flags& a) {
 
 int run_spikes(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
-  signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s, read_window(a));
-  const signal::Spectrum spectrum = dft.transform(data.values);
+  // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
+  // the lowest bins is not picked as a mode.
+  const std::string mode = a.text_or("detrend", signal::kDetrendLinear);
+  a.require(mode == signal::kDetrendNone || mode == signal::kDetrendMean || mode == signal::kDetrendLinear, "detrend",
+            "must be one of none, mean, linear");
+  const std::vector<double> values = signal::detrend(data.values, mode);
+  signal::Dft dft(static_cast<int>(values.size()), data.dt_s, read_window(a));
+  a.require(!a.has("welch") || !a.has("window"), "window", "Welch's segments are Hann-windowed: leave out --window");
+  const signal::Spectrum spectrum =
+      a.has("welch") ? signal::welch_spectrum(values, data.dt_s, a.integer("welch")) : dft.transform(values);
   const signal::SpikeOptions options = read_spike_options(a);
-  const auto spikes = signal::detect_spikes(spectrum, options);
-  if (static_cast<int>(spikes.size()) < options.count)
-    std::cerr << "beamid spikes: --spikes " << options.count << ": the record shows only " << spikes.size()
-              << " spike(s) (local maxima of |Z| in the band): " << spikes.size() << " printed\n";
-  out << "spike,bin,frequency_hz,magnitude,n_left,n_right\n";
-  for (std::size_t l = 0; l < spikes.size(); ++l)
-    out << l + 1 << "," << spikes[l].bin << "," << io::full_precision(spikes[l].frequency_hz) << ","
-        << io::full_precision(spikes[l].magnitude) << "," << spikes[l].n_left << "," << spikes[l].n_right << "\n";
+  const auto peaks = signal::label_peaks(spectrum, options);
+  std::vector<signal::Spike> picks;
+  for (const auto& p : peaks)
+    if (p.skipped.empty()) picks.push_back(p.spike);
+  std::sort(picks.begin(), picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
+  if (static_cast<int>(picks.size()) < options.count)
+    std::cerr << "beamid spikes: --spikes " << options.count << ": the record shows only " << picks.size()
+              << " spike(s) (local maxima of |Z| in the band, artefacts skipped): " << picks.size() << " printed\n";
+  // The picks in order of frequency, then the peaks passed over on the way, with the reason.
+  out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped\n";
+  const auto row = [&](const std::string& label, const signal::Spike& p, const std::string& skipped) {
+    out << label << "," << p.bin << "," << io::full_precision(p.frequency_hz) << "," << io::full_precision(p.magnitude)
+        << "," << p.n_left << "," << p.n_right << "," << skipped << "\n";
+  };
+  for (std::size_t l = 0; l < picks.size(); ++l) row(std::to_string(l + 1), picks[l], "");
+  for (const auto& p : peaks)
+    if (!p.skipped.empty()) row("", p.spike, "\"" + p.skipped + "\"");
+  if (a.has("welch"))
+    std::cerr << "beamid spikes: picked on Welch's average of " << a.integer("welch") << " segments of "
+              << spectrum.samples << " samples (df = " << spectrum.df_hz() << " Hz; bins are of that spectrum)\n";
   return 0;
 }
 
@@ -189,6 +219,27 @@ int run_fit(const Flags& a, std::ostream& out) {
   const double factor = a.optional_number("bound-factor").value_or(2.0);
   a.require(factor > 1, "bound-factor", "must be > 1");
   o.estimate = parse_estimate(a, nominal, factor);
+  // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
+  o.cost.pick_detrend = a.text_or(
+      "detrend", o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
+  a.require(o.cost.pick_detrend == signal::kDetrendNone || o.cost.pick_detrend == signal::kDetrendMean ||
+                o.cost.pick_detrend == signal::kDetrendLinear,
+            "detrend", "must be one of none, mean, linear");
+  // --welch K: the spikes picked on Welch's average of the (detrended) record, then fitted on the whole record's DFT
+  // near those frequencies (signal/spikes.h).
+  if (a.has("welch")) {
+    a.require(o.cost.spikes.frequencies_hz.empty(), "welch", "picks the spikes: leave out --spike-frequencies");
+    const signal::Spectrum welch =
+        signal::welch_spectrum(signal::detrend(data.values, o.cost.pick_detrend), data.dt_s, a.integer("welch"));
+    for (const auto& p : signal::label_peaks(welch, o.cost.spikes))
+      if (p.skipped.empty()) o.cost.spikes.frequencies_hz.push_back(p.spike.frequency_hz);
+    std::sort(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end());
+    a.require(!o.cost.spikes.frequencies_hz.empty(), "welch", "found no peak to fit");
+    o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
+    std::cerr << "beamid fit: spikes picked on Welch's average (" << a.integer("welch") << " segments):";
+    for (double f : o.cost.spikes.frequencies_hz) std::cerr << " " << f;
+    std::cerr << " Hz\n";
+  }
   o.start = nominal;
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * start_scale);
@@ -298,6 +349,9 @@ std::vector<FlagSpec> fit_flags() {
       integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, model::kMaxEvaluations),
       text_flag("integrator", "fast | cvode model integrator (default fast)"),
       text_flag("report", "write a Markdown fit report to this file"),
+      text_flag("detrend",
+                "none | mean | linear: removed from the record where the spikes are picked (default linear for a "
+                "free decay, none otherwise)"),
       integer_flag("windows",
                    "also fit K disjoint windows of the record(s) and report the estimates' spread over them, an "
                    "uncertainty that admits model error (default: not done)",

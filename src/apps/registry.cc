@@ -53,16 +53,17 @@ std::vector<Command> make_commands() {
                joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),
                {},
                run_system});
-  c.push_back(
-      {"spikes",
-       "the DFT spikes of a record, with their 20 % supports",
-       joined(joined({text_flag("data", "record: CSV (time, then channels) or LabVIEW .lvm", true)}, spike_flags()),
-              import_flags()),
-       {},
-       run_spikes});
+  c.push_back({"spikes",
+               "the DFT spikes of a record, with their 20 % supports and the peaks skipped as artefacts",
+               joined(joined({text_flag("data", "record: CSV, LabVIEW .lvm, .npy, .mat or UFF 58", true),
+                              text_flag("detrend", "none | mean | linear: removed before the DFT (default linear)")},
+                             spike_flags()),
+                      import_flags()),
+               {},
+               run_spikes});
   c.push_back({"cost",
                "the time, spike, spike-smooth or freq-band cost of a prediction against data",
-               joined(joined({text_flag("data", "record of the data: CSV or LabVIEW .lvm", true),
+               joined(joined({text_flag("data", "record of the data: CSV, LabVIEW .lvm, .npy, .mat or UFF 58", true),
                               text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
                              cost_flags(true)),
                       import_flags()),

@@ -28,7 +28,14 @@ class SpikeCostBase : public Cost {
         samples_(data.size()),
         dft_(static_cast<int>(data.size()), dt_s, options_.window) {
     data_ = dft_.transform(data);
-    const auto spikes = signal::detect_spikes(data_, options_.spikes);
+    auto spikes = signal::detect_spikes(options_.pick_detrend == signal::kDetrendNone
+                                            ? data_
+                                            : dft_.transform(signal::detrend(data, options_.pick_detrend)),
+                                        options_.spikes);
+    for (signal::Spike& s : spikes) {  // picked on the detrended record, read on the record
+      s.magnitude = data_.magnitude(s.bin);
+      std::tie(s.n_left, s.n_right) = signal::support(data_, s.bin, options_.spikes.support_level);
+    }
     if (static_cast<int>(spikes.size()) < options_.spikes.count && !options_.spikes.frequencies_hz.empty()) {
       std::string missing;
       for (double f : options_.spikes.frequencies_hz)
@@ -417,6 +424,9 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = signal::validation_error(o.spikes)) return error;
   if (auto error = signal::validation_error(o.window)) return error;
   if (auto error = frequency_weight_names().violation("frequency_weight", o.frequency_weight)) return error;
+  if (o.pick_detrend != signal::kDetrendNone && o.pick_detrend != signal::kDetrendMean &&
+      o.pick_detrend != signal::kDetrendLinear)
+    return "detrend = '" + o.pick_detrend + "': must be one of none, mean, linear";
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
   for (const auto& [key, value] : eps)
     if (value && !(std::isfinite(*value) && *value >= 0))

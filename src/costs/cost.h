@@ -76,6 +76,10 @@ struct CostOptions {
   std::string model_poles = "dft";                 // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
   int first_free_sample = 0;                       // modal: the free decay starts here (after the excitation)
   std::string frequency_weight = kAbsoluteWeight;  // spike costs: across spikes (above)
+  // Spike costs: the data's spikes are picked on the record less its offset ("mean") or offset and linear trend
+  // ("linear", signal/spikes.h), so that their leakage into the lowest bins is not taken for a mode; the picked
+  // bins' magnitudes and supports are then read from the record as it is, which the model is compared with.
+  std::string pick_detrend = "none";
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);

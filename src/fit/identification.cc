@@ -10,6 +10,7 @@
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"
 #include "model/limits.h"
+#include "signal/spikes.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
 #include "simulation/sensitivities.h"

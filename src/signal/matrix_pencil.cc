@@ -92,8 +92,7 @@ std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double 
     const IdentifiedMode* best = nullptr;
     for (const auto& m : found)
       if (std::abs(m.frequency_hz / f - 1) <= window && (!best || m.amplitude > best->amplitude)) best = &m;
-    if (!best)
-      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
+    if (!best) throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
     chosen.push_back(*best);
   }
   return chosen;

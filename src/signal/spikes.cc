@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "model/errors.h"
@@ -70,8 +71,20 @@ double prominence(const Spectrum& s, int bin, int lo, int hi) {
 
 }  // namespace
 
-std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options) {
-  if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
+namespace {
+
+Spike spike_at(const Spectrum& s, int k, double level) {
+  Spike p;
+  p.bin = k;
+  p.frequency_hz = k * s.df_hz();
+  p.magnitude = s.magnitude(k);
+  std::tie(p.n_left, p.n_right) = support(s, k, level);
+  return p;
+}
+
+// The candidates ranked by the rule (largest score first; ties towards the lower bin, so the order is deterministic),
+// and whether the list holds the chosen frequencies' peaks.
+std::vector<std::pair<double, int>> ranked_candidates(const Spectrum& s, const SpikeOptions& options) {
   const double df = s.df_hz();
   const int lo = static_cast<int>(std::ceil(options.min_frequency_hz / df - 1e-9));
   const int hi = std::min<double>(s.last_bin(), std::floor(options.max_frequency_hz / df + 1e-9));
@@ -95,22 +108,112 @@ std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options)
     const double score = options.rule == "prominence" ? prominence(s, k, std::max(lo, 0), hi) : s.magnitude(k);
     ranked.emplace_back(score, k);
   }
-  // Largest first; ties broken towards the lower bin so that the choice is deterministic.
   std::sort(ranked.begin(), ranked.end(),
             [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
-  if (options.frequencies_hz.empty() && static_cast<int>(ranked.size()) > options.count)
-    ranked.resize(static_cast<std::size_t>(options.count));
-  std::vector<Spike> spikes;
+  return ranked;
+}
+
+// Why the peak at bin k is an artefact of stronger peaks (label_peaks), or "".
+std::string artefact(const Spectrum& s, int k, const std::vector<int>& stronger) {
+  if (k <= 2) return "offset leakage";
+  const double df = s.df_hz(), f = k * df;
+  const double tolerance = std::max(0.005 * f, 1.5 * df);
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", v);
+    return std::string(buffer);
+  };
+  for (int p : stronger)
+    for (int n = 2; n <= 8; ++n)
+      if (std::abs(n * p * df - f) <= tolerance) return "harmonic " + std::to_string(n) + " of " + text(p * df) + " Hz";
+  for (int a : stronger)
+    for (int b : stronger) {
+      if (b >= a) continue;
+      if (std::abs((a + b) * df - f) <= tolerance) return "sideband " + text(a * df) + " + " + text(b * df) + " Hz";
+      if (std::abs((a - b) * df - f) <= tolerance) return "sideband " + text(a * df) + " - " + text(b * df) + " Hz";
+    }
+  return "";
+}
+
+}  // namespace
+
+std::vector<LabelledPeak> label_peaks(const Spectrum& s, const SpikeOptions& options) {
+  if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
+  const auto ranked = ranked_candidates(s, options);
+  std::vector<LabelledPeak> out;
+  std::vector<int> stronger;  // the candidates seen so far that were not skipped, with their magnitudes above
+  int picks = 0;
   for (const auto& [score, k] : ranked) {
-    Spike p;
-    p.bin = k;
-    p.frequency_hz = k * df;
-    p.magnitude = s.magnitude(k);
-    std::tie(p.n_left, p.n_right) = support(s, k, options.support_level);
-    spikes.push_back(p);
+    if (picks == options.count && options.frequencies_hz.empty()) break;
+    LabelledPeak peak{spike_at(s, k, options.support_level), ""};
+    if (options.reject_artefacts && options.frequencies_hz.empty()) {
+      std::vector<int> higher;
+      for (int p : stronger)
+        if (s.magnitude(p) > peak.spike.magnitude) higher.push_back(p);
+      peak.skipped = artefact(s, k, higher);
+    }
+    if (peak.skipped.empty()) ++picks, stronger.push_back(k);
+    out.push_back(peak);
+  }
+  return out;
+}
+
+std::vector<Spike> detect_spikes(const Spectrum& s, const SpikeOptions& options) {
+  if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
+  std::vector<Spike> spikes;
+  if (options.reject_artefacts) {
+    for (const LabelledPeak& p : label_peaks(s, options))
+      if (p.skipped.empty()) spikes.push_back(p.spike);
+  } else {
+    auto ranked = ranked_candidates(s, options);
+    if (options.frequencies_hz.empty() && static_cast<int>(ranked.size()) > options.count)
+      ranked.resize(static_cast<std::size_t>(options.count));
+    for (const auto& [score, k] : ranked) spikes.push_back(spike_at(s, k, options.support_level));
   }
   std::sort(spikes.begin(), spikes.end(), [](const Spike& a, const Spike& b) { return a.bin < b.bin; });
   return spikes;
+}
+
+Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segments) {
+  if (segments < 2) throw InputError("welch segments = " + std::to_string(segments) + ": must be >= 2");
+  // K segments of length L overlapping by L/2 cover (K + 1) L / 2 samples.
+  const auto length = static_cast<int>(2 * values.size() / static_cast<std::size_t>(segments + 1));
+  if (length < 16)
+    throw InputError("welch segments = " + std::to_string(segments) + ": segments of " + std::to_string(length) +
+                     " samples: must be >= 16 (fewer segments)");
+  Dft dft(length, dt_s, WindowOptions{"hann", 0.01});
+  Spectrum mean;
+  std::vector<double> power;
+  for (int k = 0; k < segments; ++k) {
+    const auto begin = values.begin() + static_cast<std::ptrdiff_t>(k) * (length / 2);
+    const Spectrum segment = dft.transform(std::vector<double>(begin, begin + length));
+    if (power.empty()) power.assign(segment.half.size(), 0.0), mean = segment;
+    for (std::size_t b = 0; b < power.size(); ++b) power[b] += std::norm(segment.half[b]) / segments;
+  }
+  for (std::size_t b = 0; b < power.size(); ++b) mean.half[b] = std::sqrt(power[b]);
+  return mean;
+}
+
+std::vector<double> detrend(std::vector<double> values, const std::string& mode) {
+  if (mode == kDetrendNone || values.empty()) return values;
+  if (mode != kDetrendMean && mode != kDetrendLinear)
+    throw InputError("detrend = '" + mode + "': must be one of none, mean, linear");
+  const auto n = static_cast<double>(values.size());
+  double mean = 0;
+  for (double v : values) mean += v / n;
+  double slope = 0;
+  const double centre = (n - 1) / 2;
+  if (mode == kDetrendLinear && values.size() > 1) {  // least squares on i - centre, which is orthogonal to 1
+    double sxy = 0, sxx = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double x = static_cast<double>(i) - centre;
+      sxy += x * values[i];
+      sxx += x * x;
+    }
+    slope = sxy / sxx;
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] -= mean + slope * (static_cast<double>(i) - centre);
+  return values;
 }
 
 PoleEstimate three_bin_change(const Spectrum& s, const Spectrum& change, int bin) {

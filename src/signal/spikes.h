@@ -30,6 +30,9 @@ struct SpikeOptions {
   // count is their number; `rule` and the band are not used.
   std::vector<double> frequencies_hz;
   double frequency_window = 0.05;
+  // Measured records (label_peaks below): a candidate at an integer multiple of a stronger peak, at a stronger peak
+  // plus or minus a stronger lower one, or at the offset's leakage is labelled and skipped. Off for synthetic records.
+  bool reject_artefacts = false;
 };
 // First violated constraint ("spikes = 0: must be >= 1"), or nothing.
 std::optional<std::string> validation_error(const SpikeOptions& options);
@@ -48,6 +51,33 @@ std::vector<int> local_maxima(const Spectrum& spectrum);
 std::pair<int, int> support(const Spectrum& spectrum, int bin, double level);
 // The NM spikes by the rule, ascending in frequency, with their supports. Fewer when fewer maxima exist.
 std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& options);
+
+// The candidates of the "largest" or "prominence" rule in the order of that rule, each with the reason it was skipped
+// ("" for a pick), down to the last pick (so that a user sees why a higher peak was passed over). With
+// reject_artefacts, a candidate is skipped when, within max(0.5 %, 1.5 bins) of its frequency, there is
+//   "harmonic n of F Hz":      n F for n = 2..8 and a stronger picked or candidate peak at F (a nonlinearity, a
+//                              clipped or rattling sensor; a beam's own modes are not integer multiples);
+//   "sideband F1 +- F2 Hz":    F1 + F2 or F1 - F2 for stronger peaks F1 > F2 (modulation, beating);
+//   "offset leakage":          bins 1 and 2 (what remains of a DC offset or a drift after detrending).
+// The picks are the first `count` candidates not skipped. Chosen frequencies (frequencies_hz) are never skipped.
+struct LabelledPeak {
+  Spike spike;
+  std::string skipped;  // why it was not picked ("" when it was)
+};
+std::vector<LabelledPeak> label_peaks(const Spectrum& spectrum, const SpikeOptions& options);
+
+// Welch's averaged spectrum for picking: `segments` Hann-windowed segments of equal length overlapping by half, the
+// magnitude of each bin the root mean square of theirs (a frequency resolution `segments`/2 + 1/2 times coarser than
+// the whole record's, and a noise floor whose scatter falls as 1/sqrt(segments)). Its phases are 0: only for
+// picking. InputError for segments < 2 or a segment shorter than 16 samples.
+Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segments);
+
+// The record less its least-squares offset ("mean") or offset and linear trend ("linear"); "none" returns it as is.
+// A free decay has no offset of its own: what the sensor or the DAQ adds would leak into the lowest bins.
+inline const std::string kDetrendNone = "none";
+inline const std::string kDetrendMean = "mean";
+inline const std::string kDetrendLinear = "linear";
+std::vector<double> detrend(std::vector<double> values, const std::string& mode);
 
 // Sub-bin pole estimate from the complex 3-bin ratio (Jacobsen), R = (Z(k-1) - Z(k+1)) / (2 Z(k) - Z(k-1) - Z(k+1)):
 // for a sampled damped exponential e^{(j 2 pi f - sigma) t} on the rectangular window, Z(k) ~ 1/(f/df - k + j sigma
