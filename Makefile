@@ -47,7 +47,7 @@ test-sanitize: deps
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer on every reader (beam and geometry TOML, study TOML, CSV, LVM, the command line) for FUZZ_SECONDS each,
+# libFuzzer on every reader (beam and geometry TOML, study TOML, CSV, LVM, .npy, UFF 58, the command line) for FUZZ_SECONDS each,
 # under ASan and UBSan, from the seeds and regressions in tests/fuzz/corpus/<target>/. A finding is written to
 # build-fuzz/crash-<target>-*: add it to the corpus (it then runs in `make test`) and fix the reader.
 FUZZ_BUILD   ?= build-fuzz
@@ -58,7 +58,7 @@ FUZZ_SECONDS ?= 60
 # not the clock, ends every target.
 FUZZ_SEED    ?= 0
 FUZZ_RUNS    ?= -1
-FUZZ_TARGETS := beam_file study_file csv_record lvm_record command_line
+FUZZ_TARGETS := beam_file study_file csv_record lvm_record npy_record uff_record command_line
 fuzz:
 	@bash .ci/deps.sh fuzz
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \

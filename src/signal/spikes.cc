@@ -115,7 +115,7 @@ std::vector<std::pair<double, int>> ranked_candidates(const Spectrum& s, const S
 
 // Why the peak at bin k is an artefact of stronger peaks (label_peaks), or "".
 std::string artefact(const Spectrum& s, int k, const std::vector<int>& stronger) {
-  if (k <= 2) return "offset leakage";
+  if (k == 1) return "offset leakage";  // one cycle in the record: no oscillation a mode can be identified from
   const double df = s.df_hz(), f = k * df;
   const double tolerance = std::max(0.005 * f, 1.5 * df);
   const auto text = [](double v) {

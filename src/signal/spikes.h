@@ -58,7 +58,7 @@ std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& o
 //   "harmonic n of F Hz":      n F for n = 2..8 and a stronger picked or candidate peak at F (a nonlinearity, a
 //                              clipped or rattling sensor; a beam's own modes are not integer multiples);
 //   "sideband F1 +- F2 Hz":    F1 + F2 or F1 - F2 for stronger peaks F1 > F2 (modulation, beating);
-//   "offset leakage":          bins 1 and 2 (what remains of a DC offset or a drift after detrending).
+//   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).
 // The picks are the first `count` candidates not skipped. Chosen frequencies (frequencies_hz) are never skipped.
 struct LabelledPeak {
   Spike spike;

@@ -44,6 +44,19 @@ void lvm_record(const std::uint8_t* data, std::size_t size) {
   expect_value_or_error([&] { io::parse_time_series(text_of(data, size), "fuzz.lvm"); });
 }
 
+void npy_record(const std::uint8_t* data, std::size_t size) {
+  io::ImportOptions o;
+  o.sample_rate_hz = 1000;  // an array has no time base
+  o.channel = "1";
+  expect_value_or_error([&] { io::parse_time_series(text_of(data, size), "fuzz.npy", o); });
+}
+
+void uff_record(const std::uint8_t* data, std::size_t size) {
+  io::ImportOptions o;
+  o.channel = "1";
+  expect_value_or_error([&] { io::parse_time_series(text_of(data, size), "fuzz.uff", o); });
+}
+
 void command_line(const std::uint8_t* data, std::size_t size) {
   std::vector<std::string> args{"beamid"};
   std::string current;
@@ -65,11 +78,9 @@ void command_line(const std::uint8_t* data, std::size_t size) {
 }
 
 const std::vector<Target>& targets() {
-  static const std::vector<Target> all = {{"beam_file", beam_file},
-                                          {"study_file", study_file},
-                                          {"csv_record", csv_record},
-                                          {"lvm_record", lvm_record},
-                                          {"command_line", command_line}};
+  static const std::vector<Target> all = {
+      {"beam_file", beam_file},   {"study_file", study_file}, {"csv_record", csv_record},    {"lvm_record", lvm_record},
+      {"npy_record", npy_record}, {"uff_record", uff_record}, {"command_line", command_line}};
   return all;
 }
 

@@ -15,6 +15,8 @@ void beam_file(const std::uint8_t* data, std::size_t size);     // [beam] and [g
 void study_file(const std::uint8_t* data, std::size_t size);    // study TOML
 void csv_record(const std::uint8_t* data, std::size_t size);    // CSV time series
 void lvm_record(const std::uint8_t* data, std::size_t size);    // LabVIEW .lvm time series
+void npy_record(const std::uint8_t* data, std::size_t size);    // NumPy .npy array
+void uff_record(const std::uint8_t* data, std::size_t size);    // UFF dataset 58, ASCII or binary
 void command_line(const std::uint8_t* data, std::size_t size);  // beamid arguments, NUL-separated
 
 struct Target {
