@@ -28,6 +28,10 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   import.start_s = r.start_s;
   import.duration_s = r.duration_s;
   import.resample = r.resample;
+  import.sample_rate_hz = r.sample_rate_hz;
+  import.resample_rate_hz = r.resample_rate_hz;
+  import.variable = r.variable;
+  import.time_variable = r.time_variable;
   out.series = io::read_time_series(r.file, import);
   out.nominal = config::load_beam_toml(r.beam_file.empty() ? spec.beam_file : r.beam_file);
   // The data's sub-bin peak frequencies near peaks_hz, and damping ratios sigma / |lambda| from the 3-bin rates.

@@ -88,7 +88,14 @@ RealRecordSpec read_record(Table r, const std::string& default_name,
     s.beam_file = relative(r.string("beam", std::nullopt));
     if (!io::is_existing_file(s.beam_file)) r.fail("beam", "'" + s.beam_file + "'", "must be an existing beam file");
   }
-  r.finish({"name", "file", "channel", "units", "start_s", "duration_s", "resample", "peaks_hz", "beam"});
+  if (r.has("sample_rate_hz"))
+    s.sample_rate_hz = r.number("sample_rate_hz", std::nullopt, positive, "must be > 0 (Hz)");
+  if (r.has("resample_rate_hz"))
+    s.resample_rate_hz = r.number("resample_rate_hz", std::nullopt, positive, "must be > 0 (Hz)");
+  s.variable = r.string("variable", "");
+  s.time_variable = r.string("time_variable", "");
+  r.finish({"name", "file", "channel", "units", "start_s", "duration_s", "resample", "peaks_hz", "beam",
+            "sample_rate_hz", "resample_rate_hz", "variable", "time_variable"});
   return s;
 }
 

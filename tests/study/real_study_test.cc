@@ -151,6 +151,11 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   EXPECT_NE(load_error("twice", twice).find("candidate2.name"), std::string::npos) << load_error("twice", twice);
   const std::string typo = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"a\"\nestimates = [\"EI\"]\n";
   EXPECT_NE(load_error("typo", typo).find("estimates"), std::string::npos) << load_error("typo", typo);
+  // A record's rate must be positive (the key named with its record).
+  std::string rate = kTwoRecords;
+  rate.replace(rate.find("peaks_hz = [25.07"), 0, "sample_rate_hz = 0.0\n");
+  EXPECT_NE(load_error("rate", rate + fit).find("record2.sample_rate_hz"), std::string::npos)
+      << load_error("rate", rate + fit);
   // One window.
   EXPECT_NE(load_error("windows", std::string(kTwoRecords) + fit + "windows = 1\n").find("fit.windows"),
             std::string::npos);
