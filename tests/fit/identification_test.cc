@@ -17,6 +17,7 @@
 #include "io/provenance.h"
 #include "io/text.h"
 #include "model/errors.h"
+#include "same_model_record.h"
 #include "signal/noise.h"
 
 namespace beamid::fit {
@@ -239,11 +240,7 @@ SameModelFit same_model_fit(const model::BeamParameters& truth, bool tip_force =
   f.options.cost.name = "time";
   f.options.optimizer.method = default_optimizer("time");
   f.options.start = truth;
-  const galerkin::SplineSpace space(kElements);
-  const auto trace =
-      simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth, f.options.experiment, {});
-  EXPECT_TRUE(trace.ok()) << trace.status;
-  f.data = trace.y;
+  f.data = same_model_record(truth, f.options.experiment, kElements);
   return f;
 }
 

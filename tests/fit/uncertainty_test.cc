@@ -9,6 +9,7 @@
 #include "fit/window_spread.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"
+#include "same_model_record.h"
 #include "signal/noise.h"
 #include "simulation/simulator.h"
 
@@ -37,11 +38,7 @@ PulseFit pulse_fit(const model::BeamParameters& truth, const model::BeamParamete
     const double v = model::parameter_value(truth, key);
     s.options.estimate.push_back({key, v / 2, v * 2});
   }
-  const galerkin::SplineSpace space(kElements);
-  const auto trace =
-      simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth, s.options.experiment, {});
-  EXPECT_TRUE(trace.ok()) << trace.status;
-  s.clean = trace.y;
+  s.clean = same_model_record(truth, s.options.experiment, kElements);
   return s;
 }
 

@@ -15,24 +15,10 @@
 
 #include "io/time_series.h"
 #include "model/errors.h"
+#include "record_files.h"
 
 namespace beamid::io {
 namespace {
-
-std::string write(const std::string& name, const std::string& bytes) {
-  const std::string path = testing::TempDir() + name;
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path;
-}
-
-std::string error_of(const std::string& path, const ImportOptions& o = {}) {
-  try {
-    read_time_series(path, o);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 // The test signal: a decaying 37 Hz sine plus a 3 Hz one, at 1 kHz.
 double signal_at(double t) {

@@ -9,29 +9,15 @@
 #include <fstream>
 
 #include "model/errors.h"
+#include "record_files.h"
 
 namespace beamid::io {
 namespace {
-
-std::string write(const std::string& name, const std::string& text) {
-  const std::string path = testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::string rows(int n, double dt) {
   std::string text = "t_s,displacement_m\n";
   for (int i = 0; i < n; ++i) text += std::to_string(i * dt) + "," + std::to_string(0.1 * i) + "\n";
   return text;
-}
-
-std::string error_of(const std::string& path, const ImportOptions& o = {}) {
-  try {
-    read_time_series(path, o);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(TimeSeries, ReadsAUniformRecord) {
