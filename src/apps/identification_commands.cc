@@ -231,8 +231,23 @@ int run_fit(const Flags& a, std::ostream& out) {
     a.require(o.cost.spikes.frequencies_hz.empty(), "welch", "picks the spikes: leave out --spike-frequencies");
     const signal::Spectrum welch =
         signal::welch_spectrum(signal::detrend(data.values, o.cost.pick_detrend), data.dt_s, a.integer("welch"));
-    for (const auto& p : signal::label_peaks(welch, o.cost.spikes))
-      if (p.skipped.empty()) o.cost.spikes.frequencies_hz.push_back(p.spike.frequency_hz);
+    // Each pick refined on the whole record's DFT: its largest local maximum within one Welch bin ((K + 1)/2 of the
+    // record's), which the cost's +-5 % window around the frequency then finds however coarse the Welch bin was.
+    signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s);
+    const signal::Spectrum full = dft.transform(signal::detrend(data.values, o.cost.pick_detrend));
+    const std::vector<int> maxima = signal::local_maxima(full);
+    for (const auto& p : signal::label_peaks(welch, o.cost.spikes)) {
+      if (!p.skipped.empty()) continue;
+      int best = -1;
+      for (int k : maxima)
+        if (std::abs(full.frequency_hz(k) - p.spike.frequency_hz) <= welch.df_hz() &&
+            (best < 0 || full.magnitude(k) > full.magnitude(best)))
+          best = k;
+      const double f = best >= 0 ? full.frequency_hz(best) : p.spike.frequency_hz;
+      if (std::find(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end(), f) ==
+          o.cost.spikes.frequencies_hz.end())
+        o.cost.spikes.frequencies_hz.push_back(f);
+    }
     std::sort(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end());
     a.require(!o.cost.spikes.frequencies_hz.empty(), "welch", "found no peak to fit");
     o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());

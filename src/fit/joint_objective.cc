@@ -58,7 +58,7 @@ JointObjective::JointObjective(const FitOptions& options, const std::vector<Reco
 }
 
 costs::Evaluation JointObjective::stack(std::vector<Objective::Output>& parts) const {
-  if (parts.size() == 1) return parts.front().evaluation;
+  if (parts_.size() == 1) return parts.front().evaluation;
   costs::Evaluation joint;
   joint.a4.clear();
   for (std::size_t r = 0; r < parts.size(); ++r) {

@@ -180,12 +180,13 @@ MatArray read_mat_variable(const std::string& file, const std::string& bytes, co
                      (v->class_type == MAT_C_STRUCT ? " (fields: " + field_names(v) + ")" : "") +
                      ": a record must be a real numeric vector or matrix");
   if (v->isComplex) throw InputError(where + "variable '" + path + "' is complex: a record must be real");
-  if (v->rank != 2 || !v->dims || !v->data)
+  if (v->rank != 2 || !v->dims)
     throw InputError(where + "variable '" + path + "' has " + std::to_string(v->rank) +
                      " dimensions: a record must be a vector or a matrix");
   out.rows = v->dims[0];
   out.columns = v->dims[1];
-  if (out.rows == 0 || out.columns == 0) throw InputError(where + "variable '" + path + "' is empty");
+  if (out.rows == 0 || out.columns == 0 || !v->data) throw InputError(where + "variable '" + path + "' is empty");
+  out.relative_precision = v->class_type == MAT_C_SINGLE ? 1.2e-7 : v->class_type == MAT_C_DOUBLE ? 4.4e-16 : 0;
   numeric_bytes = static_cast<std::uint64_t>(out.rows) * out.columns * sizeof(double);
   check_memory(where + "variable '" + path + "'", static_cast<double>(numeric_bytes), std::cerr);
   out.values.resize(out.rows * out.columns);

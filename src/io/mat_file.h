@@ -22,7 +22,8 @@ struct MatArray {
   std::string version;  // "5" or "7.3"
   std::string path;     // the variable path read
   std::size_t rows = 0, columns = 0;
-  std::vector<double> values;  // row-major
+  std::vector<double> values;     // row-major
+  double relative_precision = 0;  // one unit in the last place of the stored type: 1.2e-7 single, 4.4e-16 double
   double at(std::size_t i, std::size_t j) const { return values[i * columns + j]; }
 };
 

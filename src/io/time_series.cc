@@ -312,7 +312,7 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
 // from --sample-rate, or from a time vector of the same length.
 Samples array_samples(const std::string& path, const std::string& format, const std::string& what, std::size_t rows,
                       std::size_t columns, const std::function<double(std::size_t, std::size_t)>& at,
-                      const std::vector<double>* time, const ImportOptions& o) {
+                      const std::vector<double>* time, double time_relative_precision, const ImportOptions& o) {
   Samples out;
   TimeSeries& s = out.series;
   s.path = path;
@@ -331,6 +331,16 @@ Samples array_samples(const std::string& path, const std::string& format, const 
                        std::to_string(samples) + ", one per sample of " + what);
     out.t = *time;
     out.time_in_file = true;
+    // A stored time vector is as precise as its type: one unit in the last place of its largest value (float32:
+    // 1.2e-7 of it, double: 4.4e-16), which covers the rounding of each time and of the end points dt comes from.
+    double largest = 0;
+    for (std::size_t i = 0; i < samples; ++i) {
+      if (!std::isfinite(out.t[i]))
+        throw InputError(path + ": time value " + std::to_string(i + 1) + " = " + format_value(out.t[i]) +
+                         ": must be finite");
+      largest = std::max(largest, std::abs(out.t[i]));
+    }
+    out.time_resolution = time_relative_precision * largest;
   } else {
     if (!o.sample_rate_hz)
       throw InputError(path + ": " + format + " holds no time base: give --sample-rate HZ" +
@@ -372,7 +382,7 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
   out.v = f.y;
   if (f.even) {
     if (!(f.dx > 0))
-      throw InputError(path + ":" + std::to_string(f.dataset_line + 7) + ": abscissa increment " + format_value(f.dx) +
+      throw InputError(path + ":" + std::to_string(f.dataset_line + 8) + ": abscissa increment " + format_value(f.dx) +
                        ": must be > 0");
     for (std::size_t i = 0; i < f.y.size(); ++i) out.t.push_back(f.x0 + static_cast<double>(i) * f.dx);
   } else {
@@ -393,8 +403,9 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
 
 // Band-limited resampling onto t0 + i / rate (time_series.h): y(tau) = sum_k x_k h(tau - t_k) / sum_k h(tau - t_k),
 // h a Blackman-windowed sinc of cutoff fc = fs/2 when the rate rises (interpolation) and 0.45 rate when it falls (an
-// anti-alias low-pass first, with the last 10 % below the new Nyquist frequency as transition band), spanning +-16
-// periods of the lower rate. Dividing by the weights' sum keeps a constant constant, also at the record's ends.
+// anti-alias low-pass first), spanning +-32 periods of the lower rate: the Blackman window's transition band is then
+// about 3/32 of the rate wide, 0.40-0.50 of the new rate when decimating. Dividing by the weights' sum keeps a constant
+// constant, also at the record's ends.
 void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   const double fs = 1 / s.dt_s;
   const auto n = static_cast<double>(s.values.size());
@@ -408,7 +419,7 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
                      " samples: at most 2^28");
   check_memory(path + ": resampling to " + format_value(count) + " samples", 8 * count, std::cerr);
   const double cutoff = rate < fs ? 0.45 * rate : 0.5 * fs;
-  const double half = 16 / std::min(fs, rate);  // s
+  const double half = 32 / std::min(fs, rate);  // s
   std::vector<double> y(static_cast<std::size_t>(count));
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double tau = static_cast<double>(i) / rate;
@@ -544,14 +555,15 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
   if (npy) {
     const NpyArray a = parse_npy(bytes, path);
     const std::size_t rows = a.shape[0], columns = a.shape.size() == 2 ? a.shape[1] : 1;
-    return finish(
-        array_samples(
-            path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); }, nullptr, o),
-        path, o);
+    return finish(array_samples(
+                      path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
+                      nullptr, 0, o),
+                  path, o);
   }
   if (mat) {
     const MatArray a = read_mat_variable(path, bytes, o.variable);
     std::vector<double> time;
+    double time_precision = 0;
     if (!o.time_variable.empty()) {
       if (o.sample_rate_hz) throw InputError(path + ": give --time-variable or --sample-rate, not both");
       const MatArray t = read_mat_variable(path, bytes, o.time_variable);
@@ -559,10 +571,11 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
         throw InputError(path + ": time variable '" + t.path + "' is " + std::to_string(t.rows) + " x " +
                          std::to_string(t.columns) + ": must be a vector");
       time = t.values;
+      time_precision = t.relative_precision;
     }
     Samples samples = array_samples(
         path, "mat", a.path, a.rows, a.columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
-        o.time_variable.empty() ? nullptr : &time, o);
+        o.time_variable.empty() ? nullptr : &time, time_precision, o);
     samples.series.format = "mat v" + a.version;
     return finish(std::move(samples), path, o);
   }

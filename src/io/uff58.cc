@@ -33,7 +33,12 @@ class Cursor {
     ++line_;
     return text;
   }
-  void skip_bytes(std::size_t count) { position_ += count; }
+  // Binary data: its bytes are not lines, but an editor counts the line feeds among them, and so do the messages.
+  void skip_bytes(std::size_t count) {
+    line_ += static_cast<int>(std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(position_),
+                                         bytes_.begin() + static_cast<std::ptrdiff_t>(position_ + count), '\n'));
+    position_ += count;
+  }
 
  private:
   const std::string& bytes_;
@@ -192,12 +197,16 @@ std::vector<UffFunction> parse_uff58(const std::string& bytes, const std::string
       }
       c.skip_bytes(static_cast<std::size_t>(data_bytes));
       // The rest of the last data line, then the closing delimiter.
-      while (!c.done()) {
+      bool closed = false;
+      while (!c.done() && !closed) {
         const int at = c.line();
         const std::string rest = trim(c.next());
-        if (rest == "-1") break;
-        if (!rest.empty()) fail(path, at, "'" + rest.substr(0, 40) + "' after the binary data: expected -1");
+        closed = rest == "-1";
+        if (!closed && !rest.empty()) fail(path, at, "'" + rest.substr(0, 40) + "' after the binary data: expected -1");
       }
+      if (!closed)
+        fail(path, c.line(),
+             "the file ends inside the dataset 58b at line " + std::to_string(delimiter_line) + " (no closing -1)");
     } else {
       f.first_value_line = c.line();
       // Fixed-width fields: E13.5 for single precision, E20.12 for double; uneven double pairs (E13.5, E20.12).
@@ -212,7 +221,8 @@ std::vector<UffFunction> parse_uff58(const std::string& bytes, const std::string
         std::size_t begin = 0;
         for (int k = 0; begin < line.size(); ++k) {
           const bool single = data_type == 2 || data_type == 5;
-          const std::size_t width = single ? 13 : (!f.even && k % 2 == 0 ? 13 : 20);
+          // Uneven double precision: each point is an E13.5 abscissa then E20.12 ordinate(s) (one real, two complex).
+          const std::size_t width = single ? 13 : (!f.even && k % per_point == 0 ? 13 : 20);
           const std::string text = field(line, begin, width);
           if (!text.empty()) {
             if (values.size() == wanted)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numbers>
 
 #include "model/errors.h"
@@ -118,6 +119,9 @@ std::string artefact(const Spectrum& s, int k, const std::vector<int>& stronger)
   if (k == 1) return "offset leakage";  // one cycle in the record: no oscillation a mode can be identified from
   const double df = s.df_hz(), f = k * df;
   const double tolerance = std::max(0.005 * f, 1.5 * df);
+  // Too coarse a spectrum to tell: near the lowest bins 1.5 bins cover whole mode ratios (a cantilever's f2/f1 =
+  // 6.27 is "harmonic 6" of a mode at bin 5), so nothing is labelled where the tolerance exceeds 1 % of f.
+  if (tolerance > 0.01 * f) return "";
   const auto text = [](double v) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.4g", v);
@@ -140,19 +144,28 @@ std::string artefact(const Spectrum& s, int k, const std::vector<int>& stronger)
 std::vector<LabelledPeak> label_peaks(const Spectrum& s, const SpikeOptions& options) {
   if (auto error = validation_error(options)) throw InputError("spike detection: " + *error);
   const auto ranked = ranked_candidates(s, options);
+  // The labels first, by magnitude whatever the rule: each candidate against the unlabelled candidates above it (a
+  // harmonic that outranks its fundamental by prominence is still the fundamental's harmonic).
+  std::map<int, std::string> label;
+  if (options.reject_artefacts && options.frequencies_hz.empty()) {
+    std::vector<int> by_height;
+    for (const auto& [score, k] : ranked) by_height.push_back(k);
+    std::stable_sort(by_height.begin(), by_height.end(), [&](int a, int b) { return s.magnitude(a) > s.magnitude(b); });
+    std::vector<int> real;
+    for (int k : by_height) {
+      std::vector<int> higher;
+      for (int p : real)
+        if (s.magnitude(p) > s.magnitude(k)) higher.push_back(p);
+      label[k] = artefact(s, k, higher);
+      if (label[k].empty()) real.push_back(k);
+    }
+  }
   std::vector<LabelledPeak> out;
-  std::vector<int> stronger;  // the candidates seen so far that were not skipped, with their magnitudes above
   int picks = 0;
   for (const auto& [score, k] : ranked) {
     if (picks == options.count && options.frequencies_hz.empty()) break;
-    LabelledPeak peak{spike_at(s, k, options.support_level), ""};
-    if (options.reject_artefacts && options.frequencies_hz.empty()) {
-      std::vector<int> higher;
-      for (int p : stronger)
-        if (s.magnitude(p) > peak.spike.magnitude) higher.push_back(p);
-      peak.skipped = artefact(s, k, higher);
-    }
-    if (peak.skipped.empty()) ++picks, stronger.push_back(k);
+    LabelledPeak peak{spike_at(s, k, options.support_level), label.count(k) ? label[k] : ""};
+    if (peak.skipped.empty()) ++picks;
     out.push_back(peak);
   }
   return out;

@@ -54,8 +54,9 @@ std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& o
 
 // The candidates of the "largest" or "prominence" rule in the order of that rule, each with the reason it was skipped
 // ("" for a pick), down to the last pick (so that a user sees why a higher peak was passed over). With
-// reject_artefacts, a candidate is skipped when, within max(0.5 %, 1.5 bins) of its frequency, there is
-//   "harmonic n of F Hz":      n F for n = 2..8 and a stronger picked or candidate peak at F (a nonlinearity, a
+// reject_artefacts, a candidate is skipped when, within max(0.5 %, 1.5 bins) of its frequency (and only where that is
+// at most 1 % of it: a coarser spectrum cannot tell a harmonic from a mode), there is
+//   "harmonic n of F Hz":      n F for n = 2..8 and a stronger peak at F that is not itself skipped (a nonlinearity, a
 //                              clipped or rattling sensor; a beam's own modes are not integer multiples);
 //   "sideband F1 +- F2 Hz":    F1 + F2 or F1 - F2 for stronger peaks F1 > F2 (modulation, beating);
 //   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).

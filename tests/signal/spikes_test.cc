@@ -59,6 +59,24 @@ TEST(Spikes, ArtefactsOfStrongerPeaksAreLabelledAndSkipped) {
   ASSERT_EQ(detect_spikes(s, o).size(), 1u);
 }
 
+TEST(Spikes, ACoarseSpectrumLabelsNothing) {
+  // A cantilever's first two modes at bins 5 and 31 (f2/f1 = 6.2): within 1.5 bins of "harmonic 6" of mode 1, but
+  // 1.5 bins are 5 % of f2 there, too coarse to tell a harmonic from a mode, so both are picked.
+  std::vector<double> z(800);
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double t = static_cast<double>(i) * 1e-2;
+    z[i] = std::sin(2 * std::numbers::pi * 0.625 * t) + 0.5 * std::sin(2 * std::numbers::pi * 3.875 * t);
+  }
+  Dft dft(800, 1e-2);
+  SpikeOptions o;
+  o.count = 2;
+  o.reject_artefacts = true;
+  const std::vector<Spike> picked = detect_spikes(dft.transform(z), o);
+  ASSERT_EQ(picked.size(), 2u);
+  EXPECT_EQ(picked[0].bin, 5);
+  EXPECT_EQ(picked[1].bin, 31);
+}
+
 TEST(Spikes, DetrendRemovesExactlyTheOffsetAndTheTrend) {
   std::vector<double> z(101);
   for (std::size_t i = 0; i < z.size(); ++i)
@@ -86,7 +104,7 @@ TEST(Spikes, AnOffsetOnAFreeDecayIsNotPickedOnceDetrended) {
   for (std::size_t i = 0; i < z.size(); ++i) {
     const double t = static_cast<double>(i) * 1e-3;
     z[i] = 3 * (t - 1.0235) + std::exp(-0.5 * t) * (std::sin(2 * std::numbers::pi * 12 * t) +
-                                             0.5 * std::sin(2 * std::numbers::pi * 55 * t));
+                                                    0.5 * std::sin(2 * std::numbers::pi * 55 * t));
   }
   costs::CostOptions o;
   o.name = costs::kSpikeCost;
