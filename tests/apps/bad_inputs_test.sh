@@ -128,5 +128,28 @@ named=$(grep -c "study store: .*moved to" "$tmp/err")
 if [ "$named" -eq 8 ] && diff -r -x store -x timings.csv "$tmp/clean" "$tmp/damaged" >/dev/null; then ok
 else bad "damaged store: $named of 8 records named; $(diff -rq -x store -x timings.csv "$tmp/clean" "$tmp/damaged" | head -3)"; fi
 
+# Issue 11's flags: channel and sensor lists, the formats without a time base, resampling, spike picking.
+paste -d, "$tmp/z.csv" <(cut -d, -f2 "$tmp/z.csv") | sed '1s/.*/t_s,a,b/' >"$tmp/two.csv"
+expect_error "sensor-x count" "--sensor-x = '0.2': must list one position per --channel (2 channel(s))" fit \
+  --data "$tmp/two.csv" --channel a,b --sensor-x 0.2 "${S[@]}" --estimate EI --cost time
+expect_error "sensor-x off the beam" "--sensor-x = '0.2,0.9': channel 2: sensor_x_m = 0.9" fit \
+  --data "$tmp/two.csv" --channel a,b --sensor-x 0.2,0.9 "${S[@]}" --estimate EI --cost time
+expect_error "channel list empty item" "must be a comma-separated list without empty items" fit \
+  --data "$tmp/two.csv" --channel a,,b --sensor-x 0.2,0.3 "${S[@]}" --estimate EI --cost time
+expect_error "channel list for spikes" "must name one channel (several are for beamid fit)" spikes \
+  --data "$tmp/two.csv" --channel a,b
+expect_error "variable on csv" "name variables of a MAT-file; this is not one" spikes --data "$tmp/z.csv" --variable x
+expect_error "sample rate on csv" "--sample-rate is for records without a time base" spikes --data "$tmp/z.csv" \
+  --sample-rate 1000
+expect_error "resample rate negative" "resample rate = -5 Hz: must be > 0" spikes --data "$tmp/z.csv" --resample-rate -5
+expect_error "artefacts maybe" "--artefacts = 'maybe': must be one of reject, keep" spikes --data "$tmp/z.csv" \
+  --artefacts maybe
+expect_error "detrend cubic" "--detrend = 'cubic': must be one of none, mean, linear" spikes --data "$tmp/z.csv" \
+  --detrend cubic
+expect_error "welch 1" "--welch = '1'" spikes --data "$tmp/z.csv" --welch 1
+expect_error "windows 1" "--windows = '1'" fit --data "$tmp/z.csv" "${S[@]}" --estimate EI --cost time --windows 1
+printf '\x93NUMPY\x01\x00\x10\x00{"descr": 5}   \n' >"$tmp/bad.npy"
+expect_error "npy without descr quotes" "bad.npy: byte 10" spikes --data "$tmp/bad.npy" --sample-rate 1000
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -103,6 +103,15 @@ check "fit: modes at the estimate" grep -q "modes at the estimate (data by matri
 check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
+# Two channels of one test (mid-span and tip) fitted jointly: the same record's model, so EI comes back to round-off;
+# stderr lists each channel's own cost, the report the records' table.
+"$BEAMID" simulate --beam banks-aluminium --elements 4 --pulse-width 0.004 --sensor-x 0.2 >"$tmp/zmid.csv"
+paste -d, "$tmp/zmid.csv" <(cut -d, -f2 "$tmp/z.csv") | sed '1s/.*/t_s,mid,tip/' >"$tmp/z2.csv"
+"$BEAMID" fit --data "$tmp/z2.csv" --channel mid,tip --sensor-x 0.2,0.4573 --beam banks-aluminium --elements 4 \
+  --pulse-width 0.004 --estimate EI --cost time --start-scale 1.001 --report "$tmp/fit2.md" >"$tmp/f2.csv" 2>"$tmp/f2.err"
+check "joint fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f2.csv"
+check "joint fit: each channel's cost" grep -q "record 2 'tip' (sensor at 0.4573 m): ok" "$tmp/f2.err"
+check "joint fit report: the records' table" grep -q "^| 2 | tip | ok |" "$tmp/fit2.md"
 expect_error "fit unknown key" "'EJ' is not a parameter of this beam" fit --data "$tmp/z.csv" --beam banks-aluminium \
   --elements 4 --estimate EJ --cost time
 expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band, modal" fit --data "$tmp/z.csv" \
