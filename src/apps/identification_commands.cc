@@ -210,6 +210,9 @@ int run_fit(const Flags& a, std::ostream& out) {
   o.refine = a.text_or("refine", o.refine);
   a.require(!a.has("refine") || o.strategy == fit::kHybrid, "refine", "is the second cost of --strategy hybrid only");
   o.scaling = a.text_or("scaling", o.scaling);
+  o.record_weights = a.text_or("record-weights", o.record_weights);
+  a.require(o.record_weights == fit::kRmsWeights || o.record_weights == fit::kNoiseWeights, "record-weights",
+            "must be one of rms, noise");
   o.starts = a.optional_integer("starts").value_or(o.starts);
   const std::optional<int> seed = a.optional_integer("seed");
   a.require(!seed || *seed >= 0, "seed", "must be an integer >= 0");
@@ -364,6 +367,9 @@ std::vector<FlagSpec> fit_flags() {
       integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, model::kMaxEvaluations),
       text_flag("integrator", "fast | cvode model integrator (default fast)"),
       text_flag("report", "write a Markdown fit report to this file"),
+      text_flag("record-weights",
+                "several channels: rms (each channel's residuals relative to its RMS; default) | noise (each "
+                "channel weighted by its own residual noise, maximum likelihood)"),
       text_flag("detrend",
                 "none | mean | linear: removed from the record where the spikes are picked (default linear for a "
                 "free decay, none otherwise)"),

@@ -321,6 +321,8 @@ void validate(const FitOptions& o) {
     throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost);
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
   if (o.starts < 1) throw InputError("starts = " + std::to_string(o.starts) + ": must be >= 1");
+  if (o.record_weights != kRmsWeights && o.record_weights != kNoiseWeights)
+    throw InputError("record_weights = '" + o.record_weights + "': must be one of rms, noise");
   if (o.start_design != "lhs" && o.start_design != "random")
     throw InputError("start_design = '" + o.start_design + "': must be one of lhs, random");
   const ParameterMap map(o.start, o.estimate, o.scaling);
@@ -433,6 +435,34 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
     if (s == 0 || run.cost < best.cost) {
       best = std::move(run);
       result.best_start = static_cast<int>(s);
+    }
+  }
+  // Maximum likelihood with each record's own noise level (FitOptions::record_weights): reweight by the records'
+  // residual sd at the estimate and fit again from it, until the weights settle.
+  if (o.record_weights == kNoiseWeights && records.size() > 1) {
+    FitOptions again = o;
+    again.strategy = kDirect;
+    for (int pass = 0; pass < 5 && !best.stages.empty() && best.stages.back().result.usable(); ++pass) {
+      const JointObjective::Output at = objective.evaluate(map.beams(best.x));
+      if (!at.evaluation.ok()) break;
+      std::vector<double> weights;
+      double change = 0;
+      for (std::size_t r = 0; r < records.size(); ++r) {
+        const Eigen::VectorXd& e = at.records[r].evaluation.residuals;
+        const double sd = std::sqrt(e.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(e.size(), 1)));
+        weights.push_back(1 / sd);
+        // Only the weights' ratios change the estimate: the change of each relative to record 1's.
+        change = std::max(change, std::abs(weights.back() / weights.front() * objective.weight(0) /
+                                               objective.weight(static_cast<int>(r)) -
+                                           1));
+      }
+      if (std::any_of(weights.begin(), weights.end(), [](double w) { return !(std::isfinite(w) && w > 0); })) break;
+      if (pass > 0 && change < 1e-3) break;
+      objective.set_weights(weights);
+      StrategyRun run = run_strategy(objective, map, again, best.x, records);
+      result.evaluations += run.evaluations;
+      if (run.stages.empty() || !run.stages.back().result.usable()) break;
+      best = std::move(run);
     }
   }
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();

@@ -57,6 +57,13 @@ JointObjective::JointObjective(const FitOptions& options, const std::vector<Reco
   }
 }
 
+void JointObjective::set_weights(std::vector<double> weights) {
+  if (weights.size() != weights_.size()) throw InputError("record weights: one per record");
+  for (const double w : weights)
+    if (!(std::isfinite(w) && w > 0)) throw InputError("record weights: must be finite and > 0");
+  weights_ = std::move(weights);
+}
+
 costs::Evaluation JointObjective::stack(std::vector<Objective::Output>& parts) const {
   if (parts_.size() == 1) return parts.front().evaluation;
   costs::Evaluation joint;

@@ -23,6 +23,8 @@ class JointObjective {
   int records() const { return static_cast<int>(parts_.size()); }
   int residual_count() const { return residual_count_; }
   double weight(int record) const { return weights_[static_cast<std::size_t>(record)]; }
+  // Replaces the records' weights (FitOptions::record_weights "noise"); one per record, finite and > 0.
+  void set_weights(std::vector<double> weights);
   const Objective& part(int record) const { return *parts_[static_cast<std::size_t>(record)]; }
 
   struct Output {
