@@ -106,6 +106,7 @@ verify: binary
 
 report: binary
 	$(BEAMID) report --update REPORT.md --results results
+	/usr/bin/python3 tools/report_html.py REPORT.md REPORT.html
 
 # Every study (each resumes from its results/<study>/store/ if interrupted), then plots and REPORT.md. Tables are
 # byte-identical run to run; only results/*/timings.csv changes.
@@ -120,6 +121,7 @@ study: binary
 	done
 	$(MAKE) --no-print-directory plots
 	$(BEAMID) report --update REPORT.md --results results
+	/usr/bin/python3 tools/report_html.py REPORT.md REPORT.html
 
 # Everything `make study` does, and the studies of FULL_STUDIES (about 145 minutes more on two cores).
 study-full: binary

@@ -9,7 +9,7 @@ packages=(
   g++ make cmake pkgconf git
   libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
   libcli11-dev libgtest-dev libbenchmark-dev libmatio-dev
-  python3 python3-numpy   # the README's .npy example
+  python3 python3-numpy python3-markdown   # the README's .npy example; REPORT.html
   gnuplot-nox
 )
 
