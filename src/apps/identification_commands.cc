@@ -129,8 +129,7 @@ int run_spikes(const Flags& a, std::ostream& out) {
   // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
   // the lowest bins is not picked as a mode.
   const std::string mode = a.text_or("detrend", signal::kDetrendLinear);
-  a.require(mode == signal::kDetrendNone || mode == signal::kDetrendMean || mode == signal::kDetrendLinear, "detrend",
-            "must be one of none, mean, linear");
+  a.require(signal::detrend_names().contains(mode), "detrend", "must be one of " + signal::detrend_names().list());
   const std::vector<double> values = signal::detrend(data.values, mode);
   signal::Dft dft(static_cast<int>(values.size()), data.dt_s, read_window(a));
   a.require(!a.has("welch") || !a.has("window"), "window", "Welch's segments are Hann-windowed: leave out --window");
@@ -225,9 +224,8 @@ int run_fit(const Flags& a, std::ostream& out) {
   // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
   o.cost.pick_detrend = a.text_or(
       "detrend", o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
-  a.require(o.cost.pick_detrend == signal::kDetrendNone || o.cost.pick_detrend == signal::kDetrendMean ||
-                o.cost.pick_detrend == signal::kDetrendLinear,
-            "detrend", "must be one of none, mean, linear");
+  a.require(signal::detrend_names().contains(o.cost.pick_detrend), "detrend",
+            "must be one of " + signal::detrend_names().list());
   // --welch K: the spikes picked on Welch's average of the (detrended) record, then fitted on the whole record's DFT
   // near those frequencies (signal/spikes.h).
   if (a.has("welch")) {

@@ -424,9 +424,7 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = signal::validation_error(o.spikes)) return error;
   if (auto error = signal::validation_error(o.window)) return error;
   if (auto error = frequency_weight_names().violation("frequency_weight", o.frequency_weight)) return error;
-  if (o.pick_detrend != signal::kDetrendNone && o.pick_detrend != signal::kDetrendMean &&
-      o.pick_detrend != signal::kDetrendLinear)
-    return "detrend = '" + o.pick_detrend + "': must be one of none, mean, linear";
+  if (auto error = signal::detrend_names().violation("detrend", o.pick_detrend)) return error;
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
   for (const auto& [key, value] : eps)
     if (value && !(std::isfinite(*value) && *value >= 0))

@@ -207,10 +207,16 @@ Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segm
   return mean;
 }
 
+const model::NameSet& detrend_names() {
+  static const model::NameSet names({{kDetrendNone, "the record as it is"},
+                                     {kDetrendMean, "less its mean"},
+                                     {kDetrendLinear, "less its least-squares offset and linear trend"}});
+  return names;
+}
+
 std::vector<double> detrend(std::vector<double> values, const std::string& mode) {
+  if (auto error = detrend_names().violation("detrend", mode)) throw InputError(*error);
   if (mode == kDetrendNone || values.empty()) return values;
-  if (mode != kDetrendMean && mode != kDetrendLinear)
-    throw InputError("detrend = '" + mode + "': must be one of none, mean, linear");
   const auto n = static_cast<double>(values.size());
   double mean = 0;
   for (double v : values) mean += v / n;

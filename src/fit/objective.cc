@@ -1,0 +1,171 @@
+// fit::Objective (fit/identification.h): one record's model output and cost, with the forms, simulator and DFT plans
+// built once.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "fit/identification.h"
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "model/errors.h"
+#include "model/limits.h"
+#include "simulation/free_decay.h"
+#include "simulation/modal_simulator.h"
+#include "simulation/sensitivities.h"
+
+namespace beamid::fit {
+
+struct Objective::Impl {
+  galerkin::SplineSpace space;
+  galerkin::BeamForms forms;
+  simulation::Experiment experiment;
+  std::unique_ptr<simulation::Simulator> simulator;
+  bool needs_poles;
+  std::vector<double> data;  // free decay: the amplitudes are solved against it
+  // A cost with an output Jacobian (costs/cost.h) on a pulse, by the fast propagator: its Jacobian is that map applied
+  // to the exact sensitivities d y / d q (simulation/sensitivities.h). A cost with a pole Jacobian (modal) on a
+  // simulated record by the fast propagator: that map applied to the eigenvalue derivatives (galerkin/modes.h).
+  bool exact_jacobian = false;
+  bool pole_jacobian = false;
+};
+
+Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
+  if (o.elements < model::kMinElements || o.elements > model::kMaxElements)
+    throw InputError("elements = " + std::to_string(o.elements) + ": must be an integer in " +
+                     std::to_string(model::kMinElements) + ".." + std::to_string(model::kMaxElements));
+  if (auto error = model::validation_error(o.start)) throw InputError("start beam: " + *error);
+  if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError("experiment: " + *error);
+  if (static_cast<int>(data.size()) != o.experiment.samples)
+    throw InputError("experiment: samples = " + std::to_string(o.experiment.samples) + ": the data have " +
+                     std::to_string(data.size()));
+  if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
+  costs::CostOptions cost_options = o.cost;  // the modal cost identifies the decay after the pulse
+  if (o.experiment.excitation == simulation::kPulse)
+    cost_options.first_free_sample =
+        static_cast<int>(std::min<double>(data.size(), std::floor(o.experiment.pulse_width_s / o.experiment.dt_s) + 1));
+  cost_ = costs::make_cost(cost_options, data, o.experiment.dt_s);
+  const galerkin::SplineSpace space(o.elements);
+  impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l, o.start.support), o.experiment,
+                                      simulation::make_simulator(o.simulator),
+                                      o.cost.name == costs::kModalCost || (o.cost.name == costs::kSpikeSmoothCost &&
+                                                                           o.cost.model_poles == "eigenvalues"),
+                                      o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
+  const bool fast = o.simulator.integrator == "fast";
+  impl_->pole_jacobian = cost_->has_pole_jacobian() && o.experiment.excitation != "free-decay" && fast;
+  std::vector<std::string> keys;
+  for (const auto& e : o.estimate) keys.push_back(e.key);
+  impl_->exact_jacobian = impl_->pole_jacobian || (cost_->has_output_jacobian() &&
+                                                   simulation::has_exact_sensitivities(o.experiment, keys) && fast);
+}
+
+bool Objective::has_exact_jacobian() const { return impl_->exact_jacobian; }
+
+Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters& beam,
+                                                    const std::vector<std::string>& keys, Eigen::MatrixXd& jacobian) {
+  jacobian.resize(0, 0);
+  if (!impl_->exact_jacobian)
+    throw InputError("evaluate_with_jacobian: no exact Jacobian for this cost and experiment");
+  Output out;
+  if (auto error = model::validation_error(beam)) {
+    out.evaluation.status = "inadmissible parameters: " + *error;
+    return out;
+  }
+  try {
+    if (impl_->pole_jacobian) return evaluate_with_pole_jacobian(beam, keys, jacobian);
+    simulation::SensitivityTrace s =
+        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->experiment, keys);
+    if (!s.trace.ok()) {
+      out.evaluation.status = s.trace.status;
+      return out;
+    }
+    out.y = std::move(s.trace.y);
+    out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
+    if (out.evaluation.ok())
+      jacobian = cost_->output_jacobian(costs::ModelResponse{out.y, s.trace.poles_rad_s}, s.dy_dq);
+  } catch (const std::exception& error) {
+    out.evaluation.status = error.what();
+  }
+  return out;
+}
+
+Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParameters& beam,
+                                                         const std::vector<std::string>& keys,
+                                                         Eigen::MatrixXd& jacobian) {
+  // The record and poles exactly as evaluate() gives them (the fast propagator on the same decomposition), and
+  // d lambda / d q of the underdamped poles, in the trace's order.
+  Output out;
+  const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
+  std::optional<galerkin::StateSpaceModes> decomposed;
+  try {
+    decomposed.emplace(system);
+  } catch (const NumericalError& error) {  // the status evaluate() gives (the fast simulator's)
+    out.evaluation.status = std::string("fast: ") + error.what();
+    return out;
+  }
+  const galerkin::StateSpaceModes& modes = *decomposed;
+  const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+  simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
+  if (!trace.ok()) {
+    out.evaluation.status = trace.status;
+    return out;
+  }
+  out.y = std::move(trace.y);
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, trace.poles_rad_s});
+  if (!out.evaluation.ok()) return out;
+  std::vector<Eigen::Index> underdamped;
+  for (Eigen::Index k = 0; k < modes.size(); ++k)
+    if (modes.eigenvalues()(k).imag() > 0) underdamped.push_back(k);
+  Eigen::MatrixXcd d_poles(static_cast<Eigen::Index>(underdamped.size()), static_cast<Eigen::Index>(keys.size()));
+  for (std::size_t q = 0; q < keys.size(); ++q) {
+    const Eigen::VectorXcd d = modes.eigenvalue_derivative(galerkin::parameter_derivative(impl_->forms, beam, keys[q]));
+    for (std::size_t i = 0; i < underdamped.size(); ++i)
+      d_poles(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(q)) = d(underdamped[i]);
+  }
+  jacobian = cost_->pole_jacobian(costs::ModelResponse{out.y, trace.poles_rad_s}, d_poles);
+  return out;
+}
+
+Objective::~Objective() = default;
+
+Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
+  Output out;
+  std::vector<std::complex<double>> poles;
+  if (auto error = model::validation_error(beam)) {
+    out.evaluation.status = "inadmissible parameters: " + *error;
+    return out;
+  }
+  try {
+    const galerkin::SecondOrderSystem system = galerkin::combine(impl_->forms, beam);
+    if (impl_->experiment.excitation == "free-decay") {
+      // Unknown initial state: the modal amplitudes are solved in closed form against the data.
+      std::vector<std::complex<double>> all;
+      for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) all.push_back(mode.lambda);
+      simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data);
+      if (decay.status != "ok") {
+        out.evaluation.status = decay.status;
+        return out;
+      }
+      out.y = std::move(decay.y);
+      out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
+      return out;
+    }
+    const simulation::ResponseProblem problem =
+        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+    simulation::Trace trace = impl_->simulator->run(system, problem);
+    if (!trace.ok()) {
+      out.evaluation.status = trace.status;
+      return out;
+    }
+    out.y = std::move(trace.y);
+    poles = std::move(trace.poles_rad_s);
+    if (impl_->needs_poles && poles.empty())
+      for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
+  } catch (const std::exception& error) {  // NumericalError from a decomposition, or InputError from the load
+    out.evaluation.status = error.what();
+    return out;
+  }
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
+  return out;
+}
+
+}  // namespace beamid::fit
