@@ -4,6 +4,7 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
+#include "apps/computations.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
 #include "fit/cramer_rao.h"
@@ -29,14 +30,13 @@ std::vector<FlagSpec> crb_flags() {
   return flags;
 }
 
-int run_crb(const Flags& a, std::ostream& out) {
-  const ModelRun run = read_model_run(a, model::kSimulateBytesPerSample);
-  const std::string& beam_name = run.beam_name;
-  const model::BeamParameters& beam = run.beam;
-  const int n = run.elements;
-  const simulation::Experiment& e = run.experiment;
+CrbResult compute_crb(const Flags& a) {
+  CrbResult r{read_model_run(a, model::kSimulateBytesPerSample), {}, {}, 0, {}, {}};
+  const model::BeamParameters& beam = r.run.beam;
+  const int n = r.run.elements;
+  const simulation::Experiment& e = r.run.experiment;
 
-  std::vector<std::string> keys;
+  std::vector<std::string>& keys = r.keys;
   std::stringstream list(a.text("estimate"));
   for (std::string key; std::getline(list, key, ',');) {
     a.require(model::describe_parameter(beam, key).has_value(), "estimate",
@@ -46,11 +46,11 @@ int run_crb(const Flags& a, std::ostream& out) {
   a.require(!keys.empty(), "estimate", "must name at least one parameter");
   if (!a.has("noise-sd") && !a.has("noise-level"))
     throw InputError("beamid crb: give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
-  fit::SensitivityOptions options;
+  fit::SensitivityOptions& options = r.options;
   options.log_step = a.optional_number("log-step").value_or(options.log_step);
   a.require(options.log_step > 0 && options.log_step <= 0.1, "log-step", "must lie in (0, 0.1]");
 
-  double sigma = 0;
+  double& sigma = r.noise_sd;
   if (a.has("noise-sd")) {
     sigma = a.number("noise-sd");
     a.require(sigma > 0, "noise-sd", "must be > 0");
@@ -64,27 +64,36 @@ int run_crb(const Flags& a, std::ostream& out) {
     a.require(sigma > 0, "noise-level", "the clean signal is zero, so a fraction of its RMS is no noise level");
   }
 
-  fit::CramerRaoBound b;
+  fit::CramerRaoBound& b = r.bound;
   try {
     b = fit::beam_cramer_rao_bound(beam, n, e, keys, sigma, {}, options);
   } catch (const InputError& error) {
     throw InputError("beamid crb: --estimate = '" + a.text("estimate") + "': " + error.what());
   }
   if (b.status != "ok") throw NumericalError("beamid crb: " + b.status);
+  for (const std::string& key : keys) r.values.push_back(model::parameter_value(beam, key));
+  return r;
+}
+
+int run_crb(const Flags& a, std::ostream& out) {
+  const CrbResult r = compute_crb(a);
+  const std::vector<std::string>& keys = r.keys;
+  const fit::CramerRaoBound& b = r.bound;
+  const simulation::Experiment& e = r.run.experiment;
   std::ostringstream csv;
   csv << "parameter,value,crb_sd,crb_relative_sd\n";
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
-    csv << keys[k] << "," << io::full_precision(model::parameter_value(beam, keys[k])) << ","
-        << io::full_precision(b.sd(i)) << "," << io::full_precision(b.relative_sd(i)) << "\n";
+    csv << keys[k] << "," << io::full_precision(r.values[k]) << "," << io::full_precision(b.sd(i)) << ","
+        << io::full_precision(b.relative_sd(i)) << "\n";
   }
   out << csv.str();
-  std::cerr << "beamid crb (commit " << io::commit_label() << "): beam " << beam_name << ", N = " << n << ", "
-            << e.output << ", " << e.samples << " samples at dt = " << e.dt_s << " s, noise sd " << sigma
-            << "; sensitivities "
+  std::cerr << "beamid crb (commit " << io::commit_label() << "): beam " << r.run.beam_name
+            << ", N = " << r.run.elements << ", " << e.output << ", " << e.samples << " samples at dt = " << e.dt_s
+            << " s, noise sd " << r.noise_sd << "; sensitivities "
             << (b.method == "exact" ? std::string("exact (modal closed form)")
                                     : "by Ridders-extrapolated central differences in ln q from step " +
-                                          io::round_trip(options.log_step) + " (estimated relative error " +
+                                          io::round_trip(r.options.log_step) + " (estimated relative error " +
                                           io::round_trip(b.step_agreement) + ")")
             << ", rcond " << b.rcond << "\n";
   return 0;

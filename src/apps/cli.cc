@@ -126,4 +126,25 @@ int check_command_line(const std::vector<std::string>& args, std::ostream& out, 
   return dispatch(args, out, err, false);
 }
 
+Flags parse_flags(const std::string& name, const std::vector<std::string>& arguments) {
+  const Command* command = nullptr;
+  for (const Command& c : commands())
+    if (c.name == name) command = &c;
+  if (command == nullptr) throw InputError("unknown command '" + name + "' (commands: " + command_list() + ")");
+  CLI::App app{command->summary, "beamid"};
+  CLI::App* sub = app.add_subcommand(command->name, command->summary);
+  add_flags(*sub, command->flags);
+  for (const auto& [a, b] : command->excludes) sub->get_option("--" + a)->excludes(sub->get_option("--" + b));
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes the arguments reversed
+  reversed.push_back(command->name);
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    throw InputError("beamid " + name + ": --help: the flags are listed by `beamid " + name + " --help`");
+  } catch (const CLI::ParseError& e) {
+    throw InputError(message_of(e, "beamid " + name));
+  }
+  return Flags(command->name, *sub, command->flags, arguments);
+}
+
 }  // namespace beamid::apps

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "apps/command_flags.h"
+#include "apps/computations.h"
 #include "apps/flags.h"
 #include "apps/verification.h"
 #include "config/beam_file.h"
@@ -23,90 +24,106 @@
 #include "simulation/simulator.h"
 
 namespace beamid::apps {
-namespace {}  // namespace
 
-int run_modes(const Flags& a, std::ostream& out) {
+ModesResult compute_modes(const Flags& a) {
   const model::BeamParameters beam = read_beam(a);
-  const std::optional<int> count = a.optional_integer("count");
-  a.require(!count || *count >= 1, "count", "must be >= 1");
+  ModesResult r;
+  r.requested = a.optional_integer("count");
+  a.require(!r.requested || *r.requested >= 1, "count", "must be >= 1");
   if (!a.has("exact") && !a.has("elements"))
     throw InputError("beamid modes: give one of --elements N (Galerkin) and --exact (determinant)");
 
   if (a.has("exact")) {
-    const auto omega = model::timoshenko_frequencies_rad_s(beam, count.value_or(4));
-    if (count && static_cast<int>(omega.size()) < *count)
-      throw InputError("beamid modes: --count = " + std::to_string(*count) + ": only " + std::to_string(omega.size()) +
-                       " modes lie below the shear cut-off");
-    out << "mode,frequency_hz\n";
-    for (std::size_t k = 0; k < omega.size(); ++k)
-      out << k + 1 << "," << io::full_precision(omega[k] / (2 * std::numbers::pi)) << "\n";
-    return 0;
+    r.kind = "exact";
+    const auto omega = model::timoshenko_frequencies_rad_s(beam, r.requested.value_or(4));
+    if (r.requested && static_cast<int>(omega.size()) < *r.requested)
+      throw InputError("beamid modes: --count = " + std::to_string(*r.requested) + ": only " +
+                       std::to_string(omega.size()) + " modes lie below the shear cut-off");
+    for (const double w : omega) r.frequency_hz.push_back(w / (2 * std::numbers::pi));
+    r.available = static_cast<int>(omega.size());
+    return r;
   }
 
   guard_run_size(a, a.integer("elements"), 0, 0);
   const galerkin::SplineSpace space(a.integer("elements"));
   const galerkin::SecondOrderSystem system = galerkin::assemble(space, beam);
   if (a.has("undamped")) {
+    r.kind = "undamped";
     const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
-    out << "mode,frequency_hz,damping_ratio\n";  // after the computation: a failure prints nothing on stdout
-    const int shown = std::min<int>(count.value_or(static_cast<int>(omega.size())), static_cast<int>(omega.size()));
-    if (count && *count > shown)
-      std::cerr << "beamid modes: --count " << *count << ": the Galerkin model at N = " << a.integer("elements")
-                << " has " << shown << " modes: " << shown << " printed\n";
-    for (int k = 0; k < shown; ++k)
-      out << k + 1 << "," << io::full_precision(omega(k) / (2 * std::numbers::pi)) << "," << io::full_precision(0.0)
-          << "\n";
+    r.available = static_cast<int>(omega.size());
+    const int shown = std::min(r.requested.value_or(r.available), r.available);
+    for (int k = 0; k < shown; ++k) {
+      r.frequency_hz.push_back(omega(k) / (2 * std::numbers::pi));
+      r.damping_ratio.push_back(0.0);
+    }
+    return r;
+  }
+  r.kind = "damped";
+  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
+  r.available = static_cast<int>(modes.size());
+  const int shown = std::min(r.requested.value_or(r.available), r.available);
+  for (int k = 0; k < shown; ++k) {
+    r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);
+    r.damping_ratio.push_back(modes[static_cast<std::size_t>(k)].damping_ratio);
+  }
+  return r;
+}
+
+int run_modes(const Flags& a, std::ostream& out) {
+  const ModesResult r = compute_modes(a);
+  const std::size_t shown = r.frequency_hz.size();
+  if (r.kind == "exact") {
+    out << "mode,frequency_hz\n";
+    for (std::size_t k = 0; k < shown; ++k) out << k + 1 << "," << io::full_precision(r.frequency_hz[k]) << "\n";
     return 0;
   }
-  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
-  out << "mode,frequency_hz,damping_ratio\n";
-  const std::size_t shown = std::min<std::size_t>(count.value_or(static_cast<int>(modes.size())), modes.size());
-  if (count && static_cast<std::size_t>(*count) > shown)
-    std::cerr << "beamid modes: --count " << *count << ": the Galerkin model at N = " << a.integer("elements")
-              << " has " << shown << " underdamped modes: " << shown << " printed\n";
+  out << "mode,frequency_hz,damping_ratio\n";  // after the computation: a failure prints nothing on stdout
+  if (r.requested && static_cast<std::size_t>(*r.requested) > shown)
+    std::cerr << "beamid modes: --count " << *r.requested << ": the Galerkin model at N = " << a.integer("elements")
+              << " has " << shown << (r.kind == "undamped" ? " modes: " : " underdamped modes: ") << shown
+              << " printed\n";
   for (std::size_t k = 0; k < shown; ++k)
-    out << k + 1 << "," << io::full_precision(modes[k].frequency_hz) << ","
-        << io::full_precision(modes[k].damping_ratio) << "\n";
+    out << k + 1 << "," << io::full_precision(r.frequency_hz[k]) << "," << io::full_precision(r.damping_ratio[k])
+        << "\n";
   return 0;
 }
 
-int run_simulate(const Flags& a, std::ostream& out) {
-  const ModelRun run = read_model_run(a, model::kSimulateBytesPerSample);
-  const std::string& beam_name = run.beam_name;
-  const model::BeamParameters& beam = run.beam;
-  const int n = run.elements;
-  const simulation::Experiment& e = run.experiment;
-
+SimulateResult compute_simulate(const Flags& a) {
+  SimulateResult r{read_model_run(a, model::kSimulateBytesPerSample), {}, {}};
   simulation::SimulatorOptions options;
   options.integrator = a.text_or("integrator", options.integrator);
   options.cvode.rtol = a.optional_number("rtol").value_or(options.cvode.rtol);
   options.cvode.atol = a.optional_number("atol").value_or(options.cvode.atol);
   options.cvode.max_order = a.optional_integer("max-order").value_or(options.cvode.max_order);
   if (auto error = simulation::validation_error(options)) throw InputError("beamid simulate: " + *error);
-
-  const galerkin::SplineSpace space(n);
-  const galerkin::BeamForms forms(space, beam.l, beam.support);
-  const simulation::Trace trace = simulation::simulate(forms, beam, e, options);
-  if (!trace.ok()) throw NumericalError("beamid simulate: " + trace.status);
-
   // A synthetic lab record: white noise of --noise-level times the clean signal's RMS (signal/noise.h).
   const double noise = a.optional_number("noise-level").value_or(0.0);
   a.require(noise >= 0 && noise <= 10, "noise-level", "must be in [0, 10] (times the signal's RMS)");
   a.require(!a.has("seed") || a.has("noise-level"), "seed", "seeds the noise: give --noise-level too");
-  const std::vector<double> y =
-      signal::add_noise(trace.y, noise, static_cast<std::uint64_t>(a.optional_integer("seed").value_or(1)));
+
+  const galerkin::SplineSpace space(r.run.elements);
+  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
+  r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);
+  if (!r.trace.ok()) throw NumericalError("beamid simulate: " + r.trace.status);
+  r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(a.optional_integer("seed").value_or(1)));
+  return r;
+}
+
+int run_simulate(const Flags& a, std::ostream& out) {
+  const SimulateResult r = compute_simulate(a);
+  const simulation::Experiment& e = r.run.experiment;
   std::ostringstream csv;
   csv << "t_s," << simulation::output_column(e.output) << "\n";
-  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, y[static_cast<std::size_t>(i)]});
+  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, r.y[static_cast<std::size_t>(i)]});
   out << csv.str();
   if (a.has("verbose")) {
-    const auto& s = trace.stats;
-    std::cerr << "beamid simulate (commit " << io::commit_label() << "): beam " << beam_name << ", N = " << n << ", "
-              << e.excitation << ", " << e.output << ", dt = " << e.dt_s << " s, " << e.samples
-              << " samples, integrator " << s.integrator << ": steps " << s.steps << ", rhs " << s.rhs_evaluations
-              << ", jacobians " << s.jacobian_evaluations << ", linear-solver setups " << s.linear_solver_setups
-              << ", error-test failures " << s.error_test_failures << ", modes " << s.modes << ", eigenvector rcond "
-              << s.eigenvector_rcond;
+    const auto& s = r.trace.stats;
+    std::cerr << "beamid simulate (commit " << io::commit_label() << "): beam " << r.run.beam_name
+              << ", N = " << r.run.elements << ", " << e.excitation << ", " << e.output << ", dt = " << e.dt_s << " s, "
+              << e.samples << " samples, integrator " << s.integrator << ": steps " << s.steps << ", rhs "
+              << s.rhs_evaluations << ", jacobians " << s.jacobian_evaluations << ", linear-solver setups "
+              << s.linear_solver_setups << ", error-test failures " << s.error_test_failures << ", modes " << s.modes
+              << ", eigenvector rcond " << s.eigenvector_rcond;
     if (!s.dominant_error_block.empty())
       std::cerr << "; median step " << s.median_step_s << " s at order " << s.median_order
                 << ", largest weighted local error mostly in the " << s.dominant_error_block << " block";
@@ -131,16 +148,22 @@ std::string json_matrix(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
+SystemResult compute_system(const Flags& a) {
+  SystemResult r{read_model_run(a, 0), {}, {}};
+  const galerkin::SplineSpace space(r.run.elements);
+  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
+  r.system = galerkin::combine(forms, r.run.beam);
+  r.problem = simulation::make_problem(forms, r.system, r.run.experiment);
+  return r;
+}
+
 int run_system(const Flags& a, std::ostream& out) {
-  const ModelRun run = read_model_run(a, 0);
-  const std::string& beam_name = run.beam_name;
-  const model::BeamParameters& beam = run.beam;
-  const int n = run.elements;
-  const simulation::Experiment& e = run.experiment;
-  const galerkin::SplineSpace space(n);
-  const galerkin::BeamForms forms(space, beam.l, beam.support);
-  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  const simulation::ResponseProblem p = simulation::make_problem(forms, system, e);
+  const SystemResult r = compute_system(a);
+  const std::string& beam_name = r.run.beam_name;
+  const model::BeamParameters& beam = r.run.beam;
+  const int n = r.run.elements;
+  const galerkin::SecondOrderSystem& system = r.system;
+  const simulation::ResponseProblem& p = r.problem;
   // The response problem in the terms of simulation/experiment.h: M w'' + C w' + K w = load P(t), P(t) =
   // amplitude_N sin^2(pi t / pulse_width_s) on [0, pulse_width_s], w(0) = w0, w'(0) = 0, y_i = sensor^T w^(derivative)
   // at t_i = i dt_s.

@@ -6,6 +6,7 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
+#include "apps/computations.h"
 #include "apps/fit_report.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
@@ -124,25 +125,35 @@ costs::CostOptions read_cost_options(const Flags& a) {
 
 }  // namespace
 
-int run_spikes(const Flags& a, std::ostream& out) {
-  const io::TimeSeries data = read_data(a);
+SpikesResult compute_spikes(const Flags& a, const io::TimeSeries& data) {
   // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
   // the lowest bins is not picked as a mode.
   const std::string mode = a.text_or("detrend", signal::kDetrendLinear);
   a.require(signal::detrend_names().contains(mode), "detrend", "must be one of " + signal::detrend_names().list());
-  const std::vector<double> values = signal::detrend(data.values, mode);
-  signal::Dft dft(static_cast<int>(values.size()), data.dt_s, read_window(a));
   a.require(!a.has("welch") || !a.has("window"), "window", "Welch's segments are Hann-windowed: leave out --window");
-  const signal::Spectrum spectrum =
-      a.has("welch") ? signal::welch_spectrum(values, data.dt_s, a.integer("welch")) : dft.transform(values);
+  const std::vector<double> values = signal::detrend(data.values, mode);
+  SpikesResult r;
   const signal::SpikeOptions options = read_spike_options(a);
-  const auto peaks = signal::label_peaks(spectrum, options);
-  std::vector<signal::Spike> picks;
-  for (const auto& p : peaks)
-    if (p.skipped.empty()) picks.push_back(p.spike);
-  std::sort(picks.begin(), picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
-  if (static_cast<int>(picks.size()) < options.count)
-    std::cerr << "beamid spikes: --spikes " << options.count << ": the record shows only " << picks.size()
+  if (a.has("welch")) {
+    r.spectrum = signal::welch_spectrum(values, data.dt_s, a.integer("welch"));
+  } else {
+    signal::Dft dft(static_cast<int>(values.size()), data.dt_s, read_window(a));
+    r.spectrum = dft.transform(values);
+  }
+  r.requested = options.count;
+  r.peaks = signal::label_peaks(r.spectrum, options);
+  for (const auto& p : r.peaks)
+    if (p.skipped.empty()) r.picks.push_back(p.spike);
+  std::sort(r.picks.begin(), r.picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
+  return r;
+}
+
+int run_spikes(const Flags& a, std::ostream& out) {
+  const SpikesResult r = compute_spikes(a, read_data(a));
+  const auto& picks = r.picks;
+  const auto& peaks = r.peaks;
+  if (static_cast<int>(picks.size()) < r.requested)
+    std::cerr << "beamid spikes: --spikes " << r.requested << ": the record shows only " << picks.size()
               << " spike(s) (local maxima of |Z| in the band, artefacts skipped): " << picks.size() << " printed\n";
   // The picks in order of frequency, then the peaks passed over on the way, with the reason.
   out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped\n";
@@ -155,13 +166,11 @@ int run_spikes(const Flags& a, std::ostream& out) {
     if (!p.skipped.empty()) row("", p.spike, "\"" + p.skipped + "\"");
   if (a.has("welch"))
     std::cerr << "beamid spikes: picked on Welch's average of " << a.integer("welch") << " segments of "
-              << spectrum.samples << " samples (df = " << spectrum.df_hz() << " Hz; bins are of that spectrum)\n";
+              << r.spectrum.samples << " samples (df = " << r.spectrum.df_hz() << " Hz; bins are of that spectrum)\n";
   return 0;
 }
 
-int run_cost(const Flags& a, std::ostream& out) {
-  const io::TimeSeries data = read_data(a);
-  const io::TimeSeries prediction = io::read_time_series(a.text("prediction"));
+costs::Evaluation compute_cost(const Flags& a, const io::TimeSeries& data, const io::TimeSeries& prediction) {
   if (prediction.values.size() != data.values.size() || std::abs(prediction.dt_s - data.dt_s) > 1e-9 * data.dt_s)
     throw InputError("beamid cost: --prediction = '" + prediction.path +
                      "': " + std::to_string(prediction.values.size()) +
@@ -172,20 +181,24 @@ int run_cost(const Flags& a, std::ostream& out) {
     throw InputError("beamid cost: --model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
   auto cost = costs::make_cost(options, data.values, data.dt_s);
   const std::vector<std::complex<double>> none;
-  const costs::Evaluation e = cost->evaluate(costs::ModelResponse{prediction.values, none});
+  costs::Evaluation e = cost->evaluate(costs::ModelResponse{prediction.values, none});
   if (!e.ok()) throw NumericalError("beamid cost: " + e.status);
-  out << "cost,value\n" << options.name << "," << io::full_precision(e.value) << "\n";
+  return e;
+}
+
+int run_cost(const Flags& a, std::ostream& out) {
+  const costs::Evaluation e = compute_cost(a, read_data(a), io::read_time_series(a.text("prediction")));
+  out << "cost,value\n" << a.text("cost") << "," << io::full_precision(e.value) << "\n";
   if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";
   return 0;
 }
 
-int run_fit(const Flags& a, std::ostream& out) {
-  const std::vector<io::TimeSeries> channels = read_channels(a);
+FitComputation compute_fit(const Flags& a, const std::vector<io::TimeSeries>& channels) {
   const io::TimeSeries& data = channels.front();
-  const std::string beam_name = a.text("beam");
   const model::BeamParameters nominal = read_beam(a);
 
-  fit::FitOptions o;
+  FitComputation c;
+  fit::FitOptions& o = c.options;
   o.elements = a.integer("elements");
   o.experiment = read_experiment(a, nominal.l);
   guard_run_size(a, o.elements, static_cast<double>(data.values.size() * channels.size()),
@@ -252,17 +265,16 @@ int run_fit(const Flags& a, std::ostream& out) {
     std::sort(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end());
     a.require(!o.cost.spikes.frequencies_hz.empty(), "welch", "found no peak to fit");
     o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
-    std::cerr << "beamid fit: spikes picked on Welch's average (" << a.integer("welch") << " segments):";
-    for (double f : o.cost.spikes.frequencies_hz) std::cerr << " " << f;
-    std::cerr << " Hz\n";
+    c.welch_picked = true;
   }
   o.start = nominal;
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * start_scale);
 
   // Several channels: one record each, at its own --sensor-x, fitted jointly (fit/identification.h).
-  const std::vector<double> sensors = a.numbers("sensor-x");
-  std::vector<fit::Record> records;
+  c.sensors_m = a.numbers("sensor-x");
+  const std::vector<double>& sensors = c.sensors_m;
+  std::vector<fit::Record>& records = c.records;
   if (channels.size() > 1 || sensors.size() > 1) {
     a.require(sensors.size() == channels.size(), "sensor-x",
               "must list one position per --channel (" + std::to_string(channels.size()) + " channel(s))");
@@ -274,16 +286,32 @@ int run_fit(const Flags& a, std::ostream& out) {
       records.push_back(std::move(record));
     }
   }
-  const fit::FitResult result = records.empty() ? fit::fit(o, data.values) : fit::fit(o, records);
+  c.result = records.empty() ? fit::fit(o, data.values) : fit::fit(o, records);
   // --windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
-  std::optional<fit::WindowSpread> spread;
-  if (a.has("windows") && result.status != "failed") {
+  if (a.has("windows") && c.result.status != "failed") {
     try {
-      spread = records.empty() ? fit::window_spread(o, data.values, result, a.integer("windows"))
-                               : fit::window_spread(o, records, result, a.integer("windows"));
+      c.spread = records.empty() ? fit::window_spread(o, data.values, c.result, a.integer("windows"))
+                                 : fit::window_spread(o, records, c.result, a.integer("windows"));
     } catch (const InputError& error) {
       a.require(false, "windows", error.what());
     }
+  }
+  return c;
+}
+
+int run_fit(const Flags& a, std::ostream& out) {
+  const std::vector<io::TimeSeries> channels = read_channels(a);
+  const io::TimeSeries& data = channels.front();
+  const std::string beam_name = a.text("beam");
+  const FitComputation c = compute_fit(a, channels);
+  const fit::FitOptions& o = c.options;
+  const fit::FitResult& result = c.result;
+  const std::vector<double>& sensors = c.sensors_m;
+  const std::optional<fit::WindowSpread>& spread = c.spread;
+  if (c.welch_picked) {
+    std::cerr << "beamid fit: spikes picked on Welch's average (" << a.integer("welch") << " segments):";
+    for (double f : o.cost.spikes.frequencies_hz) std::cerr << " " << f;
+    std::cerr << " Hz\n";
   }
   out << "parameter,estimate,standard_error,start,lower,upper,status,robust_standard_error,window_sd,"
          "window_standard_error\n";
