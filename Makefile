@@ -4,7 +4,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: fuzz all deps build binary test test-sanitize bench verify report clean study study-full study-smoke plots golden install
+.PHONY: fuzz all deps build binary test test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature), and
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
@@ -29,9 +29,9 @@ build: deps $(BUILD)/CMakeCache.txt
 binary: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target beamid
 
-# Builds only what the tests run (the program and the test suite; not the benchmarks).
+# Builds only what the tests run (the program, the test suite and the Python package; not the benchmarks).
 test: deps $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS) --target beamid beamid_tests
+	cmake --build $(BUILD) -j $(JOBS) --target beamid beamid_tests beamid_python
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # Copies the program to $(PREFIX)/bin (default ~/.local/bin), so that `beamid` runs as the README writes it.
@@ -39,6 +39,14 @@ PREFIX ?= $(HOME)/.local
 install: binary
 	install -D -m 755 $(BEAMID) $(PREFIX)/bin/beamid
 	@echo "installed $(PREFIX)/bin/beamid; make sure $(PREFIX)/bin is on PATH"
+
+# A real single-node Slurm (Debian's slurm-wlm and munge, set up in a temporary folder and stopped afterwards): the
+# smoke study as a job array of shards with an afterok merge, equal to a single run byte for byte, and a killed shard
+# resubmitted to the same tables (tests/slurm/slurm_test.sh; about a minute; root or sudo).
+test-slurm: deps $(BUILD)/CMakeCache.txt
+	@bash .ci/deps.sh slurm
+	cmake --build $(BUILD) -j $(JOBS) --target beamid
+	SRC=$(CURDIR) BUILD=$(abspath $(BUILD)) bash tests/slurm/slurm_test.sh
 
 # Unit tests once more under AddressSanitizer and UndefinedBehaviorSanitizer (benchmarks not built).
 test-sanitize: deps

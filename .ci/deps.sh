@@ -10,11 +10,15 @@ packages=(
   libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
   libcli11-dev libgtest-dev libbenchmark-dev libmatio-dev
   python3 python3-numpy python3-markdown   # the README's .npy example; REPORT.html
+  pybind11-dev python3-dev python3-setuptools python3-venv python3-pytest python3-matplotlib   # the Python package
   gnuplot-nox
+  chromium   # the REPORT.html check opens the page in headless Chromium
 )
 
 # `deps.sh fuzz`: the packages `make fuzz` needs as well (clang with libFuzzer).
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
+# `deps.sh slurm`: a single-node Slurm for `make test-slurm`.
+if [ "${1:-}" = slurm ]; then packages+=(slurm-wlm munge); fi
 # `deps.sh bench`: the NumPy/SciPy peers of `make bench` (Debian's python3, not a pip one).
 if [ "${1:-}" = bench ]; then packages+=(python3 python3-numpy python3-scipy); fi
 

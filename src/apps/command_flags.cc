@@ -30,7 +30,7 @@ ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
   return run;
 }
 
-std::vector<io::TimeSeries> read_channels(const Flags& a) {
+io::ImportOptions read_import_options(const Flags& a) {
   io::ImportOptions o;
   o.units = a.text_or("units", o.units);
   o.start_s = a.optional_number("start");
@@ -40,6 +40,11 @@ std::vector<io::TimeSeries> read_channels(const Flags& a) {
   o.variable = a.text_or("variable", "");
   o.time_variable = a.text_or("time-variable", "");
   o.resample_rate_hz = a.optional_number("resample-rate");
+  return o;
+}
+
+std::vector<io::TimeSeries> read_channels(const Flags& a) {
+  io::ImportOptions o = read_import_options(a);
   std::vector<std::string> channels = a.texts("channel");
   if (channels.empty()) channels.emplace_back();  // the only signal column
   std::vector<io::TimeSeries> records;

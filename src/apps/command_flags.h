@@ -13,6 +13,8 @@
 
 namespace beamid::apps {
 
+// The import flags (channel aside): units, start, duration, resample, sample rate, variables, resample rate.
+io::ImportOptions read_import_options(const Flags& a);
 // --data with the import flags (channel, units, start, duration, resample): the record, or an InputError naming the
 // command and the flag.
 io::TimeSeries read_data(const Flags& a);

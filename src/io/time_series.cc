@@ -8,6 +8,7 @@
 #include <functional>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -218,7 +219,10 @@ TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
 
 }  // namespace
 
-TimeSeries parse_time_series(const std::string& bytes, const std::string& path, const ImportOptions& o) {
+namespace {
+
+// The options every format checks before reading.
+void check_options(const ImportOptions& o) {
   if (o.units != "auto" && o.units != "g" && o.units != "as-is")
     throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
   if (o.duration_s && !(*o.duration_s > 0))
@@ -227,6 +231,26 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     throw InputError("sample rate = " + format_value(*o.sample_rate_hz) + " Hz: must be > 0");
   if (o.resample_rate_hz && !(*o.resample_rate_hz > 0 && std::isfinite(*o.resample_rate_hz)))
     throw InputError("resample rate = " + format_value(*o.resample_rate_hz) + " Hz: must be > 0");
+}
+
+}  // namespace
+
+TimeSeries array_time_series(const std::string& name, const double* values, std::size_t rows, std::size_t columns,
+                             const std::vector<double>* time, const ImportOptions& o) {
+  check_options(o);
+  if (!o.variable.empty() || !o.time_variable.empty())
+    throw InputError(name + ": --variable and --time-variable name variables of a MAT-file; this is an array");
+  if (time != nullptr && o.sample_rate_hz) throw InputError(name + ": give a time vector or a sample rate, not both");
+  // A time vector of doubles: uniform to their precision (as a MAT-file's double time vector).
+  return finish(array_samples(
+                    name, "array", "array", rows, columns,
+                    [values, columns](std::size_t i, std::size_t j) { return values[i * columns + j]; }, time,
+                    2 * std::numeric_limits<double>::epsilon(), o),
+                name, o);
+}
+
+TimeSeries parse_time_series(const std::string& bytes, const std::string& path, const ImportOptions& o) {
+  check_options(o);
   // The format from the content: NumPy's magic, a MAT-file's header text, UFF's "-1" delimiter; else text by the
   // file's ending (.lvm, else CSV).
   const bool npy = is_npy(bytes), mat = !npy && is_mat(bytes), uff = !npy && !mat && is_uff(bytes);

@@ -56,4 +56,11 @@ TimeSeries read_time_series(const std::string& path, const ImportOptions& option
 // file is opened by libmatio from `path`).
 TimeSeries parse_time_series(const std::string& text, const std::string& path, const ImportOptions& options = {});
 
+// A record already in memory (the Python package): `rows` x `columns` doubles in row-major order, the samples along
+// the longer dimension (as for .npy; the channel by options.channel, a 1-based index), the time base from
+// options.sample_rate_hz or `time` (one time per sample, s, uniform to double precision); then the checks and steps
+// every format shares (above). `name` stands for the file in messages; the format reads "array".
+TimeSeries array_time_series(const std::string& name, const double* values, std::size_t rows, std::size_t columns,
+                             const std::vector<double>* time, const ImportOptions& options = {});
+
 }  // namespace beamid::io

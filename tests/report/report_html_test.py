@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """REPORT.html (tools/report_html.py): every table and every linked plot of the Markdown is on the page, the plots
-inline as SVG with their ids made unique, and a plot without its SVG named rather than dropped. Run by ctest with the
-source folder as the argument."""
+inline as SVG with their ids made unique, and a plot without its SVG named rather than dropped; and the page as
+headless Chromium renders it (Debian's chromium): every table and figure in its DOM, every plot drawn with a size, a
+screenshot of the top of the page in the output folder. Run by ctest with the source folder and an output folder as
+the arguments."""
+import json
 import pathlib
 import re
 import subprocess
@@ -10,6 +13,18 @@ import tempfile
 import unittest
 
 SOURCE = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
+OUTPUT = pathlib.Path(sys.argv[2] if len(sys.argv) > 2 else tempfile.mkdtemp(prefix="report-html-")).resolve()
+
+# Appended to a copy of the page: after the load event, what the browser built, as an attribute --dump-dom shows.
+CHECK = """<script>window.addEventListener('load', () => {
+  const plots = [...document.querySelectorAll('figure svg')];
+  const drawn = plots.filter(e => { const r = e.getBoundingClientRect(); return r.width > 0 && r.height > 0; });
+  document.body.setAttribute('data-check', JSON.stringify({figures: document.querySelectorAll('figure').length,
+    plots: plots.length, drawn: drawn.length, tables: document.querySelectorAll('table').length,
+    missing: document.querySelectorAll('.missing').length}));
+});</script>"""
+CHROMIUM = ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+            "--virtual-time-budget=60000"]
 SCRIPT = SOURCE / "tools" / "report_html.py"
 
 
@@ -74,6 +89,36 @@ class ReportHtml(unittest.TestCase):
             self.assertEqual(page.count("<figure"), len(linked))
             self.assertNotIn('class="missing"', page, run.stderr)
             self.assertEqual(page.count("<svg"), len(linked))
+
+    def test_the_report_in_chromium(self):
+        with tempfile.TemporaryDirectory() as folder:
+            copy = pathlib.Path(folder) / "REPORT.md"
+            text = (SOURCE / "REPORT.md").read_text(encoding="utf-8")
+            copy.write_text(text, encoding="utf-8")
+            (pathlib.Path(folder) / "plots").symlink_to(SOURCE / "plots")
+            run, page = render(copy)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            checked = pathlib.Path(folder) / "checked.html"
+            checked.write_text(page.replace("</body>", CHECK + "</body>"), encoding="utf-8")
+            dom = subprocess.run(CHROMIUM + ["--dump-dom", checked.as_uri()], capture_output=True, text=True,
+                                 timeout=600)
+            found = re.search(r'data-check="([^"]*)"', dom.stdout)
+            self.assertIsNotNone(found, "chromium did not finish the page: " + dom.stderr[-2000:])
+            seen = json.loads(found.group(1).replace("&quot;", '"'))
+            tables = len(re.findall(r"^\|(?:\s*:?-+:?\s*\|)+\s*$", text, flags=re.M))
+            linked = set(re.findall(r"\]\((plots/[^)\s]+)\.png\)", text))
+            self.assertEqual(seen["tables"], tables)
+            self.assertEqual(seen["figures"], len(linked))
+            self.assertEqual(seen["plots"], len(linked))
+            self.assertEqual(seen["drawn"], len(linked), "every plot laid out with a width and a height")
+            self.assertEqual(seen["missing"], 0)
+            OUTPUT.mkdir(parents=True, exist_ok=True)
+            screenshot = OUTPUT / "REPORT.png"
+            subprocess.run(CHROMIUM + ["--window-size=1280,3000", f"--screenshot={screenshot}", copy.with_suffix(
+                ".html").as_uri()], capture_output=True, text=True, timeout=600, check=True)
+            self.assertGreater(screenshot.stat().st_size, 20000)
+            print(f"report.html: chromium drew {seen['tables']} tables and {seen['drawn']} of {seen['plots']} plots; "
+                  f"screenshot {screenshot}")
 
 
 if __name__ == "__main__":

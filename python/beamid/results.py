@@ -1,0 +1,58 @@
+"""A study's results (``results/<study>/*.csv``, as ``beamid study`` writes them) as NumPy structured arrays.
+
+A column whose every field reads as a number (NaN and empty fields included) is float64, any other column text;
+quoted fields may hold commas, as the program quotes them.
+"""
+import csv
+import os
+
+import numpy as np
+
+
+def read_table(path, as_dict=False):
+    """One CSV table: a structured array (one field per column), or with ``as_dict`` a dict of column arrays."""
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    if not rows:
+        raise ValueError(f"{path}: empty file: a results table starts with a header line")
+    header, body = rows[0], rows[1:]
+    for line, row in enumerate(body, start=2):
+        if len(row) != len(header):
+            raise ValueError(f"{path}:{line}: {len(row)} fields: the header names {len(header)}")
+    columns = {}
+    for j, name in enumerate(header):
+        fields = [row[j] for row in body]
+        columns[name] = _column(fields)
+    if as_dict:
+        return columns
+    dtype = [(name, column.dtype) for name, column in columns.items()]
+    table = np.zeros(len(body), dtype=dtype)
+    for name, column in columns.items():
+        table[name] = column
+    return table
+
+
+def _column(fields):
+    try:
+        return np.array([float(x) if x.strip() else np.nan for x in fields], dtype=float)
+    except ValueError:
+        return np.array(fields, dtype=str)
+
+
+def load_results(folder, as_dict=False):
+    """Every CSV table of a study's results folder, by name without ``.csv`` (``cases``, ``summary``, ...): structured
+    arrays, or with ``as_dict`` dicts of column arrays. The folder's manifest.json, when present, is under
+    ``"manifest"`` as a dict."""
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(f"{folder}: not a results folder (beamid study writes results/<study>/)")
+    tables = {}
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if name.endswith(".csv") and os.path.isfile(path):
+            tables[name[:-4]] = read_table(path, as_dict=as_dict)
+    manifest = os.path.join(folder, "manifest.json")
+    if os.path.isfile(manifest):
+        import json
+        with open(manifest, encoding="utf-8") as f:
+            tables["manifest"] = json.load(f)
+    return tables

@@ -1,0 +1,420 @@
+// beamid._core, the C++ half of the Python package (python/beamid/__init__.py is the other): the commands'
+// computations (apps/computations.h) run on the flags that the Python keyword arguments spell (sensor_x=0.2 is
+// --sensor-x 0.2), parsed by the command line's own parser (apps::parse_flags). A call and the same command line
+// therefore run one body of code with one validation and one set of messages, and give the same numbers bit for bit.
+// Results are NumPy arrays and dicts; records may come as arrays (samples, or samples x channels) instead of files.
+// InputError and NumericalError become beamid.InputError (a ValueError) and beamid.NumericalError (a RuntimeError)
+// carrying the command line's one-line message. The GIL is released around every computation, so that Python
+// threads can fit in parallel (the core is thread-safe: the studies run it on threads).
+// pybind11 stays in this file: it is the package's adapter.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/cli.h"
+#include "apps/command_flags.h"
+#include "apps/computations.h"
+#include "apps/fit_report.h"
+#include "config/beam_file.h"
+#include "io/provenance.h"
+#include "io/time_series.h"
+#include "model/beam_parameters.h"
+#include "model/errors.h"
+
+namespace py = pybind11;
+using namespace beamid;
+
+namespace {
+
+// A vector handed to NumPy without a copy: the array owns it through a capsule.
+py::array_t<double> owned_array(std::vector<double>&& values) {
+  auto* owned = new std::vector<double>(std::move(values));
+  py::capsule release(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  return py::array_t<double>({static_cast<py::ssize_t>(owned->size())}, {static_cast<py::ssize_t>(sizeof(double))},
+                             owned->data(), release);
+}
+
+py::array_t<double> copied_array(const std::vector<double>& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+py::array_t<double> vector_array(const Eigen::VectorXd& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+// Row-major copy of an Eigen (column-major) matrix.
+py::array_t<double> matrix_array(const Eigen::MatrixXd& m) {
+  py::array_t<double> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+  auto view = a.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) view(i, j) = m(i, j);
+  return a;
+}
+
+// A beam's parameters as a dict: every [beam] key, then "attachmentK.x/m/J/c" and "support.k_theta/k_w" (infinite:
+// rigid), the keys --estimate takes.
+py::dict beam_dict(const model::BeamParameters& beam) {
+  py::dict d;
+  for (const auto& info : model::parameter_table())
+    d[py::str(std::string(info.key))] = model::parameter_value(beam, info.key);
+  for (std::size_t k = 0; k < beam.attachments.size(); ++k) {  // c is a fixed property, not an estimable key
+    const model::Attachment& a = beam.attachments[k];
+    const std::string key = model::attachment_key(k);
+    d[py::str(key + ".x")] = a.x;
+    d[py::str(key + ".m")] = a.m;
+    d[py::str(key + ".J")] = a.J;
+    d[py::str(key + ".c")] = a.c;
+  }
+  d["support.k_theta"] = beam.support.k_theta;
+  d["support.k_w"] = beam.support.k_w;
+  return d;
+}
+
+// A record given as an array instead of a --data file, read with the command's import flags (channel, units, window,
+// rate) through the same checks as a file (io::array_time_series); several --channel entries give several records.
+class ArrayRecord {
+ public:
+  ArrayRecord(const py::object& data, const py::object& time) {
+    values_ = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(data);
+    if (!values_ || (values_.ndim() != 1 && values_.ndim() != 2))
+      throw InputError("data: must be a 1-D array of samples or a 2-D array of samples x channels");
+    if (!time.is_none()) {
+      auto t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(time);
+      if (!t || t.ndim() != 1) throw InputError("time: must be a 1-D array of times, s");
+      time_.assign(t.data(), t.data() + t.size());
+      has_time_ = true;
+    }
+  }
+  // Call without the GIL: reads the array's memory only.
+  std::vector<io::TimeSeries> read(const apps::Flags& a) const {
+    io::ImportOptions o = apps::read_import_options(a);
+    std::vector<std::string> channels = a.texts("channel");
+    if (channels.empty()) channels.emplace_back();
+    const std::size_t rows = static_cast<std::size_t>(values_.shape(0));
+    const std::size_t columns = values_.ndim() == 2 ? static_cast<std::size_t>(values_.shape(1)) : 1;
+    std::vector<io::TimeSeries> records;
+    for (const std::string& channel : channels) {
+      o.channel = channel;
+      try {
+        records.push_back(
+            io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o));
+      } catch (const InputError& e) {
+        throw InputError("beamid " + a.command() + ": --data: " + e.what());
+      }
+    }
+    return records;
+  }
+
+ private:
+  py::array_t<double, py::array::c_style | py::array::forcecast> values_;
+  std::vector<double> time_;
+  bool has_time_ = false;
+};
+
+// The records of a command: the array when one is given, else the --data file.
+std::vector<io::TimeSeries> records_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
+  return array ? array->read(a) : apps::read_channels(a);
+}
+
+std::optional<ArrayRecord> array_record(const py::object& data, const py::object& time) {
+  if (data.is_none()) return std::nullopt;
+  return ArrayRecord(data, time);
+}
+
+io::TimeSeries single(const apps::Flags& a, std::vector<io::TimeSeries> records) {
+  a.require(records.size() == 1, "channel", "must name one channel (several are for beamid fit)");
+  return std::move(records.front());
+}
+
+py::dict py_simulate(const std::vector<std::string>& args) {
+  apps::SimulateResult r;
+  {
+    py::gil_scoped_release unlocked;
+    r = apps::compute_simulate(apps::parse_flags("simulate", args));
+  }
+  py::dict d;
+  d["dt_s"] = r.run.experiment.dt_s;
+  d["output"] = r.run.experiment.output;
+  d["integrator"] = r.trace.stats.integrator;
+  d["modes"] = r.trace.stats.modes;
+  d["steps"] = r.trace.stats.steps;
+  d["y"] = owned_array(std::move(r.y));
+  return d;
+}
+
+py::dict py_modes(const std::vector<std::string>& args) {
+  apps::ModesResult r;
+  {
+    py::gil_scoped_release unlocked;
+    r = apps::compute_modes(apps::parse_flags("modes", args));
+  }
+  py::dict d;
+  d["kind"] = r.kind;
+  d["available"] = r.available;
+  d["frequency_hz"] = copied_array(r.frequency_hz);
+  d["damping_ratio"] = copied_array(r.damping_ratio);
+  return d;
+}
+
+py::dict py_system(const std::vector<std::string>& args) {
+  apps::SystemResult r;
+  {
+    py::gil_scoped_release unlocked;
+    r = apps::compute_system(apps::parse_flags("system", args));
+  }
+  py::dict d;
+  d["beam"] = r.run.beam_name;
+  d["length_m"] = r.run.beam.l;
+  d["elements"] = r.run.elements;
+  d["M"] = matrix_array(r.system.M);
+  d["C"] = matrix_array(r.system.C);
+  d["K"] = matrix_array(r.system.K);
+  d["load"] = vector_array(r.problem.load);
+  d["sensor"] = vector_array(r.problem.sensor);
+  d["w0"] = vector_array(r.problem.w0);
+  d["amplitude_N"] = r.problem.amplitude_N;
+  d["pulse_width_s"] = r.problem.pulse_width_s;
+  d["derivative"] = r.problem.derivative;
+  d["dt_s"] = r.problem.dt_s;
+  d["samples"] = r.problem.samples;
+  return d;
+}
+
+py::dict py_spikes(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
+  const auto array = array_record(data, time);
+  apps::SpikesResult r;
+  {
+    py::gil_scoped_release unlocked;
+    const apps::Flags a = apps::parse_flags("spikes", args);
+    r = apps::compute_spikes(a, single(a, records_of(a, array)));
+  }
+  py::dict d;
+  py::list picks, skipped;
+  const auto row = [](const signal::Spike& s) {
+    py::dict p;
+    p["bin"] = s.bin;
+    p["frequency_hz"] = s.frequency_hz;
+    p["magnitude"] = s.magnitude;
+    p["n_left"] = s.n_left;
+    p["n_right"] = s.n_right;
+    return p;
+  };
+  for (const auto& s : r.picks) picks.append(row(s));
+  for (const auto& p : r.peaks)
+    if (!p.skipped.empty()) {
+      py::dict s = row(p.spike);
+      s["reason"] = p.skipped;
+      skipped.append(s);
+    }
+  d["picks"] = picks;
+  d["skipped"] = skipped;
+  d["requested"] = r.requested;
+  d["df_hz"] = r.spectrum.df_hz();
+  return d;
+}
+
+py::dict py_cost(const std::vector<std::string>& args, const py::object& data, const py::object& time,
+                 const py::object& prediction) {
+  const auto array = array_record(data, time);
+  std::optional<py::array_t<double, py::array::c_style | py::array::forcecast>> predicted;
+  if (!prediction.is_none()) {
+    predicted = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(prediction);
+    if (!*predicted || predicted->ndim() != 1) throw InputError("prediction: must be a 1-D array of samples");
+  }
+  costs::Evaluation e;
+  {
+    py::gil_scoped_release unlocked;
+    const apps::Flags a = apps::parse_flags("cost", args);
+    const io::TimeSeries record = single(a, records_of(a, array));
+    io::TimeSeries model;
+    if (predicted) {  // an array of the data's length at the data's step
+      model.path = "<array>";
+      model.dt_s = record.dt_s;
+      model.values.assign(predicted->data(), predicted->data() + predicted->size());
+    } else {
+      model = io::read_time_series(a.text("prediction"));
+    }
+    e = apps::compute_cost(a, record, model);
+  }
+  py::dict d;
+  d["value"] = e.value;
+  d["a4"] = e.a4;
+  d["amplitude_scale"] = e.amplitude_scale;
+  d["residuals"] = vector_array(e.residuals);
+  return d;
+}
+
+py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double window_se) {
+  py::dict d;
+  d["parameter"] = p.key;
+  d["estimate"] = p.estimate;
+  d["standard_error"] = p.standard_error;
+  d["start"] = p.start;
+  d["lower"] = p.lower;
+  d["upper"] = p.upper;
+  d["status"] = p.status;
+  d["robust_standard_error"] = p.robust_standard_error;
+  d["window_sd"] = window_sd;
+  d["window_standard_error"] = window_se;
+  return d;
+}
+
+py::dict py_fit(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
+  const auto array = array_record(data, time);
+  std::optional<apps::FitComputation> c;
+  std::vector<io::TimeSeries> channels;
+  std::optional<apps::ModeComparison> modes;
+  std::string beam_name;
+  {
+    py::gil_scoped_release unlocked;
+    const apps::Flags a = apps::parse_flags("fit", args);
+    channels = records_of(a, array);
+    c = apps::compute_fit(a, channels);
+    beam_name = a.text("beam");
+    const apps::FitReportInput input{
+        c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};
+    modes = apps::compare_modes(input);
+    if (a.has("report")) apps::write_fit_report(a.text("report"), input);
+  }
+  const fit::FitResult& r = c->result;
+  py::dict d;
+  py::list parameters;
+  py::dict estimates;
+  const double nan = std::nan("");
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    parameters.append(parameter_row(r.parameters[i], c->spread ? c->spread->sd[i] : nan,
+                                    c->spread ? c->spread->standard_error[i] : nan));
+    estimates[py::str(r.parameters[i].key)] = r.parameters[i].estimate;
+  }
+  d["parameters"] = parameters;
+  d["estimates"] = estimates;
+  d["status"] = r.status;
+  d["termination"] = r.termination;
+  d["cost"] = r.cost;
+  d["evaluations"] = r.evaluations;
+  d["wall_time_s"] = r.wall_time_s;
+  d["covariance_status"] = r.covariance_status;
+  d["correlation"] = matrix_array(r.correlation);
+  d["beam"] = beam_dict(r.beam);
+  d["model_output"] = copied_array(r.model_output);
+  py::dict identifiability;
+  identifiability["status"] = r.identifiability.status;
+  identifiability["verdict"] = r.identifiability.verdict;
+  identifiability["condition"] = r.identifiability.condition;
+  identifiability["weakest"] = r.identifiability.combination();
+  d["identifiability"] = identifiability;
+  py::list mode_rows;
+  for (const auto& p : modes->pairs) {
+    py::dict m;
+    m["data_hz"] = p.data_hz;
+    m["data_damping_ratio"] = p.data_damping_ratio;
+    m["model_hz"] = p.model_hz;
+    m["model_damping_ratio"] = p.model_damping_ratio;
+    mode_rows.append(m);
+  }
+  d["modes"] = mode_rows;
+  d["modes_status"] = modes->status;
+  py::list records;
+  for (const auto& part : r.records) {
+    py::dict rec;
+    rec["name"] = part.name;
+    rec["cost"] = part.evaluation.value;
+    rec["status"] = part.evaluation.status;
+    rec["weight"] = part.weight;
+    rec["amplitude_scale"] = part.evaluation.amplitude_scale;
+    records.append(rec);
+  }
+  d["records"] = records;
+  d["commit"] = io::commit_label();
+  return d;
+}
+
+py::dict py_crb(const std::vector<std::string>& args) {
+  apps::CrbResult r;
+  {
+    py::gil_scoped_release unlocked;
+    r = apps::compute_crb(apps::parse_flags("crb", args));
+  }
+  py::dict d;
+  d["parameters"] = r.keys;
+  d["value"] = copied_array(r.values);
+  d["crb_sd"] = vector_array(r.bound.sd);
+  d["crb_relative_sd"] = vector_array(r.bound.relative_sd);
+  d["noise_sd"] = r.noise_sd;
+  d["method"] = r.bound.method;
+  d["covariance"] = matrix_array(r.bound.covariance);
+  d["rcond"] = r.bound.rcond;
+  return d;
+}
+
+py::dict py_modal_id(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
+  const auto array = array_record(data, time);
+  apps::ModalIdResult r;
+  {
+    py::gil_scoped_release unlocked;
+    const apps::Flags a = apps::parse_flags("modal-id", args);
+    r = apps::compute_modal_id(a, single(a, records_of(a, array)));
+  }
+  std::vector<double> f, zeta, amplitude, phase;
+  for (const auto& m : r.modes) {
+    f.push_back(m.frequency_hz);
+    zeta.push_back(m.damping_ratio);
+    amplitude.push_back(m.amplitude);
+    phase.push_back(m.phase_rad);
+  }
+  py::dict d;
+  d["frequency_hz"] = copied_array(f);
+  d["damping_ratio"] = copied_array(zeta);
+  d["amplitude"] = copied_array(amplitude);
+  d["phase_rad"] = copied_array(phase);
+  return d;
+}
+
+py::dict py_read_record(const std::vector<std::string>& args) {
+  io::TimeSeries s;
+  {
+    py::gil_scoped_release unlocked;
+    const apps::Flags a = apps::parse_flags("modal-id", args);
+    s = single(a, apps::read_channels(a));
+  }
+  py::dict d;
+  d["path"] = s.path;
+  d["format"] = s.format;
+  d["channel"] = s.value_column;
+  d["unit"] = s.unit;
+  d["t0_s"] = s.t0_s;
+  d["dt_s"] = s.dt_s;
+  d["notes"] = s.notes;
+  d["values"] = owned_array(std::move(s.values));
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "beamid's C++ core (use the beamid package, not this module)";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
+  m.def("version", [] { return io::version() + " (commit " + io::commit_label() + ")"; });
+  m.def("presets", [] { return model::preset_names(); });
+  m.def("beam", [](const std::string& spec) { return beam_dict(config::resolve_beam(spec)); });
+  m.def("parse_beam", [](const std::string& text, const std::string& name) {
+    return beam_dict(config::parse_beam_toml(text, name));
+  });
+  m.def("simulate", &py_simulate);
+  m.def("modes", &py_modes);
+  m.def("system", &py_system);
+  m.def("spikes", &py_spikes);
+  m.def("cost", &py_cost);
+  m.def("fit", &py_fit);
+  m.def("crb", &py_crb);
+  m.def("modal_id", &py_modal_id);
+  m.def("read_record", &py_read_record);
+}
