@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "io/text.h"
+#include "model/beam_parameters.h"
 #include "signal/noise.h"
 
 namespace beamid::study {
@@ -16,11 +17,28 @@ void identify(Unit& u, const StudySpec& spec) {
   u.seed = signal::mix64(spec.seed ^ h);
 }
 
+// The truth beam as it enters a unit's identity: a preset by its name; a beam file by its path and a hash of the
+// values read from it, so that editing the file changes the ids of every unit that used it, and their stored records
+// are recomputed instead of reused (the store keys records by id). Preset studies keep their ids.
+std::string beam_identity(const TruthSpec& t) {
+  if (t.beam_path.empty()) return t.beam;
+  const model::BeamParameters& b = t.parameters;
+  std::ostringstream values;
+  for (const auto& info : model::parameter_table())
+    values << info.key << "=" << io::round_trip(model::parameter_value(b, info.key)) << ";";
+  for (const model::Attachment& a : b.attachments)
+    values << "attachment=" << io::round_trip(a.x) << "," << io::round_trip(a.m) << "," << io::round_trip(a.J) << ","
+           << io::round_trip(a.c) << ";";
+  values << "k_theta=" << io::round_trip(b.support.k_theta) << ";k_w=" << io::round_trip(b.support.k_w);
+  return t.beam + "#" + io::hex64(signal::fnv1a64(values.str()));
+}
+
 std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   const auto& t = spec.truth;
   const auto& e = t.experiment;
   std::ostringstream os;
-  os << "beam=" << t.beam << ";N_truth=" << t.elements << ";rtol=" << io::round_trip(t.rtol) << ";integrator=fast"
+  os << "beam=" << beam_identity(t) << ";N_truth=" << t.elements << ";rtol=" << io::round_trip(t.rtol)
+     << ";integrator=fast"
      << ";dt_s=" << io::round_trip(e.dt_s) << ";samples=" << e.samples << ";excitation=" << e.excitation
      << ";force_x_m=" << (e.force_x_m ? io::round_trip(*e.force_x_m) : "tip")
      << ";force_amplitude_N=" << io::round_trip(e.force_amplitude_N)
@@ -255,7 +273,7 @@ Plan make_plan(const StudySpec& spec) {
     Unit u;
     u.kind = "frequencies";
     u.elements = n;
-    u.canonical = "frequencies;beam=" + spec.truth.beam + ";N=" + std::to_string(n);
+    u.canonical = "frequencies;beam=" + beam_identity(spec.truth) + ";N=" + std::to_string(n);
     identify(u, spec);
     plan.units.push_back(u);
   }

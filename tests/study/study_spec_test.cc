@@ -2,7 +2,10 @@
 #include "study/study_spec.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -152,6 +155,50 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   const Plan reseeded = make_plan(parse_study(replaced(kValid, "seed = 5", "seed = 6"), "s.toml", "."));
   EXPECT_EQ(reseeded.units[3].id, plan.units[3].id);
   EXPECT_NE(reseeded.units[3].seed, plan.units[3].seed);
+}
+
+// A truth beam read from a file enters the units' identity by its values, not only its path: editing the file changes
+// every unit's id (so the store recomputes them instead of reusing records of the old beam), rewriting it unchanged
+// keeps them; a preset's units keep ids that name the preset alone.
+TEST(StudyPlan, EditingATruthBeamFileChangesTheUnitIds) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::temp_directory_path() / ("beamid-plan-beam-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::string beam = R"([beam]
+l = 0.4573
+rho = 0.093
+rho_r2 = 1.984e-08
+kAG = 736300.0
+EI = 0.491
+gamma = 0.013
+cDI = 6.49e-06
+kAcs = 9.73
+m = 0.05
+c = 0.0125
+J_o = 5.208e-06
+)";
+  const auto write_beam = [&](const std::string& text) { std::ofstream(folder / "b.toml") << text; };
+  const std::string study = replaced(kValid, "beam = \"banks-aluminium\"", "beam = \"b.toml\"");
+  const auto ids = [&] {
+    std::vector<std::string> out;
+    const Plan plan = make_plan(parse_study(study, (folder / "s.toml").string(), folder.string()));
+    for (const auto& u : plan.truths) out.push_back(u.id);
+    for (const auto& u : plan.units) out.push_back(u.id);
+    return out;
+  };
+  write_beam(beam);
+  const std::vector<std::string> first = ids();
+  write_beam(beam);
+  EXPECT_EQ(ids(), first);
+  write_beam(replaced(beam, "EI = 0.491", "EI = 0.5"));
+  const std::vector<std::string> edited = ids();
+  ASSERT_EQ(edited.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) EXPECT_NE(edited[i], first[i]) << i;
+  fs::remove_all(folder);
+  // Presets: the canonical text names the preset, as before (the committed studies' ids stand).
+  const Plan preset = make_plan(parse_study(kValid, "s.toml", "."));
+  EXPECT_EQ(preset.truths[0].canonical.rfind("truth;beam=banks-aluminium;N_truth=", 0), 0u)
+      << preset.truths[0].canonical;
 }
 
 TEST(StudySpec, StartDistanceRunsAreCostSlashMethod) {
