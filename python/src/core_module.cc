@@ -133,12 +133,15 @@ io::TimeSeries single(const apps::Flags& a, std::vector<io::TimeSeries> records)
   return std::move(records.front());
 }
 
+// A command's computation on its parsed flags, run without the GIL (parsing included: it reads beam files).
+template <typename Compute>
+auto without_gil(const char* command, const std::vector<std::string>& args, Compute compute) {
+  py::gil_scoped_release unlocked;
+  return compute(apps::parse_flags(command, args));
+}
+
 py::dict py_simulate(const std::vector<std::string>& args) {
-  apps::SimulateResult r;
-  {
-    py::gil_scoped_release unlocked;
-    r = apps::compute_simulate(apps::parse_flags("simulate", args));
-  }
+  apps::SimulateResult r = without_gil("simulate", args, apps::compute_simulate);
   py::dict d;
   d["dt_s"] = r.run.experiment.dt_s;
   d["output"] = r.run.experiment.output;
@@ -150,11 +153,7 @@ py::dict py_simulate(const std::vector<std::string>& args) {
 }
 
 py::dict py_modes(const std::vector<std::string>& args) {
-  apps::ModesResult r;
-  {
-    py::gil_scoped_release unlocked;
-    r = apps::compute_modes(apps::parse_flags("modes", args));
-  }
+  const apps::ModesResult r = without_gil("modes", args, apps::compute_modes);
   py::dict d;
   d["kind"] = r.kind;
   d["available"] = r.available;
@@ -164,11 +163,7 @@ py::dict py_modes(const std::vector<std::string>& args) {
 }
 
 py::dict py_system(const std::vector<std::string>& args) {
-  apps::SystemResult r;
-  {
-    py::gil_scoped_release unlocked;
-    r = apps::compute_system(apps::parse_flags("system", args));
-  }
+  const apps::SystemResult r = without_gil("system", args, apps::compute_system);
   py::dict d;
   d["beam"] = r.run.beam_name;
   d["length_m"] = r.run.beam.l;
@@ -189,12 +184,9 @@ py::dict py_system(const std::vector<std::string>& args) {
 
 py::dict py_spikes(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  apps::SpikesResult r;
-  {
-    py::gil_scoped_release unlocked;
-    const apps::Flags a = apps::parse_flags("spikes", args);
-    r = apps::compute_spikes(a, single(a, records_of(a, array)));
-  }
+  const apps::SpikesResult r = without_gil("spikes", args, [&array](const apps::Flags& a) {
+    return apps::compute_spikes(a, single(a, records_of(a, array)));
+  });
   py::dict d;
   py::list picks, skipped;
   const auto row = [](const signal::Spike& s) {
@@ -337,11 +329,7 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
 }
 
 py::dict py_crb(const std::vector<std::string>& args) {
-  apps::CrbResult r;
-  {
-    py::gil_scoped_release unlocked;
-    r = apps::compute_crb(apps::parse_flags("crb", args));
-  }
+  const apps::CrbResult r = without_gil("crb", args, apps::compute_crb);
   py::dict d;
   d["parameters"] = r.keys;
   d["value"] = copied_array(r.values);
@@ -356,12 +344,9 @@ py::dict py_crb(const std::vector<std::string>& args) {
 
 py::dict py_modal_id(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  apps::ModalIdResult r;
-  {
-    py::gil_scoped_release unlocked;
-    const apps::Flags a = apps::parse_flags("modal-id", args);
-    r = apps::compute_modal_id(a, single(a, records_of(a, array)));
-  }
+  const apps::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
+    return apps::compute_modal_id(a, single(a, records_of(a, array)));
+  });
   std::vector<double> f, zeta, amplitude, phase;
   for (const auto& m : r.modes) {
     f.push_back(m.frequency_hz);
@@ -378,12 +363,8 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
 }
 
 py::dict py_read_record(const std::vector<std::string>& args) {
-  io::TimeSeries s;
-  {
-    py::gil_scoped_release unlocked;
-    const apps::Flags a = apps::parse_flags("modal-id", args);
-    s = single(a, apps::read_channels(a));
-  }
+  io::TimeSeries s =
+      without_gil("modal-id", args, [](const apps::Flags& a) { return single(a, apps::read_channels(a)); });
   py::dict d;
   d["path"] = s.path;
   d["format"] = s.format;
