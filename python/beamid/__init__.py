@@ -20,6 +20,8 @@ import contextlib
 import numbers
 import os
 import tempfile
+import threading
+import warnings
 
 import numpy as np
 
@@ -42,11 +44,34 @@ def presets():
     return list(_core.presets())
 
 
+def _call(function, *args):
+    """Runs a core computation on a worker thread and waits for it there, so that Ctrl-C (or a Jupyter interrupt)
+    raises KeyboardInterrupt in the caller at once. The core cannot be stopped part-way: an interrupted computation
+    finishes in the background and its result is dropped. From other threads the core is called directly."""
+    if threading.current_thread() is not threading.main_thread():
+        return function(*args)
+    box = {}
+
+    def work():
+        try:
+            box["value"] = function(*args)
+        except BaseException as error:  # handed to the caller below
+            box["error"] = error
+
+    worker = threading.Thread(target=work, name="beamid-core", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.05)
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
+
+
 def _text(value):
     """A keyword argument's value as the command line would spell it: floats in their shortest round-trip form
     (repr), so that the program's parser reads back the very same double."""
     if isinstance(value, (bool, np.bool_)):
-        raise TypeError("a switch is True or left out; it takes no value")
+        raise TypeError("a switch is True or left out; it takes no value (a list of booleans is no flag value)")
     if isinstance(value, numbers.Integral):
         return str(int(value))
     if isinstance(value, numbers.Real):
@@ -61,6 +86,12 @@ def _arguments(flags):
         if value is None or value is False:
             continue
         flag = "--" + key.replace("_", "-")
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value.item()  # a NumPy scalar array is its scalar
+        if isinstance(value, np.bool_):
+            value = bool(value)
+        if value is False:
+            continue
         if value is True:
             arguments.append(flag)
         elif isinstance(value, (list, tuple, np.ndarray)):
@@ -76,9 +107,15 @@ def beam_toml(parameters):
     "support.k_w" for a compliant clamp (infinite or absent: rigid)."""
     lines, attachments, support = ["[beam]"], {}, {}
     for key, value in parameters.items():
+        if not isinstance(value, numbers.Real) or isinstance(value, (bool, np.bool_)):
+            raise InputError(f"beam dict: {key} = {value!r}: must be a number")
         head, _, field = key.partition(".")
         if head.startswith("attachment") and field:
-            attachments.setdefault(int(head[len("attachment"):]), {})[field] = value
+            index = head[len("attachment"):]
+            if not index.isdigit() or int(index) < 1:
+                raise InputError(f"beam dict: key '{key}': an attachment's keys read attachmentK.x, .m, .J, .c with "
+                                 f"K = 1, 2, ...")
+            attachments.setdefault(int(index), {})[field] = value
         elif head == "support" and field:
             if np.isfinite(value):
                 support[field] = value
@@ -109,32 +146,59 @@ def beam(spec=None, *, toml=None):
     return dict(_core.beam(os.fspath(spec)))
 
 
+BEAM_DICT = "<beam dict>"  # how messages and reports name a beam given as a dict
+
+
 @contextlib.contextmanager
 def _beam_flag(flags):
-    """``beam=`` as the program takes it: a dict becomes a temporary beam file for the duration of the call."""
+    """``beam=`` as the program takes it: a dict becomes a temporary beam file for the duration of the call, and
+    errors name it "<beam dict>" (with the line of its TOML, as beam_toml writes it) instead of the temporary path."""
     value = flags.get("beam")
     if not isinstance(value, dict):
         yield flags
         return
+    text = beam_toml(value)
     with tempfile.TemporaryDirectory(prefix="beamid-") as folder:
         path = os.path.join(folder, "beam.toml")
         with open(path, "w", encoding="utf-8") as out:
-            out.write(beam_toml(value))
-        yield dict(flags, beam=path)
+            out.write(text)
+        try:
+            yield dict(flags, beam=path)
+        except (InputError, NumericalError) as error:
+            raise type(error)(str(error).replace(path, BEAM_DICT)) from None
+        report = flags.get("report")
+        if report and os.path.isfile(report):  # the report names the dict and carries its TOML, so it can be re-run
+            with open(report, encoding="utf-8") as f:
+                body = f.read().replace(path, "beam.toml")
+            with open(report, "w", encoding="utf-8") as f:
+                f.write(body + "\n## The beam (given as a dict from Python; save as beam.toml to re-run)\n\n```toml\n"
+                        + text + "```\n")
 
 
 def _record_flags(data, flags):
     """Splits ``data`` into the --data flag (a path) or an array for the core (--data then reads "<array>")."""
     if data is None or isinstance(data, (str, os.PathLike)):
         return None, dict(flags, data=data)
-    return np.asarray(data, dtype=float), dict(flags, data="<array>")
+    if isinstance(data, (bytes, bytearray)):
+        raise TypeError("data: a path (str or os.PathLike) or an array of samples, not bytes")
+    if np.ma.isMaskedArray(data) and np.ma.is_masked(data):
+        raise InputError("data: a masked array: fill or drop the masked samples first (a record is uniformly sampled)")
+    array = np.asarray(data)
+    if np.iscomplexobj(array):
+        raise InputError("data: complex values: a record is the real sensor signal")
+    if array.size == 0:
+        raise InputError("data: an empty array: a record needs at least 8 samples")
+    return np.asarray(array, dtype=float), dict(flags, data="<array>")
 
 
 def modes(**flags):
     """``beamid modes``: a structured array (mode, frequency_hz, damping_ratio) of the beam's modes."""
     with _beam_flag(flags) as f:
-        r = _core.modes(_arguments(f))
+        r = _call(_core.modes, _arguments(f))
     count = len(r["frequency_hz"])
+    if flags.get("count") and flags["count"] > count:
+        warnings.warn(f"count = {flags['count']}: the model has {count} {'underdamped ' if r['kind'] == 'damped' else ''}"
+                      f"modes: {count} returned", stacklevel=2)
     fields = [("mode", "i8"), ("frequency_hz", "f8")] + ([("damping_ratio", "f8")] if r["kind"] != "exact" else [])
     table = np.zeros(count, dtype=fields)
     table["mode"] = np.arange(1, count + 1)
@@ -148,21 +212,21 @@ def simulate(**flags):
     """``beamid simulate``: the sampled output as a 1-D array (``y[i]`` at ``t = dt * i``), bit-identical to the
     command's second column."""
     with _beam_flag(flags) as f:
-        return _core.simulate(_arguments(f))["y"]
+        return _call(_core.simulate, _arguments(f))["y"]
 
 
 def system(**flags):
     """``beamid system``: the Galerkin matrices M, C, K (arrays) with the experiment's load, sensor, initial state and
     sampling, as a dict."""
     with _beam_flag(flags) as f:
-        return dict(_core.system(_arguments(f)))
+        return dict(_call(_core.system, _arguments(f)))
 
 
 def spikes(data, time=None, **flags):
     """``beamid spikes``: a dict with ``picks`` (the spikes, ascending: bin, frequency_hz, magnitude, n_left,
     n_right) and ``skipped`` (peaks passed over as artefacts, with the reason)."""
     array, f = _record_flags(data, flags)
-    return dict(_core.spikes(_arguments(f), array, time))
+    return dict(_call(_core.spikes, _arguments(f), array, time))
 
 
 def cost(data, prediction, time=None, **flags):
@@ -173,7 +237,7 @@ def cost(data, prediction, time=None, **flags):
         f["prediction"], predicted = os.fspath(prediction), None
     else:
         f["prediction"], predicted = "<array>", np.asarray(prediction, dtype=float)
-    return dict(_core.cost(_arguments(f), array, time, predicted))
+    return dict(_call(_core.cost, _arguments(f), array, time, predicted))
 
 
 class FitResult:
@@ -189,6 +253,9 @@ class FitResult:
     beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)
     model_output      the model's output at the estimate (array)
     records           per record of a joint fit: name, cost, status, weight, amplitude_scale
+    a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
+    messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
+                      identifiability; fit() also issues each as a warning
     """
 
     def __init__(self, raw):
@@ -209,6 +276,25 @@ class FitResult:
                        ("model_damping_ratio", "f8")]
         self.modes = np.array([tuple(m[name] for name, _ in mode_fields) for m in raw["modes"]], dtype=mode_fields)
         self.modes_status = raw["modes_status"]
+        self.a4 = raw["a4"]
+        self.messages = self._messages()
+
+    def _messages(self):
+        """What the command line says on stderr about the fit, besides its summary line."""
+        messages = []
+        if self.status == "failed":
+            messages.append(f"the fit failed, so no estimate is given (NaN): {self.termination}")
+        at_bound = [f"{row['parameter']} {row['status']}" for row in self.parameters if row["status"].startswith("at-")]
+        if at_bound:
+            messages.append(f"on a bound: {', '.join(at_bound)} (the bound, not the data, set the value; its standard "
+                            f"error is not defined)")
+        if self.a4 != "ok":
+            messages.append(self.a4)
+        i = self.identifiability
+        if i["status"] == "ok" and i["verdict"] != "identifiable":
+            messages.append(f"{i['verdict']}: condition number of J (in ln q) {i['condition']:.3g}; the record hardly "
+                            f"constrains {i['weakest']}")
+        return messages
 
     @property
     def ok(self):
@@ -223,24 +309,31 @@ class FitResult:
 def fit(data, time=None, **flags):
     """``beamid fit``: fits the record(s) and returns a :class:`FitResult`. ``data`` is a file or an array (with
     ``sample_rate`` or ``time``); a 2-D array with ``channel=[1, 2]`` and ``sensor_x=[...]`` is a joint fit. Unlike
-    the command, a failed fit is not an exception: its status says "failed"."""
+    the command, a failed fit is not an exception: its status says "failed", and a warning says why.
+
+    A record read from a CSV has the step (t_last - t_0)/(n - 1) of its time column: to reproduce the command line's
+    fit of that file bit for bit from arrays, pass the file's time column as ``time=``, not ``sample_rate=``.
+    ``report=PATH`` writes the command's Markdown report (and PATH.spectra.csv beside it), creating its folder."""
     array, f = _record_flags(data, flags)
     with _beam_flag(f) as f:
-        return FitResult(_core.fit(_arguments(f), array, time))
+        result = FitResult(_call(_core.fit, _arguments(f), array, time))
+    for message in result.messages:
+        warnings.warn("beamid fit: " + message, stacklevel=2)
+    return result
 
 
 def crb(**flags):
     """``beamid crb``: the Cramér-Rao bound; a dict with parameters, value, crb_sd, crb_relative_sd (arrays in the
     order of ``estimate``), the noise sd assumed, the covariance of ln q and the method."""
     with _beam_flag(flags) as f:
-        return dict(_core.crb(_arguments(f)))
+        return dict(_call(_core.crb, _arguments(f)))
 
 
 def modal_id(data, time=None, **flags):
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
     damping_ratio, amplitude, phase_rad)."""
     array, f = _record_flags(data, flags)
-    r = _core.modal_id(_arguments(f), array, time)
+    r = _call(_core.modal_id, _arguments(f), array, time)
     fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad"]
     table = np.zeros(len(r["frequency_hz"]), dtype=[("mode", "i8")] + [(name, "f8") for name in fields])
     table["mode"] = np.arange(1, len(table) + 1)
@@ -253,4 +346,19 @@ def read_record(path, **flags):
     """A record file as beamid reads it (CSV, .lvm, .npy, .mat, UFF 58, with the import flags: channel, units, start,
     duration, sample_rate, variable, time_variable, resample, resample_rate): a dict with values (array), dt_s, t0_s,
     unit, format, channel and notes."""
-    return dict(_core.read_record(_arguments(dict(flags, data=path))))
+    try:
+        return dict(_call(_core.read_record, _arguments(dict(flags, data=path))))
+    except InputError as error:  # the core reads it with modal-id's import flags
+        raise InputError(str(error).replace("beamid modal-id:", "beamid.read_record:")) from None
+
+
+def _document_flags():
+    """Appends each command's flags (as `beamid <command> --help` lists them) to its function's docstring."""
+    for function, command in ((modes, "modes"), (simulate, "simulate"), (system, "system"), (spikes, "spikes"),
+                              (cost, "cost"), (fit, "fit"), (crb, "crb"), (modal_id, "modal-id")):
+        function.__doc__ = ((function.__doc__ or "") + "\n\n    Flags, as keyword arguments (dashes become "
+                            "underscores, a switch is True):\n\n" +
+                            "\n".join("    " + line for line in _core.command_help(command).splitlines()))
+
+
+_document_flags()

@@ -289,6 +289,7 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
   d["estimates"] = estimates;
   d["status"] = r.status;
   d["termination"] = r.termination;
+  d["a4"] = r.final_evaluation.a4;
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;
@@ -385,6 +386,7 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
   m.def("version", [] { return io::version() + " (commit " + io::commit_label() + ")"; });
   m.def("presets", [] { return model::preset_names(); });
+  m.def("command_help", &apps::command_help);
   m.def("beam", [](const std::string& spec) { return beam_dict(config::resolve_beam(spec)); });
   m.def("parse_beam", [](const std::string& text, const std::string& name) {
     return beam_dict(config::parse_beam_toml(text, name));

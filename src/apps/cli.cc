@@ -56,6 +56,20 @@ std::string message_of(const CLI::ParseError& e, const std::string& command) {
 
 namespace {
 
+const Command& find_command(const std::string& name) {
+  for (const Command& c : commands())
+    if (c.name == name) return c;
+  throw InputError("unknown command '" + name + "' (commands: " + command_list() + ")");
+}
+
+// The command as a subcommand of `app`, with its flags and exclusions.
+CLI::App* add_command(CLI::App& app, const Command& command) {
+  CLI::App* sub = app.add_subcommand(command.name, command.summary);
+  add_flags(*sub, command.flags);
+  for (const auto& [a, b] : command.excludes) sub->get_option("--" + a)->excludes(sub->get_option("--" + b));
+  return sub;
+}
+
 // Parses and, when `run`, runs the command: the one body of run_command_line and check_command_line.
 int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool run) {
   if (args.size() <= 1) {
@@ -69,10 +83,7 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
   app.require_subcommand(0, 1);
   std::vector<std::pair<const Command*, CLI::App*>> subcommands;
   for (const Command& c : commands()) {
-    CLI::App* sub = app.add_subcommand(c.name, c.summary);
-    add_flags(*sub, c.flags);
-    for (const auto& [a, b] : c.excludes) sub->get_option("--" + a)->excludes(sub->get_option("--" + b));
-    subcommands.emplace_back(&c, sub);
+    subcommands.emplace_back(&c, add_command(app, c));
   }
   const auto active = [&]() -> std::pair<const Command*, CLI::App*> {
     for (const auto& [c, sub] : subcommands)
@@ -126,15 +137,16 @@ int check_command_line(const std::vector<std::string>& args, std::ostream& out, 
   return dispatch(args, out, err, false);
 }
 
+std::string command_help(const std::string& name) {
+  const Command& command = find_command(name);
+  CLI::App app{command.summary, "beamid"};
+  return add_command(app, command)->help("beamid");
+}
+
 Flags parse_flags(const std::string& name, const std::vector<std::string>& arguments) {
-  const Command* command = nullptr;
-  for (const Command& c : commands())
-    if (c.name == name) command = &c;
-  if (command == nullptr) throw InputError("unknown command '" + name + "' (commands: " + command_list() + ")");
+  const Command* command = &find_command(name);
   CLI::App app{command->summary, "beamid"};
-  CLI::App* sub = app.add_subcommand(command->name, command->summary);
-  add_flags(*sub, command->flags);
-  for (const auto& [a, b] : command->excludes) sub->get_option("--" + a)->excludes(sub->get_option("--" + b));
+  CLI::App* sub = add_command(app, *command);
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes the arguments reversed
   reversed.push_back(command->name);
   try {

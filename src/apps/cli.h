@@ -20,5 +20,7 @@ int check_command_line(const std::vector<std::string>& args, std::ostream& out, 
 // for programs that call the commands' computations directly (the Python package): an InputError carries the message
 // the command line would print after "beamid: ", e.g. "beamid fit: unknown flag --foo (fit --help lists them)".
 Flags parse_flags(const std::string& command, const std::vector<std::string>& arguments);
+// What `beamid <command> --help` prints (InputError for an unknown command).
+std::string command_help(const std::string& command);
 
 }  // namespace beamid::apps

@@ -247,3 +247,73 @@ def test_the_example_script_runs(tmp_path):
     # The modal-cost fit of the README: EI about 96 N m^2 for the steel record (REPORT.md 2.8).
     ei = float(p.stdout.split("EI=")[1].split(",")[0])
     assert 90 < ei < 100
+
+
+def test_what_the_program_says_on_stderr_comes_as_warnings():
+    # A noise-free record of the thick beam fitted with bounds that exclude its damping: cDI must end on its upper
+    # bound (the truth lies 10 % above it), which the command line reports on stderr. (Starts at 0.8 x the truth.)
+    y = beamid.simulate(beam="thick-steel", elements=6, dt=1e-4, samples=1024, output="acceleration")
+    truth = beamid.beam("thick-steel")
+    with pytest.warns(UserWarning, match=r"on a bound: cDI at-upper-bound"):
+        result = beamid.fit(data=y, sample_rate=1e4, beam="thick-steel", elements=6, output="acceleration",
+                            estimate=["EI", "cDI"], cost="time", start_scale=0.8,
+                            bounds=f"EI={truth['EI'] / 2}:{truth['EI'] * 2},cDI={truth['cDI'] / 2}:{truth['cDI'] / 1.1}")
+    assert any("cDI at-upper-bound" in m for m in result.messages)
+    assert result.a4 == "ok"
+    with pytest.warns(UserWarning, match=r"has \d+ underdamped modes"):
+        beamid.modes(beam="thick-steel", elements=2, count=100)
+
+
+def test_a_beam_dict_is_named_as_such(tmp_path):
+    steel = beamid.beam("thick-steel")
+    with pytest.raises(beamid.InputError) as error:
+        beamid.simulate(beam=dict(steel, kAG=-1.0), elements=4, samples=64)
+    assert "<beam dict>" in str(error.value) and "beam.kAG = -1" in str(error.value)
+    assert "/tmp" not in str(error.value)
+    y = beamid.simulate(beam="thick-steel", elements=6, dt=1e-4, samples=512)
+    report = tmp_path / "fit.md"
+    beamid.fit(data=y, sample_rate=1e4, beam=dict(steel, EI=1.02 * steel["EI"]), elements=6, estimate="EI",
+               cost="time", report=str(report))
+    text = report.read_text()
+    # The report can be re-run: it names beam.toml and carries that TOML, which reads back to the dict's beam.
+    toml = text.split("```toml\n")[1].split("```")[0]
+    assert beamid.beam(toml=toml)["EI"] == 1.02 * steel["EI"] and "/tmp/beamid-" not in text
+
+
+def test_odd_arguments_get_clear_errors():
+    y = beamid.simulate(beam="thick-steel", elements=4, dt=1e-4, samples=256)
+    # NumPy scalars are scalars, NumPy booleans switches.
+    assert np.array_equal(beamid.simulate(beam="thick-steel", elements=4, dt=np.array(1e-4), samples=256), y)
+    assert beamid.modes(beam="thick-steel", elements=4, undamped=np.True_)["damping_ratio"][0] == 0
+    with pytest.raises(beamid.InputError, match=r"attachmentK"):
+        beamid.simulate(beam=dict(beamid.beam("thick-steel"), **{"attachmentA.x": 0.1}), elements=4)
+    with pytest.raises(beamid.InputError, match=r"EI = 'abc': must be a number"):
+        beamid.simulate(beam=dict(beamid.beam("thick-steel"), EI="abc"), elements=4)
+    with pytest.raises(TypeError, match=r"not bytes"):
+        beamid.modal_id(data=b"record.csv")
+    with pytest.raises(beamid.InputError, match=r"empty array"):
+        beamid.modal_id(data=np.array([]), sample_rate=1e4)
+    with pytest.raises(beamid.InputError, match=r"complex"):
+        beamid.modal_id(data=y + 1j, sample_rate=1e4)
+    with pytest.raises(beamid.InputError, match=r"masked"):
+        beamid.modal_id(data=np.ma.masked_array(y, mask=np.arange(256) == 3), sample_rate=1e4)
+    with pytest.raises(beamid.InputError, match=r"^beamid.read_record: "):
+        beamid.read_record(os.path.join(STEEL, "timeseries_data.lvm"), channel=[1, 2])
+    # help() lists the command's flags.
+    assert "--estimate" in beamid.fit.__doc__ and "--sensor-x" in beamid.simulate.__doc__
+
+
+def test_ctrl_c_returns_at_once():
+    # SIGINT a moment into a fit of several seconds: KeyboardInterrupt reaches the caller while the core's worker
+    # thread is still computing (it cannot be stopped part-way and finishes in the background).
+    import signal
+    y = beamid.simulate(beam="thick-steel", elements=16, dt=1e-4, samples=8192, output="acceleration")
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        beamid.fit(data=y, sample_rate=1e4, beam="thick-steel", elements=16, output="acceleration",
+                   estimate=["EI", "rho", "cDI", "gamma"], cost="spike-smooth", start_scale=1.1, starts=4)
+    workers = [t for t in threading.enumerate() if t.name == "beamid-core"]
+    assert workers, "the fit had finished before the interrupt was delivered"
+    for worker in workers:
+        worker.join()  # let it finish, so that it does not run into the next test
