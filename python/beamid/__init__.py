@@ -196,9 +196,8 @@ def modes(**flags):
     with _beam_flag(flags) as f:
         r = _call(_core.modes, _arguments(f))
     count = len(r["frequency_hz"])
-    if flags.get("count") and flags["count"] > count:
-        warnings.warn(f"count = {flags['count']}: the model has {count} {'underdamped ' if r['kind'] == 'damped' else ''}"
-                      f"modes: {count} returned", stacklevel=2)
+    if r["note"]:
+        warnings.warn("beamid modes: " + r["note"], stacklevel=2)
     fields = [("mode", "i8"), ("frequency_hz", "f8")] + ([("damping_ratio", "f8")] if r["kind"] != "exact" else [])
     table = np.zeros(count, dtype=fields)
     table["mode"] = np.arange(1, count + 1)
@@ -277,24 +276,7 @@ class FitResult:
         self.modes = np.array([tuple(m[name] for name, _ in mode_fields) for m in raw["modes"]], dtype=mode_fields)
         self.modes_status = raw["modes_status"]
         self.a4 = raw["a4"]
-        self.messages = self._messages()
-
-    def _messages(self):
-        """What the command line says on stderr about the fit, besides its summary line."""
-        messages = []
-        if self.status == "failed":
-            messages.append(f"the fit failed, so no estimate is given (NaN): {self.termination}")
-        at_bound = [f"{row['parameter']} {row['status']}" for row in self.parameters if row["status"].startswith("at-")]
-        if at_bound:
-            messages.append(f"on a bound: {', '.join(at_bound)} (the bound, not the data, set the value; its standard "
-                            f"error is not defined)")
-        if self.a4 != "ok":
-            messages.append(self.a4)
-        i = self.identifiability
-        if i["status"] == "ok" and i["verdict"] != "identifiable":
-            messages.append(f"{i['verdict']}: condition number of J (in ln q) {i['condition']:.3g}; the record hardly "
-                            f"constrains {i['weakest']}")
-        return messages
+        self.messages = list(raw["messages"])
 
     @property
     def ok(self):

@@ -4,6 +4,7 @@ A column whose every field reads as a number (NaN and empty fields included) is 
 quoted fields may hold commas, as the program quotes them.
 """
 import csv
+import json
 import os
 
 import numpy as np
@@ -52,7 +53,6 @@ def load_results(folder, as_dict=False):
             tables[name[:-4]] = read_table(path, as_dict=as_dict)
     manifest = os.path.join(folder, "manifest.json")
     if os.path.isfile(manifest):
-        import json
         with open(manifest, encoding="utf-8") as f:
             tables["manifest"] = json.load(f)
     return tables

@@ -92,24 +92,11 @@ class ArrayRecord {
       has_time_ = true;
     }
   }
-  // Call without the GIL: reads the array's memory only.
-  std::vector<io::TimeSeries> read(const apps::Flags& a) const {
-    io::ImportOptions o = apps::read_import_options(a);
-    std::vector<std::string> channels = a.texts("channel");
-    if (channels.empty()) channels.emplace_back();
+  // One channel with a command's import options (call without the GIL: it reads the array's memory only).
+  io::TimeSeries read(const io::ImportOptions& o) const {
     const std::size_t rows = static_cast<std::size_t>(values_.shape(0));
     const std::size_t columns = values_.ndim() == 2 ? static_cast<std::size_t>(values_.shape(1)) : 1;
-    std::vector<io::TimeSeries> records;
-    for (const std::string& channel : channels) {
-      o.channel = channel;
-      try {
-        records.push_back(
-            io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o));
-      } catch (const InputError& e) {
-        throw InputError("beamid " + a.command() + ": --data: " + e.what());
-      }
-    }
-    return records;
+    return io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o);
   }
 
  private:
@@ -118,19 +105,19 @@ class ArrayRecord {
   bool has_time_ = false;
 };
 
-// The records of a command: the array when one is given, else the --data file.
-std::vector<io::TimeSeries> records_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
-  return array ? array->read(a) : apps::read_channels(a);
-}
-
 std::optional<ArrayRecord> array_record(const py::object& data, const py::object& time) {
   if (data.is_none()) return std::nullopt;
   return ArrayRecord(data, time);
 }
 
-io::TimeSeries single(const apps::Flags& a, std::vector<io::TimeSeries> records) {
-  a.require(records.size() == 1, "channel", "must name one channel (several are for beamid fit)");
-  return std::move(records.front());
+// The records of a command (channels; one for record_of): the array when one is given, else the --data file.
+std::vector<io::TimeSeries> records_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
+  if (!array) return apps::read_channels(a);
+  return apps::read_channels(a, [&array](const io::ImportOptions& o) { return array->read(o); });
+}
+io::TimeSeries record_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
+  if (!array) return apps::read_data(a);
+  return apps::read_data(a, [&array](const io::ImportOptions& o) { return array->read(o); });
 }
 
 // A command's computation on its parsed flags, run without the GIL (parsing included: it reads beam files).
@@ -157,6 +144,7 @@ py::dict py_modes(const std::vector<std::string>& args) {
   py::dict d;
   d["kind"] = r.kind;
   d["available"] = r.available;
+  d["note"] = r.note;
   d["frequency_hz"] = copied_array(r.frequency_hz);
   d["damping_ratio"] = copied_array(r.damping_ratio);
   return d;
@@ -184,9 +172,8 @@ py::dict py_system(const std::vector<std::string>& args) {
 
 py::dict py_spikes(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  const apps::SpikesResult r = without_gil("spikes", args, [&array](const apps::Flags& a) {
-    return apps::compute_spikes(a, single(a, records_of(a, array)));
-  });
+  const apps::SpikesResult r = without_gil(
+      "spikes", args, [&array](const apps::Flags& a) { return apps::compute_spikes(a, record_of(a, array)); });
   py::dict d;
   py::list picks, skipped;
   const auto row = [](const signal::Spike& s) {
@@ -224,7 +211,7 @@ py::dict py_cost(const std::vector<std::string>& args, const py::object& data, c
   {
     py::gil_scoped_release unlocked;
     const apps::Flags a = apps::parse_flags("cost", args);
-    const io::TimeSeries record = single(a, records_of(a, array));
+    const io::TimeSeries record = record_of(a, array);
     io::TimeSeries model;
     if (predicted) {  // an array of the data's length at the data's step
       model.path = "<array>";
@@ -290,6 +277,13 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
   d["status"] = r.status;
   d["termination"] = r.termination;
   d["a4"] = r.final_evaluation.a4;
+  // What the command says on stderr beside its summary line (apps::fit_notes), and (A4) when violated.
+  py::list messages;
+  const apps::FitNotes notes = apps::fit_notes(r);
+  for (const std::string* note : {&notes.on_bound, &notes.failed, &notes.identifiability})
+    if (!note->empty()) messages.append(*note);
+  if (r.final_evaluation.a4 != "ok") messages.append(r.final_evaluation.a4);
+  d["messages"] = messages;
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;
@@ -345,9 +339,8 @@ py::dict py_crb(const std::vector<std::string>& args) {
 
 py::dict py_modal_id(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  const apps::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
-    return apps::compute_modal_id(a, single(a, records_of(a, array)));
-  });
+  const apps::ModalIdResult r = without_gil(
+      "modal-id", args, [&array](const apps::Flags& a) { return apps::compute_modal_id(a, record_of(a, array)); });
   std::vector<double> f, zeta, amplitude, phase;
   for (const auto& m : r.modes) {
     f.push_back(m.frequency_hz);
@@ -364,8 +357,7 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
 }
 
 py::dict py_read_record(const std::vector<std::string>& args) {
-  io::TimeSeries s =
-      without_gil("modal-id", args, [](const apps::Flags& a) { return single(a, apps::read_channels(a)); });
+  io::TimeSeries s = without_gil("modal-id", args, [](const apps::Flags& a) { return apps::read_data(a); });
   py::dict d;
   d["path"] = s.path;
   d["format"] = s.format;

@@ -30,6 +30,9 @@ ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
   return run;
 }
 
+namespace {
+
+// The import flags (channel aside): units, start, duration, resample, sample rate, variables, resample rate.
 io::ImportOptions read_import_options(const Flags& a) {
   io::ImportOptions o;
   o.units = a.text_or("units", o.units);
@@ -43,7 +46,9 @@ io::ImportOptions read_import_options(const Flags& a) {
   return o;
 }
 
-std::vector<io::TimeSeries> read_channels(const Flags& a) {
+}  // namespace
+
+std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& read) {
   io::ImportOptions o = read_import_options(a);
   std::vector<std::string> channels = a.texts("channel");
   if (channels.empty()) channels.emplace_back();  // the only signal column
@@ -51,7 +56,7 @@ std::vector<io::TimeSeries> read_channels(const Flags& a) {
   for (const std::string& channel : channels) {
     o.channel = channel;
     try {
-      records.push_back(io::read_time_series(a.text("data"), o));
+      records.push_back(read(o));
     } catch (const InputError& e) {
       throw InputError("beamid " + a.command() + ": --data: " + e.what());
     }
@@ -59,10 +64,23 @@ std::vector<io::TimeSeries> read_channels(const Flags& a) {
   return records;
 }
 
-io::TimeSeries read_data(const Flags& a) {
-  a.require(a.texts("channel").size() <= 1, "channel", "must name one channel (several are for beamid fit)");
-  return read_channels(a).front();
+namespace {
+
+// The --data file, read with one channel's import options.
+RecordReader file_reader(const Flags& a) {
+  return [&a](const io::ImportOptions& o) { return io::read_time_series(a.text("data"), o); };
 }
+
+}  // namespace
+
+std::vector<io::TimeSeries> read_channels(const Flags& a) { return read_channels(a, file_reader(a)); }
+
+io::TimeSeries read_data(const Flags& a, const RecordReader& read) {
+  a.require(a.texts("channel").size() <= 1, "channel", "must name one channel (several are for beamid fit)");
+  return read_channels(a, read).front();
+}
+
+io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); }
 
 std::vector<FlagSpec> experiment_flag_specs() {
   return {

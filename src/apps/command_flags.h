@@ -1,6 +1,7 @@
 // Flags shared by the beamid commands: the experiment flags (simulate, fit) and the estimated-parameter list (fit).
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -13,13 +14,16 @@
 
 namespace beamid::apps {
 
-// The import flags (channel aside): units, start, duration, resample, sample rate, variables, resample rate.
-io::ImportOptions read_import_options(const Flags& a);
 // --data with the import flags (channel, units, start, duration, resample): the record, or an InputError naming the
 // command and the flag.
 io::TimeSeries read_data(const Flags& a);
 // The same for a --channel list (fit): one record per channel, in the order given, each with the import flags.
 std::vector<io::TimeSeries> read_channels(const Flags& a);
+// The same with the record read by `read` from each channel's import options instead of from the --data file (the
+// Python package reads an array it holds: io::array_time_series).
+using RecordReader = std::function<io::TimeSeries(const io::ImportOptions&)>;
+io::TimeSeries read_data(const Flags& a, const RecordReader& read);
+std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& read);
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
 // A model run as the flags describe it: --beam, --elements N and the experiment flags, with the run's size guarded

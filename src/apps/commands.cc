@@ -25,6 +25,17 @@
 
 namespace beamid::apps {
 
+namespace {
+
+// "--count K: the Galerkin model at N = n has S <what>: S printed" when --count asks for more than the model has.
+std::string fewer_modes_note(const ModesResult& r, int elements, const std::string& what) {
+  if (!r.requested || *r.requested <= r.available) return "";
+  return "--count " + std::to_string(*r.requested) + ": the Galerkin model at N = " + std::to_string(elements) +
+         " has " + std::to_string(r.available) + " " + what + ": " + std::to_string(r.available) + " printed";
+}
+
+}  // namespace
+
 ModesResult compute_modes(const Flags& a) {
   const model::BeamParameters beam = read_beam(a);
   ModesResult r;
@@ -52,6 +63,7 @@ ModesResult compute_modes(const Flags& a) {
     const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
     r.available = static_cast<int>(omega.size());
     const int shown = std::min(r.requested.value_or(r.available), r.available);
+    r.note = fewer_modes_note(r, a.integer("elements"), "modes");
     for (int k = 0; k < shown; ++k) {
       r.frequency_hz.push_back(omega(k) / (2 * std::numbers::pi));
       r.damping_ratio.push_back(0.0);
@@ -62,6 +74,7 @@ ModesResult compute_modes(const Flags& a) {
   const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
   r.available = static_cast<int>(modes.size());
   const int shown = std::min(r.requested.value_or(r.available), r.available);
+  r.note = fewer_modes_note(r, a.integer("elements"), "underdamped modes");
   for (int k = 0; k < shown; ++k) {
     r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);
     r.damping_ratio.push_back(modes[static_cast<std::size_t>(k)].damping_ratio);
@@ -78,10 +91,7 @@ int run_modes(const Flags& a, std::ostream& out) {
     return 0;
   }
   out << "mode,frequency_hz,damping_ratio\n";  // after the computation: a failure prints nothing on stdout
-  if (r.requested && static_cast<std::size_t>(*r.requested) > shown)
-    std::cerr << "beamid modes: --count " << *r.requested << ": the Galerkin model at N = " << a.integer("elements")
-              << " has " << shown << (r.kind == "undamped" ? " modes: " : " underdamped modes: ") << shown
-              << " printed\n";
+  if (!r.note.empty()) std::cerr << "beamid modes: " << r.note << "\n";
   for (std::size_t k = 0; k < shown; ++k)
     out << k + 1 << "," << io::full_precision(r.frequency_hz[k]) << "," << io::full_precision(r.damping_ratio[k])
         << "\n";

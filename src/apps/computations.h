@@ -29,6 +29,7 @@ struct ModesResult {
   std::vector<double> damping_ratio;  // empty for exact
   std::optional<int> requested;       // --count
   int available = 0;                  // modes the model has (Galerkin), before --count
+  std::string note;                   // "" or what the command says on stderr: fewer modes than --count asked
 };
 ModesResult compute_modes(const Flags& a);
 
@@ -71,6 +72,12 @@ struct FitComputation {
   bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
 };
 FitComputation compute_fit(const Flags& a, const std::vector<io::TimeSeries>& channels);
+// What beamid fit says about a result on stderr beside its summary line, each "" when there is nothing to say: the
+// estimates on a bound, a failure, weak identifiability.
+struct FitNotes {
+  std::string on_bound, failed, identifiability;
+};
+FitNotes fit_notes(const fit::FitResult& result);
 
 // beamid crb: the bound on the --estimate keys at the --beam values, with the noise sd it assumed.
 struct CrbResult {

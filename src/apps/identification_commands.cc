@@ -299,6 +299,30 @@ FitComputation compute_fit(const Flags& a, const std::vector<io::TimeSeries>& ch
   return c;
 }
 
+FitNotes fit_notes(const fit::FitResult& result) {
+  FitNotes notes;
+  std::string at_bound;
+  for (const fit::ParameterEstimate& p : result.parameters)
+    if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
+      at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
+  if (!at_bound.empty())
+    notes.on_bound =
+        "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
+  if (result.status == "failed")
+    notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
+  const fit::Identifiability& i = result.identifiability;
+  if (i.status == "ok" && i.verdict != "identifiable") {
+    std::ostringstream line;  // numbers as the stream prints them (6 significant digits)
+    line << i.verdict << ": condition number of J (in ln q) " << i.condition << "; the record hardly constrains "
+         << i.combination() << " (formal sd " << i.weakest_sd << ")"
+         << (i.weak.size() > 1 ? " and " + std::to_string(i.weak.size() - 1) +
+                                     " further combination(s) above 1e3 (listed in --report)"
+                               : std::string());
+    notes.identifiability = line.str();
+  }
+  return notes;
+}
+
 int run_fit(const Flags& a, std::ostream& out) {
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
@@ -315,7 +339,6 @@ int run_fit(const Flags& a, std::ostream& out) {
   }
   out << "parameter,estimate,standard_error,start,lower,upper,status,robust_standard_error,window_sd,"
          "window_standard_error\n";
-  std::string at_bound;
   for (std::size_t i = 0; i < result.parameters.size(); ++i) {
     const fit::ParameterEstimate& p = result.parameters[i];
     out << p.key << "," << io::full_precision(p.estimate) << "," << io::full_precision(p.standard_error) << ","
@@ -323,29 +346,17 @@ int run_fit(const Flags& a, std::ostream& out) {
         << "," << p.status << "," << io::full_precision(p.robust_standard_error) << ","
         << io::full_precision(spread ? spread->sd[i] : std::nan("")) << ","
         << io::full_precision(spread ? spread->standard_error[i] : std::nan("")) << "\n";
-    if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
-      at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
   }
-  if (!at_bound.empty())
-    std::cerr << "beamid fit: on a bound: " << at_bound
-              << " (the bound, not the data, set the value; its standard error is not defined)\n";
-  if (result.status == "failed")
-    std::cerr << "beamid fit: the fit failed, so no estimate is printed (NaN): " << result.termination << "\n";
+  const FitNotes notes = fit_notes(result);
+  if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
+  if (!notes.failed.empty()) std::cerr << "beamid fit: " << notes.failed << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method
             << ", strategy " << o.strategy << (o.strategy == fit::kHybrid ? " (refined by " + o.refine + ")" : "")
             << ": " << result.status << " (" << result.termination << "), cost " << result.cost << ", "
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
-  if (result.identifiability.status == "ok" && result.identifiability.verdict != "identifiable")
-    std::cerr << "beamid fit: " << result.identifiability.verdict << ": condition number of J (in ln q) "
-              << result.identifiability.condition << "; the record hardly constrains "
-              << result.identifiability.combination() << " (formal sd " << result.identifiability.weakest_sd << ")"
-              << (result.identifiability.weak.size() > 1
-                      ? " and " + std::to_string(result.identifiability.weak.size() - 1) +
-                            " further combination(s) above 1e3 (listed in --report)"
-                      : std::string())
-              << "\n";
+  if (!notes.identifiability.empty()) std::cerr << "beamid fit: " << notes.identifiability << "\n";
   if (result.records.size() > 1)
     for (std::size_t k = 0; k < result.records.size(); ++k) {
       const fit::RecordResult& part = result.records[k];
