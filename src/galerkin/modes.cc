@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 
@@ -54,19 +55,356 @@ Eigen::VectorXcd column_products(const Eigen::MatrixXcd& x, const Eigen::MatrixX
 
 }  // namespace
 
-StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
-  const int n = static_cast<int>(s.M.rows());
-  const Eigen::MatrixXd shapes = undamped_modes(s).shapes;
-  const Eigen::MatrixXd mt = shapes.transpose() * s.M * shapes;
-  const Eigen::MatrixXd kt = shapes.transpose() * s.K * shapes;
-  const Eigen::MatrixXd ct = shapes.transpose() * s.C * shapes;
-  const Eigen::LLT<Eigen::MatrixXd> mass(0.5 * (mt + mt.transpose()));
+StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod method) {
+  const UndampedModes undamped = undamped_modes(s);
+  shapes_ = undamped.shapes;
+  mass_shapes_ = s.M * shapes_;
+  damping_shapes_ = s.C * shapes_;
+  Eigen::MatrixXd mt = shapes_.transpose() * mass_shapes_;
+  Eigen::MatrixXd kt = shapes_.transpose() * (s.K * shapes_);
+  Eigen::MatrixXd ct = shapes_.transpose() * damping_shapes_;
+  separate_close_modes(undamped.omega_rad_s, mt, kt, ct);
   system_mass_.compute(s.M);
-  if (mass.info() != Eigen::Success || system_mass_.info() != Eigen::Success)
+  if (system_mass_.info() != Eigen::Success || (mt.diagonal().array() <= 0).any())
     throw NumericalError("mass matrix is not positive definite");
   const Eigen::VectorXd scale = kt.diagonal().cwiseMax(0.0).cwiseSqrt();
   if ((scale.array() <= 0).any()) throw NumericalError("stiffness matrix is not positive definite");
 
+  Eigen::VectorXcd stiffness_forms;
+  iterated_ = method == DampedModesMethod::automatic && iterate_damped_modes(mt, ct, kt, stiffness_forms);
+  if (iterated_) {
+    // A wrong convergence (two starts reaching one eigenpair, or a vector spoilt by a near-defective mode) shows as a
+    // singular cluster Gram matrix or a vanishing n_k: the dense decomposition decides then.
+    const double rcond = finish(stiffness_forms, scale);
+    if (rcond > 1e3 * std::numeric_limits<double>::epsilon()) {
+      rcond_ = rcond;
+      return;
+    }
+    iterated_ = false;
+    clusters_.clear();
+    cluster_gram_.clear();
+  }
+  decompose_state_matrix(mt, ct, kt, scale, stiffness_forms);
+  rcond_ = finish(stiffness_forms, scale);
+  if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
+    throw NumericalError("state-space modes are (nearly) defective: eigenvalue condition rcond = " +
+                         format_value(rcond_));
+}
+
+void StateSpaceModes::separate_close_modes(const Eigen::VectorXd& omega, Eigen::MatrixXd& mt, Eigen::MatrixXd& kt,
+                                           Eigen::MatrixXd& ct) {
+  // undamped_modes solves M phi = mu K phi so that the low modes are accurate; its error eps max(mu) is absolute, so
+  // within a group of nearly equal high frequencies (the thin beam's 17 shear modes at 6.09e6 .. 6.13e6 rad/s at
+  // N = 16) the shapes are mixed and M~ has off-diagonal entries up to ~1e-6 there. That is harmless to an exact
+  // similarity (the dense path), but it is a coupling the Jacobi iteration would have to remove, larger than the
+  // damping's own. So each group of consecutive frequencies less than 1 % apart is rotated by the solution of its own
+  // small pencil (K~_BB, M~_BB) in the direct form (Cholesky of M~_BB ~ I, no grading within a group): afterwards
+  // M~_BB = I and K~_BB is diagonal to round-off, and the basis is still exact (Phi_B Z for an invertible Z).
+  const Eigen::Index n = omega.size();
+  for (Eigen::Index first = 0; first < n;) {
+    Eigen::Index last = first;
+    while (last + 1 < n && omega(last + 1) < 1.01 * omega(last)) ++last;
+    const Eigen::Index size = last - first + 1;
+    if (size > 1) {
+      const Eigen::LLT<Eigen::MatrixXd> mass(mt.block(first, first, size, size));
+      if (mass.info() != Eigen::Success) throw NumericalError("mass matrix is not positive definite");
+      Eigen::MatrixXd reduced = mass.matrixL().solve(kt.block(first, first, size, size));
+      reduced = mass.matrixL().solve(reduced.transpose()).eval();
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (reduced + reduced.transpose()));
+      if (solver.info() != Eigen::Success) throw NumericalError("undamped eigenproblem of a mode group failed");
+      const Eigen::MatrixXd z = mass.matrixU().solve(solver.eigenvectors());
+      for (Eigen::MatrixXd* x : {&mt, &kt, &ct}) {
+        x->middleCols(first, size) = (x->middleCols(first, size) * z).eval();
+        x->middleRows(first, size) = (z.transpose() * x->middleRows(first, size)).eval();
+      }
+      for (Eigen::MatrixXd* x : {&shapes_, &mass_shapes_, &damping_shapes_})
+        x->middleCols(first, size) = (x->middleCols(first, size) * z).eval();
+    }
+    first = last + 1;
+  }
+}
+
+bool StateSpaceModes::iterate_damped_modes(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
+                                           const Eigen::MatrixXd& kt, Eigen::VectorXcd& stiffness_forms) {
+  // In the undamped basis T~(lambda) = lambda^2 M~ + lambda C~ + K~ is diagonal but for the damping's coupling C~_jk
+  // (and round-off in M~, K~). Each decoupled mode j, a root of T~_jj(lambda) = 0, starts one eigenpair (q_j = 1):
+  // one root with Im > 0 for an underdamped mode (its conjugate is its partner), both real roots for an overdamped
+  // one, 2n in all. A Jacobi step on the other components, q_i -= r_i / T~_ii(lambda) with the residual
+  // r = T~(lambda) q, alternates with the Rayleigh functional's root nearest lambda (q^T T~(lambda) q = 0, transpose:
+  // second order in q's error). For weak coupling each step multiplies q's error by about max |T~_ij| / |T~_ii|
+  // (banks-aluminium: 2e-4 at the first step), so a few steps reach round-off, each one product [M~; C~; K~] Q of the
+  // unconverged columns (real ones for the real roots) instead of a dense 2n x 2n eigen-decomposition.
+  //
+  // Real starts less than 1e-5 apart form a block instead (the thin beam's overdamped shear modes all have their slow
+  // root near -kAG/kAcs, 21 of them within 1e-6 at N = 16): there T~_ii(lambda) is nearly zero for every member, so
+  // Jacobi cannot separate them. Their components within the block come from a Rayleigh-Ritz step on the block's
+  // columns, the small symmetric pencil of T~ linearised at the block's mean lambda_c, (A0 + mu B) y = 0 with
+  // A0 = Q^T T~(lambda_c) Q and B = Q^T T~'(lambda_c) Q, which must be definite (the neglected mu^2 Q^T M~ Q is of the
+  // block's relative spread squared; finish() refines every lambda by its Rayleigh functional). The Jacobi steps then
+  // only touch the components outside the block, and the Rayleigh-Ritz step is repeated once they have converged.
+  //
+  // Strong coupling (thick-steel: ratios up to 26, its two relaxation times 10x apart), an indefinite block, or steps
+  // that do not shrink return false, and the caller decomposes densely.
+  const Eigen::Index n = mt.rows();
+  struct Start {
+    Eigen::Index mode;
+    complex lambda;
+    bool real;
+    Eigen::Index re, im;  // columns of z (im only for complex starts)
+    int block;            // index into blocks, or -1
+    double last_step;
+    bool done;
+  };
+  std::vector<Start> starts;
+  Eigen::Index columns = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double a = mt(j, j), b = ct(j, j), c = kt(j, j), disc = b * b - 4 * a * c;
+    // Within 1e-6 of critical damping the two real roots (or the pair) nearly coincide and the eigenvector
+    // problem is ill-conditioned: the dense decomposition with its cluster handling decides.
+    if (std::abs(disc) < 1e-6 * b * b || b < 0) return false;
+    if (disc < 0) {
+      starts.push_back({j, complex(-b, std::sqrt(-disc)) / (2 * a), false, columns, columns + 1, -1, 1.0, false});
+      columns += 2;
+    } else {
+      const double q = -0.5 * (b + std::sqrt(disc));  // cancellation-free: q / a and c / q
+      starts.push_back({j, q / a, true, columns++, -1, -1, 1.0, false});
+      starts.push_back({j, c / q, true, columns++, -1, -1, 1.0, false});
+    }
+  }
+  constexpr double kBlockGap = 1e-5;  // relative distance below which real starts go together
+  std::vector<std::vector<std::size_t>> blocks;
+  std::vector<Eigen::ArrayXd> outside;  // per block: 0 on its own components, 1 elsewhere
+  {
+    std::vector<std::size_t> real;
+    for (std::size_t t = 0; t < starts.size(); ++t)
+      if (starts[t].real) real.push_back(t);
+    std::sort(real.begin(), real.end(),
+              [&](std::size_t x, std::size_t y) { return starts[x].lambda.real() < starts[y].lambda.real(); });
+    for (std::size_t first = 0; first < real.size();) {
+      std::size_t last = first;
+      while (last + 1 < real.size() &&
+             std::abs(starts[real[last + 1]].lambda.real() - starts[real[last]].lambda.real()) <=
+                 kBlockGap * std::abs(starts[real[last]].lambda.real()))
+        ++last;
+      if (last > first) {
+        Eigen::ArrayXd mask = Eigen::ArrayXd::Ones(n);
+        std::vector<std::size_t> members;
+        for (std::size_t i = first; i <= last; ++i) {
+          const Start& st = starts[real[i]];
+          if (mask(st.mode) == 0) return false;  // both roots of one mode: near-critical
+          mask(st.mode) = 0;
+          members.push_back(real[i]);
+          starts[real[i]].block = static_cast<int>(blocks.size());
+        }
+        blocks.push_back(std::move(members));
+        outside.push_back(std::move(mask));
+      }
+      first = last + 1;
+    }
+  }
+
+  Eigen::MatrixXd stacked(3 * n, n);
+  stacked << mt, ct, kt;
+  const Eigen::ArrayXd md = mt.diagonal(), cd = ct.diagonal(), kd = kt.diagonal();
+  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, columns);             // real and imaginary parts of every q
+  Eigen::MatrixXd products = Eigen::MatrixXd::Zero(3 * n, columns);  // [M~; C~; K~] z
+  for (const Start& st : starts) {
+    z(st.mode, st.re) = 1;
+    products.col(st.re) = stacked.col(st.mode);
+  }
+
+  // Rayleigh-Ritz on block b's columns (real): rotates their z and products and sets their lambda; returns how far the
+  // rotation is from the identity, or a negative value when the linearised pencil is not definite.
+  const auto rayleigh_ritz = [&](std::size_t b) -> double {
+    const auto& members = blocks[b];
+    const auto s = static_cast<Eigen::Index>(members.size());
+    Eigen::MatrixXd q(n, s), pm(n, s), pc(n, s), pk(n, s);
+    double centre = 0;
+    for (Eigen::Index i = 0; i < s; ++i) {
+      const Start& st = starts[members[static_cast<std::size_t>(i)]];
+      q.col(i) = z.col(st.re);
+      pm.col(i) = products.col(st.re).segment(0, n);
+      pc.col(i) = products.col(st.re).segment(n, n);
+      pk.col(i) = products.col(st.re).segment(2 * n, n);
+      centre += st.lambda.real() / static_cast<double>(s);
+    }
+    const Eigen::MatrixXd am = q.transpose() * pm, ac = q.transpose() * pc, ak = q.transpose() * pk;
+    const Eigen::MatrixXd a0 = ak + centre * ac + centre * centre * am;
+    const Eigen::MatrixXd slope = ac + 2 * centre * am;
+    const double sign = slope(0, 0) > 0 ? 1.0 : -1.0;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> pencil(0.5 * (a0 + a0.transpose()),
+                                                                           0.5 * sign * (slope + slope.transpose()));
+    if (pencil.info() != Eigen::Success) return -1;  // not definite
+    Eigen::MatrixXd y = pencil.eigenvectors();
+    for (Eigen::Index i = 0; i < s; ++i)
+      if (y(i, i) < 0) y.col(i) = -y.col(i);
+    const double change = (y - Eigen::MatrixXd::Identity(s, s)).cwiseAbs().maxCoeff();
+    const Eigen::MatrixXd qy = q * y, pmy = pm * y, pcy = pc * y, pky = pk * y;
+    for (Eigen::Index i = 0; i < s; ++i) {
+      Start& st = starts[members[static_cast<std::size_t>(i)]];
+      z.col(st.re) = qy.col(i);
+      products.col(st.re) << pmy.col(i), pcy.col(i), pky.col(i);
+      st.lambda = centre - sign * pencil.eigenvalues()(i);  // A0 y = nu sign B y, so mu = -sign nu
+      st.last_step = 1.0;  // the rotation moved its components: its next step starts afresh
+    }
+    return change;
+  };
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    if (rayleigh_ritz(b) < 0) return false;
+
+  constexpr int kMaxSteps = 40;
+  constexpr double kConverged = 1e-14;  // step in q (|q| ~ 1) at which the iteration is at round-off
+  constexpr double kRoundOff = 1e-9;    // below this a step that stops shrinking is round-off
+  // The rotation within a block is determined only to about eps over its eigenvalues' relative spacing (1e-8 for the
+  // 21 slow roots that agree to 1e-7): below 1e-6 it is round-off, and a mixing of that size is harmless, because
+  // group_clusters takes a block's coefficients through its Gram matrix.
+  constexpr double kBlockRotation = 1e-6;
+  Eigen::VectorXd rr(n), dr(n);
+  Eigen::VectorXcd qc(n), mc(n), cc(n), kc(n), rc(n), dc(n);
+  Eigen::ArrayXd tr(n);
+  Eigen::ArrayXcd tc(n);
+  std::vector<Eigen::Index> cols;
+  for (int step = 0; step < kMaxSteps; ++step) {
+    if (step > 0) {  // (at step 0 the products are the columns of [M~; C~; K~] themselves, or their rotations)
+      cols.clear();
+      for (const Start& st : starts) {
+        if (st.done) continue;
+        cols.push_back(st.re);
+        if (!st.real) cols.push_back(st.im);
+      }
+      if (cols.empty()) break;
+      Eigen::MatrixXd gathered(n, static_cast<Eigen::Index>(cols.size()));
+      for (std::size_t c = 0; c < cols.size(); ++c) gathered.col(static_cast<Eigen::Index>(c)) = z.col(cols[c]);
+      const Eigen::MatrixXd product = stacked * gathered;
+      for (std::size_t c = 0; c < cols.size(); ++c) products.col(cols[c]) = product.col(static_cast<Eigen::Index>(c));
+    }
+    bool all_done = true;
+    for (Start& st : starts) {
+      if (st.done) continue;
+      double size = 0;
+      if (st.real) {
+        const auto q = z.col(st.re);
+        const auto mq = products.col(st.re).segment(0, n), cq = products.col(st.re).segment(n, n),
+                   kq = products.col(st.re).segment(2 * n, n);
+        // The Rayleigh functional's real root nearest lambda (cancellation-free, as in refine_eigenvalues).
+        const double a = q.dot(mq), b = q.dot(cq), c = q.dot(kq), disc = b * b - 4 * a * c;
+        if (!(disc >= 0) || a == 0) return false;  // a real start turned complex
+        const double half = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+        if (half == 0) return false;
+        const double x1 = half / a, x2 = c / half, l = st.lambda.real();
+        const double lambda = std::abs(x1 - l) <= std::abs(x2 - l) ? x1 : x2;
+        st.lambda = lambda;
+        rr = lambda * lambda * mq + lambda * cq + kq;
+        tr = lambda * lambda * md + lambda * cd + kd;
+        dr = -(rr.array() / tr).matrix();
+        if (st.block >= 0)
+          dr.array() *= outside[static_cast<std::size_t>(st.block)];
+        else
+          dr(st.mode) = 0;
+        size = dr.cwiseAbs().maxCoeff();
+      } else {
+        qc.real() = z.col(st.re);
+        qc.imag() = z.col(st.im);
+        mc.real() = products.col(st.re).segment(0, n);
+        mc.imag() = products.col(st.im).segment(0, n);
+        cc.real() = products.col(st.re).segment(n, n);
+        cc.imag() = products.col(st.im).segment(n, n);
+        kc.real() = products.col(st.re).segment(2 * n, n);
+        kc.imag() = products.col(st.im).segment(2 * n, n);
+        const complex a = (qc.array() * mc.array()).sum(), b = (qc.array() * cc.array()).sum(),
+                      c = (qc.array() * kc.array()).sum();
+        const complex root = std::sqrt(b * b - 4.0 * a * c);
+        const complex half = -0.5 * (b + (std::real(std::conj(b) * root) >= 0 ? root : -root));
+        if (std::abs(a) == 0 || std::abs(half) == 0) return false;
+        const complex x1 = half / a, x2 = c / half;
+        const complex lambda = std::abs(x1 - st.lambda) <= std::abs(x2 - st.lambda) ? x1 : x2;
+        if (!(lambda.imag() > 1e-8 * std::abs(lambda))) return false;  // turned real: its conjugate would duplicate it
+        st.lambda = lambda;
+        const complex l2 = lambda * lambda;
+        rc = l2 * mc + lambda * cc + kc;
+        tc = l2 * md.cast<complex>() + lambda * cd.cast<complex>() + kd.cast<complex>();
+        dc = -(rc.array() * tc.conjugate() / tc.abs2()).matrix();  // r / T without a library complex division
+        dc(st.mode) = 0;
+        size = dc.cwiseAbs().maxCoeff();
+      }
+      // The first step is the first-order perturbation of q: above 0.1 the coupling is too strong for the iteration.
+      if (!std::isfinite(size) || (step == 0 && size > 0.1)) return false;
+      const bool stalled = size < kRoundOff && size > 0.5 * st.last_step;
+      if (step > 0 && size > st.last_step && !stalled) return false;  // not contracting
+      st.last_step = size;
+      if (size <= kConverged || stalled) {
+        // At round-off: keep q with its products (the step is not applied). A block's member waits for its block.
+        if (st.block < 0) st.done = true;
+        continue;
+      }
+      all_done = false;
+      if (st.real) {
+        z.col(st.re) += dr;
+      } else {
+        z.col(st.re) += dc.real();
+        z.col(st.im) += dc.imag();
+      }
+    }
+    // A block whose members' outer components have converged gets its Rayleigh-Ritz step again (with them); it is
+    // done when that no longer rotates it.
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      if (starts[blocks[b].front()].done) continue;
+      bool converged = true;
+      for (std::size_t t : blocks[b]) converged = converged && starts[t].last_step < kRoundOff;
+      if (!converged) {
+        all_done = false;
+        continue;
+      }
+      const double change = rayleigh_ritz(b);
+      if (change < 0) return false;
+      if (change <= kBlockRotation) {
+        for (std::size_t t : blocks[b]) starts[t].done = true;
+      } else {
+        all_done = false;
+      }
+    }
+    if (all_done) break;
+  }
+  for (const Start& st : starts)
+    if (!st.done) return false;
+
+  // Every start and, for a complex one, its conjugate partner (next to it, as the dense solver orders them).
+  const Eigen::Index m = 2 * n;
+  lambda_.resize(m);
+  q_.resize(n, m);
+  mass_q_.resize(n, m);
+  damping_q_.resize(n, m);
+  stiffness_forms.resize(m);
+  Eigen::Index k = 0;
+  for (const Start& st : starts) {
+    const auto part = [&](const Eigen::MatrixXd& source, Eigen::Index block) {
+      Eigen::VectorXcd v(n);
+      v.real() = source.col(st.re).segment(block * n, n);
+      if (st.real)
+        v.imag().setZero();
+      else
+        v.imag() = source.col(st.im).segment(block * n, n);
+      return v;
+    };
+    const Eigen::VectorXcd qk = part(z, 0), mk = part(products, 0), ck = part(products, 1), kk = part(products, 2);
+    const complex stiffness = (qk.array() * kk.array()).sum();
+    for (int copy = 0; copy < (st.real ? 1 : 2); ++copy, ++k) {
+      lambda_(k) = copy == 0 ? st.lambda : std::conj(st.lambda);
+      q_.col(k) = copy == 0 ? qk : Eigen::VectorXcd(qk.conjugate());
+      mass_q_.col(k) = copy == 0 ? mk : Eigen::VectorXcd(mk.conjugate());
+      damping_q_.col(k) = copy == 0 ? ck : Eigen::VectorXcd(ck.conjugate());
+      stiffness_forms(k) = copy == 0 ? stiffness : std::conj(stiffness);
+    }
+  }
+  return k == m;
+}
+
+void StateSpaceModes::decompose_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
+                                             const Eigen::MatrixXd& kt, const Eigen::VectorXd& scale,
+                                             Eigen::VectorXcd& stiffness_forms) {
+  const Eigen::Index n = mt.rows();
+  const Eigen::LLT<Eigen::MatrixXd> mass(0.5 * (mt + mt.transpose()));
+  if (mass.info() != Eigen::Success) throw NumericalError("mass matrix is not positive definite");
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   a.topRightCorner(n, n) = scale.asDiagonal();
   a.bottomLeftCorner(n, n) = -mass.solve(kt) * scale.cwiseInverse().asDiagonal();
@@ -75,42 +413,41 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s) {
   Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
   if (eig.info() != Eigen::Success) throw NumericalError("state-space eigen-decomposition did not converge");
   lambda_ = eig.eigenvalues();
-  // x_k = Phi q_k with q_k = D^-1 (v_k)_top = (v_k)_bottom / lambda_k, taken component by component from the
-  // half with the larger divisor: the eigensolver's error is eps |v_k| in every component, so the top half loses
-  // accuracy in the components where D_j < |lambda_k| (overdamped modes) and the bottom half where D_j > |lambda_k|.
-  // Then the products with M, C, K that the refinement, the normalisation and the modal coefficients share.
+  // q_k = D^-1 (v_k)_top = (v_k)_bottom / lambda_k, taken component by component from the half with the larger
+  // divisor: the eigensolver's error is eps |v_k| in every component, so the top half loses accuracy in the components
+  // where D_j < |lambda_k| (overdamped modes) and the bottom half where D_j > |lambda_k|.
   const Eigen::MatrixXcd& v = eig.eigenvectors();
-  Eigen::MatrixXcd q(n, 2 * n);
+  q_.resize(n, 2 * n);
   for (Eigen::Index k = 0; k < 2 * n; ++k)
     for (Eigen::Index j = 0; j < n; ++j)
-      q(j, k) = scale(j) >= std::abs(lambda_(k)) ? v(j, k) / scale(j) : v(n + j, k) / lambda_(k);
-  vectors_ = real_times(shapes, q);
-  mass_vectors_ = real_times(s.M, vectors_);
-  damping_vectors_ = real_times(s.C, vectors_);
-  const Eigen::MatrixXcd stiffness_vectors = real_times(s.K, vectors_);
-  const Eigen::VectorXcd mass_forms = column_products(vectors_, mass_vectors_);
-  const Eigen::VectorXcd damping_forms = column_products(vectors_, damping_vectors_);
-  refine_eigenvalues(mass_forms, damping_forms, column_products(vectors_, stiffness_vectors));
+      q_(j, k) = scale(j) >= std::abs(lambda_(k)) ? v(j, k) / scale(j) : v(n + j, k) / lambda_(k);
+  mass_q_ = real_times(mt, q_);
+  damping_q_ = real_times(ct, q_);
+  stiffness_forms = column_products(q_, real_times(kt, q_));
+}
+
+double StateSpaceModes::finish(const Eigen::VectorXcd& stiffness_forms, const Eigen::VectorXd& scale) {
+  const Eigen::VectorXcd mass_forms = column_products(q_, mass_q_);
+  const Eigen::VectorXcd damping_forms = column_products(q_, damping_q_);
+  refine_eigenvalues(mass_forms, damping_forms, stiffness_forms);
   normalisation_ = 2.0 * lambda_.cwiseProduct(mass_forms) + damping_forms;
   const double cluster_rcond = group_clusters();
 
-  // Left eigenvector of A in z = [D q; q'] coordinates: eta_k = phi_k^T [C M; M 0] u / n_k with u = [w; w'] =
-  // [Phi D^-1 z1; Phi z2], so u_k = [D^-1 Phi^T (lambda_k M + C) x_k; Phi^T M x_k] / n_k.
-  const Eigen::MatrixXcd left_top =
-      scale.cwiseInverse().asDiagonal() *
-      real_times(shapes.transpose(), mass_vectors_ * lambda_.asDiagonal() + damping_vectors_);
-  const Eigen::MatrixXcd left_bottom = real_times(shapes.transpose(), mass_vectors_);
+  // The condition of eigenvalue k of A, |u_k| |v_k| / |u_k^T v_k|, with its right eigenvector v_k = [D q_k;
+  // lambda_k q_k] in z = [D q; q'] coordinates and its left one from the symmetric pencil (eta_k = phi_k^T [C M; M 0]
+  // u / n_k with u = [w; w'] = [Phi D^-1 z1; Phi z2]): u_k = [D^-1 (lambda_k M~ + C~) q_k; M~ q_k] / n_k.
   double worst = 0;
   for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
-    const double left = std::sqrt(left_top.col(k).squaredNorm() + left_bottom.col(k).squaredNorm());
-    const double condition = left * v.col(k).norm() / std::abs(normalisation_(k));
+    const double left = std::sqrt(
+        (scale.cwiseInverse().asDiagonal() * (lambda_(k) * mass_q_.col(k) + damping_q_.col(k))).squaredNorm() +
+        mass_q_.col(k).squaredNorm());
+    const double right =
+        std::sqrt((scale.asDiagonal() * q_.col(k)).squaredNorm() + std::norm(lambda_(k)) * q_.col(k).squaredNorm());
+    const double condition = left * right / std::abs(normalisation_(k));
     worst = std::isfinite(condition) ? std::max(worst, condition) : std::numeric_limits<double>::infinity();
   }
   // A cluster whose vectors are nearly parallel has a near-singular Gram matrix even when each n_k is not small.
-  rcond_ = std::min(worst > 0 ? 1 / worst : 0.0, cluster_rcond);
-  if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
-    throw NumericalError("state-space modes are (nearly) defective: eigenvalue condition rcond = " +
-                         format_value(rcond_));
+  return std::min(worst > 0 ? 1 / worst : 0.0, cluster_rcond);
 }
 
 void StateSpaceModes::refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b,
@@ -171,8 +508,7 @@ double StateSpaceModes::group_clusters() {
     for (Eigen::Index a = 0; a < size; ++a)
       for (Eigen::Index b = 0; b < size; ++b) {
         const Eigen::Index j = cluster[a], k = cluster[b];
-        gram(a, b) =
-            vectors_.col(j).transpose() * (damping_vectors_.col(k) + (lambda_(j) + lambda_(k)) * mass_vectors_.col(k));
+        gram(a, b) = q_.col(j).transpose() * (damping_q_.col(k) + (lambda_(j) + lambda_(k)) * mass_q_.col(k));
       }
     // The reciprocal condition of the Gram matrix scaled to a unit diagonal (its LU's estimate).
     Eigen::MatrixXcd scaled(size, size);
@@ -199,29 +535,40 @@ Eigen::VectorXcd StateSpaceModes::modal_solve(const Eigen::VectorXcd& rhs) const
   return eta;
 }
 
+// x_k^T v = q_k^T (Phi^T v) for every k.
+Eigen::VectorXcd StateSpaceModes::project(const Eigen::MatrixXd& basis, const Eigen::VectorXd& v) const {
+  const Eigen::VectorXd reduced = basis.transpose() * v;
+  Eigen::VectorXcd out(q_.cols());
+  out.real() = q_.real().transpose() * reduced;
+  out.imag() = q_.imag().transpose() * reduced;
+  return out;
+}
+
 Eigen::VectorXcd StateSpaceModes::input_coefficients(const Eigen::VectorXd& load) const {
-  return modal_solve(vectors_.transpose() * load.cast<complex>());
+  return modal_solve(project(shapes_, load));
 }
 
 Eigen::VectorXcd StateSpaceModes::state_coefficients(const Eigen::VectorXd& w0, const Eigen::VectorXd& v0) const {
-  const Eigen::VectorXcd mw = mass_vectors_.transpose() * w0.cast<complex>();
-  const Eigen::VectorXcd cw = damping_vectors_.transpose() * w0.cast<complex>();
-  const Eigen::VectorXcd mv = mass_vectors_.transpose() * v0.cast<complex>();
+  // x_k^T M w0 = q_k^T (M Phi)^T w0, and so on.
+  const Eigen::VectorXcd mw = project(mass_shapes_, w0);
+  const Eigen::VectorXcd cw = project(damping_shapes_, w0);
+  const Eigen::VectorXcd mv = project(mass_shapes_, v0);
   return modal_solve(lambda_.cwiseProduct(mw) + cw + mv);
 }
 
 Eigen::VectorXcd StateSpaceModes::output_coefficients(const Eigen::VectorXd& sensor, int derivative) const {
-  Eigen::VectorXcd h = vectors_.transpose() * sensor.cast<complex>();
+  Eigen::VectorXcd h = project(shapes_, sensor);
   for (int d = 0; d < derivative; ++d) h = h.cwiseProduct(lambda_);
   return h;
 }
 
-Eigen::MatrixXcd StateSpaceModes::physical_vectors() const { return vectors_; }
+Eigen::MatrixXcd StateSpaceModes::physical_vectors() const { return real_times(shapes_, q_); }
 
 Eigen::VectorXcd StateSpaceModes::eigenvalue_derivative(const SecondOrderSystem& d) const {
-  const Eigen::VectorXcd dm = column_products(vectors_, real_times(d.M, vectors_));
-  const Eigen::VectorXcd dc = column_products(vectors_, real_times(d.C, vectors_));
-  const Eigen::VectorXcd dk = column_products(vectors_, real_times(d.K, vectors_));
+  const Eigen::MatrixXcd x = physical_vectors();
+  const Eigen::VectorXcd dm = column_products(x, real_times(d.M, x));
+  const Eigen::VectorXcd dc = column_products(x, real_times(d.C, x));
+  const Eigen::VectorXcd dk = column_products(x, real_times(d.K, x));
   return -(lambda_.cwiseProduct(lambda_).cwiseProduct(dm) + lambda_.cwiseProduct(dc) + dk)
               .cwiseQuotient(normalisation_);
 }

@@ -23,6 +23,12 @@
 // block, whose coordinates solve G eta_block = Phi_block^T [C M; M 0] u with the block's Gram matrix
 // G_jk = x_j^T (C + (lambda_j + lambda_k) M) x_k, the oblique projection onto the span, which is accurate; between
 // blocks the neglected Gram entries are below eps / 1e-3.
+//
+// The eigenpairs themselves come, when the damping couples the undamped modes weakly (banks-aluminium: first-order
+// coupling 2e-4), from a Jacobi iteration in the undamped basis started at each decoupled mode, with a Rayleigh-Ritz
+// step for blocks of nearly equal real roots (modes.cc): a few products of n x n matrices with the 2n vectors instead
+// of the dense 2n x 2n nonsymmetric decomposition of A, which remains the fallback (thick-steel). Everything after them
+// (refinement, normalisation, clusters, coefficients) works in the undamped basis, x_k = Phi q_k.
 #pragma once
 
 #include <Eigen/Dense>
@@ -46,10 +52,15 @@ struct DampedMode {
   std::complex<double> lambda;  // eigenvalue with Im(lambda) > 0, rad/s
 };
 
+// How StateSpaceModes finds the damped eigenpairs: automatic is the Jacobi iteration in the undamped basis when the
+// damping couples the modes weakly enough, else the dense decomposition; dense always decomposes the state matrix
+// (for comparisons and benchmarks).
+enum class DampedModesMethod { automatic, dense };
+
 class StateSpaceModes {
  public:
   // Throws NumericalError when a decomposition fails.
-  explicit StateSpaceModes(const SecondOrderSystem& system);
+  explicit StateSpaceModes(const SecondOrderSystem& system, DampedModesMethod method = DampedModesMethod::automatic);
 
   int size() const { return static_cast<int>(lambda_.size()); }
   const Eigen::VectorXcd& eigenvalues() const { return lambda_; }
@@ -72,6 +83,9 @@ class StateSpaceModes {
   // max_k |u_k| |v_k| and 2n times it. The decomposition is refused below 1e3 eps; the modal coefficients' relative
   // error grows like eps / rcond^2 (about 3 % for a 2-DOF system 1e-15 from critical damping, rcond 4.5e-8).
   double eigenvector_rcond() const { return rcond_; }
+  // True when the eigenpairs came from the Jacobi iteration in the undamped basis, false when from the dense
+  // eigen-decomposition of the state matrix (strongly coupling damping; see modes.cc).
+  bool iterated() const { return iterated_; }
 
   // d lambda_k / d q for a parameter with derivatives d = (dM, dC, dK) (galerkin::parameter_derivative), all 2n, in the
   // order of eigenvalues(): first-order perturbation of T(lambda) x = 0 with the left eigenvector x^T,
@@ -83,25 +97,45 @@ class StateSpaceModes {
   std::vector<DampedMode> underdamped_modes() const;
 
  private:
+  // The damped modes in the undamped modal basis by a Jacobi iteration from the decoupled modes (modes.cc), or by the
+  // dense eigen-decomposition of the balanced state matrix; both set lambda_, q_, mass_q_ and damping_q_. The
+  // iteration returns false when the damping couples the modes too strongly for it (then the dense one runs).
+  // Rotates each group of nearly equal undamped frequencies (shapes_, M Phi, C Phi and M~, K~, C~ with them) so that
+  // M~ = I and K~ is diagonal within the group to round-off (modes.cc).
+  void separate_close_modes(const Eigen::VectorXd& omega, Eigen::MatrixXd& mt, Eigen::MatrixXd& kt,
+                            Eigen::MatrixXd& ct);
+  bool iterate_damped_modes(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
+                            Eigen::VectorXcd& stiffness_forms);
+  void decompose_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
+                              const Eigen::VectorXd& scale, Eigen::VectorXcd& stiffness_forms);
+  // Everything after the eigenpairs: refinement, normalisation, clusters and the condition estimate; returns rcond.
+  double finish(const Eigen::VectorXcd& stiffness_forms, const Eigen::VectorXd& scale);
   // lambda_k from the Rayleigh functional of T at x_k (modes.cc), given the forms a_k = x_k^T M x_k, b_k = x_k^T C x_k,
   // c_k = x_k^T K x_k.
   void refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b, const Eigen::VectorXcd& c);
 
   Eigen::VectorXcd lambda_;
-  Eigen::MatrixXcd vectors_;          // x_k, n x 2n
-  Eigen::MatrixXcd mass_vectors_;     // M x_k
-  Eigen::MatrixXcd damping_vectors_;  // C x_k
-  Eigen::VectorXcd normalisation_;    // n_k = x_k^T (2 lambda_k M + C) x_k
+  // Everything in the undamped modal basis w = Phi q: the eigenvectors q_k (x_k = Phi q_k), n x 2n, and M~ q_k, C~ q_k
+  // with M~ = Phi^T M Phi, C~ = Phi^T C Phi (so x_j^T M x_k = q_j^T M~ q_k, and so on).
+  Eigen::MatrixXd shapes_;          // Phi, n x n
+  Eigen::MatrixXcd q_;              // q_k
+  Eigen::MatrixXcd mass_q_;         // M~ q_k
+  Eigen::MatrixXcd damping_q_;      // C~ q_k
+  Eigen::VectorXcd normalisation_;  // n_k = x_k^T (2 lambda_k M + C) x_k
   // Clusters of nearly equal eigenvalues (indices into lambda_) and the LU of their Gram matrices (above).
   std::vector<std::vector<Eigen::Index>> clusters_;
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> cluster_gram_;
   // eta from rhs_k = phi_k^T [C M; M 0] u: rhs_k / n_k, and the Gram solve within each cluster.
   Eigen::VectorXcd modal_solve(const Eigen::VectorXcd& rhs) const;
-  // Sets clusters_ and cluster_gram_ from lambda_, vectors_ and their products; returns the smallest reciprocal
-  // condition of a cluster's Gram matrix scaled to a unit diagonal (1 without clusters).
+  // x_k^T v = q_k^T (basis^T v) for every k, with basis = Phi (or M Phi, C Phi for x_k^T M v, x_k^T C v).
+  Eigen::VectorXcd project(const Eigen::MatrixXd& basis, const Eigen::VectorXd& v) const;
+  // Sets clusters_ and cluster_gram_ from lambda_, q_ and their products; returns the smallest reciprocal condition of
+  // a cluster's Gram matrix scaled to a unit diagonal (1 without clusters).
   double group_clusters();
-  Eigen::LLT<Eigen::MatrixXd> system_mass_;  // M itself, for the feedthrough
+  Eigen::LLT<Eigen::MatrixXd> system_mass_;       // M itself, for the feedthrough
+  Eigen::MatrixXd mass_shapes_, damping_shapes_;  // M Phi and C Phi, for the initial state's coefficients
   double rcond_ = 0;
+  bool iterated_ = false;
 };
 
 }  // namespace beamid::galerkin

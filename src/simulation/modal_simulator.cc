@@ -84,6 +84,75 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   return run(*modes, system, p);
 }
 
+namespace {
+
+// One term a e^{lambda (t_i - t_start)} of a sum of exponentials, to be added for samples begin <= i <= last.
+struct Exponential {
+  complex lambda, amplitude;
+  int last;
+};
+
+// y_i += Re sum_k a_k e^{lambda_k (t_i - t_start)} for i = begin .. each term's last, t_i = i dt. Terms in struct-of-
+// arrays form, sorted by their last sample so that the live ones are a prefix, advance together one sample at a time
+// (v_k <- v_k e^{lambda_k dt}: a product per term and sample, vectorised across terms), re-anchored on the exact
+// exponential every kAnchorEvery samples so that round-off cannot accumulate.
+void add_exponentials(std::vector<double>& y, int begin, double dt_s, double t_start_s,
+                      std::vector<Exponential> terms) {
+  constexpr int kAnchorEvery = 256;
+  std::sort(terms.begin(), terms.end(), [](const Exponential& a, const Exponential& b) { return a.last > b.last; });
+  const auto count = static_cast<Eigen::Index>(terms.size());
+  Eigen::ArrayXd vr(count), vi(count), sr(count), si(count);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const complex step = std::exp(terms[static_cast<std::size_t>(k)].lambda * dt_s);
+    sr(k) = step.real();
+    si(k) = step.imag();
+  }
+  Eigen::Index live = count;
+  double* re = vr.data();
+  double* im = vi.data();
+  const double* step_re = sr.data();
+  const double* step_im = si.data();
+  for (int i = begin; live > 0; ++i) {
+    while (live > 0 && terms[static_cast<std::size_t>(live - 1)].last < i) --live;
+    if (live == 0) break;
+    if ((i - begin) % kAnchorEvery == 0)
+      for (Eigen::Index k = 0; k < live; ++k) {
+        const Exponential& term = terms[static_cast<std::size_t>(k)];
+        const complex value = term.amplitude * std::exp(term.lambda * (i * dt_s - t_start_s));
+        re[k] = value.real();
+        im[k] = value.imag();
+      }
+    // Two partial sums and a plain loop over the terms (independent chains, no temporaries).
+    double sum0 = 0, sum1 = 0;
+    Eigen::Index k = 0;
+    for (; k + 1 < live; k += 2) {
+      sum0 += re[k];
+      sum1 += re[k + 1];
+    }
+    if (k < live) sum0 += re[k];
+    y[static_cast<std::size_t>(i)] += sum0 + sum1;
+    for (k = 0; k < live; ++k) {
+      const double r = re[k] * step_re[k] - im[k] * step_im[k];
+      im[k] = re[k] * step_im[k] + im[k] * step_re[k];
+      re[k] = r;
+    }
+  }
+}
+
+// The last sample index (from `first`) at which |a| e^{Re(lambda) (t - t_start)} can still exceed `negligible`.
+int last_significant(complex lambda, double amplitude, double negligible, double t_start_s, double dt_s, int first,
+                     int samples) {
+  int last = samples - 1;
+  if (lambda.real() < 0) {
+    const double t_end = t_start_s + std::log(negligible / amplitude) / lambda.real();
+    const double c = std::ceil(t_end / dt_s);
+    if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, first - 1.0, samples - 1.0));
+  }
+  return last;
+}
+
+}  // namespace
+
 Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
                           const ResponseProblem& p) const {
   Trace trace;
@@ -104,71 +173,106 @@ Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin
       if (lambda(k).imag() > 0) trace.poles_rad_s.push_back(lambda(k));
 
     const double tau = pulse ? p.pulse_width_s : 0.0;
+    const double w = pulse ? 2 * std::numbers::pi / tau : 0.0;
     // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
     // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
     const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
     constexpr int kAnchorEvery = 256;  // samples between exact re-evaluations of a recurrence
-    double bound = 0;                  // sum of |mode amplitudes| at tau: no later output can exceed it
-    std::vector<int> kept;
+
+    // Inside the pulse, rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds splits into
+    //   rho(t) = alpha e^{lambda t} + beta + gamma e^{iwt} + delta e^{-iwt},
+    //   alpha = w^2 / (2 lambda (lambda^2 + w^2)),  beta = -1/(2 lambda),  gamma, delta = 1/(4 (lambda -+ iw))
+    // (from int_0^t e^{lambda (t-s)} e^{mu s} ds = (e^{lambda t} - e^{mu t})/(lambda - mu) for mu = 0, +-iw; alpha
+    // summed without cancellation). The terms beta, gamma, delta of all modes collapse into three sums, and the
+    // alpha e^{lambda t} join the free decay's sum of exponentials. The split loses accuracy only by cancellation
+    // between terms of size 1/|lambda| or 1/|lambda -+ iw| against rho ~ tau, so a mode uses it when |lambda| tau >= 1
+    // and |lambda -+ iw| tau >= 1 (at most a factor of 2 lost); the slow and near-resonant ones keep the exact step
+    // below, which is free of cancellation (divided exponentials).
+    complex beta_sum = 0, gamma_sum = 0, delta_sum = 0;
+    std::vector<Exponential> in_pulse, free;
+    double bound = 0;  // sum of |mode amplitudes| at tau: no later output can exceed it
     std::vector<complex> at_tau;
+    std::vector<int> free_modes;
     for (int k = 0; k < lambda.size(); ++k) {
       if (lambda(k).imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
-      const double weight = lambda(k).imag() > 0 ? 2.0 : 1.0;
+      const complex l = lambda(k);
+      const double weight = l.imag() > 0 ? 2.0 : 1.0;
       const complex hk = weight * h(k);
+      const complex i_w(0.0, w);
       if (first_free > 0) {
-        // Inside the pulse (e0 = 0 there: a pulse starts at rest), one exact step at a time instead of the closed form
-        // at every sample: with rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds and sin^2 = 1/2 - (e^{iws} +
-        // e^{-iws})/4,  rho(t + h) = e^{lambda h} rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt}
-        // D(lambda h, -iwh))/4]: three divided exponentials per mode and a few products per sample, re-anchored on
-        // the closed form every kAnchorEvery samples so that round-off cannot accumulate.
-        const complex l = lambda(k);
-        const double h = p.dt_s, w = 2 * std::numbers::pi / tau;
-        const complex step = std::exp(l * h), turn = std::polar(1.0, w * h);
-        const complex d0 = h * divided_exp(l * h, 0.0), d_plus = h * divided_exp(l * h, complex(0.0, w * h)),
-                      d_minus = h * divided_exp(l * h, complex(0.0, -w * h));
-        const complex hg = hk * g(k);
-        complex rho, rotation;
-        for (int i = 0; i < first_free; ++i) {
-          if (i % kAnchorEvery == 0) {
-            rho = pulse_response(l, i * h, tau);
-            rotation = std::polar(1.0, w * i * h);
+        const bool split = std::abs(l) * tau >= 1 && std::abs(l - i_w) * tau >= 1 && std::abs(l + i_w) * tau >= 1;
+        if (split) {
+          const complex hg = hk * g(k);
+          beta_sum += hg * (-0.5 / l);
+          gamma_sum += hg * (0.25 / (l - i_w));
+          delta_sum += hg * (0.25 / (l + i_w));
+          const complex amplitude = hg * (w * w / (2.0 * l * (l * l + w * w))) + hk * e0(k);
+          in_pulse.push_back({l, amplitude, first_free - 1});
+        } else {
+          // One exact step at a time (e0 = 0 unless a pulse hits a plucked beam): with rho(t + h) = e^{lambda h}
+          // rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt} D(lambda h, -iwh))/4], three divided
+          // exponentials per mode and a few products per sample, re-anchored on the closed form every kAnchorEvery
+          // samples.
+          const double hs = p.dt_s;
+          const complex step = std::exp(l * hs), turn = std::polar(1.0, w * hs);
+          const complex d0 = hs * divided_exp(l * hs, 0.0), d_plus = hs * divided_exp(l * hs, complex(0.0, w * hs)),
+                        d_minus = hs * divided_exp(l * hs, complex(0.0, -w * hs));
+          const complex hg = hk * g(k);
+          complex rho, rotation;
+          for (int i = 0; i < first_free; ++i) {
+            if (i % kAnchorEvery == 0) {
+              rho = pulse_response(l, i * hs, tau);
+              rotation = std::polar(1.0, w * i * hs);
+            }
+            trace.y[i] += (hg * rho).real();
+            if (e0(k) != 0.0) trace.y[i] += (hk * e0(k) * std::exp(l * (i * hs))).real();
+            rho = step * rho + 0.5 * d0 - 0.25 * (rotation * d_plus + std::conj(rotation) * d_minus);
+            rotation *= turn;
           }
-          trace.y[i] += (hg * rho).real();
-          if (e0(k) != 0.0) trace.y[i] += (hk * e0(k) * std::exp(l * (i * h))).real();  // a pulse on a plucked beam
-          rho = step * rho + 0.5 * d0 - 0.25 * (rotation * d_plus + std::conj(rotation) * d_minus);
-          rotation *= turn;
         }
       }
       const complex amplitude =
-          hk * ((pulse ? g(k) * pulse_response(lambda(k), tau, tau) : complex(0)) + e0(k) * std::exp(lambda(k) * tau));
+          hk * ((pulse ? g(k) * pulse_response(l, tau, tau) : complex(0)) + e0(k) * std::exp(l * tau));
       bound += std::abs(amplitude);
-      kept.push_back(k);
       at_tau.push_back(amplitude);
+      free_modes.push_back(k);
     }
-    for (int i = 0; i < first_free; ++i) trace.y[i] += direct * p.force_N(i * p.dt_s);
+    // The shared part of the split modes inside the pulse, Re(B + G e^{iwt} + D e^{-iwt}), and the direct term.
+    {
+      const complex turn = std::polar(1.0, w * p.dt_s);
+      complex rotation;
+      for (int i = 0; i < first_free; ++i) {
+        if (i % kAnchorEvery == 0) rotation = std::polar(1.0, w * i * p.dt_s);
+        trace.y[i] +=
+            (beta_sum + gamma_sum * rotation + delta_sum * std::conj(rotation)).real() + direct * p.force_N(i * p.dt_s);
+        rotation *= turn;
+      }
+    }
+    // Exponentials inside the pulse: a term is dropped once below 1e-18 of the largest term's start.
+    if (!in_pulse.empty()) {
+      double largest = 0;
+      for (const Exponential& term : in_pulse) largest = std::max(largest, std::abs(term.amplitude));
+      for (Exponential& term : in_pulse)
+        term.last =
+            std::abs(term.amplitude) <= 1e-18 * largest
+                ? -1
+                : last_significant(term.lambda, std::abs(term.amplitude), 1e-18 * largest, 0.0, p.dt_s, 0, first_free);
+      add_exponentials(trace.y, 0, p.dt_s, 0.0, std::move(in_pulse));
+    }
 
-    // Free decay: y_i = Re sum_k A_k e^{lambda_k (t_i - tau)}.
+    // Free decay: y_i = Re sum_k A_k e^{lambda_k (t_i - tau)}, each mode dropped once its amplitude is below 1e-18 of
+    // the bound.
     const double negligible = 1e-18 * bound;
     int modes_used = 0;
-    for (std::size_t j = 0; j < kept.size(); ++j) {
-      const complex l = lambda(kept[j]);
-      const complex amplitude = at_tau[j];
-      if (std::abs(amplitude) <= negligible || first_free >= p.samples) continue;
-      ++modes_used;
-      const complex step = std::exp(l * p.dt_s);
-      // Last sample at which |A| e^{Re(l) (t - tau)} can still exceed `negligible`.
-      int last = p.samples - 1;
-      if (l.real() < 0) {
-        const double t_end = tau + std::log(negligible / std::abs(amplitude)) / l.real();
-        const double c = std::ceil(t_end / p.dt_s);
-        if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, first_free - 1.0, p.samples - 1.0));
+    if (first_free < p.samples) {
+      for (std::size_t j = 0; j < free_modes.size(); ++j) {
+        const complex l = lambda(free_modes[j]);
+        if (std::abs(at_tau[j]) <= negligible) continue;
+        ++modes_used;
+        free.push_back(
+            {l, at_tau[j], last_significant(l, std::abs(at_tau[j]), negligible, tau, p.dt_s, first_free, p.samples)});
       }
-      complex value;
-      for (int i = first_free; i <= last; ++i) {
-        if ((i - first_free) % kAnchorEvery == 0) value = amplitude * std::exp(l * (i * p.dt_s - tau));
-        trace.y[i] += value.real();
-        value *= step;
-      }
+      add_exponentials(trace.y, first_free, p.dt_s, tau, std::move(free));
     }
     trace.stats.modes = modes_used;
     // t = 0 is the initial condition itself: evaluate it from the state, not as a sum over modes (for a pluck's
