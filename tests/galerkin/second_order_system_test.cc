@@ -282,9 +282,10 @@ TEST(StateSpaceModes, IterationInTheUndampedBasisAgreesWithTheDenseDecomposition
 TEST(StateSpaceModes, AwayFromEqualRelaxationTimesEitherMethodGivesTheDenseEigenvalues) {
   // A fit moves cDI, kAcs and EI apart, so the thin beam's bending and shear relaxation times (cDI/EI, kAcs/kAG) stop
   // being equal: its slow shear roots spread and the damping couples them as strongly as they are apart. Then the
-  // iteration must either converge to the dense decomposition's eigenvalues or give up (measured at N = 16: it is used
-  // within 1e-3 of equal times, where its eigenvalues agree to 2.5e-15 relative; from 1e-2 on, the dense one runs), so
-  // 1e-12 whichever ran. And it must still be used near the truth, where a fit spends its last evaluations.
+  // iteration must either converge to the dense decomposition's eigenvalues or give up (measured at N = 16: with the
+  // wide blocks it is used out to 10 % from equal times, where its eigenvalues agree to 3.3e-15 relative; at 30 % the
+  // dense one runs), so 1e-12 whichever ran. And it must be used within 10 % of the truth, where a fit spends its
+  // evaluations.
   for (const double factor : {0.9, 0.99, 0.999, 0.9999, 1.0001, 1.001, 1.01, 1.1}) {
     for (const std::string parameter : {"cDI", "kAcs", "EI"}) {
       BeamParameters beam = model::preset("banks-aluminium");
@@ -300,7 +301,7 @@ TEST(StateSpaceModes, AwayFromEqualRelaxationTimesEitherMethodGivesTheDenseEigen
         EXPECT_LT(nearest, 1e-12 * std::abs(automatic.eigenvalues()(k)))
             << parameter << " x " << factor << ", eigenvalue " << k;
       }
-      if (std::abs(factor - 1) < 2e-3) {
+      if (std::abs(factor - 1) <= 0.1) {
         EXPECT_TRUE(automatic.iterated()) << parameter << " x " << factor;
       }
     }
