@@ -14,6 +14,24 @@ namespace {
 
 using complex = std::complex<double>;
 
+// a x for real a and complex x, as two real products (Eigen's mixed real-complex product is several times slower).
+Eigen::MatrixXcd real_times(const Eigen::MatrixXd& a, const Eigen::MatrixXcd& x) {
+  Eigen::MatrixXcd out(a.rows(), x.cols());
+  out.real() = a * x.real();
+  out.imag() = a * x.imag();
+  return out;
+}
+
+// x^T y for complex x = xr + i xi and y, as four real products (Eigen's complex-complex kernel is about twice as slow
+// at these sizes).
+Eigen::MatrixXcd transpose_times(const Eigen::MatrixXd& xr, const Eigen::MatrixXd& xi, const Eigen::MatrixXcd& y) {
+  const Eigen::MatrixXd yr = y.real(), yi = y.imag();
+  Eigen::MatrixXcd out(xr.cols(), y.cols());
+  out.real() = xr.transpose() * yr - xi.transpose() * yi;
+  out.imag() = xr.transpose() * yi + xi.transpose() * yr;
+  return out;
+}
+
 // Per mode k (one of each conjugate pair) and parameter p: the residue R_k, its derivative and d lambda_k.
 struct ModalDerivatives {
   Eigen::VectorXcd lambda, residue;      // 2n
@@ -27,7 +45,8 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
   d.lambda = modes.eigenvalues();
   const Eigen::Index m = d.lambda.size();
   const Eigen::MatrixXcd x = modes.physical_vectors();  // n x 2n
-  const Eigen::MatrixXcd mx = system.M * x, cx = system.C * x;
+  const Eigen::MatrixXcd mx = real_times(system.M, x), cx = real_times(system.C, x);
+  const Eigen::MatrixXd xr = x.real(), xi = x.imag();
   // s_k = 1 / x_k^T (2 lambda_k M + C) x_k, h_k = c^T x_k, g_k = s_k x_k^T f F0.
   Eigen::VectorXcd s(m), h = x.transpose() * p.sensor.cast<complex>(), g = x.transpose() * p.load.cast<complex>();
   for (Eigen::Index k = 0; k < m; ++k)  // transpose, not adjoint: the pencil is complex symmetric
@@ -40,22 +59,26 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
   d.d_lambda.resize(m, static_cast<Eigen::Index>(derivatives.size()));
   d.d_residue.resize(m, static_cast<Eigen::Index>(derivatives.size()));
   const Eigen::VectorXcd lambda2 = d.lambda.cwiseProduct(d.lambda);
+  // W_jk = 1 / (lambda_k - lambda_j) off the diagonal, 0 on it: the same for every parameter.
+  Eigen::MatrixXcd w(m, m);
+  for (Eigen::Index k = 0; k < m; ++k)
+    for (Eigen::Index j = 0; j < m; ++j) w(j, k) = j == k ? complex(0.0) : 1.0 / (d.lambda(k) - d.lambda(j));
   for (std::size_t q = 0; q < derivatives.size(); ++q) {
     const galerkin::SecondOrderSystem& ds = derivatives[q];
     // Y = dK X + dC X Lambda + dM X Lambda^2;  Q = -diag(s) X^T Y;  N = diag(s) (X^T dM X) Lambda.
-    const Eigen::MatrixXcd dmx = ds.M * x;
-    const Eigen::MatrixXcd y = ds.K * x + (ds.C * x) * d.lambda.asDiagonal() + dmx * lambda2.asDiagonal();
-    const Eigen::MatrixXcd q_matrix = -(s.asDiagonal() * (x.transpose() * y));
-    const Eigen::MatrixXcd n_matrix = s.asDiagonal() * (x.transpose() * dmx) * d.lambda.asDiagonal();
+    const Eigen::MatrixXcd dmx = real_times(ds.M, x);
+    const Eigen::MatrixXcd y =
+        real_times(ds.K, x) + real_times(ds.C, x) * d.lambda.asDiagonal() + dmx * lambda2.asDiagonal();
+    const Eigen::MatrixXcd q_matrix = -(s.asDiagonal() * transpose_times(xr, xi, y));
+    const Eigen::MatrixXcd n_matrix = s.asDiagonal() * transpose_times(xr, xi, dmx) * d.lambda.asDiagonal();
+    // into_k = sum_{j != k} h_j Q_jk / (lambda_k - lambda_j),
+    // out_k = sum_j N_kj g_j + sum_{j != k} Q_kj g_j / (lambda_j - lambda_k).
+    const Eigen::MatrixXcd qw = q_matrix.cwiseProduct(w);  // (Q o W)_kj = Q_kj / (lambda_j - lambda_k)
+    const Eigen::VectorXcd into_all = qw.transpose() * h;
+    const Eigen::VectorXcd out_all = n_matrix * g + qw * g;
     const auto col = static_cast<Eigen::Index>(q);
     for (Eigen::Index k = 0; k < m; ++k) {
-      complex into = 0, out = 0;  // sum_j h_j C_jk and sum_j (C_kj + N_kj) g_j
-      for (Eigen::Index j = 0; j < m; ++j) {
-        out += n_matrix(k, j) * g(j);
-        if (j == k) continue;
-        into += h(j) * q_matrix(j, k) / (d.lambda(k) - d.lambda(j));
-        out += q_matrix(k, j) / (d.lambda(j) - d.lambda(k)) * g(j);
-      }
+      const complex into = into_all(k), out = out_all(k);
       const complex dl = q_matrix(k, k);
       const complex d_hg = g(k) * into - h(k) * out;
       d.d_lambda(k, col) = dl;
