@@ -372,13 +372,14 @@ bool StateSpaceModes::iterate_damped_modes(const Eigen::MatrixXd& mt, const Eige
       }
       // The first step is the first-order perturbation of q, and about the factor by which each step shrinks the error:
       // at 0.5 and above the iteration cannot be expected to converge (the thin beam: 2.2e-4; with cDI, kAcs, EI or
-      // kAG 1 % off, so that its two relaxation times differ, 7.7e-2, and then 8-12 steps; thick-steel: 26).
+      // kAG 1-10 % off, so that its two relaxation times differ, up to 7.7e-2, and then 8-10 steps with the wide
+      // blocks; thick-steel: 26).
       if (!std::isfinite(size) || (step == 0 && size >= 0.5)) return false;
       const bool stalled = size < kRoundOff && size > 0.5 * st.last_step;
       if (step > 0 && !stalled && size > kConverged) {
         // Not contracting, or contracting too slowly to reach kConverged within the budget at the rate of this step
-        // (error_next ~ rate * error): the dense decomposition is cheaper. (3 % off in a relaxation time, for example,
-        // would need more than 12 steps.)
+        // (error_next ~ rate * error): the dense decomposition is cheaper. (30 % off in a relaxation time, for
+        // example, gives up by the second step.)
         const double rate = size / st.last_step;
         if (!(rate < 1)) return false;
         if (step + std::log(kConverged / size) / std::log(rate) > kMaxSteps) return false;

@@ -28,9 +28,9 @@
 // coupling 2e-4), from a Jacobi iteration in the undamped basis started at each decoupled mode, with a Rayleigh-Ritz
 // step for blocks of nearly equal real roots (modes.cc): a few products of n x n matrices with the 2n vectors instead
 // of the dense 2n x 2n nonsymmetric decomposition of A, which remains the fallback when the iteration would take more
-// than 12 steps (thick-steel; the thin beam once its bending and shear relaxation times cDI/EI and kAcs/kAG differ by
-// more than about 1 %). Everything after them (refinement, normalisation, clusters, coefficients) works in the
-// undamped basis, x_k = Phi q_k.
+// than 12 steps (thick-steel; the thin beam once a relaxation parameter cDI, kAcs, EI or kAG is 10-30 % off equal
+// bending and shear relaxation times). Everything after them (refinement, normalisation, clusters, coefficients) works
+// in the undamped basis, x_k = Phi q_k.
 #pragma once
 
 #include <Eigen/Dense>
