@@ -26,11 +26,11 @@
 //
 // The eigenpairs themselves come, when the damping couples the undamped modes weakly (banks-aluminium: first-order
 // coupling 2e-4), from a Jacobi iteration in the undamped basis started at each decoupled mode, with a Rayleigh-Ritz
-// step for blocks of nearly equal real roots (modes.cc): a few products of n x n matrices with the 2n vectors instead
-// of the dense 2n x 2n nonsymmetric decomposition of A, which remains the fallback when the iteration would take more
-// than 12 steps (thick-steel; the thin beam once a relaxation parameter cDI, kAcs, EI or kAG is 10-30 % off equal
-// bending and shear relaxation times). Everything after them (refinement, normalisation, clusters, coefficients) works
-// in the undamped basis, x_k = Phi q_k.
+// step for blocks of nearly equal real roots (damped_iteration.cc): a few products of n x n matrices with the 2n
+// vectors instead of the dense 2n x 2n nonsymmetric decomposition of A, which remains the fallback when the iteration
+// would take more than 12 steps (thick-steel; the thin beam once a relaxation parameter cDI, kAcs, EI or kAG is 10-30 %
+// off equal bending and shear relaxation times). Everything after them (refinement, normalisation, clusters,
+// coefficients) works in the undamped basis, x_k = Phi q_k.
 #pragma once
 
 #include <Eigen/Dense>
@@ -86,7 +86,7 @@ class StateSpaceModes {
   // error grows like eps / rcond^2 (about 3 % for a 2-DOF system 1e-15 from critical damping, rcond 4.5e-8).
   double eigenvector_rcond() const { return rcond_; }
   // True when the eigenpairs came from the Jacobi iteration in the undamped basis, false when from the dense
-  // eigen-decomposition of the state matrix (strongly coupling damping; see modes.cc).
+  // eigen-decomposition of the state matrix (strongly coupling damping; see damped_iteration.cc).
   bool iterated() const { return iterated_; }
 
   // d lambda_k / d q for a parameter with derivatives d = (dM, dC, dK) (galerkin::parameter_derivative), all 2n, in the
@@ -99,8 +99,8 @@ class StateSpaceModes {
   std::vector<DampedMode> underdamped_modes() const;
 
  private:
-  // The damped modes in the undamped modal basis by a Jacobi iteration from the decoupled modes (modes.cc), or by the
-  // dense eigen-decomposition of the balanced state matrix; both set lambda_, q_, mass_q_ and damping_q_. The
+  // The damped modes in the undamped modal basis by a Jacobi iteration from the decoupled modes (damped_iteration.cc),
+  // or by the dense eigen-decomposition of the balanced state matrix; both set lambda_, q_, mass_q_ and damping_q_. The
   // iteration returns false when the damping couples the modes too strongly for it (then the dense one runs).
   // Rotates each group of nearly equal undamped frequencies (shapes_, M Phi, C Phi and M~, K~, C~ with them) so that
   // M~ = I and K~ is diagonal within the group to round-off (modes.cc).

@@ -5,6 +5,7 @@
 #include <complex>
 #include <optional>
 
+#include "galerkin/complex_products.h"
 #include "galerkin/modes.h"
 #include "model/errors.h"
 #include "simulation/modal_simulator.h"
@@ -13,24 +14,8 @@ namespace beamid::simulation {
 namespace {
 
 using complex = std::complex<double>;
-
-// a x for real a and complex x, as two real products (Eigen's mixed real-complex product is several times slower).
-Eigen::MatrixXcd real_times(const Eigen::MatrixXd& a, const Eigen::MatrixXcd& x) {
-  Eigen::MatrixXcd out(a.rows(), x.cols());
-  out.real() = a * x.real();
-  out.imag() = a * x.imag();
-  return out;
-}
-
-// x^T y for complex x = xr + i xi and y, as four real products (Eigen's complex-complex kernel is about twice as slow
-// at these sizes).
-Eigen::MatrixXcd transpose_times(const Eigen::MatrixXd& xr, const Eigen::MatrixXd& xi, const Eigen::MatrixXcd& y) {
-  const Eigen::MatrixXd yr = y.real(), yi = y.imag();
-  Eigen::MatrixXcd out(xr.cols(), y.cols());
-  out.real() = xr.transpose() * yr - xi.transpose() * yi;
-  out.imag() = xr.transpose() * yi + xi.transpose() * yr;
-  return out;
-}
+using galerkin::real_times;
+using galerkin::transpose_times;
 
 // Per mode k (one of each conjugate pair) and parameter p: the residue R_k, its derivative and d lambda_k.
 struct ModalDerivatives {

@@ -121,14 +121,14 @@ TEST(ModalSimulator, AgreesWithCvodeOnPresets) {
 }
 
 TEST(ModalSimulator, IteratedAndDenseModesGiveTheSameResponse) {
-  // The thin beam's damped modes come from the Jacobi iteration in the undamped basis (galerkin/modes.cc); the same
-  // experiment through the dense decomposition's modes, all three outputs, at the study's sampling (dt = 1 ms, 4 s)
-  // and the benchmark's (dt = 10 us, where the 4 ms pulse covers 400 samples and the shear relaxation block lives for
-  // a few samples). Measured: 3.4e-9 of max |y| at dt = 1 ms, the phase over 4 s of mode 1's frequency, which the two
-  // methods get from x^T K x with different round-off (4e-11 apart, the cancellation of a bending mode against the
+  // The thin beam's damped modes come from the Jacobi iteration in the undamped basis (galerkin/damped_iteration.cc);
+  // the same experiment through the dense decomposition's modes, all three outputs, at the study's sampling (dt = 1 ms,
+  // 4 s) and the benchmark's (dt = 10 us, where the 4 ms pulse covers 400 samples and the shear relaxation block lives
+  // for a few samples). Measured: 3.4e-9 of max |y| at dt = 1 ms, the phase over 4 s of mode 1's frequency, which the
+  // two methods get from x^T K x with different round-off (4e-11 apart, the cancellation of a bending mode against the
   // shear stiffness); below 1e-10 at dt = 10 us. Bound 1e-8, against the 1e-7 that both keep to CVODE.
   // The same off the truth, as a fit sees the beam: cDI 0.9x and kAcs 1.1x, where the two relaxation times differ by
-  // 10 % and the slow shear roots spread into the wide blocks of modes.cc.
+  // 10 % and the slow shear roots spread into the wide blocks of galerkin/damped_iteration.cc.
   const std::vector<std::pair<double, double>> factors = {{1.0, 1.0}, {0.9, 1.0}, {1.0, 1.1}};  // cDI, kAcs
   for (const auto& [cdi_factor, kacs_factor] : factors) {
     model::BeamParameters beam = model::preset("banks-aluminium");
