@@ -7,6 +7,7 @@
 #include <ceres/version.h>
 #include <glog/logging.h>
 
+#include <memory>
 #include <mutex>
 
 #include "fit/optimizer.h"
@@ -56,12 +57,51 @@ class ExactJacobian final : public ceres::CostFunction {
   double scale_;
 };
 
+// Remembers the last point's residuals and Jacobian. With bounds Ceres' trust-region loop evaluates one point up to
+// three times: its projected line search (bounded problems only) asks for the candidate's cost and gradient, hence
+// the Jacobian; then the candidate's cost again; then, once the step is accepted, residuals and Jacobian at it for the
+// next iteration. Measured on the staged time fit: every iteration evaluated two Jacobians and one residual vector at
+// the same point. Answering the repeats from memory leaves every value Ceres sees as it was (a Jacobian evaluation
+// returns the residuals too) and costs one model run with its derivatives (or 2n + 1 runs for central differences) per
+// iteration instead of two such plus one run.
+class RememberLast final : public ceres::CostFunction {
+ public:
+  explicit RememberLast(ceres::CostFunction* inner) : inner_(inner) {
+    set_num_residuals(inner->num_residuals());
+    *mutable_parameter_block_sizes() = inner->parameter_block_sizes();
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const int n = parameter_block_sizes().front(), m = num_residuals();
+    const bool wants_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    const Eigen::Map<const Eigen::VectorXd> x(parameters[0], n);
+    const bool same = valid_ && x_.size() == n && (x_.array() == x.array()).all();  // bitwise: NaN is never the same
+    if (same && (!wants_jacobian || has_jacobian_)) {
+      Eigen::Map<Eigen::VectorXd>(residuals, m) = r_;
+      if (wants_jacobian) Eigen::Map<Eigen::VectorXd>(jacobians[0], j_.size()) = j_;
+      return true;
+    }
+    valid_ = false;
+    if (!inner_->Evaluate(parameters, residuals, jacobians)) return false;
+    x_ = x;
+    r_ = Eigen::Map<const Eigen::VectorXd>(residuals, m);
+    has_jacobian_ = wants_jacobian;
+    if (wants_jacobian) j_ = Eigen::Map<const Eigen::VectorXd>(jacobians[0], static_cast<Eigen::Index>(m) * n);
+    valid_ = true;
+    return true;
+  }
+
+ private:
+  std::unique_ptr<ceres::CostFunction> inner_;
+  mutable Eigen::VectorXd x_, r_, j_;  // j_: row-major m x n, as Ceres lays it out
+  mutable bool valid_ = false, has_jacobian_ = false;
+};
+
 ceres::CostFunction* cost_function(GuardedProblem& guarded, double scale = 1) {
-  if (guarded.problem.jacobian) return new ExactJacobian(&guarded, scale);
+  if (guarded.problem.jacobian) return new RememberLast(new ExactJacobian(&guarded, scale));
   auto* f = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(new Residuals{&guarded, scale});
   f->AddParameterBlock(guarded.problem.dimension());
   f->SetNumResiduals(guarded.problem.residual_count);
-  return f;
+  return new RememberLast(f);
 }
 
 // Stops the solver once the evaluation budget is spent.
