@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 namespace beamid::galerkin {
 
@@ -15,20 +16,30 @@ inline Eigen::MatrixXcd real_times(const Eigen::MatrixXd& a, const Eigen::Matrix
   return out;
 }
 
-// x^T y for complex x = xr + i xi (its parts given, so that a caller with many products splits it once) and complex y:
-// four real products. Transpose, not adjoint: the damped pencil is complex symmetric.
-inline Eigen::MatrixXcd transpose_times(const Eigen::MatrixXd& xr, const Eigen::MatrixXd& xi,
-                                        const Eigen::MatrixXcd& y) {
-  const Eigen::MatrixXd yr = y.real(), yi = y.imag();
-  Eigen::MatrixXcd out(xr.cols(), y.cols());
-  out.real() = xr.transpose() * yr - xi.transpose() * yi;
-  out.imag() = xr.transpose() * yi + xi.transpose() * yr;
-  return out;
-}
-
 // x_k^T y_k for every column k (transpose, not adjoint).
 inline Eigen::VectorXcd column_products(const Eigen::MatrixXcd& x, const Eigen::MatrixXcd& y) {
   return x.cwiseProduct(y).colwise().sum().transpose();
 }
+
+// The eigenvectors x_k of a real pencil, whose eigenvalues are real or come in conjugate pairs, held once as real
+// vectors: x_k = V(:, re_k) + i sign_k V(:, im_k), with the two columns of a pair shared by both partners (sign -1 for
+// the one with Im lambda < 0) and one column for a real eigenvalue. V has 2n columns for 2n eigenvectors, half the real
+// data of X = Xr + i Xi, so that a congruence X^T D X with a real symmetric D is one real product V^T (D V) (instead of
+// four) and a recombination of its entries. The partner of a pair is taken as the exact conjugate of the one with
+// Im lambda > 0 (vectors() returns X in that form, which every product with it must use).
+class ConjugatePairs {
+ public:
+  // Throws NumericalError when an eigenvalue with Im < 0 has no exact conjugate among those with Im > 0.
+  ConjugatePairs(const Eigen::MatrixXcd& x, const Eigen::VectorXcd& lambda);
+  const Eigen::MatrixXcd& vectors() const { return x_; }
+  // X^T D X (transpose, not adjoint) for a real symmetric n x n matrix D.
+  Eigen::MatrixXcd congruence(const Eigen::MatrixXd& d) const;
+
+ private:
+  Eigen::MatrixXd v_;
+  Eigen::MatrixXcd x_;
+  std::vector<Eigen::Index> re_, im_;  // im_ = -1 for a real eigenvalue
+  std::vector<double> sign_;
+};
 
 }  // namespace beamid::galerkin

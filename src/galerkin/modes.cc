@@ -279,9 +279,11 @@ Eigen::MatrixXcd StateSpaceModes::physical_vectors() const { return real_times(s
 
 Eigen::VectorXcd StateSpaceModes::eigenvalue_derivative(const SecondOrderSystem& d) const {
   const Eigen::MatrixXcd x = physical_vectors();
-  const Eigen::VectorXcd dm = column_products(x, real_times(d.M, x));
-  const Eigen::VectorXcd dc = column_products(x, real_times(d.C, x));
-  const Eigen::VectorXcd dk = column_products(x, real_times(d.K, x));
+  // x_k^T D x_k for each of dM, dC, dK; a parameter moves one or two of them, and the others are zero.
+  const auto forms = [&x](const Eigen::MatrixXd& m) -> Eigen::VectorXcd {
+    return m.isZero(0.0) ? Eigen::VectorXcd::Zero(x.cols()) : column_products(x, real_times(m, x));
+  };
+  const Eigen::VectorXcd dm = forms(d.M), dc = forms(d.C), dk = forms(d.K);
   return -(lambda_.cwiseProduct(lambda_).cwiseProduct(dm) + lambda_.cwiseProduct(dc) + dk)
               .cwiseQuotient(normalisation_);
 }

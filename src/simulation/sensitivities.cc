@@ -15,7 +15,6 @@ namespace {
 
 using complex = std::complex<double>;
 using galerkin::real_times;
-using galerkin::transpose_times;
 
 // Per mode k (one of each conjugate pair) and parameter p: the residue R_k, its derivative and d lambda_k.
 struct ModalDerivatives {
@@ -29,9 +28,10 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
   ModalDerivatives d;
   d.lambda = modes.eigenvalues();
   const Eigen::Index m = d.lambda.size();
-  const Eigen::MatrixXcd x = modes.physical_vectors();  // n x 2n
+  // Each conjugate pair's vectors held once as real vectors: a congruence X^T D X is then one real product.
+  const galerkin::ConjugatePairs pairs(modes.physical_vectors(), d.lambda);
+  const Eigen::MatrixXcd& x = pairs.vectors();  // n x 2n
   const Eigen::MatrixXcd mx = real_times(system.M, x), cx = real_times(system.C, x);
-  const Eigen::MatrixXd xr = x.real(), xi = x.imag();
   // s_k = 1 / x_k^T (2 lambda_k M + C) x_k, h_k = c^T x_k, g_k = s_k x_k^T f F0.
   Eigen::VectorXcd s(m), h = x.transpose() * p.sensor.cast<complex>(), g = x.transpose() * p.load.cast<complex>();
   for (Eigen::Index k = 0; k < m; ++k)  // transpose, not adjoint: the pencil is complex symmetric
@@ -50,17 +50,23 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
     for (Eigen::Index j = 0; j < m; ++j) w(j, k) = j == k ? complex(0.0) : 1.0 / (d.lambda(k) - d.lambda(j));
   for (std::size_t q = 0; q < derivatives.size(); ++q) {
     const galerkin::SecondOrderSystem& ds = derivatives[q];
-    // Y = dK X + dC X Lambda + dM X Lambda^2;  Q = -diag(s) X^T Y;  N = diag(s) (X^T dM X) Lambda.
-    const Eigen::MatrixXcd dmx = real_times(ds.M, x);
-    const Eigen::MatrixXcd y =
-        real_times(ds.K, x) + real_times(ds.C, x) * d.lambda.asDiagonal() + dmx * lambda2.asDiagonal();
-    const Eigen::MatrixXcd q_matrix = -(s.asDiagonal() * transpose_times(xr, xi, y));
-    const Eigen::MatrixXcd n_matrix = s.asDiagonal() * transpose_times(xr, xi, dmx) * d.lambda.asDiagonal();
+    // X^T Y = X^T dK X + (X^T dC X) Lambda + (X^T dM X) Lambda^2 for Y = dK X + dC X Lambda + dM X Lambda^2;
+    // Q = -diag(s) X^T Y;  N = diag(s) (X^T dM X) Lambda. A parameter moves one or two of M, C, K (EI: K; rho: M;
+    // cDI, gamma: C), and a matrix it leaves alone costs nothing.
+    Eigen::MatrixXcd xty = Eigen::MatrixXcd::Zero(m, m), xmx;
+    if (!ds.K.isZero(0.0)) xty += pairs.congruence(ds.K);
+    if (!ds.C.isZero(0.0)) xty += pairs.congruence(ds.C) * d.lambda.asDiagonal();
+    if (!ds.M.isZero(0.0)) {
+      xmx = pairs.congruence(ds.M);
+      xty += xmx * lambda2.asDiagonal();
+    }
+    const Eigen::MatrixXcd q_matrix = -(s.asDiagonal() * xty);
     // into_k = sum_{j != k} h_j Q_jk / (lambda_k - lambda_j),
     // out_k = sum_j N_kj g_j + sum_{j != k} Q_kj g_j / (lambda_j - lambda_k).
     const Eigen::MatrixXcd qw = q_matrix.cwiseProduct(w);  // (Q o W)_kj = Q_kj / (lambda_j - lambda_k)
     const Eigen::VectorXcd into_all = qw.transpose() * h;
-    const Eigen::VectorXcd out_all = n_matrix * g + qw * g;
+    Eigen::VectorXcd out_all = qw * g;
+    if (xmx.size() > 0) out_all += s.cwiseProduct(xmx * d.lambda.cwiseProduct(g));
     const auto col = static_cast<Eigen::Index>(q);
     for (Eigen::Index k = 0; k < m; ++k) {
       const complex into = into_all(k), out = out_all(k);

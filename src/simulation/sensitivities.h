@@ -16,7 +16,8 @@
 // with d rho / d lambda in closed form (pulse_response_derivative), and after the pulse rho_k(t) = rho_k(tau)
 // e^{lambda_k (t - tau)}, d rho_k/d lambda (t) = [d rho_k/d lambda (tau) + (t - tau) rho_k(tau)] e^{lambda_k (t-tau)}.
 // There is no differencing: the result is exact up to the round-off of the eigen-decomposition, and costs about one
-// model evaluation plus two (2n x n) (n x 2n) products per parameter.
+// model evaluation plus, per parameter and per matrix among M, C, K that it moves, one real (2n x n) (n x 2n) product
+// (galerkin::ConjugatePairs::congruence).
 #pragma once
 
 #include <Eigen/Dense>
