@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "model/errors.h"
 
@@ -43,6 +44,46 @@ TEST(Optimizers, EveryAdapterFindsTheRosenbrockMinimum) {
     EXPECT_NEAR(r.x(1), 1, 2 * tolerance) << method;
     EXPECT_GT(r.evaluations, 0) << method;
     EXPECT_FALSE(r.termination.empty()) << method;
+  }
+}
+
+TEST(Optimizers, LevenbergMarquardtEvaluatesNoPointTwice) {
+  // Ceres' bounded trust-region loop asks for the residuals (and the Jacobian) of one point up to three times: its
+  // projected line search at the candidate, the candidate's cost, and the accepted point's Jacobian. The adapter must
+  // answer the repeats from memory: every problem call (residuals or Jacobian) is at a point not seen before. Rosenbrock
+  // from (-1.2, 1) takes tens of LM iterations, so a repeat on every iteration would show many times over.
+  for (const bool exact : {true, false}) {
+    Problem p = rosenbrock();
+    std::vector<Eigen::VectorXd> seen;
+    int repeats = 0;
+    const auto note = [&](const Eigen::VectorXd& x) {
+      for (const auto& y : seen) repeats += (x.array() == y.array()).all() ? 1 : 0;
+      seen.push_back(x);
+    };
+    const auto residuals = p.residuals;
+    if (exact) {
+      p.jacobian = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& j) {
+        note(x);
+        j.resize(2, 2);
+        j << -1, 0, -20 * x(0), 10;
+        return residuals(x, r);
+      };
+    }
+    p.residuals = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+      note(x);
+      return residuals(x, r);
+    };
+    OptimizerOptions o;
+    o.method = "lm";
+    o.max_evaluations = 5000;
+    const OptimizerResult r = minimize(p, Eigen::Vector2d(-1.2, 1), o);
+    ASSERT_TRUE(r.usable()) << r.termination;
+    EXPECT_NEAR(r.x(0), 1, 1e-6);
+    EXPECT_GT(seen.size(), 10u) << "exact " << exact;
+    // The one allowed repeat: the start, evaluated for the residual scale and then by Ceres (with its Jacobian, or as
+    // the centre of the central differences). Without the adapter's memory: 50 repeats in 69 calls (exact) and 114 in
+    // 273 (differences).
+    EXPECT_LE(repeats, 1) << "exact " << exact << ", " << seen.size() << " calls";
   }
 }
 
