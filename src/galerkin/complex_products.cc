@@ -21,8 +21,9 @@ ConjugatePairs::ConjugatePairs(const Eigen::MatrixXcd& x, const Eigen::VectorXcd
     re_[kk] = columns;
     if (lambda(k).imag() == 0) {
       // A real eigenvalue's vector is real up to a complex scale factor: keep the larger part.
-      v_.col(columns++) = x.col(k).real().squaredNorm() >= x.col(k).imag().squaredNorm() ? Eigen::VectorXd(x.col(k).real())
-                                                                                        : Eigen::VectorXd(x.col(k).imag());
+      v_.col(columns++) = x.col(k).real().squaredNorm() >= x.col(k).imag().squaredNorm()
+                              ? Eigen::VectorXd(x.col(k).real())
+                              : Eigen::VectorXd(x.col(k).imag());
     } else {
       v_.col(columns++) = x.col(k).real();
       im_[kk] = columns;
@@ -35,8 +36,8 @@ ConjugatePairs::ConjugatePairs(const Eigen::MatrixXcd& x, const Eigen::VectorXcd
     for (Eigen::Index j = 0; j < m && partner < 0; ++j)
       if (lambda(j) == std::conj(lambda(k))) partner = j;
     if (partner < 0)
-      throw NumericalError("eigenvalue " + format_value(lambda(k).real()) + " - " +
-                           format_value(-lambda(k).imag()) + " i has no exact conjugate partner");
+      throw NumericalError("eigenvalue " + format_value(lambda(k).real()) + " - " + format_value(-lambda(k).imag()) +
+                           " i has no exact conjugate partner");
     re_[static_cast<std::size_t>(k)] = re_[static_cast<std::size_t>(partner)];
     im_[static_cast<std::size_t>(k)] = im_[static_cast<std::size_t>(partner)];
     sign_[static_cast<std::size_t>(k)] = -1;

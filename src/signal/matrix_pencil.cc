@@ -32,18 +32,14 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   Eigen::MatrixXd hankel(n - pencil, pencil + 1);
   for (int i = 0; i < n - pencil; ++i)
     for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
-  // Its right singular vectors are those of R in Y = Q R: Y has about six rows a column (n - L against L + 1 with L
-  // <= n / 3), and a Householder QR (blocked, in matrix-matrix products) plus the SVD of the (L + 1)-square triangle
-  // cost 2 m c^2 + ~3 c^3 flops (m x c = Y's size) against ~4 m c^2 for bidiagonalising Y itself, whose
-  // matrix-vector products dominated `beamid fit` and a study's modal-cost cases (measured at Nbar = 4096, L = 599:
-  // 0.57-0.65 s against 0.92-1.1 s, on a loaded machine; the subspaces agree to 1.4e-15).
-  Eigen::MatrixXd triangle;
-  if (hankel.rows() > hankel.cols()) {
-    const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(hankel);  // in place: Y is not needed again
-    triangle = qr.matrixQR().topRows(hankel.cols()).triangularView<Eigen::Upper>();
-  } else {
-    triangle = hankel;
-  }
+  // Its right singular vectors are those of R in Y = Q R. Y is tall, n - L >= 2 L >= L + 1 rows for its L + 1 columns
+  // (L <= n / 3, L >= 2), about six rows a column at the default L, and a Householder QR (blocked, in matrix-matrix
+  // products) plus the SVD of the (L + 1)-square triangle cost 2 m c^2 + ~3 c^3 flops (m x c = Y's size) against
+  // ~4 m c^2 for bidiagonalising Y itself, whose matrix-vector products dominated `beamid fit` and a study's
+  // modal-cost cases (measured at Nbar = 4096, L = 599: 0.57-0.65 s against 0.92-1.1 s, on a loaded machine; the
+  // subspaces agree to 1.4e-15).
+  const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(hankel);  // in place: Y is not needed again
+  const Eigen::MatrixXd triangle = qr.matrixQR().topRows(pencil + 1).triangularView<Eigen::Upper>();
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(triangle, Eigen::ComputeThinV);
   if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
   const Eigen::MatrixXd v = svd.matrixV().leftCols(order);

@@ -50,8 +50,8 @@ TEST(Optimizers, EveryAdapterFindsTheRosenbrockMinimum) {
 TEST(Optimizers, LevenbergMarquardtEvaluatesNoPointTwice) {
   // Ceres' bounded trust-region loop asks for the residuals (and the Jacobian) of one point up to three times: its
   // projected line search at the candidate, the candidate's cost, and the accepted point's Jacobian. The adapter must
-  // answer the repeats from memory: every problem call (residuals or Jacobian) is at a point not seen before. Rosenbrock
-  // from (-1.2, 1) takes tens of LM iterations, so a repeat on every iteration would show many times over.
+  // answer the repeats from memory: every problem call (residuals or Jacobian) is at a point not seen before.
+  // Rosenbrock from (-1.2, 1) takes tens of LM iterations, so a repeat on every iteration would show many times over.
   for (const bool exact : {true, false}) {
     Problem p = rosenbrock();
     std::vector<Eigen::VectorXd> seen;

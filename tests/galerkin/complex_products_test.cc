@@ -31,8 +31,8 @@ TEST(ConjugatePairs, CongruencesEqualTheComplexProducts) {
       const Eigen::VectorXcd r = (lambda(k) * lambda(k)) * (s.M.cast<std::complex<double>>() * x.col(k)) +
                                  lambda(k) * (s.C.cast<std::complex<double>>() * x.col(k)) +
                                  s.K.cast<std::complex<double>>() * x.col(k);
-      const double size = (std::norm(lambda(k)) * s.M.norm() + std::abs(lambda(k)) * s.C.norm() + s.K.norm()) *
-                          x.col(k).norm();
+      const double size =
+          (std::norm(lambda(k)) * s.M.norm() + std::abs(lambda(k)) * s.C.norm() + s.K.norm()) * x.col(k).norm();
       EXPECT_LT(r.norm(), 1e-8 * size) << name << " mode " << k;
       if (lambda(k).imag() == 0) {
         ++real_roots;
