@@ -126,7 +126,16 @@ class StateSpaceModes {
   Eigen::VectorXcd normalisation_;  // n_k = x_k^T (2 lambda_k M + C) x_k
   // Clusters of nearly equal eigenvalues (indices into lambda_) and the LU of their Gram matrices (above).
   std::vector<std::vector<Eigen::Index>> clusters_;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> cluster_gram_;
+  // G = D S D with D = diag(scale) and S's LU, real for a cluster of real eigenpairs (its right-hand side is solved
+  // by real and imaginary parts), complex otherwise.
+  struct ClusterGram {
+    bool real = false;
+    Eigen::VectorXd scale;
+    Eigen::PartialPivLU<Eigen::MatrixXd> real_lu;
+    Eigen::PartialPivLU<Eigen::MatrixXcd> complex_lu;
+    Eigen::VectorXcd solve(const Eigen::VectorXcd& rhs) const;
+  };
+  std::vector<ClusterGram> cluster_gram_;
   // eta from rhs_k = phi_k^T [C M; M 0] u: rhs_k / n_k, and the Gram solve within each cluster.
   Eigen::VectorXcd modal_solve(const Eigen::VectorXcd& rhs) const;
   // x_k^T v = q_k^T (basis^T v) for every k, with basis = Phi (or M Phi, C Phi for x_k^T M v, x_k^T C v).
