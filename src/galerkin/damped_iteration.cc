@@ -317,6 +317,10 @@ bool StateSpaceModes::iterate_damped_modes(const Eigen::MatrixXd& mt, const Eige
   // 1e-7) and the Rayleigh functional's eigenvalue by its square.
   // (Component by component in real arithmetic on the columns of z and the products: the 2n starts' residuals and
   // copies below took a fifth of the iteration when each formed its complex vectors first.)
+  // The running maxima keep a NaN once one appears (std::max would drop it), so that it fails the test below.
+  const auto raise = [](double& maximum, double value) {
+    if (!(value <= maximum)) maximum = value;
+  };
   for (const Start& st : starts) {
     const auto mr = products.col(st.re).segment(0, n), cr = products.col(st.re).segment(n, n),
                kr = products.col(st.re).segment(2 * n, n);
@@ -325,8 +329,8 @@ bool StateSpaceModes::iterate_damped_modes(const Eigen::MatrixXd& mt, const Eige
     double residual = 0, size = 0;
     if (st.real) {
       for (Eigen::Index j = 0; j < n; ++j) {
-        residual = std::max(residual, std::abs(l2r * mr(j) + lr * cr(j) + kr(j)));
-        size = std::max(size, l2r * std::abs(mr(j)) + l_abs * std::abs(cr(j)) + std::abs(kr(j)));
+        raise(residual, std::abs(l2r * mr(j) + lr * cr(j) + kr(j)));
+        raise(size, l2r * std::abs(mr(j)) + l_abs * std::abs(cr(j)) + std::abs(kr(j)));
       }
     } else {
       const auto mi = products.col(st.im).segment(0, n), ci = products.col(st.im).segment(n, n),
@@ -337,8 +341,8 @@ bool StateSpaceModes::iterate_damped_modes(const Eigen::MatrixXd& mt, const Eige
       for (Eigen::Index j = 0; j < n; ++j) {
         const double re = l2r * mr(j) - l2i * mi(j) + lr * cr(j) - li * ci(j) + kr(j);
         const double im = l2r * mi(j) + l2i * mr(j) + lr * ci(j) + li * cr(j) + ki(j);
-        residual = std::max(residual, modulus(re, im));
-        size = std::max(size, l2_abs * modulus(mr(j), mi(j)) + l_abs * modulus(cr(j), ci(j)) + modulus(kr(j), ki(j)));
+        raise(residual, modulus(re, im));
+        raise(size, l2_abs * modulus(mr(j), mi(j)) + l_abs * modulus(cr(j), ci(j)) + modulus(kr(j), ki(j)));
       }
     }
     if (!(residual <= (st.block < 0 ? 1e-8 : 1e-7) * size)) return false;
