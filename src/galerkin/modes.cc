@@ -41,6 +41,22 @@ namespace {
 
 using complex = std::complex<double>;
 
+// A cluster's Gram matrix G = q^T C~ q + diag(l) q^T M~ q + q^T M~ q diag(l) (real or complex columns q, their
+// products mq = M~ q, cq = C~ q, eigenvalues l), scaled to a unit diagonal, G = D S D with D = diag(sqrt |G_aa|), and
+// S factored into lu: sets inverse_scale = D^-1 and returns S's reciprocal condition estimate (0 when S is not finite,
+// and then lu is left unfactored).
+template <typename Matrix, typename Vector, typename Lu>
+double factor_scaled_gram(const Matrix& q, const Matrix& mq, const Matrix& cq, const Vector& l,
+                          Eigen::VectorXd& inverse_scale, Lu& lu) {
+  const Matrix mass_part = q.transpose() * mq;
+  const Matrix gram = q.transpose() * cq + l.asDiagonal() * mass_part + mass_part * l.asDiagonal();
+  inverse_scale = gram.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
+  const Matrix scaled = inverse_scale.asDiagonal() * gram * inverse_scale.asDiagonal();
+  if (!scaled.allFinite()) return 0;
+  lu.compute(scaled);
+  return lu.rcond();
+}
+
 }  // namespace
 
 StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod method) {
@@ -224,33 +240,15 @@ double StateSpaceModes::group_clusters() {
     const Eigen::VectorXcd l = lambda_(cluster);
     ClusterGram solver;
     solver.real = l.imag().isZero(0.0) && q_(Eigen::all, cluster).imag().isZero(0.0);
-    double rcond = 0;
-    if (solver.real) {
-      const Eigen::MatrixXd q = q_(Eigen::all, cluster).real();
-      const Eigen::MatrixXd mass_part = q.transpose() * mass_q_(Eigen::all, cluster).real();
-      const Eigen::VectorXd lr = l.real();
-      const Eigen::MatrixXd gram = q.transpose() * damping_q_(Eigen::all, cluster).real() +
-                                   lr.asDiagonal() * mass_part + mass_part * lr.asDiagonal();
-      solver.scale = gram.diagonal().cwiseAbs().cwiseSqrt();
-      const Eigen::MatrixXd scaled =
-          solver.scale.cwiseInverse().asDiagonal() * gram * solver.scale.cwiseInverse().asDiagonal();
-      if (scaled.allFinite()) {
-        solver.real_lu.compute(scaled);
-        rcond = solver.real_lu.rcond();
-      }
-    } else {
-      const Eigen::MatrixXcd q = q_(Eigen::all, cluster), mq = mass_q_(Eigen::all, cluster);
-      const Eigen::MatrixXcd mass_part = q.transpose() * mq;
-      const Eigen::MatrixXcd gram =
-          q.transpose() * damping_q_(Eigen::all, cluster) + l.asDiagonal() * mass_part + mass_part * l.asDiagonal();
-      solver.scale = gram.diagonal().cwiseAbs().cwiseSqrt();
-      const Eigen::MatrixXcd scaled =
-          solver.scale.cwiseInverse().asDiagonal() * gram * solver.scale.cwiseInverse().asDiagonal();
-      if (scaled.allFinite()) {
-        solver.complex_lu.compute(scaled);
-        rcond = solver.complex_lu.rcond();
-      }
-    }
+    const double rcond = solver.real
+                             ? factor_scaled_gram(Eigen::MatrixXd(q_(Eigen::all, cluster).real()),
+                                                  Eigen::MatrixXd(mass_q_(Eigen::all, cluster).real()),
+                                                  Eigen::MatrixXd(damping_q_(Eigen::all, cluster).real()),
+                                                  Eigen::VectorXd(l.real()), solver.inverse_scale, solver.real_lu)
+                             : factor_scaled_gram(Eigen::MatrixXcd(q_(Eigen::all, cluster)),
+                                                  Eigen::MatrixXcd(mass_q_(Eigen::all, cluster)),
+                                                  Eigen::MatrixXcd(damping_q_(Eigen::all, cluster)), l,
+                                                  solver.inverse_scale, solver.complex_lu);
     smallest = std::isfinite(rcond) ? std::min(smallest, rcond) : 0.0;
     cluster_gram_.push_back(std::move(solver));
     clusters_.push_back(std::move(cluster));
@@ -259,11 +257,11 @@ double StateSpaceModes::group_clusters() {
 }
 
 Eigen::VectorXcd StateSpaceModes::ClusterGram::solve(const Eigen::VectorXcd& rhs) const {
-  const Eigen::VectorXd inverse = scale.cwiseInverse();
-  if (!real) return inverse.asDiagonal() * complex_lu.solve(inverse.asDiagonal() * rhs);
+  const auto d_inv = inverse_scale.asDiagonal();
+  if (!real) return d_inv * complex_lu.solve(d_inv * rhs);
   Eigen::VectorXcd out(rhs.size());
-  out.real() = inverse.asDiagonal() * real_lu.solve(inverse.asDiagonal() * rhs.real());
-  out.imag() = inverse.asDiagonal() * real_lu.solve(inverse.asDiagonal() * rhs.imag());
+  out.real() = d_inv * real_lu.solve(d_inv * rhs.real());
+  out.imag() = d_inv * real_lu.solve(d_inv * rhs.imag());
   return out;
 }
 

@@ -126,11 +126,11 @@ class StateSpaceModes {
   Eigen::VectorXcd normalisation_;  // n_k = x_k^T (2 lambda_k M + C) x_k
   // Clusters of nearly equal eigenvalues (indices into lambda_) and the LU of their Gram matrices (above).
   std::vector<std::vector<Eigen::Index>> clusters_;
-  // G = D S D with D = diag(scale) and S's LU, real for a cluster of real eigenpairs (its right-hand side is solved
-  // by real and imaginary parts), complex otherwise.
+  // G = D S D with D^-1 = diag(inverse_scale) and S's LU, real for a cluster of real eigenpairs (its right-hand side
+  // is solved by real and imaginary parts), complex otherwise.
   struct ClusterGram {
     bool real = false;
-    Eigen::VectorXd scale;
+    Eigen::VectorXd inverse_scale;
     Eigen::PartialPivLU<Eigen::MatrixXd> real_lu;
     Eigen::PartialPivLU<Eigen::MatrixXcd> complex_lu;
     Eigen::VectorXcd solve(const Eigen::VectorXcd& rhs) const;
