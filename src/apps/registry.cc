@@ -85,7 +85,7 @@ std::vector<Command> make_commands() {
                {},
                run_modal_id});
   c.push_back({"verify",
-               "forward-model verification tables (Galerkin vs exact, fast vs CVODE)",
+               "forward-model verification tables (Galerkin vs exact, fast vs CVODE, modal truncation)",
                {text_flag("output", "folder for the CSV and Markdown tables", true)},
                {},
                run_verify});

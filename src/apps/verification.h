@@ -2,7 +2,9 @@
 //   frequencies.{csv,md}:   undamped Galerkin frequencies of both presets for N = 2..32 against the exact
 //                           Timoshenko determinant, relative error per mode (Rayleigh-Ritz: >= 0, non-increasing);
 //   fast_vs_cvode.{csv,md}: the exact modal propagator against CVODE BDF at decreasing rtol, for all three outputs,
-//                           max |fast - cvode| / max |y|, with CVODE's step counts.
+//                           max |fast - cvode| / max |y|, with CVODE's step counts;
+//   model_reduction.{csv,md}: modal truncation at the widest gap of the undamped spectrum, plain and with the discarded
+//                           modes as uncoupled oscillators, against the exact response (simulation/modal_truncation.h).
 // Deterministic content only (no timings), so a rerun leaves the files byte-identical.
 #pragma once
 
