@@ -103,7 +103,8 @@ class StateSpaceModes {
   // or by the dense eigen-decomposition of the balanced state matrix; both set lambda_, q_, mass_q_ and damping_q_. The
   // iteration returns false when the damping couples the modes too strongly for it (then the dense one runs).
   // Rotates each group of nearly equal undamped frequencies (shapes_, M Phi, C Phi and M~, K~, C~ with them) so that
-  // M~ = I and K~ is diagonal within the group to round-off (modes.cc).
+  // M~ = I and K~ is diagonal within the group to round-off, unless every member of the group is overdamped on its own
+  // (its roots then go to the iteration's Rayleigh-Ritz blocks, which take the coupling within the group; modes.cc).
   void separate_close_modes(const Eigen::VectorXd& omega, Eigen::MatrixXd& mt, Eigen::MatrixXd& kt,
                             Eigen::MatrixXd& ct);
   bool iterate_damped_modes(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
