@@ -115,10 +115,12 @@ void StateSpaceModes::separate_close_modes(const Eigen::VectorXd& omega, Eigen::
     Eigen::Index last = first;
     while (last + 1 < n && omega(last + 1) < 1.01 * omega(last)) ++last;
     const Eigen::Index size = last - first + 1;
-    bool overdamped = true;
-    for (Eigen::Index j = first; j <= last; ++j)
-      overdamped = overdamped && ct(j, j) * ct(j, j) > 4 * mt(j, j) * kt(j, j);
-    if (size > 1 && !overdamped) {
+    const auto overdamped = [&] {
+      for (Eigen::Index j = first; j <= last; ++j)
+        if (!(ct(j, j) * ct(j, j) > 4 * mt(j, j) * kt(j, j))) return false;
+      return true;
+    };
+    if (size > 1 && !overdamped()) {
       const Eigen::LLT<Eigen::MatrixXd> mass(mt.block(first, first, size, size));
       if (mass.info() != Eigen::Success) throw NumericalError("mass matrix is not positive definite");
       Eigen::MatrixXd reduced = mass.matrixL().solve(kt.block(first, first, size, size));

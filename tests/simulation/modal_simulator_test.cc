@@ -79,15 +79,7 @@ TEST(ModalSimulator, FreeDecayOfAnOscillatorIsExact) {
   }
 }
 
-// max |a - b| / max |b|
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0, scale = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    scale = std::max(scale, std::abs(b[i]));
-  }
-  return diff / scale;
-}
+using testing::relative_difference;
 
 Experiment preset_experiment(const std::string& preset, double length_m, const std::string& output) {
   Experiment e;

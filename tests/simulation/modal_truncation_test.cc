@@ -13,6 +13,7 @@
 #include "model/beam_parameters.h"
 #include "model/errors.h"
 #include "simulation/modal_simulator.h"
+#include "test_systems.h"
 
 namespace beamid::simulation {
 namespace {
@@ -50,14 +51,7 @@ Case thin_beam(const model::BeamParameters& beam, int elements) {
   return {forms, galerkin::combine(forms, beam), e};
 }
 
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0, size = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    size = std::max(size, std::abs(b[i]));
-  }
-  return diff / size;
-}
+using testing::relative_difference;
 
 // Two exact modal solutions of congruent systems (Phi^T (M, C, K) Phi against M, C, K, or a mode's oscillator against
 // the same mode inside the decoupled system) differ by their round-off, measured <= 3e-11 of max |y| here

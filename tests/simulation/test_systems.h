@@ -1,7 +1,9 @@
 // Small systems with known answers shared by the simulation tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "galerkin/second_order_system.h"
 #include "simulation/experiment.h"
@@ -38,6 +40,16 @@ inline double free_decay(double m, double c, double k, double x0, int derivative
   if (derivative == 0) return x0 * e * (cs + s / wd * sn);
   if (derivative == 1) return -x0 * e * w2 / wd * sn;
   return -x0 * e * w2 * (cs - s / wd * sn);  // x'' = -(c x' + k x)/m
+}
+
+// max |a_i - b_i| / max |b_i| over a record: a trace against its reference.
+inline double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return diff / scale;
 }
 
 }  // namespace beamid::simulation::testing
