@@ -12,12 +12,14 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "api/fit_request.h"
 #include "apps/cli.h"
 #include "apps/command_flags.h"
 #include "apps/computations.h"
@@ -247,7 +249,7 @@ py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double
 
 py::dict py_fit(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  std::optional<apps::FitComputation> c;
+  std::optional<api::FitComputation> c;
   std::vector<io::TimeSeries> channels;
   std::optional<apps::ModeComparison> modes;
   std::string beam_name;
@@ -255,7 +257,7 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
     py::gil_scoped_release unlocked;
     const apps::Flags a = apps::parse_flags("fit", args);
     channels = records_of(a, array);
-    c = apps::compute_fit(a, channels);
+    c = api::compute_fit(apps::fit_request_of(a), channels, std::cerr);
     beam_name = a.text("beam");
     const apps::FitReportInput input{
         c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};
@@ -277,9 +279,9 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
   d["status"] = r.status;
   d["termination"] = r.termination;
   d["a4"] = r.final_evaluation.a4;
-  // What the command says on stderr beside its summary line (apps::fit_notes), and (A4) when violated.
+  // What the command says on stderr beside its summary line (api::fit_notes), and (A4) when violated.
   py::list messages;
-  const apps::FitNotes notes = apps::fit_notes(r);
+  const api::FitNotes notes = api::fit_notes(r);
   for (const std::string* note : {&notes.on_bound, &notes.failed, &notes.identifiability})
     if (!note->empty()) messages.append(*note);
   if (r.final_evaluation.a4 != "ok") messages.append(r.final_evaluation.a4);

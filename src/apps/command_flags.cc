@@ -4,11 +4,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
-#include <map>
-#include <sstream>
 
 #include "config/beam_file.h"
-#include "io/resources.h"
 #include "io/time_series.h"
 #include "model/errors.h"
 #include "model/limits.h"
@@ -95,79 +92,28 @@ std::vector<FlagSpec> experiment_flag_specs() {
       number_flag("pulse-width", "pulse width tau, s (default 0.01; pulse only)")};
 }
 
-simulation::Experiment read_experiment(const Flags& a, double length_m) {
-  simulation::Experiment e;
-  e.dt_s = a.optional_number("dt").value_or(e.dt_s);
-  e.samples = a.optional_integer("samples").value_or(e.samples);
-  // fit takes a list, one position per --channel: the experiment holds the first (the caller places the others).
-  if (a.has("sensor-x")) e.sensor_x_m = a.numbers("sensor-x").front();
-  e.output = a.text_or("output", e.output);
-  e.excitation = a.text_or("excitation", e.excitation);
+api::Caller caller_of(const Flags& a) { return {"beamid " + a.command()}; }
+
+api::ExperimentRequest experiment_request_of(const Flags& a) {
+  api::ExperimentRequest e;
+  e.dt_s = a.optional_number("dt");
+  e.samples = a.optional_integer("samples");
+  // fit takes a list, one position per --channel; the other commands one position.
+  e.sensor_x_m = a.numbers("sensor-x");
+  if (a.has("output")) e.output = a.text("output");
+  if (a.has("excitation")) e.excitation = a.text("excitation");
   e.force_x_m = a.optional_number("force-x");
-  e.force_amplitude_N = a.optional_number("force-amplitude").value_or(e.force_amplitude_N);
-  e.pulse_width_s = a.optional_number("pulse-width").value_or(e.pulse_width_s);
-  if (e.excitation == simulation::kPluck && a.has("pulse-width"))
-    throw InputError("beamid " + a.command() + ": --pulse-width applies to --excitation pulse only");
-  if (auto error = simulation::validation_error(e, length_m)) throw InputError("beamid " + a.command() + ": " + *error);
+  e.force_amplitude_N = a.optional_number("force-amplitude");
+  e.pulse_width_s = a.optional_number("pulse-width");
   return e;
 }
 
-void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample) {
-  const double n = elements;
-  const double bytes = model::kModelBytesPerElement2 * n * n + bytes_per_sample * samples;
-  io::check_memory("beamid " + a.command() + ": N = " + std::to_string(elements) + " and " +
-                       std::to_string(static_cast<long long>(samples)) + " samples",
-                   bytes, std::cerr);
-  const double seconds = model::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
-  if (seconds > 10)
-    std::cerr << "beamid " << a.command() << ": N = " << elements << ": one model evaluation takes about "
-              << io::seconds_text(seconds) << " here (it grows as N^3)\n";
+simulation::Experiment read_experiment(const Flags& a, double length_m) {
+  return api::experiment_of(experiment_request_of(a), length_m, caller_of(a));
 }
 
-std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model::BeamParameters& nominal,
-                                                    double factor) {
-  const std::string where = "beamid " + a.command() + ": ";
-  std::map<std::string, std::pair<double, double>> explicit_bounds;
-  if (a.has("bounds")) {
-    std::stringstream list(a.text("bounds"));
-    std::string item;
-    while (std::getline(list, item, ',')) {
-      const auto eq = item.find('='), colon = item.find(':');
-      char* end1 = nullptr;
-      char* end2 = nullptr;
-      if (eq == std::string::npos || colon == std::string::npos || colon < eq)
-        throw InputError(where + "--bounds item '" + item + "': must read KEY=LO:HI");
-      const std::string lo = item.substr(eq + 1, colon - eq - 1), hi = item.substr(colon + 1);
-      const double l = std::strtod(lo.c_str(), &end1), h = std::strtod(hi.c_str(), &end2);
-      if (lo.empty() || hi.empty() || *end1 || *end2)
-        throw InputError(where + "--bounds item '" + item + "': LO and HI must be numbers");
-      explicit_bounds[item.substr(0, eq)] = {l, h};
-    }
-  }
-  std::vector<fit::EstimatedParameter> estimate;
-  std::stringstream keys(a.text("estimate"));
-  std::string key;
-  while (std::getline(keys, key, ',')) {
-    if (!model::describe_parameter(nominal, key))
-      throw InputError(where + "--estimate = '" + a.text("estimate") + "': '" + key +
-                       "' is not a parameter of this beam (valid: " + model::estimable_keys(nominal) + ")");
-    fit::EstimatedParameter p{key, 0, 0};
-    if (auto b = explicit_bounds.find(key); b != explicit_bounds.end()) {
-      std::tie(p.lower, p.upper) = b->second;
-      explicit_bounds.erase(b);
-    } else {
-      const double v = model::parameter_value(nominal, key);
-      if (!(v > 0))
-        throw InputError(where + "--estimate " + key + ": the --beam value is " + format_value(v) +
-                         ", so --bound-factor gives no range: give --bounds " + key + "=LO:HI");
-      p.lower = v / factor;
-      p.upper = v * factor;
-    }
-    estimate.push_back(p);
-  }
-  if (!explicit_bounds.empty())
-    throw InputError(where + "--bounds names '" + explicit_bounds.begin()->first + "', which is not in --estimate");
-  return estimate;
+void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample) {
+  api::guard_run_size(caller_of(a), elements, samples, bytes_per_sample, std::cerr);
 }
 
 }  // namespace beamid::apps

@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "api/experiment_request.h"
+#include "api/fit_request.h"
 #include "apps/flags.h"
-#include "fit/parameter_map.h"
 #include "io/time_series.h"
 #include "model/beam_parameters.h"
 #include "simulation/experiment.h"
@@ -37,14 +38,15 @@ struct ModelRun {
 ModelRun read_model_run(const Flags& a, double bytes_per_sample);
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width
 std::vector<FlagSpec> experiment_flag_specs();
-// The experiment those flags describe (defaults of simulation::Experiment), validated for a beam of length_m.
+// The experiment request those flags describe (api/experiment_request.h).
+api::ExperimentRequest experiment_request_of(const Flags& a);
+// The experiment they describe (simulation::Experiment's defaults), validated for a beam of length_m.
 simulation::Experiment read_experiment(const Flags& a, double length_m);
-// Before a run whose size the flags set: refuses it when the model of N elements and `samples` samples at
-// `bytes_per_sample` would not fit in the machine's memory, and warns on stderr with the estimate when one model
-// evaluation would take more than 10 s (model/limits.h has the measured figures).
+// The label a command's errors start with: "beamid <command>".
+api::Caller caller_of(const Flags& a);
+// api::guard_run_size for the command, its warnings on stderr.
 void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample);
-// --estimate KEY,... with bounds [v/F, v F] around each nominal value v, or from --bounds KEY=LO:HI,...
-std::vector<fit::EstimatedParameter> parse_estimate(const Flags& a, const model::BeamParameters& nominal,
-                                                    double factor);
+// beamid fit's request from its flags (the records are read apart: read_channels).
+api::FitRequest fit_request_of(const Flags& a);
 
 }  // namespace beamid::apps

@@ -13,7 +13,6 @@
 #include "costs/cost.h"
 #include "fit/cramer_rao.h"
 #include "fit/identification.h"
-#include "fit/window_spread.h"
 #include "galerkin/second_order_system.h"
 #include "io/time_series.h"
 #include "signal/matrix_pencil.h"
@@ -61,23 +60,8 @@ SpikesResult compute_spikes(const Flags& a, const io::TimeSeries& data);
 // beamid cost: the cost of a prediction (same length and step as the data) against the data.
 costs::Evaluation compute_cost(const Flags& a, const io::TimeSeries& data, const io::TimeSeries& prediction);
 
-// beamid fit: the options the flags give, the records (several for a --channel list, else none: one record, `data`)
-// and the result; the window spread with --windows.
-struct FitComputation {
-  fit::FitOptions options;
-  std::vector<fit::Record> records;
-  std::vector<double> sensors_m;  // --sensor-x list (several channels)
-  fit::FitResult result;
-  std::optional<fit::WindowSpread> spread;
-  bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
-};
-FitComputation compute_fit(const Flags& a, const std::vector<io::TimeSeries>& channels);
-// What beamid fit says about a result on stderr beside its summary line, each "" when there is nothing to say: the
-// estimates on a bound, a failure, weak identifiability.
-struct FitNotes {
-  std::string on_bound, failed, identifiability;
-};
-FitNotes fit_notes(const fit::FitResult& result);
+// beamid fit: api/fit_request.h (api::FitRequest, api::compute_fit; the flags map to it by fit_request_of,
+// apps/command_flags.h).
 
 // beamid crb: the bound on the --estimate keys at the --beam values, with the noise sd it assumed.
 struct CrbResult {

@@ -2,8 +2,11 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
+#include "api/cost_request.h"
+#include "api/fit_request.h"
 #include "apps/command_flags.h"
 #include "apps/commands.h"
 #include "apps/computations.h"
@@ -76,51 +79,58 @@ std::vector<FlagSpec> cost_flags(bool required) {
 
 namespace {
 
-signal::SpikeOptions read_spike_options(const Flags& a) {
-  signal::SpikeOptions o;
-  o.count = a.optional_integer("spikes").value_or(o.count);
-  o.rule = a.text_or("spike-rule", o.rule);
-  o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
-  const std::string artefacts = a.text_or("artefacts", "reject");
-  a.require(artefacts == "reject" || artefacts == "keep", "artefacts", "must be one of reject, keep");
-  o.reject_artefacts = artefacts == "reject";
-  o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
-  if (a.has("spike-frequencies")) {
-    o.frequencies_hz = a.numbers("spike-frequencies");
-    for (const double f : o.frequencies_hz)
-      a.require(f > 0, "spike-frequencies", "must be a comma-separated list of frequencies > 0 in Hz");
-    std::sort(o.frequencies_hz.begin(), o.frequencies_hz.end());
-    a.require(!a.has("spikes") || a.integer("spikes") == static_cast<int>(o.frequencies_hz.size()), "spikes",
-              "must equal the number of --spike-frequencies (or be left out)");
-    o.count = static_cast<int>(o.frequencies_hz.size());
-  }
-  if (auto error = signal::validation_error(o)) throw InputError("beamid " + a.command() + ": " + *error);
-  return o;
+api::SpikeRequest spike_request_of(const Flags& a) {
+  api::SpikeRequest r;
+  r.count = a.optional_integer("spikes");
+  if (a.has("spike-rule")) r.rule = a.text("spike-rule");
+  r.min_frequency_hz = a.optional_number("min-frequency");
+  r.max_frequency_hz = a.optional_number("max-frequency");
+  r.frequencies_hz = a.numbers("spike-frequencies");
+  r.artefacts = a.text_or("artefacts", r.artefacts);
+  return r;
 }
 
-signal::WindowOptions read_window(const Flags& a) {
-  signal::WindowOptions w;
-  w.name = a.text_or("window", w.name);
-  w.exponential_end = a.optional_number("exponential-end").value_or(w.exponential_end);
-  if (auto error = signal::validation_error(w)) throw InputError("beamid " + a.command() + ": " + *error);
+api::WindowRequest window_request_of(const Flags& a) {
+  api::WindowRequest w;
+  if (a.has("window")) w.name = a.text("window");
+  w.exponential_end = a.optional_number("exponential-end");
   return w;
 }
 
-costs::CostOptions read_cost_options(const Flags& a) {
-  costs::CostOptions o;
-  o.name = a.text("cost");
-  o.spikes = read_spike_options(a);
-  o.window = read_window(a);
-  o.eps1 = a.optional_number("eps1");
-  o.eps2 = a.optional_number("eps2");
-  o.eps3 = a.optional_number("eps3");
-  o.unknown_amplitude = a.has("unknown-amplitude");
-  o.model_poles = a.text_or("model-poles", o.model_poles);
-  // A record read from a file is a measured record as far as beamid knows: errors relative to each mode's frequency,
-  // so that the highest fitted mode does not dominate (cost.h); the studies' synthetic records keep the paper's Hz.
-  o.frequency_weight = a.text_or("frequency-weight", costs::kRelativeWeight);
-  if (auto error = costs::validation_error(o)) throw InputError("beamid " + a.command() + ": " + *error);
-  return o;
+api::CostRequest cost_request_of(const Flags& a) {
+  api::CostRequest r;
+  r.name = a.text("cost");
+  r.spikes = spike_request_of(a);
+  r.window = window_request_of(a);
+  r.eps1 = a.optional_number("eps1");
+  r.eps2 = a.optional_number("eps2");
+  r.eps3 = a.optional_number("eps3");
+  r.unknown_amplitude = a.has("unknown-amplitude");
+  if (a.has("model-poles")) r.model_poles = a.text("model-poles");
+  r.frequency_weight = a.text_or("frequency-weight", r.frequency_weight);
+  return r;
+}
+
+// --bounds KEY=LO:HI,...: the explicit bounds, by key.
+std::map<std::string, std::pair<double, double>> bounds_of(const Flags& a) {
+  std::map<std::string, std::pair<double, double>> bounds;
+  if (!a.has("bounds")) return bounds;
+  const std::string where = "beamid " + a.command() + ": ";
+  std::stringstream list(a.text("bounds"));
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    const auto eq = item.find('='), colon = item.find(':');
+    char* end1 = nullptr;
+    char* end2 = nullptr;
+    if (eq == std::string::npos || colon == std::string::npos || colon < eq)
+      throw InputError(where + "--bounds item '" + item + "': must read KEY=LO:HI");
+    const std::string lo = item.substr(eq + 1, colon - eq - 1), hi = item.substr(colon + 1);
+    const double l = std::strtod(lo.c_str(), &end1), h = std::strtod(hi.c_str(), &end2);
+    if (lo.empty() || hi.empty() || *end1 || *end2)
+      throw InputError(where + "--bounds item '" + item + "': LO and HI must be numbers");
+    bounds[item.substr(0, eq)] = {l, h};
+  }
+  return bounds;
 }
 
 }  // namespace
@@ -133,11 +143,11 @@ SpikesResult compute_spikes(const Flags& a, const io::TimeSeries& data) {
   a.require(!a.has("welch") || !a.has("window"), "window", "Welch's segments are Hann-windowed: leave out --window");
   const std::vector<double> values = signal::detrend(data.values, mode);
   SpikesResult r;
-  const signal::SpikeOptions options = read_spike_options(a);
+  const signal::SpikeOptions options = api::spike_options(spike_request_of(a), caller_of(a));
   if (a.has("welch")) {
     r.spectrum = signal::welch_spectrum(values, data.dt_s, a.integer("welch"));
   } else {
-    signal::Dft dft(static_cast<int>(values.size()), data.dt_s, read_window(a));
+    signal::Dft dft(static_cast<int>(values.size()), data.dt_s, api::window_options(window_request_of(a), caller_of(a)));
     r.spectrum = dft.transform(values);
   }
   r.requested = options.count;
@@ -176,7 +186,7 @@ costs::Evaluation compute_cost(const Flags& a, const io::TimeSeries& data, const
                      "': " + std::to_string(prediction.values.size()) +
                      " samples at dt = " + format_value(prediction.dt_s) + " s: must match the data's " +
                      std::to_string(data.values.size()) + " at " + format_value(data.dt_s) + " s");
-  const costs::CostOptions options = read_cost_options(a);
+  const costs::CostOptions options = api::cost_options(cost_request_of(a), caller_of(a));
   if (options.model_poles == "eigenvalues")
     throw InputError("beamid cost: --model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
   auto cost = costs::make_cost(options, data.values, data.dt_s);
@@ -193,141 +203,38 @@ int run_cost(const Flags& a, std::ostream& out) {
   return 0;
 }
 
-FitComputation compute_fit(const Flags& a, const std::vector<io::TimeSeries>& channels) {
-  const io::TimeSeries& data = channels.front();
-  const model::BeamParameters nominal = read_beam(a);
-
-  FitComputation c;
-  fit::FitOptions& o = c.options;
-  o.elements = a.integer("elements");
-  o.experiment = read_experiment(a, nominal.l);
-  guard_run_size(a, o.elements, static_cast<double>(data.values.size() * channels.size()),
-                 model::kRecordBytesPerSample);
-  // A forced experiment starts at t = 0; a free decay is timed from its first sample.
-  if (o.experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
-    throw InputError("beamid fit: --data = '" + data.path + "': first time " + format_value(data.t0_s) +
-                     " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "
-                     "--excitation free-decay)");
-  if (a.has("dt") && std::abs(o.experiment.dt_s - data.dt_s) > 1e-9 * data.dt_s)
-    a.require(false, "dt", "must equal the data's time step " + format_value(data.dt_s) + " s");
-  if (a.has("samples") && o.experiment.samples != static_cast<int>(data.values.size()))
-    a.require(false, "samples", "must equal the data's " + std::to_string(data.values.size()));
-  o.experiment.dt_s = data.dt_s;
-  o.experiment.samples = static_cast<int>(data.values.size());
-  o.simulator.integrator = a.text_or("integrator", o.simulator.integrator);
-  o.cost = read_cost_options(a);
-  o.optimizer.method = a.text_or("optimizer", fit::default_optimizer(o.cost.name));
-  o.optimizer.max_evaluations = a.optional_integer("max-evaluations").value_or(o.optimizer.max_evaluations);
-  o.strategy = a.text_or("strategy", o.strategy);
-  o.refine = a.text_or("refine", o.refine);
-  a.require(!a.has("refine") || o.strategy == fit::kHybrid, "refine", "is the second cost of --strategy hybrid only");
-  o.scaling = a.text_or("scaling", o.scaling);
-  o.record_weights = a.text_or("record-weights", o.record_weights);
-  a.require(o.record_weights == fit::kRmsWeights || o.record_weights == fit::kNoiseWeights, "record-weights",
-            "must be one of rms, noise");
-  o.starts = a.optional_integer("starts").value_or(o.starts);
-  const std::optional<int> seed = a.optional_integer("seed");
-  a.require(!seed || *seed >= 0, "seed", "must be an integer >= 0");
-  o.seed = static_cast<std::uint64_t>(seed.value_or(1));
-  const double start_scale = a.optional_number("start-scale").value_or(1.0);
-  a.require(start_scale > 0, "start-scale", "must be > 0");
-  const double factor = a.optional_number("bound-factor").value_or(2.0);
-  a.require(factor > 1, "bound-factor", "must be > 1");
-  o.estimate = parse_estimate(a, nominal, factor);
-  // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
-  o.cost.pick_detrend = a.text_or(
-      "detrend", o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
-  a.require(signal::detrend_names().contains(o.cost.pick_detrend), "detrend",
-            "must be one of " + signal::detrend_names().list());
-  // --welch K: the spikes picked on Welch's average of the (detrended) record, then fitted on the whole record's DFT
-  // near those frequencies (signal/spikes.h).
-  if (a.has("welch")) {
-    a.require(o.cost.spikes.frequencies_hz.empty(), "welch", "picks the spikes: leave out --spike-frequencies");
-    const signal::Spectrum welch =
-        signal::welch_spectrum(signal::detrend(data.values, o.cost.pick_detrend), data.dt_s, a.integer("welch"));
-    // Each pick refined on the whole record's DFT: its largest local maximum within one Welch bin ((K + 1)/2 of the
-    // record's), which the cost's +-5 % window around the frequency then finds however coarse the Welch bin was.
-    signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s);
-    const signal::Spectrum full = dft.transform(signal::detrend(data.values, o.cost.pick_detrend));
-    const std::vector<int> maxima = signal::local_maxima(full);
-    for (const auto& p : signal::label_peaks(welch, o.cost.spikes)) {
-      if (!p.skipped.empty()) continue;
-      int best = -1;
-      for (int k : maxima)
-        if (std::abs(full.frequency_hz(k) - p.spike.frequency_hz) <= welch.df_hz() &&
-            (best < 0 || full.magnitude(k) > full.magnitude(best)))
-          best = k;
-      const double f = best >= 0 ? full.frequency_hz(best) : p.spike.frequency_hz;
-      if (std::find(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end(), f) ==
-          o.cost.spikes.frequencies_hz.end())
-        o.cost.spikes.frequencies_hz.push_back(f);
-    }
-    std::sort(o.cost.spikes.frequencies_hz.begin(), o.cost.spikes.frequencies_hz.end());
-    a.require(!o.cost.spikes.frequencies_hz.empty(), "welch", "found no peak to fit");
-    o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
-    c.welch_picked = true;
-  }
-  o.start = nominal;
-  for (const auto& e : o.estimate)
-    model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * start_scale);
-
-  // Several channels: one record each, at its own --sensor-x, fitted jointly (fit/identification.h).
-  c.sensors_m = a.numbers("sensor-x");
-  const std::vector<double>& sensors = c.sensors_m;
-  std::vector<fit::Record>& records = c.records;
-  if (channels.size() > 1 || sensors.size() > 1) {
-    a.require(sensors.size() == channels.size(), "sensor-x",
-              "must list one position per --channel (" + std::to_string(channels.size()) + " channel(s))");
-    for (std::size_t k = 0; k < channels.size(); ++k) {
-      fit::Record record{channels[k].value_column, o.start, o.experiment, channels[k].values, {}};
-      record.experiment.sensor_x_m = sensors[k];
-      if (auto error = simulation::validation_error(record.experiment, o.start.l))
-        a.require(false, "sensor-x", "channel " + std::to_string(k + 1) + ": " + *error);
-      records.push_back(std::move(record));
-    }
-  }
-  c.result = records.empty() ? fit::fit(o, data.values) : fit::fit(o, records);
-  // --windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
-  if (a.has("windows") && c.result.status != "failed") {
-    try {
-      c.spread = records.empty() ? fit::window_spread(o, data.values, c.result, a.integer("windows"))
-                                 : fit::window_spread(o, records, c.result, a.integer("windows"));
-    } catch (const InputError& error) {
-      a.require(false, "windows", error.what());
-    }
-  }
-  return c;
-}
-
-FitNotes fit_notes(const fit::FitResult& result) {
-  FitNotes notes;
-  std::string at_bound;
-  for (const fit::ParameterEstimate& p : result.parameters)
-    if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
-      at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
-  if (!at_bound.empty())
-    notes.on_bound =
-        "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
-  if (result.status == "failed")
-    notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
-  const fit::Identifiability& i = result.identifiability;
-  if (i.status == "ok" && i.verdict != "identifiable") {
-    std::ostringstream line;  // numbers as the stream prints them (6 significant digits)
-    line << i.verdict << ": condition number of J (in ln q) " << i.condition << "; the record hardly constrains "
-         << i.combination() << " (formal sd " << i.weakest_sd << ")"
-         << (i.weak.size() > 1 ? " and " + std::to_string(i.weak.size() - 1) +
-                                     " further combination(s) above 1e3 (listed in --report)"
-                               : std::string());
-    notes.identifiability = line.str();
-  }
-  return notes;
+api::FitRequest fit_request_of(const Flags& a) {
+  api::FitRequest r;
+  r.caller = caller_of(a);
+  r.beam_name = a.text("beam");
+  r.beam = read_beam(a);
+  r.elements = a.integer("elements");
+  r.experiment = experiment_request_of(a);
+  r.estimate = a.texts("estimate");
+  r.bounds = bounds_of(a);
+  r.bound_factor = a.optional_number("bound-factor").value_or(r.bound_factor);
+  r.start_scale = a.optional_number("start-scale").value_or(r.start_scale);
+  r.cost = cost_request_of(a);
+  if (a.has("optimizer")) r.optimizer = a.text("optimizer");
+  r.max_evaluations = a.optional_integer("max-evaluations");
+  r.strategy = a.text_or("strategy", r.strategy);
+  if (a.has("refine")) r.refine = a.text("refine");
+  r.scaling = a.text_or("scaling", r.scaling);
+  r.starts = a.optional_integer("starts").value_or(r.starts);
+  r.seed = a.optional_integer("seed").value_or(1);
+  r.integrator = a.text_or("integrator", r.integrator);
+  r.record_weights = a.text_or("record-weights", r.record_weights);
+  if (a.has("detrend")) r.detrend = a.text("detrend");
+  r.welch = a.optional_integer("welch");
+  r.windows = a.optional_integer("windows");
+  return r;
 }
 
 int run_fit(const Flags& a, std::ostream& out) {
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");
-  const FitComputation c = compute_fit(a, channels);
+  const api::FitComputation c = api::compute_fit(fit_request_of(a), channels, std::cerr);
   const fit::FitOptions& o = c.options;
   const fit::FitResult& result = c.result;
   const std::vector<double>& sensors = c.sensors_m;
@@ -347,7 +254,7 @@ int run_fit(const Flags& a, std::ostream& out) {
         << io::full_precision(spread ? spread->sd[i] : std::nan("")) << ","
         << io::full_precision(spread ? spread->standard_error[i] : std::nan("")) << "\n";
   }
-  const FitNotes notes = fit_notes(result);
+  const api::FitNotes notes = api::fit_notes(result);
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.failed.empty()) std::cerr << "beamid fit: " << notes.failed << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name

@@ -144,36 +144,6 @@ struct FitResult {
   std::vector<RecordResult> records;   // one per record (a single-record fit has one)
 };
 
-// Model output and cost of one parameter set against fixed data, with the forms, simulator and DFT plans built once.
-class Objective {
- public:
-  // InputError when the options or data are inadmissible (checked before anything runs).
-  Objective(const FitOptions& options, const std::vector<double>& data);
-  ~Objective();
-  struct Output {
-    std::vector<double> y;
-    costs::Evaluation evaluation;
-  };
-  // Never throws for admissible options: a failed simulation is an evaluation with that status.
-  Output evaluate(const model::BeamParameters& beam);
-  // Whether evaluate_with_jacobian is available: a cost with an output Jacobian (costs/cost.h: time, freq-band,
-  // spike-smooth with a known amplitude) on a pulse, or with a pole Jacobian (modal) on a simulated record; the fast
-  // integrator.
-  bool has_exact_jacobian() const;
-  // evaluate, and the exact d residual / d q (residuals x keys) for the parameters `keys`; `jacobian` is empty when
-  // the evaluation failed. InputError unless has_exact_jacobian().
-  Output evaluate_with_jacobian(const model::BeamParameters& beam, const std::vector<std::string>& keys,
-                                Eigen::MatrixXd& jacobian);
-  const costs::Cost& cost() const { return *cost_; }
-
- private:
-  Output evaluate_with_pole_jacobian(const model::BeamParameters& beam, const std::vector<std::string>& keys,
-                                     Eigen::MatrixXd& jacobian);
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  std::unique_ptr<costs::Cost> cost_;
-};
-
 // Everything about the options that can be checked without data (strategy, optimizer, starts, estimated keys and
 // bounds, the start inside them, cost, experiment and simulator options): InputError naming option, value, constraint.
 void validate(const FitOptions& options);

@@ -1,4 +1,4 @@
-// The cost of a joint fit (fit/identification.h): one Objective per record, each with its own experiment, data and
+// The cost of a joint fit (fit/identification.h): one Objective (fit/objective.h) per record, each with its own experiment, data and
 // beam, and the records' residual vectors stacked, each times its record's weight:
 //   r = [w_1 r_1; w_2 r_2; ...],  J = |r|^2 = sum_k w_k^2 J_k,
 // w_k = 1 for a single record (the fit is then exactly the single-record fit), and otherwise 1 / RMS(z_k) for the
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fit/identification.h"
+#include "fit/objective.h"
 #include "fit/parameter_map.h"
 
 namespace beamid::fit {

@@ -1,10 +1,10 @@
-// fit::Objective (fit/identification.h): one record's model output and cost, with the forms, simulator and DFT plans
+// fit::Objective (fit/objective.h): one record's model output and cost, with the forms, simulator and DFT plans
 // built once.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "fit/identification.h"
+#include "fit/objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"

@@ -7,6 +7,10 @@
 
 namespace beamid::fit {
 
+EstimatedParameter bounds_around(const std::string& key, double nominal, double factor) {
+  return {key, nominal / factor, nominal * factor};
+}
+
 std::optional<std::pair<int, std::string>> record_key(const std::string& key) {
   const std::string prefix = "record";
   const auto dot = key.find('.');

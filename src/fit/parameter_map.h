@@ -26,6 +26,12 @@ struct EstimatedParameter {
   double upper = 0;
 };
 
+// The default bounds of an estimated parameter: [v/F, v F] around its nominal value v > 0, a factor F > 1 either
+// way, so that log coordinates see a box symmetric about the nominal value. The one statement of that rule: the
+// command line (api/fit_request.h), the synthetic studies (fit.bound_factor) and the real-record studies (F = 2)
+// all take their bounds from it.
+EstimatedParameter bounds_around(const std::string& key, double nominal, double factor);
+
 // "record2.l" -> {1, "l"} (the 0-based record and the beam's own key); nothing for a key without the prefix. A
 // malformed prefix ("record0.l", "record.l", "recordx.l") is an InputError naming the key.
 std::optional<std::pair<int, std::string>> record_key(const std::string& key);

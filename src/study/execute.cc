@@ -6,6 +6,7 @@
 
 #include "fit/cramer_rao.h"
 #include "fit/identification.h"
+#include "fit/objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
@@ -56,7 +57,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
   if (spec.fit.max_frequency_hz > 0) o.cost.spikes.max_frequency_hz = spec.fit.max_frequency_hz;
   for (const auto& key : spec.fit.estimate) {
     const double v = value(beam, key);
-    o.estimate.push_back({key, v / spec.fit.bound_factor, v * spec.fit.bound_factor});
+    o.estimate.push_back(fit::bounds_around(key, v, spec.fit.bound_factor));
   }
   o.scaling = spec.fit.scaling;
   o.optimizer.max_evaluations = spec.fit.max_evaluations;

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "fit/identification.h"
+#include "fit/objective.h"
 #include "model/beam_parameters.h"
 #include "study/rendered.h"
 #include "study/store.h"

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include "config/beam_file.h"
 #include "fit/window_spread.h"
@@ -82,8 +83,10 @@ std::vector<fit::EstimatedParameter> candidate_estimate(const CandidateSpec& c,
   const auto bounded = [&](const std::string& key, const std::string& local, const model::BeamParameters& beam) {
     const double v = model::parameter_value(beam, local);
     const bool position = model::attachment_field(local) && model::attachment_field(local)->second == "x";
-    const auto b = c.bounds.count(local) ? c.bounds.at(local) : std::make_pair(v / 2, position ? beam.l : v * 2);
-    estimate.push_back({key, b.first, b.second});
+    fit::EstimatedParameter p = fit::bounds_around(key, v, 2);
+    if (position) p.upper = beam.l;
+    if (c.bounds.count(local)) std::tie(p.lower, p.upper) = c.bounds.at(local);
+    estimate.push_back(p);
   };
   for (const std::string& key : c.estimate) bounded(key, key, records.front().start);
   for (const std::string& key : c.per_record)

@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "fit/identification.h"
+#include "fit/objective.h"
 
 namespace {
 

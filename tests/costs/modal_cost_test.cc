@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "fit/identification.h"
+#include "fit/objective.h"
 #include "model/errors.h"
 #include "thin_beam_fit.h"
 

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "fit/identification.h"
+#include "fit/objective.h"
 #include "fit/joint_objective.h"
 #include "galerkin/second_order_system.h"
 #include "model/errors.h"

@@ -1,0 +1,49 @@
+// The spectrum and cost choices of a request, as a user gives them (the command line's --spikes ... --frequency-weight,
+// Python's keywords of the same names): what `spikes`, `cost` and `fit` share. An unset optional takes the default of
+// signal::SpikeOptions, signal::WindowOptions or costs::CostOptions.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/request.h"
+#include "costs/cost.h"
+#include "signal/spectrum.h"
+#include "signal/spikes.h"
+
+namespace beamid::api {
+
+struct SpikeRequest {
+  std::optional<int> count;                 // --spikes NM
+  std::optional<std::string> rule;          // --spike-rule: largest | prominence
+  std::optional<double> min_frequency_hz;   // --min-frequency
+  std::optional<double> max_frequency_hz;   // --max-frequency
+  std::vector<double> frequencies_hz;       // --spike-frequencies (then count, if given, must equal their number)
+  std::string artefacts = "reject";         // --artefacts: reject | keep (a record read from a file is a measured one)
+};
+
+struct WindowRequest {
+  std::optional<std::string> name;        // --window: rectangular | hann | exponential
+  std::optional<double> exponential_end;  // --exponential-end
+};
+
+struct CostRequest {
+  std::string name;  // --cost (required where a cost is computed)
+  SpikeRequest spikes;
+  WindowRequest window;
+  std::optional<double> eps1, eps2, eps3;  // --eps1, --eps2, --eps3
+  bool unknown_amplitude = false;          // --unknown-amplitude
+  std::optional<std::string> model_poles;  // --model-poles: dft | eigenvalues
+  // --frequency-weight. A record read from a file is a measured record as far as beamid knows: errors relative to
+  // each mode's frequency, so that the highest fitted mode does not dominate (costs/cost.h); the studies' synthetic
+  // records keep the paper's Hz.
+  std::string frequency_weight = costs::kRelativeWeight;
+};
+
+// The options a request gives, validated (InputError naming the field, value and constraint).
+signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& caller);
+signal::WindowOptions window_options(const WindowRequest& request, const Caller& caller);
+costs::CostOptions cost_options(const CostRequest& request, const Caller& caller);
+
+}  // namespace beamid::api

@@ -1,0 +1,41 @@
+#include "api/experiment_request.h"
+
+#include <cmath>
+#include <ostream>
+
+#include "io/resources.h"
+#include "model/errors.h"
+#include "model/limits.h"
+
+namespace beamid::api {
+
+simulation::Experiment experiment_of(const ExperimentRequest& request, double length_m, const Caller& caller) {
+  simulation::Experiment e;
+  e.dt_s = request.dt_s.value_or(e.dt_s);
+  e.samples = request.samples.value_or(e.samples);
+  if (!request.sensor_x_m.empty()) e.sensor_x_m = request.sensor_x_m.front();
+  e.output = request.output.value_or(e.output);
+  e.excitation = request.excitation.value_or(e.excitation);
+  e.force_x_m = request.force_x_m;
+  e.force_amplitude_N = request.force_amplitude_N.value_or(e.force_amplitude_N);
+  e.pulse_width_s = request.pulse_width_s.value_or(e.pulse_width_s);
+  if (e.excitation == simulation::kPluck && request.pulse_width_s)
+    refuse(caller, "--pulse-width applies to --excitation pulse only");
+  if (auto error = simulation::validation_error(e, length_m)) refuse(caller, *error);
+  return e;
+}
+
+void guard_run_size(const Caller& caller, int elements, double samples, double bytes_per_sample,
+                    std::ostream& warnings) {
+  const double n = elements;
+  const double bytes = model::kModelBytesPerElement2 * n * n + bytes_per_sample * samples;
+  io::check_memory(caller.label + ": N = " + std::to_string(elements) + " and " +
+                       std::to_string(static_cast<long long>(samples)) + " samples",
+                   bytes, warnings);
+  const double seconds = model::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  if (seconds > 10)
+    warnings << caller.label << ": N = " << elements << ": one model evaluation takes about "
+             << io::seconds_text(seconds) << " here (it grows as N^3)\n";
+}
+
+}  // namespace beamid::api

@@ -1,0 +1,198 @@
+#include "api/fit_request.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "model/errors.h"
+#include "model/limits.h"
+#include "signal/spectrum.h"
+#include "signal/spikes.h"
+
+namespace beamid::api {
+
+std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& request) {
+  const model::BeamParameters& nominal = request.beam;
+  std::string listed;  // the --estimate list as given, for its errors
+  for (const std::string& key : request.estimate) listed += (listed.empty() ? "" : ",") + key;
+  std::map<std::string, std::pair<double, double>> explicit_bounds = request.bounds;
+  std::vector<fit::EstimatedParameter> estimate;
+  for (const std::string& key : request.estimate) {
+    if (!model::describe_parameter(nominal, key))
+      refuse(request.caller, "estimate", listed,
+             "'" + key + "' is not a parameter of this beam (valid: " + model::estimable_keys(nominal) + ")");
+    if (auto b = explicit_bounds.find(key); b != explicit_bounds.end()) {
+      estimate.push_back({key, b->second.first, b->second.second});
+      explicit_bounds.erase(b);
+      continue;
+    }
+    const double v = model::parameter_value(nominal, key);
+    if (!(v > 0))
+      refuse(request.caller, "--estimate " + key + ": the --beam value is " + format_value(v) +
+                                 ", so --bound-factor gives no range: give --bounds " + key + "=LO:HI");
+    estimate.push_back(fit::bounds_around(key, v, request.bound_factor));
+  }
+  if (!explicit_bounds.empty())
+    refuse(request.caller, "--bounds names '" + explicit_bounds.begin()->first + "', which is not in --estimate");
+  return estimate;
+}
+
+namespace {
+
+// The model's time base is the record's: a forced experiment starts at t = 0 (a free decay is timed from its first
+// sample), and a --dt or --samples given must agree with the data.
+void match_record(const FitRequest& request, const io::TimeSeries& data, simulation::Experiment& experiment) {
+  const Caller& caller = request.caller;
+  if (experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
+    refuse(caller, "--data = '" + data.path + "': first time " + format_value(data.t0_s) +
+                       " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "
+                       "--excitation free-decay)");
+  if (request.experiment.dt_s && std::abs(experiment.dt_s - data.dt_s) > 1e-9 * data.dt_s)
+    refuse(caller, "dt", format_value(*request.experiment.dt_s),
+           "must equal the data's time step " + format_value(data.dt_s) + " s");
+  if (request.experiment.samples && experiment.samples != static_cast<int>(data.values.size()))
+    refuse(caller, "samples", std::to_string(*request.experiment.samples),
+           "must equal the data's " + std::to_string(data.values.size()));
+  experiment.dt_s = data.dt_s;
+  experiment.samples = static_cast<int>(data.values.size());
+}
+
+// --welch K: the spikes picked on Welch's average of the (detrended) record, each refined on the whole record's DFT:
+// its largest local maximum within one Welch bin ((K + 1)/2 of the record's), which the cost's +-5 % window around
+// the frequency then finds however coarse the Welch bin was (signal/spikes.h).
+std::vector<double> welch_picks(const FitRequest& request, const io::TimeSeries& data,
+                                const costs::CostOptions& cost) {
+  const Caller& caller = request.caller;
+  if (!cost.spikes.frequencies_hz.empty())
+    refuse(caller, "welch", std::to_string(*request.welch), "picks the spikes: leave out --spike-frequencies");
+  const std::vector<double> values = signal::detrend(data.values, cost.pick_detrend);
+  const signal::Spectrum welch = signal::welch_spectrum(values, data.dt_s, *request.welch);
+  signal::Dft dft(static_cast<int>(data.values.size()), data.dt_s);
+  const signal::Spectrum full = dft.transform(values);
+  const std::vector<int> maxima = signal::local_maxima(full);
+  std::vector<double> picks;
+  for (const auto& p : signal::label_peaks(welch, cost.spikes)) {
+    if (!p.skipped.empty()) continue;
+    int best = -1;
+    for (int k : maxima)
+      if (std::abs(full.frequency_hz(k) - p.spike.frequency_hz) <= welch.df_hz() &&
+          (best < 0 || full.magnitude(k) > full.magnitude(best)))
+        best = k;
+    const double f = best >= 0 ? full.frequency_hz(best) : p.spike.frequency_hz;
+    if (std::find(picks.begin(), picks.end(), f) == picks.end()) picks.push_back(f);
+  }
+  std::sort(picks.begin(), picks.end());
+  if (picks.empty()) refuse(caller, "welch", std::to_string(*request.welch), "found no peak to fit");
+  return picks;
+}
+
+}  // namespace
+
+fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
+                            std::ostream& warnings, bool* welch_picked) {
+  const Caller& caller = request.caller;
+  if (channels.empty()) refuse(caller, "no record to fit");
+  const io::TimeSeries& data = channels.front();
+  fit::FitOptions o;
+  o.elements = request.elements;
+  o.experiment = experiment_of(request.experiment, request.beam.l, caller);
+  guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),
+                 model::kRecordBytesPerSample, warnings);
+  match_record(request, data, o.experiment);
+  o.simulator.integrator = request.integrator;
+  o.cost = cost_options(request.cost, caller);
+  o.optimizer.method = request.optimizer.value_or(fit::default_optimizer(o.cost.name));
+  o.optimizer.max_evaluations = request.max_evaluations.value_or(o.optimizer.max_evaluations);
+  o.strategy = request.strategy;
+  if (request.refine && o.strategy != fit::kHybrid)
+    refuse(caller, "refine", *request.refine, "is the second cost of --strategy hybrid only");
+  o.refine = request.refine.value_or(o.refine);
+  o.scaling = request.scaling;
+  o.record_weights = request.record_weights;
+  if (o.record_weights != fit::kRmsWeights && o.record_weights != fit::kNoiseWeights)
+    refuse(caller, "record-weights", o.record_weights, "must be one of rms, noise");
+  o.starts = request.starts;
+  if (request.seed < 0) refuse(caller, "seed", std::to_string(request.seed), "must be an integer >= 0");
+  o.seed = static_cast<std::uint64_t>(request.seed);
+  if (!(request.start_scale > 0)) refuse(caller, "start-scale", format_value(request.start_scale), "must be > 0");
+  if (!(request.bound_factor > 1))
+    refuse(caller, "bound-factor", format_value(request.bound_factor), "must be > 1");
+  o.estimate = estimated_parameters(request);
+  // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
+  o.cost.pick_detrend = request.detrend.value_or(
+      o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
+  if (!signal::detrend_names().contains(o.cost.pick_detrend))
+    refuse(caller, "detrend", o.cost.pick_detrend, "must be one of " + signal::detrend_names().list());
+  if (request.welch) {
+    o.cost.spikes.frequencies_hz = welch_picks(request, data, o.cost);
+    o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
+    if (welch_picked) *welch_picked = true;
+  }
+  o.start = request.beam;
+  for (const auto& e : o.estimate)
+    model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * request.start_scale);
+  return o;
+}
+
+FitComputation compute_fit(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
+                           std::ostream& warnings) {
+  FitComputation c;
+  c.options = fit_options(request, channels, warnings, &c.welch_picked);
+  const fit::FitOptions& o = c.options;
+  const Caller& caller = request.caller;
+  // Several channels: one record each, at its own sensor position, fitted jointly (fit/identification.h).
+  c.sensors_m = request.experiment.sensor_x_m;
+  const std::vector<double>& sensors = c.sensors_m;
+  std::string listed;  // the --sensor-x list, for its errors
+  for (double x : sensors) listed += (listed.empty() ? "" : ",") + format_value(x);
+  if (channels.size() > 1 || sensors.size() > 1) {
+    if (sensors.size() != channels.size())
+      refuse(caller, "sensor-x", listed,
+             "must list one position per --channel (" + std::to_string(channels.size()) + " channel(s))");
+    for (std::size_t k = 0; k < channels.size(); ++k) {
+      fit::Record record{channels[k].value_column, o.start, o.experiment, channels[k].values, {}};
+      record.experiment.sensor_x_m = sensors[k];
+      if (auto error = simulation::validation_error(record.experiment, o.start.l))
+        refuse(caller, "sensor-x", listed, "channel " + std::to_string(k + 1) + ": " + *error);
+      c.records.push_back(std::move(record));
+    }
+  }
+  const std::vector<double>& data = channels.front().values;
+  c.result = c.records.empty() ? fit::fit(o, data) : fit::fit(o, c.records);
+  // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
+  if (request.windows && c.result.status != "failed") {
+    try {
+      c.spread = c.records.empty() ? fit::window_spread(o, data, c.result, *request.windows)
+                                   : fit::window_spread(o, c.records, c.result, *request.windows);
+    } catch (const InputError& error) {
+      refuse(caller, "windows", std::to_string(*request.windows), error.what());
+    }
+  }
+  return c;
+}
+
+FitNotes fit_notes(const fit::FitResult& result) {
+  FitNotes notes;
+  std::string at_bound;
+  for (const fit::ParameterEstimate& p : result.parameters)
+    if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)
+      at_bound += (at_bound.empty() ? "" : ", ") + p.key + " " + p.status;
+  if (!at_bound.empty())
+    notes.on_bound =
+        "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
+  if (result.status == "failed")
+    notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
+  const fit::Identifiability& i = result.identifiability;
+  if (i.status == "ok" && i.verdict != "identifiable") {
+    std::ostringstream line;  // numbers as the stream prints them (6 significant digits)
+    line << i.verdict << ": condition number of J (in ln q) " << i.condition << "; the record hardly constrains "
+         << i.combination() << " (formal sd " << i.weakest_sd << ")"
+         << (i.weak.size() > 1 ? " and " + std::to_string(i.weak.size() - 1) +
+                                     " further combination(s) above 1e3 (listed in --report)"
+                               : std::string());
+    notes.identifiability = line.str();
+  }
+  return notes;
+}
+
+}  // namespace beamid::api

@@ -1,0 +1,85 @@
+// beamid fit as a typed request: the beam, the model, the estimated parameters and their bounds, the cost, the
+// optimizer and strategy, and the record-side choices (detrend, Welch picking, windows), each field with the command
+// line's default. compute_fit validates it against the records and fits them; it reads no flag and no file (the
+// records come read, the beam comes resolved), so the command line, the Python package and a C++ program run one
+// body of code with one validation.
+//
+// Followed from the command line: apps/identification_commands.cc fills a FitRequest from the flags
+// (fit_request_of); compute_fit (here) builds fit::FitOptions (fit_options) and calls fit::fit
+// (fit/identification.cc), which runs the optimizer (fit/optimizer.cc, fit/ceres_optimizer.cc, fit/nlopt_optimizer.cc).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "api/cost_request.h"
+#include "api/experiment_request.h"
+#include "api/request.h"
+#include "fit/identification.h"
+#include "fit/window_spread.h"
+#include "io/time_series.h"
+#include "model/beam_parameters.h"
+
+namespace beamid::api {
+
+struct FitRequest {
+  Caller caller{"beamid fit"};
+  std::string beam_name;                  // what the program says it fitted ("banks-aluminium", "my_beam.toml")
+  model::BeamParameters beam;             // --beam: the known parameters and the start of the estimated ones
+  int elements = 0;                       // --elements: Galerkin order N (required)
+  ExperimentRequest experiment;           // dt and samples, if given, must match the data's
+  std::vector<std::string> estimate;      // --estimate: the keys to estimate (required)
+  std::map<std::string, std::pair<double, double>> bounds;  // --bounds KEY=LO:HI: explicit bounds of some keys
+  double bound_factor = 2.0;              // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
+  double start_scale = 1.0;               // --start-scale S: every estimated parameter starts at S x its --beam value
+  CostRequest cost;                       // --cost (required) and the spectrum choices
+  std::optional<std::string> optimizer;   // --optimizer (default: the cost's, fit::default_optimizer)
+  std::optional<int> max_evaluations;     // --max-evaluations per optimizer run
+  std::string strategy = fit::kDirect;    // --strategy
+  std::optional<std::string> refine;      // --refine: hybrid's second cost (default time)
+  std::string scaling = "linear";         // --scaling
+  int starts = 1;                         // --starts
+  long long seed = 1;                     // --seed (>= 0)
+  std::string integrator = "fast";        // --integrator
+  std::string record_weights = fit::kRmsWeights;  // --record-weights (several channels)
+  std::optional<std::string> detrend;     // --detrend (default linear for a free decay, none otherwise)
+  std::optional<int> welch;               // --welch K: the spikes picked on Welch's average of K segments
+  std::optional<int> windows;             // --windows K: also the spread of the estimates over K windows
+};
+
+// What compute_fit returns: the options the request gave, the records (several for several channels, else none: one
+// record, the channel itself), the result, and the window spread with `windows`.
+struct FitComputation {
+  fit::FitOptions options;
+  std::vector<fit::Record> records;
+  std::vector<double> sensors_m;  // the request's sensor positions (several channels)
+  fit::FitResult result;
+  std::optional<fit::WindowSpread> spread;
+  bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
+};
+
+// The fit options the request gives for these channels (their time step and length fix dt and Nbar), validated:
+// InputError naming the field, value and constraint. Warnings (a long model evaluation) go to `warnings`.
+fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
+                            std::ostream& warnings, bool* welch_picked = nullptr);
+// Validates, then fits the channels (one record each, at its own sensor position, fitted jointly when several).
+FitComputation compute_fit(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
+                           std::ostream& warnings);
+
+// The estimated parameters with their bounds: `bounds` where given, else [v/F, v F] around the beam's value v
+// (fit::bounds_around). InputError for a key the beam lacks, a zero or negative v without explicit bounds, or a
+// bound for a key not estimated.
+std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& request);
+
+// What beamid fit says about a result on stderr beside its summary line, each "" when there is nothing to say: the
+// estimates on a bound, a failure, weak identifiability.
+struct FitNotes {
+  std::string on_bound, failed, identifiability;
+};
+FitNotes fit_notes(const fit::FitResult& result);
+
+}  // namespace beamid::api

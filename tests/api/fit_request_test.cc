@@ -1,0 +1,137 @@
+// The typed fit request (api/fit_request.h): a request filled in C++ fits like the command line's flags do, bit for
+// bit; its defaults are the command line's; every field's constraint is refused in the command line's one-line form.
+#include "api/fit_request.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "apps/command_flags.h"
+#include "apps/flags.h"
+#include "../fit/same_model_record.h"
+#include "model/errors.h"
+
+namespace beamid::api {
+namespace {
+
+// Four seconds of the thin beam's tip at N = 6 after a 4 ms pulse (README's example), from the model a fit at N = 6
+// uses: the cost's minimum is the truth, so a fit from 2 % off must return it to the optimizer's tolerance.
+io::TimeSeries record() {
+  simulation::Experiment e;
+  e.pulse_width_s = 0.004;
+  io::TimeSeries s;
+  s.path = "<test>";
+  s.dt_s = e.dt_s;
+  s.values = fit::same_model_record(model::preset("banks-aluminium"), e, 6);
+  return s;
+}
+
+FitRequest request() {
+  FitRequest r;
+  r.beam_name = "banks-aluminium";
+  r.beam = model::preset("banks-aluminium");
+  r.elements = 6;
+  r.experiment.pulse_width_s = 0.004;
+  r.estimate = {"EI", "rho"};
+  r.start_scale = 1.02;
+  r.cost.name = "time";
+  return r;
+}
+
+TEST(FitRequest, RecoversTheTruthFromAFilledStruct) {
+  std::ostringstream warnings;
+  const FitComputation c = compute_fit(request(), {record()}, warnings);
+  ASSERT_EQ(c.result.status, "converged") << c.result.termination;
+  const model::BeamParameters truth = model::preset("banks-aluminium");
+  // Noise-free data from the fitted model itself: LM stops at a relative step of 1e-10, so 1e-6 leaves a wide margin
+  // while a wrong start, bound or experiment (EI and rho 2 % off) would fail by four orders of magnitude.
+  EXPECT_NEAR(c.result.parameters[0].estimate / truth.EI, 1, 1e-6);
+  EXPECT_NEAR(c.result.parameters[1].estimate / truth.rho, 1, 1e-6);
+  // The default bounds [v/2, 2v] around the beam's values (fit::bounds_around), the start 1.02 v.
+  EXPECT_DOUBLE_EQ(c.options.estimate[0].lower, truth.EI / 2);
+  EXPECT_DOUBLE_EQ(c.options.estimate[0].upper, truth.EI * 2);
+  EXPECT_DOUBLE_EQ(c.options.start.rho, truth.rho * 1.02);
+  EXPECT_EQ(c.options.optimizer.method, "lm");  // the time cost's default optimizer
+  EXPECT_TRUE(warnings.str().empty());
+}
+
+TEST(FitRequest, FlagsMapToTheSameRequestAndTheSameNumbers) {
+  const apps::Flags flags("fit", {{"beam", "banks-aluminium"},
+                                  {"elements", "6"},
+                                  {"pulse-width", "0.004"},
+                                  {"estimate", "EI,rho"},
+                                  {"start-scale", "1.02"},
+                                  {"cost", "time"}});
+  std::ostringstream warnings;
+  const FitComputation from_flags = compute_fit(apps::fit_request_of(flags), {record()}, warnings);
+  const FitComputation direct = compute_fit(request(), {record()}, warnings);
+  ASSERT_EQ(from_flags.result.parameters.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {  // one body of code: bit for bit, not within a tolerance
+    EXPECT_EQ(from_flags.result.parameters[i].estimate, direct.result.parameters[i].estimate);
+    EXPECT_EQ(from_flags.result.parameters[i].standard_error, direct.result.parameters[i].standard_error);
+  }
+  EXPECT_EQ(from_flags.result.evaluations, direct.result.evaluations);
+}
+
+// The message compute_fit refuses the request with ("" when it does not).
+std::string refusal(const FitRequest& r) {
+  std::ostringstream warnings;
+  try {
+    fit_options(r, {record()}, warnings);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FitRequest, EveryConstraintIsRefusedInTheCommandLinesForm) {
+  FitRequest r = request();
+  r.bound_factor = 0.5;
+  EXPECT_EQ(refusal(r), "beamid fit: --bound-factor = '0.5': must be > 1");
+  r = request();
+  r.start_scale = 0;
+  EXPECT_EQ(refusal(r), "beamid fit: --start-scale = '0': must be > 0");
+  r = request();
+  r.estimate = {"EI", "foo"};
+  EXPECT_EQ(refusal(r).rfind("beamid fit: --estimate = 'EI,foo': 'foo' is not a parameter of this beam (valid: l,", 0),
+            0u)
+      << refusal(r);
+  r = request();
+  r.bounds["rho_r2"] = {1e-9, 1e-7};
+  EXPECT_EQ(refusal(r), "beamid fit: --bounds names 'rho_r2', which is not in --estimate");
+  r = request();
+  r.refine = "time";
+  EXPECT_EQ(refusal(r), "beamid fit: --refine = 'time': is the second cost of --strategy hybrid only");
+  r = request();
+  r.experiment.dt_s = 2e-3;
+  EXPECT_EQ(refusal(r), "beamid fit: --dt = '0.002': must equal the data's time step 0.001 s");
+  r = request();
+  r.seed = -1;
+  EXPECT_EQ(refusal(r), "beamid fit: --seed = '-1': must be an integer >= 0");
+  r = request();
+  r.cost.spikes.frequencies_hz = {2.4, 26};
+  r.cost.spikes.count = 3;
+  EXPECT_EQ(refusal(r), "beamid fit: --spikes = '3': must equal the number of --spike-frequencies (or be left out)");
+  r = request();
+  r.caller.label = "beamid.fit";  // another front end's label
+  r.record_weights = "equal";
+  EXPECT_EQ(refusal(r), "beamid.fit: --record-weights = 'equal': must be one of rms, noise");
+  EXPECT_EQ(refusal(request()), "");
+}
+
+TEST(FitRequest, ExplicitBoundsReplaceTheFactorRule) {
+  FitRequest r = request();
+  r.bounds["EI"] = {0.3, 0.7};
+  const std::vector<fit::EstimatedParameter> p = estimated_parameters(r);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].lower, 0.3);
+  EXPECT_EQ(p[0].upper, 0.7);
+  EXPECT_DOUBLE_EQ(p[1].lower, r.beam.rho / 2);
+  r.beam.gamma = 0;  // no nominal value to put a factor around
+  r.estimate = {"gamma"};
+  r.bounds.clear();
+  EXPECT_THROW(estimated_parameters(r), InputError);
+}
+
+}  // namespace
+}  // namespace beamid::api
