@@ -1,7 +1,7 @@
 """The Python package beamid: `pip install --no-build-isolation .` in a virtual environment made with
 `python3 -m venv --system-site-packages` (Debian's NumPy, setuptools and pybind11; no PyPI).
 
-The extension beamid._core is the CMake target beamid_core of this project (python/src/core_module.cc over the same
+The extension beamid._core is the CMake target beamid_python_module of this project (python/src/core_module.cc over the same
 static libraries as the program), built in setuptools' build_temp with the interpreter that runs pip, so the module
 matches it; CMAKE_BUILD_PARALLEL_LEVEL sets the build's jobs (default: the machine's cores).
 """
@@ -27,7 +27,7 @@ class CMakeBuild(build_ext):
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.run(["cmake", "-S", HERE, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release", "-DBEAMID_BENCHMARKS=OFF",
                         f"-DPython3_EXECUTABLE={sys.executable}", f"-DBEAMID_PYTHON_DIR={package_dir}"], check=True)
-        subprocess.run(["cmake", "--build", build_dir, "--target", "beamid_core", "-j", jobs], check=True)
+        subprocess.run(["cmake", "--build", build_dir, "--target", "beamid_python_module", "-j", jobs], check=True)
 
 
 setup(

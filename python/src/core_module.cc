@@ -28,7 +28,7 @@
 #include "io/provenance.h"
 #include "io/time_series.h"
 #include "model/beam_parameters.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace py = pybind11;
 using namespace beamid;

@@ -4,8 +4,8 @@
 #include <ostream>
 
 #include "io/resources.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 
 namespace beamid::api {
 
@@ -28,11 +28,11 @@ simulation::Experiment experiment_of(const ExperimentRequest& request, double le
 void guard_run_size(const Caller& caller, int elements, double samples, double bytes_per_sample,
                     std::ostream& warnings) {
   const double n = elements;
-  const double bytes = model::kModelBytesPerElement2 * n * n + bytes_per_sample * samples;
+  const double bytes = core::kModelBytesPerElement2 * n * n + bytes_per_sample * samples;
   io::check_memory(caller.label + ": N = " + std::to_string(elements) + " and " +
                        std::to_string(static_cast<long long>(samples)) + " samples",
                    bytes, warnings);
-  const double seconds = model::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
   if (seconds > 10)
     warnings << caller.label << ": N = " << elements << ": one model evaluation takes about "
              << io::seconds_text(seconds) << " here (it grows as N^3)\n";

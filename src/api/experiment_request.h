@@ -30,7 +30,7 @@ simulation::Experiment experiment_of(const ExperimentRequest& request, double le
 
 // Before a run whose size a request sets: refuses it (InputError) when the model of N elements and `samples` samples
 // at `bytes_per_sample` would not fit in the machine's memory, and warns on `warnings` with the estimate when one
-// model evaluation would take more than 10 s (model/limits.h has the measured figures).
+// model evaluation would take more than 10 s (core/limits.h has the measured figures).
 void guard_run_size(const Caller& caller, int elements, double samples, double bytes_per_sample,
                     std::ostream& warnings);
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
@@ -97,7 +97,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   o.elements = request.elements;
   o.experiment = experiment_of(request.experiment, request.beam.l, caller);
   guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),
-                 model::kRecordBytesPerSample, warnings);
+                 core::kRecordBytesPerSample, warnings);
   match_record(request, data, o.experiment);
   o.simulator.integrator = request.integrator;
   o.cost = cost_options(request.cost, caller);

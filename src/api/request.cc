@@ -1,6 +1,6 @@
 #include "api/request.h"
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::api {
 

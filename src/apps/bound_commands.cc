@@ -10,8 +10,8 @@
 #include "fit/cramer_rao.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/noise.h"
 
 namespace beamid::apps {
@@ -19,7 +19,7 @@ namespace beamid::apps {
 std::vector<FlagSpec> crb_flags() {
   std::vector<FlagSpec> flags = {
       text_flag("beam", "preset or TOML file: the parameter values at which the bound holds", true),
-      integer_flag("elements", "Galerkin order N of the model", model::kMinElements, model::kMaxElements, true),
+      integer_flag("elements", "Galerkin order N of the model", core::kMinElements, core::kMaxElements, true),
       text_flag("estimate", "comma-separated keys of the parameters to bound, e.g. EI,rho,cDI,gamma", true),
       number_flag("noise-sd", "standard deviation of the white Gaussian noise on each sample, in the output's units"),
       number_flag("noise-level", "noise standard deviation as a fraction of the clean signal's RMS (as the studies)"),
@@ -31,7 +31,7 @@ std::vector<FlagSpec> crb_flags() {
 }
 
 CrbResult compute_crb(const Flags& a) {
-  CrbResult r{read_model_run(a, model::kSimulateBytesPerSample), {}, {}, 0, {}, {}};
+  CrbResult r{read_model_run(a, core::kSimulateBytesPerSample), {}, {}, 0, {}, {}};
   const model::BeamParameters& beam = r.run.beam;
   const int n = r.run.elements;
   const simulation::Experiment& e = r.run.experiment;

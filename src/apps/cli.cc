@@ -4,7 +4,7 @@
 
 #include "apps/commands.h"
 #include "io/provenance.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::apps {
 namespace {

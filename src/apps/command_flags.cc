@@ -7,8 +7,8 @@
 
 #include "config/beam_file.h"
 #include "io/time_series.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 
 namespace beamid::apps {
 
@@ -82,7 +82,7 @@ io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); 
 std::vector<FlagSpec> experiment_flag_specs() {
   return {
       number_flag("dt", "sampling interval, s (default 1e-3)"),
-      integer_flag("samples", "number of samples Nbar (default 4096)", 2, model::kMaxSamples),
+      integer_flag("samples", "number of samples Nbar (default 4096)", 2, core::kMaxSamples),
       number_flag("sensor-x", "sensor position xbar, m (default: the tip)"),
       text_flag("output", simulation::output_names().alternatives() + " (default displacement)"),
       text_flag("excitation", simulation::excitation_names().alternatives() +

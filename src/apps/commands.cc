@@ -17,9 +17,9 @@
 #include "io/provenance.h"
 #include "io/report_blocks.h"
 #include "io/text.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "model/exact_frequencies.h"
-#include "model/limits.h"
+#include "core/limits.h"
 #include "signal/noise.h"
 #include "simulation/simulator.h"
 
@@ -99,7 +99,7 @@ int run_modes(const Flags& a, std::ostream& out) {
 }
 
 SimulateResult compute_simulate(const Flags& a) {
-  SimulateResult r{read_model_run(a, model::kSimulateBytesPerSample), {}, {}};
+  SimulateResult r{read_model_run(a, core::kSimulateBytesPerSample), {}, {}};
   simulation::SimulatorOptions options;
   options.integrator = a.text_or("integrator", options.integrator);
   options.cvode.rtol = a.optional_number("rtol").value_or(options.cvode.rtol);

@@ -9,7 +9,7 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/matrix_pencil.h"
 #include "signal/spectrum.h"
 

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::apps {
 namespace {

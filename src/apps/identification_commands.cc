@@ -19,15 +19,15 @@
 #include "io/provenance.h"
 #include "io/text.h"
 #include "io/time_series.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/spikes.h"
 
 namespace beamid::apps {
 
 std::vector<FlagSpec> spike_flags() {
   return {
-      integer_flag("spikes", "number of spikes NM (default 4)", 1, model::kMaxSpikes),
+      integer_flag("spikes", "number of spikes NM (default 4)", 1, core::kMaxSpikes),
       text_flag("window", "rectangular | hann | exponential (default rectangular)"),
       number_flag("exponential-end", "exponential window's last weight, in (0, 1) (default 0.01)"),
       text_flag("spike-rule", "largest | prominence (default largest: the NM highest local maxima)"),
@@ -295,7 +295,7 @@ std::vector<FlagSpec> fit_flags() {
                 "list, every channel is a record of one joint fit (one --sensor-x each)",
                 true),
       text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),
-      integer_flag("elements", "Galerkin order N of the fitted model", model::kMinElements, model::kMaxElements, true),
+      integer_flag("elements", "Galerkin order N of the fitted model", core::kMinElements, core::kMaxElements, true),
       text_flag("estimate", "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma", true),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
@@ -305,10 +305,10 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("bounds", "explicit bounds KEY=LO:HI,... (override --bound-factor)"),
       text_flag("scaling", "linear | log optimizer coordinates (default linear)"),
       integer_flag("starts", "number of starts: the given one plus space-filling starts in the bounds (default 1)", 1,
-                   model::kMaxStarts),
+                   core::kMaxStarts),
       integer_flag("seed", "seed of the extra starts and of stochastic optimizers (default 1)", 0,
                    std::numeric_limits<int>::max()),
-      integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, model::kMaxEvaluations),
+      integer_flag("max-evaluations", "model evaluations per optimizer run (default 3000)", 1, core::kMaxEvaluations),
       text_flag("integrator", "fast | cvode model integrator (default fast)"),
       text_flag("report", "write a Markdown fit report to this file"),
       text_flag("record-weights",

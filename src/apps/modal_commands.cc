@@ -8,8 +8,8 @@
 #include "apps/flags.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/matrix_pencil.h"
 
 namespace beamid::apps {
@@ -21,7 +21,7 @@ std::vector<FlagSpec> modal_id_flags() {
                 "--start)",
                 true),
       integer_flag("modes", "number K of modes reported: the K strongest decaying oscillations in the band (default 3)",
-                   1, model::kMaxSpikes),
+                   1, core::kMaxSpikes),
       integer_flag("order", "model order M, the exponentials kept by the SVD (default 2 K + 8)", 2, 10000),
       number_flag("min-frequency", "lowest frequency reported, Hz (default 0)"),
       number_flag("max-frequency", "highest frequency reported, Hz (default Nyquist)")};

@@ -11,7 +11,7 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/resources.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "study/real_study.h"
 #include "study/runner.h"
 #include "study/store.h"

@@ -16,7 +16,7 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "model/exact_frequencies.h"
 #include "simulation/modal_simulator.h"
 #include "simulation/modal_truncation.h"

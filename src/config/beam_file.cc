@@ -6,9 +6,9 @@
 
 #include "config/document.h"
 #include "io/files.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "model/geometry.h"
-#include "model/limits.h"
+#include "core/limits.h"
 
 namespace beamid::config {
 namespace {
@@ -95,10 +95,10 @@ void parse_attachments(Table root, BeamParameters& beam) {
   const std::optional<std::vector<Node>> items = root.array("attachment", false);
   if (!items) return;
   const double l = beam.l;
-  // The cap (model/limits.h) keeps a generated file from sizing the exact reference's matrices.
-  if (items->size() > static_cast<std::size_t>(model::kMaxAttachments))
+  // The cap (core/limits.h) keeps a generated file from sizing the exact reference's matrices.
+  if (items->size() > static_cast<std::size_t>(core::kMaxAttachments))
     root.fail("attachment", "[" + std::to_string(items->size()) + " tables]",
-              "must hold at most " + std::to_string(model::kMaxAttachments) + " attachments");
+              "must hold at most " + std::to_string(core::kMaxAttachments) + " attachments");
   for (std::size_t k = 0; k < items->size(); ++k) {
     const std::string name = model::attachment_key(k);
     Table t = (*items)[k].table(name + ".", "attachment");

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "io/files.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::config {
 

@@ -7,7 +7,7 @@
 #include "costs/least_squares.h"
 #include "costs/modal_cost.h"
 #include "costs/spike_costs.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::costs {
 namespace {
@@ -35,8 +35,8 @@ std::optional<std::string> unusable_output(const std::vector<double>& y, std::si
   return std::nullopt;
 }
 
-const model::NameSet& cost_names() {
-  static const model::NameSet names(
+const core::NameSet& cost_names() {
+  static const core::NameSet names(
       {{kTimeCost, "least squares on the sampled time history"},
        {kSpikeCost, "the paper's DFT spike cost (3.5), as written"},
        {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"},
@@ -45,8 +45,8 @@ const model::NameSet& cost_names() {
   return names;
 }
 
-const model::NameSet& frequency_weight_names() {
-  static const model::NameSet names(
+const core::NameSet& frequency_weight_names() {
+  static const core::NameSet names(
       {{kAbsoluteWeight, "frequency errors in Hz, as the paper's (3.5) writes them"},
        {kRelativeWeight, "frequency errors as fractions of each mode's frequency"},
        {kInverseVarianceWeight, "each spike by the inverse of its frequency's Cramér-Rao variance"}});

@@ -46,7 +46,7 @@
 #include <string>
 #include <vector>
 
-#include "model/names.h"
+#include "core/names.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
@@ -58,13 +58,13 @@ inline const std::string kSpikeCost = "spike";
 inline const std::string kSpikeSmoothCost = "spike-smooth";
 inline const std::string kBandCost = "freq-band";  // costs/least_squares.h
 inline const std::string kModalCost = "modal";     // costs/modal_cost.h
-const model::NameSet& cost_names();
+const core::NameSet& cost_names();
 
 // The spike costs' frequency weightings by name (above).
 inline const std::string kAbsoluteWeight = "absolute";
 inline const std::string kRelativeWeight = "relative";
 inline const std::string kInverseVarianceWeight = "inverse-variance";
-const model::NameSet& frequency_weight_names();
+const core::NameSet& frequency_weight_names();
 
 struct CostOptions {
   std::string name = "time";                       // "time" | "spike" | "spike-smooth"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/matrix_pencil.h"
 
 namespace beamid::costs {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::costs {
 namespace {

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "galerkin/second_order_system.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/sensitivities.h"
 
 namespace beamid::fit {

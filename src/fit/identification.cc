@@ -8,8 +8,8 @@
 #include "fit/joint_objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/spikes.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
@@ -17,8 +17,8 @@
 
 namespace beamid::fit {
 
-const model::NameSet& strategy_names() {
-  static const model::NameSet names({{kDirect, "all estimated parameters at once"},
+const core::NameSet& strategy_names() {
+  static const core::NameSet names({{kDirect, "all estimated parameters at once"},
                                      {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
                                      {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"},
                                      {kHybrid,

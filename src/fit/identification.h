@@ -37,7 +37,7 @@
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
 #include "model/beam_parameters.h"
-#include "model/names.h"
+#include "core/names.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 
@@ -48,7 +48,7 @@ inline const std::string kDirect = "direct";
 inline const std::string kStaged = "staged";
 inline const std::string kContinuation = "continuation";
 inline const std::string kHybrid = "hybrid";
-const model::NameSet& strategy_names();
+const core::NameSet& strategy_names();
 
 struct FitOptions {
   model::BeamParameters start;             // the fixed parameters, and the start of the estimated ones

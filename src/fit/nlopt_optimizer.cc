@@ -1,17 +1,25 @@
 // NLopt adapter (the C++ interface, nlopt.hpp): the only file that sees NLopt types.
 #include <nlopt.hpp>
 
+#include <map>
+#include <stdexcept>
+
 #include "fit/optimizer.h"
 
 namespace beamid::fit::detail {
 namespace {
 
+// The NLopt algorithm of an optimizer name (fit/optimizer.h's registry): an unknown name is an InputError listing
+// the valid ones, never a default algorithm; a registered name without an entry here is a programming error.
 nlopt::algorithm algorithm_of(const std::string& method) {
-  if (method == "nelder-mead") return nlopt::LN_NELDERMEAD;
-  if (method == "bobyqa") return nlopt::LN_BOBYQA;
-  if (method == "sbplx") return nlopt::LN_SBPLX;
-  if (method == "direct-l") return nlopt::GN_DIRECT_L;
-  return nlopt::GN_CRS2_LM;
+  static const std::map<std::string, nlopt::algorithm> algorithms = {{"nelder-mead", nlopt::LN_NELDERMEAD},
+                                                                     {"bobyqa", nlopt::LN_BOBYQA},
+                                                                     {"sbplx", nlopt::LN_SBPLX},
+                                                                     {"direct-l", nlopt::GN_DIRECT_L},
+                                                                     {"crs2-lm", nlopt::GN_CRS2_LM}};
+  const auto it = algorithms.find(optimizer_names().require("optimizer", method));
+  if (it == algorithms.end()) throw std::logic_error("optimizer '" + method + "' is not an NLopt algorithm");
+  return it->second;
 }
 
 std::string words(nlopt::result r) {

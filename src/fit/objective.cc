@@ -7,8 +7,8 @@
 #include "fit/objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
 #include "simulation/sensitivities.h"
@@ -30,9 +30,9 @@ struct Objective::Impl {
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
-  if (o.elements < model::kMinElements || o.elements > model::kMaxElements)
+  if (o.elements < core::kMinElements || o.elements > core::kMaxElements)
     throw InputError("elements = " + std::to_string(o.elements) + ": must be an integer in " +
-                     std::to_string(model::kMinElements) + ".." + std::to_string(model::kMaxElements));
+                     std::to_string(core::kMinElements) + ".." + std::to_string(core::kMaxElements));
   if (auto error = model::validation_error(o.start)) throw InputError("start beam: " + *error);
   if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError("experiment: " + *error);
   if (static_cast<int>(data.size()) != o.experiment.samples)

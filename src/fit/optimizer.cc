@@ -6,12 +6,12 @@
 #include <cmath>
 #include <random>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::fit {
 
-const model::NameSet& optimizer_names() {
-  static const model::NameSet names({{"lm", "Ceres Levenberg-Marquardt on the residual vector"},
+const core::NameSet& optimizer_names() {
+  static const core::NameSet names({{"lm", "Ceres Levenberg-Marquardt on the residual vector"},
                                      {"bobyqa", "NLopt BOBYQA (quadratic models, derivative-free)"},
                                      {"nelder-mead", "NLopt Nelder-Mead simplex"},
                                      {"sbplx", "NLopt Subplex"},

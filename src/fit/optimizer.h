@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "model/names.h"
+#include "core/names.h"
 
 namespace beamid::fit {
 
@@ -43,7 +43,7 @@ struct OptimizerOptions {
   double initial_step = 0.02;  // NLopt local methods: first step, as a fraction of each bound range
   std::uint64_t seed = 1;      // stochastic methods
 };
-const model::NameSet& optimizer_names();
+const core::NameSet& optimizer_names();
 // First violated constraint ("optimizer = 'x': must be one of ..."), or nothing.
 std::optional<std::string> validation_error(const OptimizerOptions& options);
 // Whether the method needs Problem::residuals.

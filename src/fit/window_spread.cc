@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::fit {
 

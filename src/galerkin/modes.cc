@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "galerkin/complex_products.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::galerkin {
 

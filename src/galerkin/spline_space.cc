@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::galerkin {
 

@@ -4,7 +4,7 @@
 
 #include "io/record_samples.h"
 #include "io/uff58.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 

@@ -4,7 +4,7 @@
 #include <iterator>
 
 #include "io/resources.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 

@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "io/resources.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 namespace {

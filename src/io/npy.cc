@@ -6,7 +6,7 @@
 #include <cstring>
 #include <limits>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 namespace {

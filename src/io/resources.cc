@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 

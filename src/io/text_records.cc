@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "io/record_samples.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 namespace {

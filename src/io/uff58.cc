@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 namespace {

@@ -3,43 +3,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "model/errors.h"
-#include "model/limits.h"
-
-namespace beamid {
-
-std::string format_value(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return ec == std::errc() ? std::string(buffer, end) : std::string("?");
-}
-
-std::string one_line(const std::string& message) {
-  std::string out;
-  out.reserve(message.size());
-  for (char c : message) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '\n')
-      out += "\\n";
-    else if (c == '\r')
-      out += "\\r";
-    else if (c == '\t')
-      out += "\\t";
-    else if (u < 0x20 || u == 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      out += "\\x";
-      out += hex[u >> 4];
-      out += hex[u & 15];
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace beamid
+#include "core/errors.h"
+#include "core/limits.h"
 
 namespace beamid::model {
 
@@ -209,9 +174,9 @@ std::optional<std::string> validation_error(const BeamParameters& beam) {
        {std::pair{"support.k_theta", beam.support.k_theta}, std::pair{"support.k_w", beam.support.k_w}})
     if (!(value > 0))
       return std::string(key) + " = " + format_value(value) + ": must be > 0 (omit it for a rigid clamp)";
-  if (beam.attachments.size() > static_cast<std::size_t>(kMaxAttachments))
+  if (beam.attachments.size() > static_cast<std::size_t>(core::kMaxAttachments))
     return "attachments: " + std::to_string(beam.attachments.size()) + " bodies on the span: must be at most " +
-           std::to_string(kMaxAttachments);
+           std::to_string(core::kMaxAttachments);
   for (std::size_t k = 0; k < beam.attachments.size(); ++k) {
     if (auto e = attachment_violation(beam.attachments[k], beam.l)) return attachment_key(k) + "." + *e;
   }

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::model {
 namespace {

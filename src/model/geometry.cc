@@ -1,6 +1,6 @@
 #include "model/geometry.h"
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::model {
 

@@ -5,21 +5,15 @@
 //   uniform  u = ((x >> 11) + 0.5) 2^-53, in the open interval (0, 1);
 //   Gaussian by the Box-Muller transform on two uniforms: g1 = r cos(2 pi u2), g2 = r sin(2 pi u2), r = sqrt(-2 ln u1)
 //            (both used, in that order).
-// Seeds are mixed with SplitMix64 so that nearby seeds (1, 2, 3, ...) give unrelated streams.
+// Seeds are mixed with SplitMix64 (core/hash.h) so that nearby seeds (1, 2, 3, ...) give unrelated streams.
 #pragma once
 
 #include <cstdint>
-#include <string_view>
 #include <vector>
 
-namespace beamid::signal {
+#include "core/hash.h"
 
-// SplitMix64 finaliser (Steele, Lea, Flood 2014): a bijection of 64-bit words with good avalanche.
-std::uint64_t mix64(std::uint64_t x);
-// FNV-1a 64-bit hash of bytes (a stable identity for canonical text; not cryptographic).
-std::uint64_t fnv1a64(std::string_view text);
-// Seed for a named sub-stream of a parent seed: mix64(parent ^ fnv1a64(name)).
-std::uint64_t derive_seed(std::uint64_t parent, std::string_view name);
+namespace beamid::signal {
 
 // `count` independent standard normal deviates from `seed`.
 std::vector<double> gaussian_deviates(std::uint64_t seed, std::size_t count);

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <numbers>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::signal {
 namespace {

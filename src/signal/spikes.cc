@@ -6,7 +6,7 @@
 #include <map>
 #include <numbers>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::signal {
 
@@ -207,8 +207,8 @@ Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segm
   return mean;
 }
 
-const model::NameSet& detrend_names() {
-  static const model::NameSet names({{kDetrendNone, "the record as it is"},
+const core::NameSet& detrend_names() {
+  static const core::NameSet names({{kDetrendNone, "the record as it is"},
                                      {kDetrendMean, "less its mean"},
                                      {kDetrendLinear, "less its least-squares offset and linear trend"}});
   return names;

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "model/names.h"
+#include "core/names.h"
 #include "signal/spectrum.h"
 
 namespace beamid::signal {
@@ -79,7 +79,7 @@ Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segm
 inline const std::string kDetrendNone = "none";
 inline const std::string kDetrendMean = "mean";
 inline const std::string kDetrendLinear = "linear";
-const model::NameSet& detrend_names();  // the registry every reader of a detrend mode uses
+const core::NameSet& detrend_names();  // the registry every reader of a detrend mode uses
 // InputError "detrend = 'x': must be one of none, mean, linear" for another mode.
 std::vector<double> detrend(std::vector<double> values, const std::string& mode);
 

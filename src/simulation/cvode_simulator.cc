@@ -13,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 #if SUNDIALS_VERSION_MAJOR >= 7
 #define BEAMID_SUN_COMM_NULL SUN_COMM_NULL

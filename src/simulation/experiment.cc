@@ -3,19 +3,19 @@
 #include <cmath>
 #include <numbers>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::simulation {
 
-const model::NameSet& excitation_names() {
-  static const model::NameSet names({{kPulse, "F0 sin^2(pi t/tau) on [0, tau] at x_f, from rest"},
+const core::NameSet& excitation_names() {
+  static const core::NameSet names({{kPulse, "F0 sin^2(pi t/tau) on [0, tau] at x_f, from rest"},
                                      {kPluck, "released at rest from the static deflection under F0 at x_f"},
                                      {kFreeDecay, "a record from an unknown state (fit only)"}});
   return names;
 }
 
-const model::NameSet& output_names() {
-  static const model::NameSet names({{kDisplacement, "m"}, {kVelocity, "m/s"}, {kAcceleration, "m/s^2"}});
+const core::NameSet& output_names() {
+  static const core::NameSet names({{kDisplacement, "m"}, {kVelocity, "m/s"}, {kAcceleration, "m/s^2"}});
   return names;
 }
 

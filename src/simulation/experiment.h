@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "model/names.h"
+#include "core/names.h"
 
 namespace beamid::simulation {
 
@@ -19,11 +19,11 @@ namespace beamid::simulation {
 inline const std::string kPulse = "pulse";
 inline const std::string kPluck = "pluck";
 inline const std::string kFreeDecay = "free-decay";
-const model::NameSet& excitation_names();
+const core::NameSet& excitation_names();
 inline const std::string kDisplacement = "displacement";
 inline const std::string kVelocity = "velocity";
 inline const std::string kAcceleration = "acceleration";
-const model::NameSet& output_names();
+const core::NameSet& output_names();
 
 struct Experiment {
   std::string excitation = "pulse";     // "pulse" | "pluck" | "free-decay"

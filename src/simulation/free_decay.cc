@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::simulation {
 

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::simulation {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/modal_simulator.h"
 
 namespace beamid::simulation {

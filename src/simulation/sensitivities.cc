@@ -7,7 +7,7 @@
 
 #include "galerkin/complex_products.h"
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/modal_simulator.h"
 
 namespace beamid::simulation {

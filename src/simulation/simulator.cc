@@ -1,6 +1,6 @@
 #include "simulation/simulator.h"
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/cvode_simulator.h"
 #include "simulation/modal_simulator.h"
 

@@ -10,7 +10,7 @@
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "model/exact_frequencies.h"
 #include "signal/noise.h"
 #include "signal/spectrum.h"
@@ -305,7 +305,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         }
         // One Latin hypercube (in log coordinates) per cost, shared by its multistart units; this unit takes point k.
         const auto points = fit::space_filling_starts(lower, upper, spec.landscape.multistarts, "lhs",
-                                                      signal::derive_seed(spec.seed, "multistart;" + unit.cost));
+                                                      core::derive_seed(spec.seed, "multistart;" + unit.cost));
         for (std::size_t i = 0; i < o.estimate.size(); ++i)
           set(o.start, o.estimate[i].key, std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]));
       }
@@ -344,7 +344,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       const galerkin::SplineSpace space(unit.elements);
       const galerkin::BeamForms forms(space, spec.truth.parameters.l, spec.truth.parameters.support);
       const Eigen::VectorXd u =
-          random_direction(signal::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
+          random_direction(core::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
                            static_cast<int>(spec.fit.estimate.size()));
       const OffsetStart s =
           offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset, spec.fit.bound_factor);

@@ -12,9 +12,9 @@ namespace {
 
 // Numbers in canonical strings are written by io::round_trip() (they round-trip, so distinct values stay distinct).
 void identify(Unit& u, const StudySpec& spec) {
-  const std::uint64_t h = signal::fnv1a64(u.canonical);
+  const std::uint64_t h = core::fnv1a64(u.canonical);
   u.id = io::hex64(h);
-  u.seed = signal::mix64(spec.seed ^ h);
+  u.seed = core::mix64(spec.seed ^ h);
 }
 
 // The truth beam as it enters a unit's identity: a preset by its name; a beam file by its path and a hash of the
@@ -30,7 +30,7 @@ std::string beam_identity(const TruthSpec& t) {
     values << "attachment=" << io::round_trip(a.x) << "," << io::round_trip(a.m) << "," << io::round_trip(a.J) << ","
            << io::round_trip(a.c) << ";";
   values << "k_theta=" << io::round_trip(b.support.k_theta) << ";k_w=" << io::round_trip(b.support.k_w);
-  return t.beam + "#" + io::hex64(signal::fnv1a64(values.str()));
+  return t.beam + "#" + io::hex64(core::fnv1a64(values.str()));
 }
 
 std::string truth_text(const StudySpec& spec, double pulse_width_s) {
@@ -77,8 +77,8 @@ std::string fit_text(const StudySpec& spec) {
 // The noise realisation of a record: (study seed, truth, record length, noise level, replicate) only, so that every
 // cost, N, method and start sees the same noisy record (common random numbers).
 std::uint64_t record_noise_seed(const StudySpec& spec, const Unit& truth, int samples, double noise, int replicate) {
-  return signal::mix64(spec.seed ^
-                       signal::fnv1a64("noise;" + truth.canonical + ";record_samples=" + std::to_string(samples) +
+  return core::mix64(spec.seed ^
+                       core::fnv1a64("noise;" + truth.canonical + ";record_samples=" + std::to_string(samples) +
                                        ";noise=" + io::round_trip(noise) + ";replicate=" + std::to_string(replicate)));
 }
 

@@ -12,7 +12,7 @@
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
 #include "io/provenance.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 #include "study/format.h"

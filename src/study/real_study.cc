@@ -11,8 +11,8 @@
 #include "io/files.h"
 #include "io/text.h"
 #include "io/time_series.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/noise.h"
 
 namespace beamid::study {
@@ -110,7 +110,7 @@ RealStudySpec load_real_study(const std::string& path) {
   };
   RealStudySpec s;
   s.path = path;
-  s.file_hash = io::hex64(signal::fnv1a64(document.text()));
+  s.file_hash = io::hex64(core::fnv1a64(document.text()));
   {
     Table r = document.required("study");
     s.name = r.string("name", std::nullopt);
@@ -123,9 +123,9 @@ RealStudySpec load_real_study(const std::string& path) {
     if (!node) document.required("record");  // the error for a missing [record]
     if (node->is_array()) {
       const std::vector<config::Node> items = node->elements();
-      if (items.size() > static_cast<std::size_t>(model::kMaxRecords))
+      if (items.size() > static_cast<std::size_t>(core::kMaxRecords))
         root.fail("record", "[" + std::to_string(items.size()) + " tables]",
-                  "must hold at most " + std::to_string(model::kMaxRecords) + " records");
+                  "must hold at most " + std::to_string(core::kMaxRecords) + " records");
       for (std::size_t k = 0; k < items.size(); ++k) {
         const std::string name = "record" + std::to_string(k + 1);
         s.records.push_back(read_record(items[k].table(name + ".", "record"), name, relative));
@@ -143,13 +143,13 @@ RealStudySpec load_real_study(const std::string& path) {
   std::function<std::string(const std::string&)> fit_bounds_line;
   {
     Table r = document.required("fit");
-    s.elements = r.integer("elements", s.elements, model::kMinElements, model::kMaxElements);
+    s.elements = r.integer("elements", s.elements, core::kMinElements, core::kMaxElements);
     given.estimate = estimated_keys(r, "estimate");
     given.per_record = estimated_keys(r, "per_record");
     if (given.estimate.empty() && given.per_record.empty() && !document.root().has("candidate"))
       r.fail("estimate", "[]", "must name the parameters to estimate (or per_record, or [[candidate]]s)");
     s.costs = r.strings("costs", true, costs::cost_names().names());
-    s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, model::kMaxEvaluations);
+    s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, core::kMaxEvaluations);
     s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
     s.windows = r.integer("windows", 0, 0, 64);
     if (s.windows == 1) r.fail("windows", "1", "must be 0 (none) or >= 2");

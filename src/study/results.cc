@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "model/beam_parameters.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::study {
 

@@ -9,8 +9,8 @@
 
 #include "io/provenance.h"
 #include "io/resources.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "study/execute.h"
 #include "study/plan.h"
 #include "study/store.h"
@@ -122,7 +122,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   for (int n : spec.sweep.samples) longest = std::max(longest, n);
   io::check_memory("beamid study " + spec.path,
                    8.0 * spec.truth.experiment.samples * static_cast<double>(plan.truths.size()) +
-                       jobs * model::kRecordBytesPerSample * longest,
+                       jobs * core::kRecordBytesPerSample * longest,
                    log);
   constexpr double kSecondsPerUnit = 1.0;
   if (mine.size() > 20000)

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/noise.h"
 #include "study/format.h"
 #include "study/metrics.h"

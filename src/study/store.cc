@@ -11,7 +11,7 @@
 
 #include "io/files.h"
 #include "io/text.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/noise.h"
 
 namespace beamid::study {
@@ -93,7 +93,7 @@ constexpr const char* kCheck = "#check\t";
 constexpr std::uintmax_t kMaxRecordBytes = std::uintmax_t{512} << 20;
 
 std::string check_line(const std::string& body) {
-  return kCheck + std::to_string(body.size()) + "\t" + io::hex64(signal::fnv1a64(body)) + "\n";
+  return kCheck + std::to_string(body.size()) + "\t" + io::hex64(core::fnv1a64(body)) + "\n";
 }
 
 // The body of a stored file when its check line matches; otherwise why not.

@@ -16,8 +16,8 @@
 #include "io/files.h"
 #include "io/text.h"
 #include "model/beam_parameters.h"
-#include "model/errors.h"
-#include "model/limits.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "signal/noise.h"
 
 namespace beamid::study {
@@ -34,7 +34,7 @@ std::vector<std::string> cost_names() { return costs::cost_names().names(); }
 
 void read_experiment(Table& r, simulation::Experiment& e) {
   e.dt_s = r.number("dt_s", e.dt_s, positive, "must be > 0");
-  e.samples = r.integer("samples", e.samples, model::kMinStudySamples, model::kMaxStudySamples);
+  e.samples = r.integer("samples", e.samples, core::kMinStudySamples, core::kMaxStudySamples);
   e.excitation = r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck});  // simulable
   if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, non_negative, "must be >= 0");
   e.force_amplitude_N = r.number("force_amplitude_N", e.force_amplitude_N, positive, "must be > 0");
@@ -64,7 +64,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
 
   StudySpec spec;
   spec.path = source;
-  spec.file_hash = io::hex64(signal::fnv1a64(text));
+  spec.file_hash = io::hex64(core::fnv1a64(text));
 
   {  // [study]
     Table r = document.required("study");
@@ -95,7 +95,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     // bias and variance, the yardstick for the studies whose truth is finer than every fit.
     t.control = r.boolean("control", false);
     t.elements =
-        r.integer("elements", 48, t.control ? model::kMinElements : model::kMinTruthElements, model::kMaxTruthElements);
+        r.integer("elements", 48, t.control ? core::kMinElements : core::kMinTruthElements, core::kMaxTruthElements);
     t.rtol = r.number(
         "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
     read_experiment(r, t.experiment);
@@ -122,10 +122,10 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
         if (*n->string() != "auto") r.fail("spikes", n->text(), "must be an integer >= 1 or 'auto'");
         f.spikes = 0;
       } else {
-        f.spikes = r.integer("spikes", 3, 1, model::kMaxSpikes);
+        f.spikes = r.integer("spikes", 3, 1, core::kMaxSpikes);
       }
     }
-    f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, model::kMaxSpikes);
+    f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, core::kMaxSpikes);
     f.spike_rule = r.string("spike_rule", f.spike_rule, {"largest", "prominence"});
     f.min_frequency_hz = r.number("min_frequency_hz", 0.0, non_negative, "must be >= 0");
     f.max_frequency_hz = r.number("max_frequency_hz", 0.0, non_negative, "must be >= 0 (0: up to Nyquist)");
@@ -136,7 +136,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
     f.bound_factor = r.number(
         "bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
     f.scaling = r.string("scaling", f.scaling, {"linear", "log"});
-    f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, model::kMaxEvaluations);
+    f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, core::kMaxEvaluations);
     f.xtol_rel = r.number(
         "xtol_rel", f.xtol_rel, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
     f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
@@ -168,7 +168,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
       m.name = n;
       m.strategy = r.string("strategy", m.strategy, fit::strategy_names().names());
       m.optimizer = r.string("optimizer", m.optimizer, optimizers);
-      m.starts = r.integer("starts", 1, 1, model::kMaxStarts);
+      m.starts = r.integer("starts", 1, 1, core::kMaxStarts);
       m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost});
       if (r.has("refine") && m.strategy != fit::kHybrid)
         r.fail("refine", "'" + m.refine + "'", "applies to strategy = 'hybrid' only");

@@ -9,7 +9,7 @@
 #include "apps/command_flags.h"
 #include "apps/flags.h"
 #include "../fit/same_model_record.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::api {
 namespace {

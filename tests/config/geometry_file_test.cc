@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "config/beam_file.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::model {
 namespace {

@@ -8,7 +8,7 @@
 #include "costs/least_squares.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "thin_beam_fit.h"
 
 namespace beamid::costs {

@@ -6,7 +6,7 @@
 
 #include "fit/identification.h"
 #include "fit/objective.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "thin_beam_fit.h"
 
 namespace beamid::costs {

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "fit/identification.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/noise.h"
 #include "signal/spikes.h"
 

@@ -11,7 +11,7 @@
 #include "fit/identification.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/simulator.h"
 
 namespace beamid {

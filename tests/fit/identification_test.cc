@@ -16,7 +16,7 @@
 #include "galerkin/modes.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "same_model_record.h"
 #include "signal/noise.h"
 
@@ -59,7 +59,7 @@ const std::vector<double>& cvode_data(const std::string& preset) {
   for (const auto& info : model::parameter_table())
     recipe += ";" + std::string(info.key) + "=" + io::round_trip(truth.*info.member);
   const std::string path =
-      std::string(BEAMID_BINARY_DIR) + "/test-data-" + preset + "-" + io::hex64(signal::fnv1a64(recipe)) + ".bin";
+      std::string(BEAMID_BINARY_DIR) + "/test-data-" + preset + "-" + io::hex64(core::fnv1a64(recipe)) + ".bin";
   std::ifstream in(path, std::ios::binary);
   y.resize(static_cast<std::size_t>(e.samples));
   if (in.read(reinterpret_cast<char*>(y.data()), static_cast<std::streamsize>(y.size() * sizeof(double)))) return y;

@@ -10,7 +10,7 @@
 #include "fit/objective.h"
 #include "fit/joint_objective.h"
 #include "galerkin/second_order_system.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "same_model_record.h"
 #include "signal/noise.h"
 #include "simulation/simulator.h"

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::fit {
 namespace {

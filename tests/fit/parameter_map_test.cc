@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::fit {
 namespace {

@@ -5,7 +5,7 @@
 #include "apps/cli.h"
 #include "config/beam_file.h"
 #include "io/time_series.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "study/study_spec.h"
 
 namespace beamid::fuzz {

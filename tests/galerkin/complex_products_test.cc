@@ -11,7 +11,7 @@
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::galerkin {
 namespace {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "model/exact_frequencies.h"
 
 namespace beamid::galerkin {

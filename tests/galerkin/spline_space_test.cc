@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::galerkin {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "io/time_series.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::io {
 

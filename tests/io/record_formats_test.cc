@@ -14,7 +14,7 @@
 #include <numbers>
 
 #include "io/time_series.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "record_files.h"
 
 namespace beamid::io {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "record_files.h"
 
 namespace beamid::io {

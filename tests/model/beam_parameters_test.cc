@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "config/beam_file.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::model {
 namespace {
@@ -150,7 +150,7 @@ TEST(BeamToml, AttachmentErrorsNameLineKeyValueAndConstraint) {
   // The second table is named attachment2.
   EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\n[[attachment]]\nx = 0\nm = 1\n"),
             "beam.toml:19: attachment2.x = 0: must be in (0, l] m, measured from the clamp (l = 0.4573 m)");
-  // At most kMaxAttachments = 100 bodies (model/limits.h).
+  // At most kMaxAttachments = 100 bodies (core/limits.h).
   std::string many = kValid;
   for (int k = 0; k < 101; ++k) many += "[[attachment]]\nx = 0.1\nm = 0.001\n";
   EXPECT_EQ(error_of(many), "beam.toml:15: attachment = [101 tables]: must hold at most 100 attachments");

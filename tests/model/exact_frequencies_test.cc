@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::model {
 namespace {

@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "galerkin/modes.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/simulator.h"
 
 namespace beamid::signal {

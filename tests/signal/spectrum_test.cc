@@ -8,7 +8,7 @@
 #include <numbers>
 #include <random>
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/spikes.h"
 
 namespace beamid::signal {

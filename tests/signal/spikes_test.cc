@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "costs/cost.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "signal/noise.h"
 
 namespace beamid::signal {

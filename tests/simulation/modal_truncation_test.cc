@@ -11,7 +11,7 @@
 
 #include "galerkin/modes.h"
 #include "model/beam_parameters.h"
-#include "model/errors.h"
+#include "core/errors.h"
 #include "simulation/modal_simulator.h"
 #include "test_systems.h"
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "fit/cramer_rao.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::simulation {
 namespace {

@@ -14,7 +14,7 @@
 #include <map>
 #include <sstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::study {
 namespace {

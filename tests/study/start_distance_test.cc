@@ -8,7 +8,7 @@
 
 #include "galerkin/modes.h"
 #include "galerkin/spline_space.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::study {
 namespace {

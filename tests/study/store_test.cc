@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "io/files.h"
-#include "model/errors.h"
+#include "core/errors.h"
 
 namespace beamid::study {
 namespace {

@@ -11,7 +11,7 @@
 #include <map>
 #include <sstream>
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "study/plan.h"
 #include "study/runner.h"
 #include "study/tables.h"

@@ -9,7 +9,7 @@
 #include <map>
 #include <set>
 
-#include "model/errors.h"
+#include "core/errors.h"
 #include "study/plan.h"
 
 namespace beamid::study {

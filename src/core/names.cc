@@ -1,6 +1,8 @@
-#include "model/names.h"
+#include "core/names.h"
 
-namespace beamid::model {
+#include "core/errors.h"
+
+namespace beamid::core {
 
 bool NameSet::contains(const std::string& name) const {
   for (const auto& e : entries_)
@@ -31,4 +33,9 @@ std::optional<std::string> NameSet::violation(const std::string& key, const std:
   return key + " = '" + value + "': must be one of " + list();
 }
 
-}  // namespace beamid::model
+const std::string& NameSet::require(const std::string& key, const std::string& value) const {
+  if (auto error = violation(key, value)) throw InputError(*error);
+  return value;
+}
+
+}  // namespace beamid::core

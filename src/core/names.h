@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace beamid::model {
+namespace beamid::core {
 
 class NameSet {
  public:
@@ -26,9 +26,12 @@ class NameSet {
   std::string alternatives() const;  // "time | spike | spike-smooth" (for help)
   // "key = 'value': must be one of a, b, c" when value is not a name; nothing otherwise.
   std::optional<std::string> violation(const std::string& key, const std::string& value) const;
+  // The value itself when it is a name of the set; else InputError "key = 'value': must be one of a, b, c". For the
+  // code that maps a name to what it selects (an adapter's enum, a constructor): an unknown name is never a default.
+  const std::string& require(const std::string& key, const std::string& value) const;
 
  private:
   std::vector<Entry> entries_;
 };
 
-}  // namespace beamid::model
+}  // namespace beamid::core

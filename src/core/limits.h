@@ -3,7 +3,7 @@
 // them, the measured resource figures that guard a run before it starts.
 #pragma once
 
-namespace beamid::model {
+namespace beamid::core {
 
 // Galerkin order N of a fitted or simulated model. One model evaluation costs about 3 s at N = 200 and grows as N^3
 // (measured on this 2-core machine: 0.07 s at N = 50, 0.44 s at 100, 3.2 s at 200), so N = 400 takes about 25 s
@@ -31,4 +31,4 @@ inline constexpr double kModelBytesPerElement2 = 2.7e3;     // the model's matri
 inline constexpr double kSimulateBytesPerSample = 110;      // simulate: 108 MB at 1e6 samples, 404 MB at 4e6
 inline constexpr double kRecordBytesPerSample = 210;        // reading a CSV record and fitting it: 206/797 MB
 
-}  // namespace beamid::model
+}  // namespace beamid::core

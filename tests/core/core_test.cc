@@ -1,0 +1,39 @@
+// What every layer uses: stable hashes and seeds, one-line errors, name registries that refuse unknown names.
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "core/hash.h"
+#include "core/names.h"
+
+namespace beamid::core {
+namespace {
+
+TEST(Hash, SeedsAreMixedAndNamedStreamsDiffer) {
+  EXPECT_NE(mix64(1), mix64(2));
+  EXPECT_EQ(fnv1a64(""), 0xcbf29ce484222325ULL);   // the FNV-1a offset basis
+  EXPECT_EQ(fnv1a64("a"), 0xaf63dc4c8601ec8cULL);  // published FNV-1a test vector
+  EXPECT_NE(derive_seed(1, "noise"), derive_seed(1, "start"));
+  EXPECT_EQ(derive_seed(5, "x"), derive_seed(5, "x"));
+}
+
+TEST(NameSet, RequireReturnsANameAndRefusesAnythingElseListingTheNames) {
+  const NameSet set({{"time", "least squares"}, {"spike", "(3.5)"}});
+  EXPECT_EQ(set.require("cost", "spike"), "spike");
+  try {
+    set.require("cost", "spikes");
+    FAIL() << "an unknown name was accepted";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "cost = 'spikes': must be one of time, spike");
+  }
+  EXPECT_EQ(set.alternatives(), "time | spike");
+}
+
+TEST(Errors, MessagesAreOneLineAndNumbersRoundTrip) {
+  EXPECT_STREQ(InputError("a\nb\tc\x01").what(), "a\\nb\\tc\\x01");
+  EXPECT_EQ(format_value(0.491), "0.491");
+  EXPECT_EQ(format_value(1e-300), "1e-300");
+  EXPECT_EQ(format_value(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+}  // namespace
+}  // namespace beamid::core
