@@ -4,7 +4,7 @@ SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: fuzz all deps build binary test test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
+.PHONY: fuzz all deps build binary test test-unit test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature), and
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
@@ -29,10 +29,17 @@ build: deps $(BUILD)/CMakeCache.txt
 binary: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target beamid
 
-# Builds only what the tests run (the program, the test suite and the Python package; not the benchmarks).
+# Builds only what the tests run (the program, the test suite and the Python package; not the benchmarks), then
+# runs the unit tier (ctest label unit: the GoogleTest cases) first, so that a broken computation fails in minutes,
+# then everything else (integration, python, slow). `make test-unit` runs the first tier alone.
 test: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS) --target beamid beamid_tests beamid_python
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L unit
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE unit
+
+test-unit: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target beamid_tests
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L unit
 
 # Copies the program to $(PREFIX)/bin (default ~/.local/bin), so that `beamid` runs as the README writes it.
 PREFIX ?= $(HOME)/.local

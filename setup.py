@@ -26,20 +26,13 @@ class CMakeBuild(build_ext):
         build_dir = os.path.abspath(os.path.join(self.build_temp, "cmake"))
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.run(["cmake", "-S", HERE, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release", "-DBEAMID_BENCHMARKS=OFF",
+                        "-DBUILD_TESTING=OFF",
                         f"-DPython3_EXECUTABLE={sys.executable}", f"-DBEAMID_PYTHON_DIR={package_dir}"], check=True)
         subprocess.run(["cmake", "--build", build_dir, "--target", "beamid_python_module", "-j", jobs], check=True)
 
 
+# The metadata (name, version from VERSION, licence, dependencies) is in pyproject.toml; this file adds the extension.
 setup(
-    name="beamid",
-    version="0.1.0",
-    description="Identify a Timoshenko beam's stiffness, mass and damping from its vibration (Banks & Wang 1993)",
-    license="see the project's README",
-    packages=["beamid"],
-    package_dir={"": "python"},
     ext_modules=[CMakeExtension("beamid._core")],
     cmdclass={"build_ext": CMakeBuild},
-    python_requires=">=3.9",
-    install_requires=["numpy"],
-    zip_safe=False,
 )

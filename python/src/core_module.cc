@@ -1,6 +1,6 @@
-// beamid._core, the C++ half of the Python package (python/beamid/__init__.py is the other): the commands'
-// computations (apps/computations.h) run on the flags that the Python keyword arguments spell (sensor_x=0.2 is
-// --sensor-x 0.2), parsed by the command line's own parser (apps::parse_flags). A call and the same command line
+// beamid._core, the C++ half of the Python package (python/beamid/__init__.py is the other): the commands' typed
+// requests (api/), filled from the flags that the Python keyword arguments spell (sensor_x=0.2 is --sensor-x 0.2),
+// parsed by the command line's own parser (apps::parse_flags) and mapped by its own mappings (apps/flag_requests.h). A call and the same command line
 // therefore run one body of code with one validation and one set of messages, and give the same numbers bit for bit.
 // Results are NumPy arrays and dicts; records may come as arrays (samples, or samples x channels) instead of files.
 // InputError and NumericalError become beamid.InputError (a ValueError) and beamid.NumericalError (a RuntimeError)
@@ -19,10 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "api/fit_request.h"
 #include "apps/cli.h"
 #include "apps/command_flags.h"
-#include "apps/computations.h"
+#include "apps/flag_requests.h"
 #include "apps/fit_report.h"
 #include "config/beam_file.h"
 #include "io/provenance.h"
@@ -130,7 +129,8 @@ auto without_gil(const char* command, const std::vector<std::string>& args, Comp
 }
 
 py::dict py_simulate(const std::vector<std::string>& args) {
-  apps::SimulateResult r = without_gil("simulate", args, apps::compute_simulate);
+  api::SimulateResult r = without_gil(
+      "simulate", args, [](const apps::Flags& a) { return api::compute_simulate(apps::simulate_request_of(a), std::cerr); });
   py::dict d;
   d["dt_s"] = r.run.experiment.dt_s;
   d["output"] = r.run.experiment.output;
@@ -142,7 +142,8 @@ py::dict py_simulate(const std::vector<std::string>& args) {
 }
 
 py::dict py_modes(const std::vector<std::string>& args) {
-  const apps::ModesResult r = without_gil("modes", args, apps::compute_modes);
+  const api::ModesResult r = without_gil(
+      "modes", args, [](const apps::Flags& a) { return api::compute_modes(apps::modes_request_of(a), std::cerr); });
   py::dict d;
   d["kind"] = r.kind;
   d["available"] = r.available;
@@ -153,7 +154,8 @@ py::dict py_modes(const std::vector<std::string>& args) {
 }
 
 py::dict py_system(const std::vector<std::string>& args) {
-  const apps::SystemResult r = without_gil("system", args, apps::compute_system);
+  const api::SystemResult r = without_gil(
+      "system", args, [](const apps::Flags& a) { return api::compute_system(apps::model_run_request_of(a), std::cerr); });
   py::dict d;
   d["beam"] = r.run.beam_name;
   d["length_m"] = r.run.beam.l;
@@ -174,8 +176,9 @@ py::dict py_system(const std::vector<std::string>& args) {
 
 py::dict py_spikes(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  const apps::SpikesResult r = without_gil(
-      "spikes", args, [&array](const apps::Flags& a) { return apps::compute_spikes(a, record_of(a, array)); });
+  const api::SpikesResult r = without_gil("spikes", args, [&array](const apps::Flags& a) {
+    return api::compute_spikes(apps::spikes_request_of(a), record_of(a, array));
+  });
   py::dict d;
   py::list picks, skipped;
   const auto row = [](const signal::Spike& s) {
@@ -222,7 +225,7 @@ py::dict py_cost(const std::vector<std::string>& args, const py::object& data, c
     } else {
       model = io::read_time_series(a.text("prediction"));
     }
-    e = apps::compute_cost(a, record, model);
+    e = api::compute_cost(apps::cost_evaluation_request_of(a), record, model);
   }
   py::dict d;
   d["value"] = e.value;
@@ -326,7 +329,8 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
 }
 
 py::dict py_crb(const std::vector<std::string>& args) {
-  const apps::CrbResult r = without_gil("crb", args, apps::compute_crb);
+  const api::CrbResult r = without_gil(
+      "crb", args, [](const apps::Flags& a) { return api::compute_crb(apps::crb_request_of(a), std::cerr); });
   py::dict d;
   d["parameters"] = r.keys;
   d["value"] = copied_array(r.values);
@@ -341,8 +345,9 @@ py::dict py_crb(const std::vector<std::string>& args) {
 
 py::dict py_modal_id(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
-  const apps::ModalIdResult r = without_gil(
-      "modal-id", args, [&array](const apps::Flags& a) { return apps::compute_modal_id(a, record_of(a, array)); });
+  const api::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
+    return api::compute_modal_id(apps::modal_id_request_of(a), record_of(a, array));
+  });
   std::vector<double> f, zeta, amplitude, phase;
   for (const auto& m : r.modes) {
     f.push_back(m.frequency_hz);

@@ -25,6 +25,12 @@ simulation::Experiment experiment_of(const ExperimentRequest& request, double le
   return e;
 }
 
+void check_elements(const Caller& caller, int elements) {
+  if (elements < core::kMinElements || elements > core::kMaxElements)
+    refuse(caller, "elements", std::to_string(elements),
+           "must be an integer in " + std::to_string(core::kMinElements) + ".." + std::to_string(core::kMaxElements));
+}
+
 void guard_run_size(const Caller& caller, int elements, double samples, double bytes_per_sample,
                     std::ostream& warnings) {
   const double n = elements;

@@ -28,6 +28,8 @@ struct ExperimentRequest {
 // (a joint fit places the others). InputError naming the field, value and constraint.
 simulation::Experiment experiment_of(const ExperimentRequest& request, double length_m, const Caller& caller);
 
+// InputError unless the Galerkin order N lies in the project's range (core/limits.h).
+void check_elements(const Caller& caller, int elements);
 // Before a run whose size a request sets: refuses it (InputError) when the model of N elements and `samples` samples
 // at `bytes_per_sample` would not fit in the machine's memory, and warns on `warnings` with the estimate when one
 // model evaluation would take more than 10 s (core/limits.h has the measured figures).

@@ -94,6 +94,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (channels.empty()) refuse(caller, "no record to fit");
   const io::TimeSeries& data = channels.front();
   fit::FitOptions o;
+  check_elements(caller, request.elements);
   o.elements = request.elements;
   o.experiment = experiment_of(request.experiment, request.beam.l, caller);
   guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),

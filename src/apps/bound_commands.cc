@@ -4,7 +4,7 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
-#include "apps/computations.h"
+#include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
 #include "fit/cramer_rao.h"
@@ -30,53 +30,8 @@ std::vector<FlagSpec> crb_flags() {
   return flags;
 }
 
-CrbResult compute_crb(const Flags& a) {
-  CrbResult r{read_model_run(a, core::kSimulateBytesPerSample), {}, {}, 0, {}, {}};
-  const model::BeamParameters& beam = r.run.beam;
-  const int n = r.run.elements;
-  const simulation::Experiment& e = r.run.experiment;
-
-  std::vector<std::string>& keys = r.keys;
-  std::stringstream list(a.text("estimate"));
-  for (std::string key; std::getline(list, key, ',');) {
-    a.require(model::describe_parameter(beam, key).has_value(), "estimate",
-              "'" + key + "' is not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
-    keys.push_back(key);
-  }
-  a.require(!keys.empty(), "estimate", "must name at least one parameter");
-  if (!a.has("noise-sd") && !a.has("noise-level"))
-    throw InputError("beamid crb: give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
-  fit::SensitivityOptions& options = r.options;
-  options.log_step = a.optional_number("log-step").value_or(options.log_step);
-  a.require(options.log_step > 0 && options.log_step <= 0.1, "log-step", "must lie in (0, 0.1]");
-
-  double& sigma = r.noise_sd;
-  if (a.has("noise-sd")) {
-    sigma = a.number("noise-sd");
-    a.require(sigma > 0, "noise-sd", "must be > 0");
-  } else {
-    const double level = a.number("noise-level");
-    a.require(level > 0, "noise-level", "must be > 0");
-    const galerkin::SplineSpace space(n);
-    const simulation::Trace clean = simulation::simulate(galerkin::BeamForms(space, beam.l, beam.support), beam, e, {});
-    if (!clean.ok()) throw NumericalError("beamid crb: the model could not be evaluated: " + clean.status);
-    sigma = level * signal::rms(clean.y);
-    a.require(sigma > 0, "noise-level", "the clean signal is zero, so a fraction of its RMS is no noise level");
-  }
-
-  fit::CramerRaoBound& b = r.bound;
-  try {
-    b = fit::beam_cramer_rao_bound(beam, n, e, keys, sigma, {}, options);
-  } catch (const InputError& error) {
-    throw InputError("beamid crb: --estimate = '" + a.text("estimate") + "': " + error.what());
-  }
-  if (b.status != "ok") throw NumericalError("beamid crb: " + b.status);
-  for (const std::string& key : keys) r.values.push_back(model::parameter_value(beam, key));
-  return r;
-}
-
 int run_crb(const Flags& a, std::ostream& out) {
-  const CrbResult r = compute_crb(a);
+  const api::CrbResult r = api::compute_crb(crb_request_of(a), std::cerr);
   const std::vector<std::string>& keys = r.keys;
   const fit::CramerRaoBound& b = r.bound;
   const simulation::Experiment& e = r.run.experiment;

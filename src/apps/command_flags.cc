@@ -20,13 +20,6 @@ model::BeamParameters read_beam(const Flags& a) {
   }
 }
 
-ModelRun read_model_run(const Flags& a, double bytes_per_sample) {
-  ModelRun run{a.text("beam"), read_beam(a), a.integer("elements"), {}};
-  run.experiment = read_experiment(a, run.beam.l);
-  guard_run_size(a, run.elements, bytes_per_sample > 0 ? run.experiment.samples : 0, bytes_per_sample);
-  return run;
-}
-
 namespace {
 
 // The import flags (channel aside): units, start, duration, resample, sample rate, variables, resample rate.
@@ -90,30 +83,6 @@ std::vector<FlagSpec> experiment_flag_specs() {
       number_flag("force-x", "force position x_f, m (default: the tip)"),
       number_flag("force-amplitude", "pulse peak F0, or pluck static load P0, N (default 1)"),
       number_flag("pulse-width", "pulse width tau, s (default 0.01; pulse only)")};
-}
-
-api::Caller caller_of(const Flags& a) { return {"beamid " + a.command()}; }
-
-api::ExperimentRequest experiment_request_of(const Flags& a) {
-  api::ExperimentRequest e;
-  e.dt_s = a.optional_number("dt");
-  e.samples = a.optional_integer("samples");
-  // fit takes a list, one position per --channel; the other commands one position.
-  e.sensor_x_m = a.numbers("sensor-x");
-  if (a.has("output")) e.output = a.text("output");
-  if (a.has("excitation")) e.excitation = a.text("excitation");
-  e.force_x_m = a.optional_number("force-x");
-  e.force_amplitude_N = a.optional_number("force-amplitude");
-  e.pulse_width_s = a.optional_number("pulse-width");
-  return e;
-}
-
-simulation::Experiment read_experiment(const Flags& a, double length_m) {
-  return api::experiment_of(experiment_request_of(a), length_m, caller_of(a));
-}
-
-void guard_run_size(const Flags& a, int elements, double samples, double bytes_per_sample) {
-  api::guard_run_size(caller_of(a), elements, samples, bytes_per_sample, std::cerr);
 }
 
 }  // namespace beamid::apps

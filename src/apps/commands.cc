@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "apps/command_flags.h"
-#include "apps/computations.h"
+#include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "apps/verification.h"
 #include "config/beam_file.h"
@@ -25,65 +25,8 @@
 
 namespace beamid::apps {
 
-namespace {
-
-// "--count K: the Galerkin model at N = n has S <what>: S printed" when --count asks for more than the model has.
-std::string fewer_modes_note(const ModesResult& r, int elements, const std::string& what) {
-  if (!r.requested || *r.requested <= r.available) return "";
-  return "--count " + std::to_string(*r.requested) + ": the Galerkin model at N = " + std::to_string(elements) +
-         " has " + std::to_string(r.available) + " " + what + ": " + std::to_string(r.available) + " printed";
-}
-
-}  // namespace
-
-ModesResult compute_modes(const Flags& a) {
-  const model::BeamParameters beam = read_beam(a);
-  ModesResult r;
-  r.requested = a.optional_integer("count");
-  a.require(!r.requested || *r.requested >= 1, "count", "must be >= 1");
-  if (!a.has("exact") && !a.has("elements"))
-    throw InputError("beamid modes: give one of --elements N (Galerkin) and --exact (determinant)");
-
-  if (a.has("exact")) {
-    r.kind = "exact";
-    const auto omega = model::timoshenko_frequencies_rad_s(beam, r.requested.value_or(4));
-    if (r.requested && static_cast<int>(omega.size()) < *r.requested)
-      throw InputError("beamid modes: --count = " + std::to_string(*r.requested) + ": only " +
-                       std::to_string(omega.size()) + " modes lie below the shear cut-off");
-    for (const double w : omega) r.frequency_hz.push_back(w / (2 * std::numbers::pi));
-    r.available = static_cast<int>(omega.size());
-    return r;
-  }
-
-  guard_run_size(a, a.integer("elements"), 0, 0);
-  const galerkin::SplineSpace space(a.integer("elements"));
-  const galerkin::SecondOrderSystem system = galerkin::assemble(space, beam);
-  if (a.has("undamped")) {
-    r.kind = "undamped";
-    const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
-    r.available = static_cast<int>(omega.size());
-    const int shown = std::min(r.requested.value_or(r.available), r.available);
-    r.note = fewer_modes_note(r, a.integer("elements"), "modes");
-    for (int k = 0; k < shown; ++k) {
-      r.frequency_hz.push_back(omega(k) / (2 * std::numbers::pi));
-      r.damping_ratio.push_back(0.0);
-    }
-    return r;
-  }
-  r.kind = "damped";
-  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
-  r.available = static_cast<int>(modes.size());
-  const int shown = std::min(r.requested.value_or(r.available), r.available);
-  r.note = fewer_modes_note(r, a.integer("elements"), "underdamped modes");
-  for (int k = 0; k < shown; ++k) {
-    r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);
-    r.damping_ratio.push_back(modes[static_cast<std::size_t>(k)].damping_ratio);
-  }
-  return r;
-}
-
 int run_modes(const Flags& a, std::ostream& out) {
-  const ModesResult r = compute_modes(a);
+  const api::ModesResult r = api::compute_modes(modes_request_of(a), std::cerr);
   const std::size_t shown = r.frequency_hz.size();
   if (r.kind == "exact") {
     out << "mode,frequency_hz\n";
@@ -98,29 +41,8 @@ int run_modes(const Flags& a, std::ostream& out) {
   return 0;
 }
 
-SimulateResult compute_simulate(const Flags& a) {
-  SimulateResult r{read_model_run(a, core::kSimulateBytesPerSample), {}, {}};
-  simulation::SimulatorOptions options;
-  options.integrator = a.text_or("integrator", options.integrator);
-  options.cvode.rtol = a.optional_number("rtol").value_or(options.cvode.rtol);
-  options.cvode.atol = a.optional_number("atol").value_or(options.cvode.atol);
-  options.cvode.max_order = a.optional_integer("max-order").value_or(options.cvode.max_order);
-  if (auto error = simulation::validation_error(options)) throw InputError("beamid simulate: " + *error);
-  // A synthetic lab record: white noise of --noise-level times the clean signal's RMS (signal/noise.h).
-  const double noise = a.optional_number("noise-level").value_or(0.0);
-  a.require(noise >= 0 && noise <= 10, "noise-level", "must be in [0, 10] (times the signal's RMS)");
-  a.require(!a.has("seed") || a.has("noise-level"), "seed", "seeds the noise: give --noise-level too");
-
-  const galerkin::SplineSpace space(r.run.elements);
-  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
-  r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);
-  if (!r.trace.ok()) throw NumericalError("beamid simulate: " + r.trace.status);
-  r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(a.optional_integer("seed").value_or(1)));
-  return r;
-}
-
 int run_simulate(const Flags& a, std::ostream& out) {
-  const SimulateResult r = compute_simulate(a);
+  const api::SimulateResult r = api::compute_simulate(simulate_request_of(a), std::cerr);
   const simulation::Experiment& e = r.run.experiment;
   std::ostringstream csv;
   csv << "t_s," << simulation::output_column(e.output) << "\n";
@@ -158,17 +80,8 @@ std::string json_matrix(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
-SystemResult compute_system(const Flags& a) {
-  SystemResult r{read_model_run(a, 0), {}, {}};
-  const galerkin::SplineSpace space(r.run.elements);
-  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
-  r.system = galerkin::combine(forms, r.run.beam);
-  r.problem = simulation::make_problem(forms, r.system, r.run.experiment);
-  return r;
-}
-
 int run_system(const Flags& a, std::ostream& out) {
-  const SystemResult r = compute_system(a);
+  const api::SystemResult r = api::compute_system(model_run_request_of(a), std::cerr);
   const std::string& beam_name = r.run.beam_name;
   const model::BeamParameters& beam = r.run.beam;
   const int n = r.run.elements;

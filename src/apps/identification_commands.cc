@@ -5,11 +5,9 @@
 #include <map>
 #include <sstream>
 
-#include "api/cost_request.h"
-#include "api/fit_request.h"
 #include "apps/command_flags.h"
 #include "apps/commands.h"
-#include "apps/computations.h"
+#include "apps/flag_requests.h"
 #include "apps/fit_report.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
@@ -77,89 +75,8 @@ std::vector<FlagSpec> cost_flags(bool required) {
   return flags;
 }
 
-namespace {
-
-api::SpikeRequest spike_request_of(const Flags& a) {
-  api::SpikeRequest r;
-  r.count = a.optional_integer("spikes");
-  if (a.has("spike-rule")) r.rule = a.text("spike-rule");
-  r.min_frequency_hz = a.optional_number("min-frequency");
-  r.max_frequency_hz = a.optional_number("max-frequency");
-  r.frequencies_hz = a.numbers("spike-frequencies");
-  r.artefacts = a.text_or("artefacts", r.artefacts);
-  return r;
-}
-
-api::WindowRequest window_request_of(const Flags& a) {
-  api::WindowRequest w;
-  if (a.has("window")) w.name = a.text("window");
-  w.exponential_end = a.optional_number("exponential-end");
-  return w;
-}
-
-api::CostRequest cost_request_of(const Flags& a) {
-  api::CostRequest r;
-  r.name = a.text("cost");
-  r.spikes = spike_request_of(a);
-  r.window = window_request_of(a);
-  r.eps1 = a.optional_number("eps1");
-  r.eps2 = a.optional_number("eps2");
-  r.eps3 = a.optional_number("eps3");
-  r.unknown_amplitude = a.has("unknown-amplitude");
-  if (a.has("model-poles")) r.model_poles = a.text("model-poles");
-  r.frequency_weight = a.text_or("frequency-weight", r.frequency_weight);
-  return r;
-}
-
-// --bounds KEY=LO:HI,...: the explicit bounds, by key.
-std::map<std::string, std::pair<double, double>> bounds_of(const Flags& a) {
-  std::map<std::string, std::pair<double, double>> bounds;
-  if (!a.has("bounds")) return bounds;
-  const std::string where = "beamid " + a.command() + ": ";
-  std::stringstream list(a.text("bounds"));
-  std::string item;
-  while (std::getline(list, item, ',')) {
-    const auto eq = item.find('='), colon = item.find(':');
-    char* end1 = nullptr;
-    char* end2 = nullptr;
-    if (eq == std::string::npos || colon == std::string::npos || colon < eq)
-      throw InputError(where + "--bounds item '" + item + "': must read KEY=LO:HI");
-    const std::string lo = item.substr(eq + 1, colon - eq - 1), hi = item.substr(colon + 1);
-    const double l = std::strtod(lo.c_str(), &end1), h = std::strtod(hi.c_str(), &end2);
-    if (lo.empty() || hi.empty() || *end1 || *end2)
-      throw InputError(where + "--bounds item '" + item + "': LO and HI must be numbers");
-    bounds[item.substr(0, eq)] = {l, h};
-  }
-  return bounds;
-}
-
-}  // namespace
-
-SpikesResult compute_spikes(const Flags& a, const io::TimeSeries& data) {
-  // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
-  // the lowest bins is not picked as a mode.
-  const std::string mode = a.text_or("detrend", signal::kDetrendLinear);
-  a.require(signal::detrend_names().contains(mode), "detrend", "must be one of " + signal::detrend_names().list());
-  a.require(!a.has("welch") || !a.has("window"), "window", "Welch's segments are Hann-windowed: leave out --window");
-  const std::vector<double> values = signal::detrend(data.values, mode);
-  SpikesResult r;
-  const signal::SpikeOptions options = api::spike_options(spike_request_of(a), caller_of(a));
-  if (a.has("welch")) {
-    r.spectrum = signal::welch_spectrum(values, data.dt_s, a.integer("welch"));
-  } else {
-    signal::Dft dft(static_cast<int>(values.size()), data.dt_s, api::window_options(window_request_of(a), caller_of(a)));
-    r.spectrum = dft.transform(values);
-  }
-  r.requested = options.count;
-  r.peaks = signal::label_peaks(r.spectrum, options);
-  for (const auto& p : r.peaks)
-    if (p.skipped.empty()) r.picks.push_back(p.spike);
-  std::sort(r.picks.begin(), r.picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
-  return r;
-}
-
 int run_spikes(const Flags& a, std::ostream& out) {
-  const SpikesResult r = compute_spikes(a, read_data(a));
+  const api::SpikesResult r = api::compute_spikes(spikes_request_of(a), read_data(a));
   const auto& picks = r.picks;
   const auto& peaks = r.peaks;
   if (static_cast<int>(picks.size()) < r.requested)
@@ -180,54 +97,12 @@ int run_spikes(const Flags& a, std::ostream& out) {
   return 0;
 }
 
-costs::Evaluation compute_cost(const Flags& a, const io::TimeSeries& data, const io::TimeSeries& prediction) {
-  if (prediction.values.size() != data.values.size() || std::abs(prediction.dt_s - data.dt_s) > 1e-9 * data.dt_s)
-    throw InputError("beamid cost: --prediction = '" + prediction.path +
-                     "': " + std::to_string(prediction.values.size()) +
-                     " samples at dt = " + format_value(prediction.dt_s) + " s: must match the data's " +
-                     std::to_string(data.values.size()) + " at " + format_value(data.dt_s) + " s");
-  const costs::CostOptions options = api::cost_options(cost_request_of(a), caller_of(a));
-  if (options.model_poles == "eigenvalues")
-    throw InputError("beamid cost: --model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
-  auto cost = costs::make_cost(options, data.values, data.dt_s);
-  const std::vector<std::complex<double>> none;
-  costs::Evaluation e = cost->evaluate(costs::ModelResponse{prediction.values, none});
-  if (!e.ok()) throw NumericalError("beamid cost: " + e.status);
-  return e;
-}
-
 int run_cost(const Flags& a, std::ostream& out) {
-  const costs::Evaluation e = compute_cost(a, read_data(a), io::read_time_series(a.text("prediction")));
+  const costs::Evaluation e =
+      api::compute_cost(cost_evaluation_request_of(a), read_data(a), io::read_time_series(a.text("prediction")));
   out << "cost,value\n" << a.text("cost") << "," << io::full_precision(e.value) << "\n";
   if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";
   return 0;
-}
-
-api::FitRequest fit_request_of(const Flags& a) {
-  api::FitRequest r;
-  r.caller = caller_of(a);
-  r.beam_name = a.text("beam");
-  r.beam = read_beam(a);
-  r.elements = a.integer("elements");
-  r.experiment = experiment_request_of(a);
-  r.estimate = a.texts("estimate");
-  r.bounds = bounds_of(a);
-  r.bound_factor = a.optional_number("bound-factor").value_or(r.bound_factor);
-  r.start_scale = a.optional_number("start-scale").value_or(r.start_scale);
-  r.cost = cost_request_of(a);
-  if (a.has("optimizer")) r.optimizer = a.text("optimizer");
-  r.max_evaluations = a.optional_integer("max-evaluations");
-  r.strategy = a.text_or("strategy", r.strategy);
-  if (a.has("refine")) r.refine = a.text("refine");
-  r.scaling = a.text_or("scaling", r.scaling);
-  r.starts = a.optional_integer("starts").value_or(r.starts);
-  r.seed = a.optional_integer("seed").value_or(1);
-  r.integrator = a.text_or("integrator", r.integrator);
-  r.record_weights = a.text_or("record-weights", r.record_weights);
-  if (a.has("detrend")) r.detrend = a.text("detrend");
-  r.welch = a.optional_integer("welch");
-  r.windows = a.optional_integer("windows");
-  return r;
 }
 
 int run_fit(const Flags& a, std::ostream& out) {

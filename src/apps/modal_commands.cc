@@ -4,7 +4,7 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
-#include "apps/computations.h"
+#include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "io/provenance.h"
 #include "io/text.h"
@@ -29,26 +29,9 @@ std::vector<FlagSpec> modal_id_flags() {
   return flags;
 }
 
-ModalIdResult compute_modal_id(const Flags& a, const io::TimeSeries& data) {
-  ModalIdResult r;
-  signal::PencilOptions& o = r.options;
-  o.modes = a.optional_integer("modes").value_or(o.modes);
-  o.order = a.optional_integer("order").value_or(o.order);
-  o.min_frequency_hz = a.optional_number("min-frequency").value_or(o.min_frequency_hz);
-  o.max_frequency_hz = a.optional_number("max-frequency").value_or(o.max_frequency_hz);
-  a.require(o.min_frequency_hz >= 0, "min-frequency", "must be >= 0");
-  a.require(o.max_frequency_hz > o.min_frequency_hz, "max-frequency", "must exceed --min-frequency");
-  try {
-    r.modes = signal::matrix_pencil(data.values, data.dt_s, o);
-  } catch (const InputError& error) {
-    throw InputError("beamid modal-id: --data = '" + data.path + "': " + error.what());
-  }
-  return r;
-}
-
 int run_modal_id(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
-  const ModalIdResult r = compute_modal_id(a, data);
+  const api::ModalIdResult r = api::compute_modal_id(modal_id_request_of(a), data);
   const signal::PencilOptions& o = r.options;
   const std::vector<signal::IdentifiedMode>& modes = r.modes;
   std::ostringstream csv;

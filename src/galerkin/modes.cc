@@ -37,6 +37,32 @@ UndampedModes undamped_modes(const SecondOrderSystem& s) {
   return modes;
 }
 
+UndampedModes lowest_undamped_modes(const BeamForms& forms, const model::BeamParameters& beam, int modes) {
+  UndampedModes m = undamped_modes(combine(forms, beam));
+  if (m.omega_rad_s.size() < modes)
+    throw InputError("the Galerkin model has " + std::to_string(m.omega_rad_s.size()) + " modes, " +
+                     std::to_string(modes) + " are fitted");
+  m.omega_rad_s.conservativeResize(modes);
+  m.shapes.conservativeResize(Eigen::NoChange, modes);
+  return m;
+}
+
+Eigen::MatrixXd frequency_sensitivities(const BeamForms& forms, const model::BeamParameters& beam,
+                                        const std::vector<std::string>& keys, int modes) {
+  const UndampedModes m = lowest_undamped_modes(forms, beam, modes);
+  Eigen::MatrixXd g(modes, static_cast<Eigen::Index>(keys.size()));
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const SecondOrderSystem d = parameter_derivative(forms, beam, keys[i]);
+    const double q = model::parameter_value(beam, keys[i]);
+    for (int k = 0; k < modes; ++k) {
+      const Eigen::VectorXd phi = m.shapes.col(k);
+      const double w2 = m.omega_rad_s(k) * m.omega_rad_s(k);
+      g(k, static_cast<Eigen::Index>(i)) = q * phi.dot(d.K * phi - w2 * (d.M * phi)) / (2 * w2);
+    }
+  }
+  return g;
+}
+
 namespace {
 
 using complex = std::complex<double>;

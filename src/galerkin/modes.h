@@ -35,6 +35,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <string>
 #include <vector>
 
 #include "galerkin/second_order_system.h"
@@ -47,6 +48,15 @@ struct UndampedModes {
 };
 // Throws NumericalError when M is not positive definite or the eigensolver fails.
 UndampedModes undamped_modes(const SecondOrderSystem& system);
+// The first `modes` of them for the model (forms, beam): InputError when the model has fewer ("the Galerkin model has
+// n modes, m are fitted").
+UndampedModes lowest_undamped_modes(const BeamForms& forms, const model::BeamParameters& beam, int modes);
+// d log f_k / d log q_i of the first `modes` undamped modes of the Galerkin model (forms, beam), exactly: with
+// phi_k M-normalised, d(omega_k^2)/dq = phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k, so that
+// d log f_k / d log q = q phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k / (2 omega_k^2)  (0 for damping parameters).
+// modes x keys.
+Eigen::MatrixXd frequency_sensitivities(const BeamForms& forms, const model::BeamParameters& beam,
+                                        const std::vector<std::string>& keys, int modes);
 
 struct DampedMode {
   double frequency_hz;          // natural frequency |lambda| / (2 pi)

@@ -7,6 +7,7 @@
 
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
+#include "galerkin/modes.h"
 #include "study/start_distance.h"
 
 namespace beamid::study {
@@ -52,50 +53,6 @@ double flat_share_of(const std::vector<double>& steps) {
 }
 
 }  // namespace
-
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-std::pair<double, double> wilson_interval(int successes, int cases) {
-  if (cases <= 0) return {kNaN, kNaN};
-  const double z = 1.96, n = cases, p = successes / n, z2 = z * z;
-  const double centre = (p + z2 / (2 * n)) / (1 + z2 / n);
-  const double half = z * std::sqrt(p * (1 - p) / n + z2 / (4 * n * n)) / (1 + z2 / n);
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
-}
-
-std::string count_with_interval(int successes, int cases) {
-  const auto [low, high] = wilson_interval(successes, cases);
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%d/%d (95 %% interval %.3g-%.3g %%)", successes, cases, 100 * low, 100 * high);
-  return buf;
-}
-
-Stats stats(const std::vector<double>& values) {
-  Stats s;
-  s.mean = s.std = s.rmse = s.median = kNaN;
-  std::vector<double> v;
-  for (double x : values)
-    if (std::isfinite(x)) v.push_back(x);
-  s.count = static_cast<int>(v.size());
-  if (v.empty()) return s;
-  double sum = 0, sq = 0;
-  for (double x : v) sum += x, sq += x * x;
-  s.mean = sum / s.count;
-  s.rmse = std::sqrt(sq / s.count);
-  if (s.count > 1) {
-    double d = 0;
-    for (double x : v) d += (x - s.mean) * (x - s.mean);
-    s.std = std::sqrt(d / (s.count - 1));
-  }
-  s.median = median(v);
-  return s;
-}
 
 GroupKey key_of(const Unit& u) { return {u.pulse_width_s, u.samples, u.cost, u.method, u.start, u.elements, u.noise}; }
 
@@ -192,7 +149,7 @@ Resolution landscape_resolution(const StudyResults& results, const Unit& u, cons
   try {
     const galerkin::BeamForms forms(galerkin::SplineSpace(u.elements), spec.truth.parameters.l,
                                     spec.truth.parameters.support);
-    const Eigen::MatrixXd g = frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);
+    const Eigen::MatrixXd g = galerkin::frequency_sensitivities(forms, spec.truth.parameters, keys, spec.fit.spikes);
     double step = 0;
     for (std::size_t i = 0; i < keys.size(); ++i)
       step = std::max(step, g.col(static_cast<Eigen::Index>(i)).cwiseAbs().maxCoeff() * std::abs(log_steps[i]));

@@ -7,52 +7,20 @@
 #include "core/errors.h"
 #include "signal/noise.h"
 #include "study/format.h"
-#include "study/metrics.h"
+#include "study/statistics.h"
+
 
 namespace beamid::study {
-namespace {
-
-// The first `modes` undamped frequencies (rad/s) of the model.
-Eigen::VectorXd frequencies(const galerkin::BeamForms& forms, const model::BeamParameters& beam, int modes) {
-  const auto m = galerkin::undamped_modes(galerkin::combine(forms, beam));
-  if (m.omega_rad_s.size() < modes)
-    throw InputError("the Galerkin model has " + std::to_string(m.omega_rad_s.size()) + " modes, " +
-                     std::to_string(modes) + " are fitted");
-  return m.omega_rad_s.head(modes);
-}
-
-}  // namespace
-
 Eigen::VectorXd random_direction(std::uint64_t seed, int dimension) {
   const std::vector<double> g = signal::gaussian_deviates(seed, static_cast<std::size_t>(dimension));
   Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(g.data(), dimension);
   return u / u.norm();
 }
 
-Eigen::MatrixXd frequency_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
-                                        const std::vector<std::string>& keys, int modes) {
-  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  const galerkin::UndampedModes m = galerkin::undamped_modes(system);
-  if (m.omega_rad_s.size() < modes)
-    throw InputError("the Galerkin model has " + std::to_string(m.omega_rad_s.size()) + " modes, " +
-                     std::to_string(modes) + " are fitted");
-  Eigen::MatrixXd g(modes, static_cast<Eigen::Index>(keys.size()));
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    const galerkin::SecondOrderSystem d = galerkin::parameter_derivative(forms, beam, keys[i]);
-    const double q = model::parameter_value(beam, keys[i]);
-    for (int k = 0; k < modes; ++k) {
-      const Eigen::VectorXd phi = m.shapes.col(k);
-      const double w2 = m.omega_rad_s(k) * m.omega_rad_s(k);
-      g(k, static_cast<Eigen::Index>(i)) = q * phi.dot(d.K * phi - w2 * (d.M * phi)) / (2 * w2);
-    }
-  }
-  return g;
-}
-
 OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamParameters& truth,
                          const std::vector<std::string>& keys, int modes, const Eigen::VectorXd& direction,
                          double offset, double bound_factor) {
-  const Eigen::MatrixXd g = frequency_sensitivities(forms, truth, keys, modes);
+  const Eigen::MatrixXd g = galerkin::frequency_sensitivities(forms, truth, keys, modes);
   const double slope = (g * direction).cwiseAbs().maxCoeff();  // max_k |d log f_k / ds| along u
   OffsetStart out;
   const double limit = 0.9 * std::log(bound_factor) / direction.cwiseAbs().maxCoeff();
@@ -63,7 +31,8 @@ OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamPara
     model::set_parameter_value(
         out.start, keys[i],
         model::parameter_value(out.start, keys[i]) * std::exp(out.step * direction(static_cast<Eigen::Index>(i))));
-  const Eigen::VectorXd f0 = frequencies(forms, truth, modes), f1 = frequencies(forms, out.start, modes);
+  const Eigen::VectorXd f0 = galerkin::lowest_undamped_modes(forms, truth, modes).omega_rad_s,
+                        f1 = galerkin::lowest_undamped_modes(forms, out.start, modes).omega_rad_s;
   out.frequency_offset = (f1.array() / f0.array() - 1).abs().maxCoeff();
   return out;
 }

@@ -20,13 +20,6 @@ namespace beamid::study {
 // A unit vector of `dimension` components, uniform on the sphere (normalised standard normal deviates of `seed`).
 Eigen::VectorXd random_direction(std::uint64_t seed, int dimension);
 
-// d log f_k / d log q_i of the first `modes` undamped modes of the Galerkin model (forms, beam), exactly: with
-// phi_k M-normalised, d(omega_k^2)/dq = phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k, so that
-// d log f_k / d log q = q phi_k^T (dK/dq - omega_k^2 dM/dq) phi_k / (2 omega_k^2)  (0 for damping parameters).
-// modes x keys.
-Eigen::MatrixXd frequency_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
-                                        const std::vector<std::string>& keys, int modes);
-
 struct OffsetStart {
   model::BeamParameters start;
   double step = 0;              // s: log q = log q_true + s u

@@ -6,7 +6,7 @@
 
 #include <sstream>
 
-#include "apps/command_flags.h"
+#include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "../fit/same_model_record.h"
 #include "core/errors.h"

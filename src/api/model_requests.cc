@@ -1,0 +1,172 @@
+#include "api/model_requests.h"
+
+#include <algorithm>
+#include <numbers>
+#include <ostream>
+
+#include "core/errors.h"
+#include "core/limits.h"
+#include "galerkin/modes.h"
+#include "model/exact_frequencies.h"
+#include "signal/noise.h"
+
+namespace beamid::api {
+
+ModelRun model_run(const ModelRunRequest& request, double bytes_per_sample, std::ostream& warnings) {
+  check_elements(request.caller, request.elements);
+  ModelRun run{request.beam_name, request.beam, request.elements, {}};
+  run.experiment = experiment_of(request.experiment, run.beam.l, request.caller);
+  guard_run_size(request.caller, run.elements, bytes_per_sample > 0 ? run.experiment.samples : 0, bytes_per_sample,
+                 warnings);
+  return run;
+}
+
+namespace {
+
+// "--count K: the Galerkin model at N = n has S <what>: S printed" when count asks for more than the model has.
+std::string fewer_modes_note(const ModesResult& r, int elements, const std::string& what) {
+  if (!r.requested || *r.requested <= r.available) return "";
+  return "--count " + std::to_string(*r.requested) + ": the Galerkin model at N = " + std::to_string(elements) +
+         " has " + std::to_string(r.available) + " " + what + ": " + std::to_string(r.available) + " printed";
+}
+
+// The exact (determinant) frequencies of the beam (model/exact_frequencies.h).
+void exact_modes(const ModesRequest& request, ModesResult& r) {
+  r.kind = "exact";
+  const auto omega = model::timoshenko_frequencies_rad_s(request.beam, r.requested.value_or(4));
+  if (r.requested && static_cast<int>(omega.size()) < *r.requested)
+    refuse(request.caller, "--count = " + std::to_string(*r.requested) + ": only " + std::to_string(omega.size()) +
+                               " modes lie below the shear cut-off");
+  for (const double w : omega) r.frequency_hz.push_back(w / (2 * std::numbers::pi));
+  r.available = static_cast<int>(omega.size());
+}
+
+}  // namespace
+
+ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
+  ModesResult r;
+  r.requested = request.count;
+  if (r.requested && *r.requested < 1) refuse(request.caller, "count", std::to_string(*r.requested), "must be >= 1");
+  if (!request.exact && !request.elements)
+    refuse(request.caller, "give one of --elements N (Galerkin) and --exact (determinant)");
+  if (request.exact) {
+    exact_modes(request, r);
+    return r;
+  }
+  const int n = *request.elements;
+  check_elements(request.caller, n);
+  guard_run_size(request.caller, n, 0, 0, warnings);
+  const galerkin::SplineSpace space(n);
+  const galerkin::SecondOrderSystem system = galerkin::assemble(space, request.beam);
+  if (request.undamped) {
+    r.kind = "undamped";
+    const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
+    r.available = static_cast<int>(omega.size());
+    const int shown = std::min(r.requested.value_or(r.available), r.available);
+    r.note = fewer_modes_note(r, n, "modes");
+    for (int k = 0; k < shown; ++k) {
+      r.frequency_hz.push_back(omega(k) / (2 * std::numbers::pi));
+      r.damping_ratio.push_back(0.0);
+    }
+    return r;
+  }
+  r.kind = "damped";
+  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
+  r.available = static_cast<int>(modes.size());
+  const int shown = std::min(r.requested.value_or(r.available), r.available);
+  r.note = fewer_modes_note(r, n, "underdamped modes");
+  for (int k = 0; k < shown; ++k) {
+    r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);
+    r.damping_ratio.push_back(modes[static_cast<std::size_t>(k)].damping_ratio);
+  }
+  return r;
+}
+
+SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings) {
+  const Caller& caller = request.run.caller;
+  SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}};
+  simulation::SimulatorOptions options;
+  options.integrator = request.integrator;
+  options.cvode.rtol = request.rtol.value_or(options.cvode.rtol);
+  options.cvode.atol = request.atol.value_or(options.cvode.atol);
+  options.cvode.max_order = request.max_order.value_or(options.cvode.max_order);
+  if (auto error = simulation::validation_error(options)) refuse(caller, *error);
+  // A synthetic lab record: white noise of noise_level times the clean signal's RMS (signal/noise.h).
+  const double noise = request.noise_level.value_or(0.0);
+  if (!(noise >= 0 && noise <= 10))
+    refuse(caller, "noise-level", format_value(noise), "must be in [0, 10] (times the signal's RMS)");
+  if (request.seed && !request.noise_level)
+    refuse(caller, "seed", std::to_string(*request.seed), "seeds the noise: give --noise-level too");
+  if (request.seed && *request.seed < 0)
+    refuse(caller, "seed", std::to_string(*request.seed), "must be an integer >= 0");
+  const galerkin::SplineSpace space(r.run.elements);
+  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
+  r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);
+  if (!r.trace.ok()) throw NumericalError(caller.label + ": " + r.trace.status);
+  r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
+  return r;
+}
+
+SystemResult compute_system(const ModelRunRequest& request, std::ostream& warnings) {
+  SystemResult r{model_run(request, 0, warnings), {}, {}};
+  const galerkin::SplineSpace space(r.run.elements);
+  const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
+  r.system = galerkin::combine(forms, r.run.beam);
+  r.problem = simulation::make_problem(forms, r.system, r.run.experiment);
+  return r;
+}
+
+namespace {
+
+// The noise sd the bound assumes: noise_sd, or noise_level times the RMS of the clean record at the beam's values.
+double crb_noise_sd(const CrbRequest& request, const ModelRun& run) {
+  const Caller& caller = request.run.caller;
+  if (request.noise_sd) {
+    if (!(*request.noise_sd > 0)) refuse(caller, "noise-sd", format_value(*request.noise_sd), "must be > 0");
+    return *request.noise_sd;
+  }
+  const double level = *request.noise_level;
+  if (!(level > 0)) refuse(caller, "noise-level", format_value(level), "must be > 0");
+  const galerkin::SplineSpace space(run.elements);
+  const simulation::Trace clean =
+      simulation::simulate(galerkin::BeamForms(space, run.beam.l, run.beam.support), run.beam, run.experiment, {});
+  if (!clean.ok()) throw NumericalError(caller.label + ": the model could not be evaluated: " + clean.status);
+  const double sigma = level * signal::rms(clean.y);
+  if (!(sigma > 0))
+    refuse(caller, "noise-level", format_value(level),
+           "the clean signal is zero, so a fraction of its RMS is no noise level");
+  return sigma;
+}
+
+}  // namespace
+
+CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
+  const Caller& caller = request.run.caller;
+  CrbResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}, 0, {}, {}};
+  const model::BeamParameters& beam = r.run.beam;
+  std::string listed;  // the --estimate list as given, for its errors
+  for (const std::string& key : request.estimate) listed += (listed.empty() ? "" : ",") + key;
+  for (const std::string& key : request.estimate) {
+    if (!model::describe_parameter(beam, key))
+      refuse(caller, "estimate", listed,
+             "'" + key + "' is not a parameter of this beam (valid: " + model::estimable_keys(beam) + ")");
+    r.keys.push_back(key);
+  }
+  if (r.keys.empty()) refuse(caller, "estimate", listed, "must name at least one parameter");
+  if (!request.noise_sd && !request.noise_level)
+    refuse(caller, "give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
+  r.options.log_step = request.log_step.value_or(r.options.log_step);
+  if (!(r.options.log_step > 0 && r.options.log_step <= 0.1))
+    refuse(caller, "log-step", format_value(r.options.log_step), "must lie in (0, 0.1]");
+  r.noise_sd = crb_noise_sd(request, r.run);
+  try {
+    r.bound = fit::beam_cramer_rao_bound(beam, r.run.elements, r.run.experiment, r.keys, r.noise_sd, {}, r.options);
+  } catch (const InputError& error) {
+    refuse(caller, "estimate", listed, error.what());
+  }
+  if (r.bound.status != "ok") throw NumericalError(caller.label + ": " + r.bound.status);
+  for (const std::string& key : r.keys) r.values.push_back(model::parameter_value(beam, key));
+  return r;
+}
+
+}  // namespace beamid::api

@@ -1,0 +1,103 @@
+// The requests that compute from a beam model alone (no record): beamid modes, simulate, system and crb. Each holds
+// the beam as parameters (resolved from a preset, a file or a dict by the front end), the Galerkin order and, where
+// the computation has one, the experiment; each compute function validates it (errors in the command line's
+// one-line form) and returns values.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/experiment_request.h"
+#include "api/request.h"
+#include "fit/cramer_rao.h"
+#include "galerkin/second_order_system.h"
+#include "model/beam_parameters.h"
+#include "simulation/experiment.h"
+#include "simulation/simulator.h"
+
+namespace beamid::api {
+
+// A model run as a request describes it: the beam, N and the experiment (beamid system's whole request).
+struct ModelRunRequest {
+  Caller caller{"beamid system"};
+  std::string beam_name;           // what the program says it ran
+  model::BeamParameters beam;      // --beam
+  int elements = 0;                // --elements N (required)
+  ExperimentRequest experiment;    // --dt, --samples, ...
+};
+struct ModelRun {
+  std::string beam_name;
+  model::BeamParameters beam;
+  int elements = 0;
+  simulation::Experiment experiment;
+};
+// The run, validated, with its size guarded (guard_run_size with `bytes_per_sample`; 0 for a run that simulates no
+// samples).
+ModelRun model_run(const ModelRunRequest& request, double bytes_per_sample, std::ostream& warnings);
+
+// beamid modes: the first `count` modes (all underdamped Galerkin modes, or 4 exact ones, by default).
+struct ModesRequest {
+  Caller caller{"beamid modes"};
+  model::BeamParameters beam;      // --beam
+  std::optional<int> elements;     // --elements N: the Galerkin model's modes
+  bool exact = false;              // --exact: the exact (determinant) frequencies instead; one of the two
+  bool undamped = false;           // --undamped: the Galerkin model's undamped modes
+  std::optional<int> count;        // --count
+};
+struct ModesResult {
+  std::string kind;                   // "exact" | "undamped" | "damped"
+  std::vector<double> frequency_hz;   // ascending
+  std::vector<double> damping_ratio;  // empty for exact
+  std::optional<int> requested;       // count
+  int available = 0;                  // modes the model has (Galerkin), before count
+  std::string note;                   // "" or what the command says on stderr: fewer modes than count asked
+};
+ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings);
+
+// beamid simulate: the trace (clean) and the samples with noise_level's noise, if any.
+struct SimulateRequest {
+  ModelRunRequest run{Caller{"beamid simulate"}};
+  std::string integrator = "fast";  // --integrator
+  std::optional<double> rtol;       // --rtol (cvode)
+  std::optional<double> atol;       // --atol (cvode)
+  std::optional<int> max_order;     // --max-order (cvode)
+  std::optional<double> noise_level;  // --noise-level: white noise of this times the clean signal's RMS (none: 0)
+  std::optional<long long> seed;      // --seed of the noise (needs noise_level; default 1)
+};
+struct SimulateResult {
+  ModelRun run;
+  simulation::Trace trace;
+  std::vector<double> y;
+};
+SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings);
+
+// beamid system: the Galerkin matrices and the response problem of the experiment.
+struct SystemResult {
+  ModelRun run;
+  galerkin::SecondOrderSystem system;
+  simulation::ResponseProblem problem;
+};
+SystemResult compute_system(const ModelRunRequest& request, std::ostream& warnings);
+
+// beamid crb: the Cramér-Rao bound on `estimate` at the beam's values, with white noise of noise_sd (absolute) or
+// noise_level (times the clean signal's RMS): one of the two.
+struct CrbRequest {
+  ModelRunRequest run{Caller{"beamid crb"}};
+  std::vector<std::string> estimate;  // --estimate (required)
+  std::optional<double> noise_sd;     // --noise-sd
+  std::optional<double> noise_level;  // --noise-level
+  std::optional<double> log_step;     // --log-step of the sensitivities' Ridders extrapolation
+};
+struct CrbResult {
+  ModelRun run;
+  std::vector<std::string> keys;
+  std::vector<double> values;
+  double noise_sd = 0;
+  fit::SensitivityOptions options;
+  fit::CramerRaoBound bound;
+};
+CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings);
+
+}  // namespace beamid::api

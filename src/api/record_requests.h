@@ -1,0 +1,58 @@
+// The requests that compute from a record alone (no model): beamid spikes, cost (of a given prediction) and
+// modal-id. The record comes read (io::TimeSeries: a file through the import options, or an array); each compute
+// function validates the request against it and returns values.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/cost_request.h"
+#include "api/request.h"
+#include "costs/cost.h"
+#include "io/time_series.h"
+#include "signal/matrix_pencil.h"
+#include "signal/spectrum.h"
+#include "signal/spikes.h"
+
+namespace beamid::api {
+
+// beamid spikes: every peak of the (detrended) record's spectrum with its label, and the picks (no label) by bin.
+struct SpikesRequest {
+  Caller caller{"beamid spikes"};
+  SpikeRequest spikes;
+  WindowRequest window;             // not with welch (its segments are Hann-windowed)
+  std::optional<std::string> detrend;  // --detrend (default linear: a record read from a file is a measured one)
+  std::optional<int> welch;         // --welch K: Welch's average of K segments instead of the record's DFT
+};
+struct SpikesResult {
+  signal::Spectrum spectrum;
+  std::vector<signal::LabelledPeak> peaks;
+  std::vector<signal::Spike> picks;
+  int requested = 0;  // spikes.count
+};
+SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& data);
+
+// beamid cost: the cost of a prediction (same length and step as the data) against the data.
+struct CostEvaluationRequest {
+  Caller caller{"beamid cost"};
+  CostRequest cost;
+};
+costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::TimeSeries& data,
+                               const io::TimeSeries& prediction);
+
+// beamid modal-id: the modes of a free decay by the matrix pencil, with the options the request gave.
+struct ModalIdRequest {
+  Caller caller{"beamid modal-id"};
+  std::optional<int> modes;                // --modes K
+  std::optional<int> order;                // --order M
+  std::optional<double> min_frequency_hz;  // --min-frequency
+  std::optional<double> max_frequency_hz;  // --max-frequency
+};
+struct ModalIdResult {
+  signal::PencilOptions options;
+  std::vector<signal::IdentifiedMode> modes;
+};
+ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeries& data);
+
+}  // namespace beamid::api
