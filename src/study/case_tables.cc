@@ -54,10 +54,10 @@ RenderedFiles render_cases(const StudyResults& results) {
     tm << l.unit->id << ",start," << l.unit->cost << "," << l.unit->elements << "," << io::round_trip(l.unit->noise)
        << "," << l.record.text("wall_time_s") << "\n";
   for (const LandscapeRow& l : results.landscape)
-    tm << l.unit->id << "," << l.unit->kind << "," << l.unit->cost << "," << l.unit->elements << ",0,"
+    tm << l.unit->id << "," << unit_kind_name(l.unit->kind) << "," << l.unit->cost << "," << l.unit->elements << ",0,"
        << l.record.text("wall_time_s") << "\n";
   for (const Unit& u : results.plan->units)
-    if (u.kind == "frequencies")
+    if (u.kind == UnitKind::Frequencies)
       tm << u.id << ",frequencies,," << u.elements << ",0," << results.frequencies.at(u.elements).text("wall_time_s")
          << "\n";
   return {{"cases.csv", os.str()}, {"timings.csv", tm.str()}};

@@ -76,7 +76,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
     o.cost.eps1_factor = m.eps1_factor;
     o.cost.eps2_factor = m.eps2_factor;
   }
-  if (unit.kind == "case")
+  if (unit.kind == UnitKind::Case)
     for (const auto& [key, factor] : spec.start(unit.start).factor) set(o.start, key, value(o.start, key) * factor);
   return o;
 }
@@ -192,11 +192,11 @@ int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vect
 
 void validate_plan(const StudySpec& spec, const Plan& plan) {
   for (const Unit& u : plan.units) {
-    if (u.kind == "frequencies" || u.kind == "bound") continue;  // no fit
+    if (u.kind == UnitKind::Frequencies || u.kind == UnitKind::Bound) continue;  // no fit
     try {
       fit::validate(unit_options(spec, u, spec.fit.spikes > 0 ? spec.fit.spikes : spec.fit.max_spikes));
     } catch (const InputError& e) {
-      throw InputError(spec.path + ": " + u.kind + " " + u.id + " (N = " + std::to_string(u.elements) + ", cost " +
+      throw InputError(spec.path + ": " + unit_kind_name(u.kind) + " " + u.id + " (N = " + std::to_string(u.elements) + ", cost " +
                        u.cost + (u.method.empty() ? "" : ", method " + u.method) + "): " + e.what());
     }
   }
@@ -265,13 +265,13 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
         x[static_cast<std::size_t>(j)] = value(beam, key) * std::pow(F, 2.0 * j / (points - 1) - 1);
       return x;
     };
-    if (unit.kind == "slice" || unit.kind == "grid") {
+    if (unit.kind == UnitKind::Slice || unit.kind == UnitKind::Grid) {
       fit::Objective objective(o, data);
       const auto cost_at = [&](const model::BeamParameters& b) {
         const double c = objective.evaluate(b).evaluation.value;
         return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
       };
-      if (unit.kind == "slice") {
+      if (unit.kind == UnitKind::Slice) {
         const std::vector<double> x = axis(unit.parameters[0], unit.points);
         std::vector<double> c;
         for (double v : x) {
@@ -417,12 +417,12 @@ Record run_frequencies(const StudySpec& spec, int elements) {
 }
 
 Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
-  Record r = unit.kind == "case"          ? run_case(spec, unit, truth)
-             : unit.kind == "frequencies" ? run_frequencies(spec, unit.elements)
-             : unit.kind == "start"       ? run_start(spec, unit, truth)
-             : unit.kind == "bound"       ? run_bound(spec, unit, truth)
+  Record r = unit.kind == UnitKind::Case          ? run_case(spec, unit, truth)
+             : unit.kind == UnitKind::Frequencies ? run_frequencies(spec, unit.elements)
+             : unit.kind == UnitKind::Start       ? run_start(spec, unit, truth)
+             : unit.kind == UnitKind::Bound       ? run_bound(spec, unit, truth)
                                           : run_landscape(spec, unit, truth);
-  r.set("kind", unit.kind);
+  r.set("kind", unit_kind_name(unit.kind));
   return r;
 }
 

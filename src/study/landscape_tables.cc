@@ -129,7 +129,7 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
   for (const LandscapeRow& l : results.landscape) {
     const Unit& u = *l.unit;
     const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
-    if (u.kind == "slice" && first)
+    if (u.kind == UnitKind::Slice && first)
       files.push_back(slice_file(l, true_value(spec, u.parameters[0]), first_setting(spec, u)));
   }
   for (const GridRow& g : metrics.grids)  // the grids whose lists agree in size (metrics.h)

@@ -173,11 +173,11 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
   for (const LandscapeRow& l : results.landscape) {
     const Unit& u = *l.unit;
     const Record& rec = l.record;
-    if (u.kind != "slice" && u.kind != "grid") continue;
+    if (u.kind != UnitKind::Slice && u.kind != UnitKind::Grid) continue;
     // Each list parsed once; a record whose lists disagree in size (or are absent) has no shape.
     const auto list = [&](const char* key) { return rec.has(key) ? rec.numbers(key) : std::vector<double>{}; };
     const std::vector<double> x = list("x"), c = list("cost");
-    if (u.kind == "slice") {
+    if (u.kind == UnitKind::Slice) {
       if (c.empty() || x.size() != c.size()) continue;
       const double v = model::parameter_value(beam, u.parameters[0]);
       const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
@@ -203,14 +203,14 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
     s.reference_cost = kNaN;
     const Record* reference = nullptr;
     for (const LandscapeRow& l : results.landscape)
-      if (l.unit->kind == "multistart" && l.unit->cost == cost && l.record.text("status").rfind("failed", 0) != 0 &&
+      if (l.unit->kind == UnitKind::Multistart && l.unit->cost == cost && l.record.text("status").rfind("failed", 0) != 0 &&
           (reference == nullptr || l.record.number("cost") < reference->number("cost"))) {
         reference = &l.record;
         s.reference_start = l.unit->index;
       }
     if (reference != nullptr) s.reference_cost = reference->number("cost");
     for (const LandscapeRow& l : results.landscape) {
-      if (l.unit->kind != "multistart" || l.unit->cost != cost) continue;
+      if (l.unit->kind != UnitKind::Multistart || l.unit->cost != cost) continue;
       const Record& rec = l.record;
       bool reached = false;
       if (reference != nullptr && rec.text("status").rfind("failed", 0) != 0) {

@@ -24,8 +24,13 @@
 
 namespace beamid::study {
 
+// The kinds of unit (above). A kind's name (unit_kind_name) is how the store, the timings and a unit's canonical
+// text spell it, so it never changes.
+enum class UnitKind { Truth, Case, Slice, Grid, Multistart, Frequencies, Start, Bound };
+const std::string& unit_kind_name(UnitKind kind);
+
 struct Unit {
-  std::string kind;       // "truth" | "case" | "slice" | "grid" | "multistart" | "frequencies" | "start" | "bound"
+  UnitKind kind = UnitKind::Case;
   std::string id;         // 16 hex digits
   std::string canonical;  // "key=value;..." of everything that determines the result
   std::uint64_t seed = 0;

@@ -50,14 +50,14 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
       ++missing;
       continue;
     }
-    if (u.kind == "case") {
+    if (u.kind == UnitKind::Case) {
       const bool success = case_succeeded(spec, *r);
       results.cases.push_back({&u, std::move(*r), success});
-    } else if (u.kind == "bound") {
+    } else if (u.kind == UnitKind::Bound) {
       results.bounds.push_back({&u, std::move(*r)});
-    } else if (u.kind == "start") {
+    } else if (u.kind == UnitKind::Start) {
       results.starts.push_back({&u, std::move(*r)});
-    } else if (u.kind == "frequencies") {
+    } else if (u.kind == UnitKind::Frequencies) {
       results.frequencies[u.elements] = std::move(*r);
     } else {
       results.landscape.push_back({&u, std::move(*r)});

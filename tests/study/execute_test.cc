@@ -40,7 +40,7 @@ TEST(Execute, TruthIsTheExactClosedFormAndCvodeAgreesWithIt) {
   spec.truth.experiment.samples = 512;
   spec.truth.experiment.pulse_width_s = 4e-3;
   Unit truth;
-  truth.kind = "truth";
+  truth.kind = UnitKind::Truth;
   truth.pulse_width_s = 4e-3;
   truth.samples = 512;
   truth.cvode_check = true;

@@ -97,7 +97,7 @@ struct MultistartCase {
     spec.sweep.samples = {256};
     for (const auto& [index, status, cost, ei] : fits) {
       Unit u;
-      u.kind = "multistart";
+      u.kind = UnitKind::Multistart;
       u.cost = "time";
       u.index = index;
       plan.units.push_back(u);
@@ -174,7 +174,7 @@ TEST(Metrics, BiasDecompositionSeparatesTheMinimumsBiasFromTheNoises) {
     results.plan = &plan;
     for (std::size_t i = 0; i < plan.units.size(); ++i) {
       Unit& u = plan.units[i];
-      u.kind = "case";
+      u.kind = UnitKind::Case;
       u.cost = "time", u.method = "direct", u.start = "truth";
       u.elements = 8, u.pulse_width_s = 0.004, u.samples = 4096;
       u.noise = i == 0 ? 0.0 : 0.01;
@@ -216,7 +216,7 @@ TEST(Metrics, LandscapeResolutionFlagsSlicesCoarserThanTheLeastSquaresBasin) {
     spec.sweep.samples = {4096};
     Plan plan;
     Unit u;
-    u.kind = "slice";
+    u.kind = UnitKind::Slice;
     u.cost = "time";
     u.parameters = {"EI"};
     u.truth = 0;

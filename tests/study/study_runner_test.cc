@@ -262,9 +262,9 @@ TEST(StudyRunnerExperiments, StartDistanceCurvesForEveryExperiment) {
   const Plan plan_first = make_plan(first), plan_all = make_plan(all);
   std::vector<std::string> ids_first, ids_all;
   for (const Unit& u : plan_first.units)
-    if (u.kind == "start") ids_first.push_back(u.id);
+    if (u.kind == UnitKind::Start) ids_first.push_back(u.id);
   for (const Unit& u : plan_all.units)
-    if (u.kind == "start") ids_all.push_back(u.id);
+    if (u.kind == UnitKind::Start) ids_all.push_back(u.id);
   ASSERT_EQ(ids_first.size(), 5u);  // the truth start and 2 offsets x 2 directions
   ASSERT_EQ(ids_all.size(), 10u);
   EXPECT_TRUE(std::equal(ids_first.begin(), ids_first.end(), ids_all.begin()));

@@ -128,7 +128,7 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   // 2 N x 2 costs x (1 noise-free + 3 noisy replicates): a noise-free case runs once; plus a unit per N that
   // computes the Galerkin frequencies of the truth beam.
   ASSERT_EQ(plan.units.size(), 18u);
-  EXPECT_EQ(plan.units.back().kind, "frequencies");
+  EXPECT_EQ(plan.units.back().kind, UnitKind::Frequencies);
   ASSERT_EQ(plan.truths.size(), 1u);
   std::set<std::string> ids;
   for (const auto& u : plan.units) ids.insert(u.id);
@@ -147,7 +147,7 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   // Every cost and N of one (noise, replicate) sees the same noise; replicates see different noise.
   std::map<std::pair<double, int>, std::set<std::uint64_t>> noise;
   for (const auto& u : plan.units)
-    if (u.kind == "case") noise[{u.noise, u.replicate}].insert(u.noise_seed);
+    if (u.kind == UnitKind::Case) noise[{u.noise, u.replicate}].insert(u.noise_seed);
   for (const auto& [k, v] : noise) EXPECT_EQ(v.size(), 1u);
   const std::pair<double, int> first{0.01, 0}, second{0.01, 1};
   EXPECT_NE(*noise[first].begin(), *noise[second].begin());
@@ -226,7 +226,7 @@ TEST(StudyPlan, StartDistanceUnitsShareDirectionsAndTheRecord) {
   // Per run: the fit from the truth plus 2 offsets x 4 directions.
   std::vector<const Unit*> starts;
   for (const auto& u : plan.units)
-    if (u.kind == "start") starts.push_back(&u);
+    if (u.kind == UnitKind::Start) starts.push_back(&u);
   ASSERT_EQ(starts.size(), 2u * (1 + 2 * 4));
   std::set<std::string> ids;
   std::set<std::uint64_t> noise;
