@@ -1,12 +1,14 @@
 """beamid: identify a Timoshenko beam's stiffness, mass and damping from its vibration (Banks & Wang 1993).
 
 The Python face of the beamid program: every function runs the same C++ computation as the command of its name,
-with the command's flags as keyword arguments. A flag's dashes become underscores (``--sensor-x`` is ``sensor_x``,
-``--pulse-width`` is ``pulse_width``), a switch is ``True``, a list is a list or tuple. The flags are parsed by the
-program's own parser, so a call and the command line validate alike, fail with the same one-line message (as
-:class:`InputError`, a ``ValueError``, or :class:`NumericalError`, a ``RuntimeError``) and give the same numbers bit
-for bit. Records (``data``) are a file path, as on the command line, or a NumPy array of samples (or samples x
-channels) with ``sample_rate`` or ``time``. ``beamid <command> --help`` lists every flag.
+with the command's flags as keyword-only arguments of a real signature (``help(beamid.fit)`` lists them with their
+types, defaults and meanings, generated from the program's command registry). A flag's dashes become underscores
+(``--sensor-x`` is ``sensor_x``, ``--pulse-width`` is ``pulse_width``), a switch is ``True``, a list is a list or
+tuple. A keyword the command does not have, or a value of the wrong type, is a ``TypeError``; the values are then
+checked by the program's own parser and requests, so a call and the command line validate alike, fail with the same
+one-line message (as :class:`InputError`, a ``ValueError``, or :class:`NumericalError`, a ``RuntimeError``) and give
+the same numbers bit for bit. Records (``data``) are a file path, as on the command line, or a NumPy array of samples
+(or samples x channels) with ``sample_rate`` or ``time``; a beam is a preset, a TOML file or a dict (:func:`beam`).
 
     >>> import beamid
     >>> y = beamid.simulate(beam="thick-steel", elements=8, dt=1e-4, samples=256, output="acceleration")
@@ -16,11 +18,12 @@ channels) with ``sample_rate`` or ``time``. ``beamid <command> --help`` lists ev
 
 The computations release the GIL: fits on several threads run in parallel.
 """
-import contextlib
+import functools
+import inspect
 import numbers
 import os
-import tempfile
 import threading
+import typing
 import warnings
 
 import numpy as np
@@ -149,30 +152,23 @@ def beam(spec=None, *, toml=None):
 BEAM_DICT = "<beam dict>"  # how messages and reports name a beam given as a dict
 
 
-@contextlib.contextmanager
-def _beam_flag(flags):
-    """``beam=`` as the program takes it: a dict becomes a temporary beam file for the duration of the call, and
-    errors name it "<beam dict>" (with the line of its TOML, as beam_toml writes it) instead of the temporary path."""
+def _beam_argument(flags):
+    """``beam=`` as the core takes it: (the flags with --beam as the program spells it, the TOML text of a beam given
+    as a dict or None). A dict is read from memory by the core (no file), and its messages name it "<beam dict>"
+    with the line of its TOML, as :func:`beam_toml` writes it."""
     value = flags.get("beam")
     if not isinstance(value, dict):
-        yield flags
-        return
-    text = beam_toml(value)
-    with tempfile.TemporaryDirectory(prefix="beamid-") as folder:
-        path = os.path.join(folder, "beam.toml")
-        with open(path, "w", encoding="utf-8") as out:
-            out.write(text)
-        try:
-            yield dict(flags, beam=path)
-        except (InputError, NumericalError) as error:
-            raise type(error)(str(error).replace(path, BEAM_DICT)) from None
-        report = flags.get("report")
-        if report and os.path.isfile(report):  # the report names the dict and carries its TOML, so it can be re-run
-            with open(report, encoding="utf-8") as f:
-                body = f.read().replace(path, "beam.toml")
-            with open(report, "w", encoding="utf-8") as f:
-                f.write(body + "\n## The beam (given as a dict from Python; save as beam.toml to re-run)\n\n```toml\n"
-                        + text + "```\n")
+        return flags, None
+    return dict(flags, beam=BEAM_DICT), beam_toml(value)
+
+
+def _append_beam_to_report(flags, text):
+    """A report of a fit of a beam dict names "<beam dict>" and carries its TOML, so that it can be re-run."""
+    report = flags.get("report")
+    if text is not None and report and os.path.isfile(report):
+        with open(report, "a", encoding="utf-8") as f:
+            f.write("\n## The beam (given as a dict from Python; save as beam.toml to re-run)\n\n```toml\n" + text
+                    + "```\n")
 
 
 def _record_flags(data, flags):
@@ -191,13 +187,13 @@ def _record_flags(data, flags):
     return np.asarray(array, dtype=float), dict(flags, data="<array>")
 
 
-def modes(**flags):
+def modes(**flags) -> np.ndarray:
     """``beamid modes``: a structured array (mode, frequency_hz, damping_ratio) of the beam's modes."""
-    with _beam_flag(flags) as f:
-        r = _call(_core.modes, _arguments(f))
+    f, toml = _beam_argument(flags)
+    r = _call(_core.modes, _arguments(f), toml)
     count = len(r["frequency_hz"])
     if r["note"]:
-        warnings.warn("beamid modes: " + r["note"], stacklevel=2)
+        warnings.warn("beamid modes: " + r["note"], stacklevel=3)
     fields = [("mode", "i8"), ("frequency_hz", "f8")] + ([("damping_ratio", "f8")] if r["kind"] != "exact" else [])
     table = np.zeros(count, dtype=fields)
     table["mode"] = np.arange(1, count + 1)
@@ -207,28 +203,28 @@ def modes(**flags):
     return table
 
 
-def simulate(**flags):
+def simulate(**flags) -> np.ndarray:
     """``beamid simulate``: the sampled output as a 1-D array (``y[i]`` at ``t = dt * i``), bit-identical to the
     command's second column."""
-    with _beam_flag(flags) as f:
-        return _call(_core.simulate, _arguments(f))["y"]
+    f, toml = _beam_argument(flags)
+    return _call(_core.simulate, _arguments(f), toml)["y"]
 
 
-def system(**flags):
+def system(**flags) -> dict:
     """``beamid system``: the Galerkin matrices M, C, K (arrays) with the experiment's load, sensor, initial state and
     sampling, as a dict."""
-    with _beam_flag(flags) as f:
-        return dict(_call(_core.system, _arguments(f)))
+    f, toml = _beam_argument(flags)
+    return dict(_call(_core.system, _arguments(f), toml))
 
 
-def spikes(data, time=None, **flags):
+def spikes(data, time=None, **flags) -> dict:
     """``beamid spikes``: a dict with ``picks`` (the spikes, ascending: bin, frequency_hz, magnitude, n_left,
     n_right) and ``skipped`` (peaks passed over as artefacts, with the reason)."""
     array, f = _record_flags(data, flags)
     return dict(_call(_core.spikes, _arguments(f), array, time))
 
 
-def cost(data, prediction, time=None, **flags):
+def cost(data, prediction, time=None, **flags) -> dict:
     """``beamid cost``: the value of ``cost=`` for a prediction (a file, or an array at the data's step) against the
     data; returns a dict with value, residuals, amplitude_scale and the (A4) check."""
     array, f = _record_flags(data, flags)
@@ -283,12 +279,22 @@ class FitResult:
         """Whether the fit produced estimates (status not "failed")."""
         return self.status != "failed"
 
+    def to_pandas(self):
+        """The parameters table as a pandas DataFrame, indexed by parameter (pandas is optional: Debian's
+        python3-pandas). The other tables are structured arrays, which pandas.DataFrame takes as they are."""
+        try:
+            import pandas
+        except ImportError as error:
+            raise ImportError("FitResult.to_pandas needs pandas (Debian: apt install python3-pandas); "
+                              "result.parameters is the same table as a NumPy structured array") from error
+        return pandas.DataFrame(self.parameters).set_index("parameter")
+
     def __repr__(self):
         estimates = ", ".join(f"{k}={v:.6g}" for k, v in self.estimates.items())
         return f"FitResult({self.status}, cost={self.cost:.6g}, evaluations={self.evaluations}, {estimates})"
 
 
-def fit(data, time=None, **flags):
+def fit(data, time=None, **flags) -> "FitResult":
     """``beamid fit``: fits the record(s) and returns a :class:`FitResult`. ``data`` is a file or an array (with
     ``sample_rate`` or ``time``); a 2-D array with ``channel=[1, 2]`` and ``sensor_x=[...]`` is a joint fit. Unlike
     the command, a failed fit is not an exception: its status says "failed", and a warning says why.
@@ -297,21 +303,22 @@ def fit(data, time=None, **flags):
     fit of that file bit for bit from arrays, pass the file's time column as ``time=``, not ``sample_rate=``.
     ``report=PATH`` writes the command's Markdown report (and PATH.spectra.csv beside it), creating its folder."""
     array, f = _record_flags(data, flags)
-    with _beam_flag(f) as f:
-        result = FitResult(_call(_core.fit, _arguments(f), array, time))
+    f, toml = _beam_argument(f)
+    result = FitResult(_call(_core.fit, _arguments(f), toml, array, time))
+    _append_beam_to_report(f, toml)
     for message in result.messages:
-        warnings.warn("beamid fit: " + message, stacklevel=2)
+        warnings.warn("beamid fit: " + message, stacklevel=3)
     return result
 
 
-def crb(**flags):
+def crb(**flags) -> dict:
     """``beamid crb``: the Cramér-Rao bound; a dict with parameters, value, crb_sd, crb_relative_sd (arrays in the
     order of ``estimate``), the noise sd assumed, the covariance of ln q and the method."""
-    with _beam_flag(flags) as f:
-        return dict(_call(_core.crb, _arguments(f)))
+    f, toml = _beam_argument(flags)
+    return dict(_call(_core.crb, _arguments(f), toml))
 
 
-def modal_id(data, time=None, **flags):
+def modal_id(data, time=None, **flags) -> np.ndarray:
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
     damping_ratio, amplitude, phase_rad)."""
     array, f = _record_flags(data, flags)
@@ -324,7 +331,7 @@ def modal_id(data, time=None, **flags):
     return table
 
 
-def read_record(path, **flags):
+def read_record(path, **flags) -> dict:
     """A record file as beamid reads it (CSV, .lvm, .npy, .mat, UFF 58, with the import flags: channel, units, start,
     duration, sample_rate, variable, time_variable, resample, resample_rate): a dict with values (array), dt_s, t0_s,
     unit, format, channel and notes."""
@@ -334,13 +341,116 @@ def read_record(path, **flags):
         raise InputError(str(error).replace("beamid modal-id:", "beamid.read_record:")) from None
 
 
-def _document_flags():
-    """Appends each command's flags (as `beamid <command> --help` lists them) to its function's docstring."""
-    for function, command in ((modes, "modes"), (simulate, "simulate"), (system, "system"), (spikes, "spikes"),
-                              (cost, "cost"), (fit, "fit"), (crb, "crb"), (modal_id, "modal-id")):
-        function.__doc__ = ((function.__doc__ or "") + "\n\n    Flags, as keyword arguments (dashes become "
-                            "underscores, a switch is True):\n\n" +
-                            "\n".join("    " + line for line in _core.command_help(command).splitlines()))
+_KINDS = {"number": float, "integer": int, "text": str, "switch": bool}
+# The flags that take a list (comma-separated text on the command line) and the type of their items: here a list or
+# tuple of items, a single item, or the comma-separated text. The program's parser checks the items' values.
+_LISTS = {"estimate": str, "channel": (str, int), "spike_frequencies": float, "bounds": str}
+_FIT_LISTS = {"sensor_x": float}  # a list in fit (one position per channel), one number elsewhere
+_PATHS = {"data", "prediction", "report", "beam"}
 
 
-_document_flags()
+def _list_item(command, name):
+    return _LISTS.get(name) or (_FIT_LISTS.get(name) if command == "fit" else None)
+
+
+def _annotation(command, name, kind):
+    item = _list_item(command, name)
+    if name == "beam":
+        return typing.Union[str, os.PathLike, dict]
+    if item is not None:
+        item = typing.Union[item] if isinstance(item, tuple) else item
+        return typing.Union[str, item, typing.Sequence[item]]
+    if name in _PATHS:
+        return typing.Union[str, os.PathLike]
+    return _KINDS[kind]
+
+
+def _is(type_, value):
+    """Whether a value is of a flag's type: a bool is no number; NumPy scalars count as their Python kinds."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
+    if type_ is bool:
+        return isinstance(value, (bool, np.bool_))
+    if isinstance(value, (bool, np.bool_)):
+        return False
+    if type_ is float:
+        return isinstance(value, numbers.Real)
+    if type_ is int:
+        return isinstance(value, numbers.Integral)
+    if type_ is str:
+        return isinstance(value, (str, os.PathLike))
+    return any(_is(t, value) for t in type_)
+
+
+def _check_type(command, name, kind, value):
+    """TypeError unless the value has the flag's type (a list only where the flag takes one)."""
+    item = _list_item(command, name)
+    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) == 1:
+        ok = len(value) > 0 and all(_is(item, v) for v in value)
+    elif item is not None:
+        ok = _is(str, value) or _is(item, value)
+    elif name == "beam":
+        ok = _is(str, value) or isinstance(value, dict)
+    else:
+        ok = _is(_KINDS[kind], value)
+    if not ok:
+        names = {float: "a number", int: "an integer", str: "a string", bool: "True or False"}
+        expected = names[item if item is not None and not isinstance(item, tuple) else _KINDS[kind]]
+        if item is not None:
+            expected += " or a list of them"
+        raise TypeError(f"{command}(): {name} = {value!r}: must be {expected}")
+
+
+def _typed(function, command, leading, skip=()):
+    """The function with the command's flags as its keyword-only parameters (from the program's registry): a real
+    signature for help() and editors, its docstring listing each flag, and every call checked against it (an unknown
+    keyword or a value of the wrong type is a TypeError before the core sees it)."""
+    flags = [f for f in _core.command_flags(command) if f["name"] not in skip]
+    parameters = list(leading)
+    kinds = {}
+    for f in flags:
+        name = f["name"].replace("-", "_")
+        kinds[name] = f["kind"]
+        default = inspect.Parameter.empty if f["required"] else (False if f["kind"] == "switch" else None)
+        annotation = _annotation(command, name, f["kind"])
+        if default is None:
+            annotation = typing.Optional[annotation]
+        parameters.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default,
+                                            annotation=annotation))
+    signature = inspect.Signature(parameters, return_annotation=inspect.signature(function).return_annotation)
+
+    @functools.wraps(function)
+    def checked(*args, **kwargs):
+        bound = signature.bind(*args, **kwargs)
+        for name, value in bound.arguments.items():
+            if name in kinds and value is not None and value is not False:
+                _check_type(command, name, kinds[name], value)
+        positional = {p.name: bound.arguments.get(p.name, p.default) for p in leading}
+        given = {k: v for k, v in bound.arguments.items() if k in kinds}
+        return function(**positional, **given)
+
+    checked.__signature__ = signature
+    lines = []
+    for f in flags:
+        ranged = f" ({f['min']}..{f['max']})" if f["kind"] == "integer" and f["max"] < 2**31 - 1 else ""
+        lines.append(f"    {f['name'].replace('-', '_')}: {f['help']}{ranged}" + (" [required]" if f["required"] else ""))
+    checked.__doc__ = (function.__doc__ or "") + "\n\n    Keyword arguments (the flags of `beamid " + command + \
+        "`; None: the command's default):\n\n" + "\n".join(lines)
+    return checked
+
+
+def _positional(name, default=inspect.Parameter.empty, annotation=inspect.Parameter.empty):
+    return inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=default, annotation=annotation)
+
+
+_RECORD = typing.Union[str, os.PathLike, np.ndarray]
+_TIME = _positional("time", None, typing.Optional[np.ndarray])
+modes = _typed(modes, "modes", [])
+simulate = _typed(simulate, "simulate", [])
+system = _typed(system, "system", [])
+spikes = _typed(spikes, "spikes", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
+cost = _typed(cost, "cost", [_positional("data", annotation=_RECORD),
+                             _positional("prediction", annotation=_RECORD), _TIME], skip={"data", "prediction"})
+fit = _typed(fit, "fit", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
+crb = _typed(crb, "crb", [])
+modal_id = _typed(modal_id, "modal-id", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})

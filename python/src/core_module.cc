@@ -11,6 +11,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "apps/cli.h"
+#include "apps/commands.h"
 #include "apps/command_flags.h"
 #include "apps/flag_requests.h"
 #include "apps/fit_report.h"
@@ -121,16 +123,27 @@ io::TimeSeries record_of(const apps::Flags& a, const std::optional<ArrayRecord>&
   return apps::read_data(a, [&array](const io::ImportOptions& o) { return array->read(o); });
 }
 
-// A command's computation on its parsed flags, run without the GIL (parsing included: it reads beam files).
-template <typename Compute>
-auto without_gil(const char* command, const std::vector<std::string>& args, Compute compute) {
-  py::gil_scoped_release unlocked;
-  return compute(apps::parse_flags(command, args));
+// A command's flags as the command line parses them; a beam given as a dict comes as TOML text (beam_toml, the
+// package's beam_toml()) and is read from memory for --beam (its value, "<beam dict>", names it in messages).
+apps::Flags flags_of(const char* command, const std::vector<std::string>& args,
+                     const std::optional<std::string>& beam_toml) {
+  apps::Flags flags = apps::parse_flags(command, args);
+  if (beam_toml) flags.set_inline("beam", *beam_toml);
+  return flags;
 }
 
-py::dict py_simulate(const std::vector<std::string>& args) {
+// A command's computation on its parsed flags, run without the GIL (parsing included: it reads beam files).
+template <typename Compute>
+auto without_gil(const char* command, const std::vector<std::string>& args, Compute compute,
+                 const std::optional<std::string>& beam_toml = std::nullopt) {
+  py::gil_scoped_release unlocked;
+  return compute(flags_of(command, args, beam_toml));
+}
+
+py::dict py_simulate(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
   api::SimulateResult r = without_gil(
-      "simulate", args, [](const apps::Flags& a) { return api::compute_simulate(apps::simulate_request_of(a), std::cerr); });
+      "simulate", args,
+      [](const apps::Flags& a) { return api::compute_simulate(apps::simulate_request_of(a), std::cerr); }, beam_toml);
   py::dict d;
   d["dt_s"] = r.run.experiment.dt_s;
   d["output"] = r.run.experiment.output;
@@ -141,9 +154,10 @@ py::dict py_simulate(const std::vector<std::string>& args) {
   return d;
 }
 
-py::dict py_modes(const std::vector<std::string>& args) {
+py::dict py_modes(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
   const api::ModesResult r = without_gil(
-      "modes", args, [](const apps::Flags& a) { return api::compute_modes(apps::modes_request_of(a), std::cerr); });
+      "modes", args, [](const apps::Flags& a) { return api::compute_modes(apps::modes_request_of(a), std::cerr); },
+      beam_toml);
   py::dict d;
   d["kind"] = r.kind;
   d["available"] = r.available;
@@ -153,9 +167,10 @@ py::dict py_modes(const std::vector<std::string>& args) {
   return d;
 }
 
-py::dict py_system(const std::vector<std::string>& args) {
+py::dict py_system(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
   const api::SystemResult r = without_gil(
-      "system", args, [](const apps::Flags& a) { return api::compute_system(apps::model_run_request_of(a), std::cerr); });
+      "system", args,
+      [](const apps::Flags& a) { return api::compute_system(apps::model_run_request_of(a), std::cerr); }, beam_toml);
   py::dict d;
   d["beam"] = r.run.beam_name;
   d["length_m"] = r.run.beam.l;
@@ -250,7 +265,8 @@ py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double
   return d;
 }
 
-py::dict py_fit(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
+py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml, const py::object& data,
+               const py::object& time) {
   const auto array = array_record(data, time);
   std::optional<api::FitComputation> c;
   std::vector<io::TimeSeries> channels;
@@ -258,7 +274,7 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
   std::string beam_name;
   {
     py::gil_scoped_release unlocked;
-    const apps::Flags a = apps::parse_flags("fit", args);
+    const apps::Flags a = flags_of("fit", args, beam_toml);
     channels = records_of(a, array);
     c = api::compute_fit(apps::fit_request_of(a), channels, std::cerr);
     beam_name = a.text("beam");
@@ -328,9 +344,10 @@ py::dict py_fit(const std::vector<std::string>& args, const py::object& data, co
   return d;
 }
 
-py::dict py_crb(const std::vector<std::string>& args) {
+py::dict py_crb(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
   const api::CrbResult r = without_gil(
-      "crb", args, [](const apps::Flags& a) { return api::compute_crb(apps::crb_request_of(a), std::cerr); });
+      "crb", args, [](const apps::Flags& a) { return api::compute_crb(apps::crb_request_of(a), std::cerr); },
+      beam_toml);
   py::dict d;
   d["parameters"] = r.keys;
   d["value"] = copied_array(r.values);
@@ -377,6 +394,29 @@ py::dict py_read_record(const std::vector<std::string>& args) {
   return d;
 }
 
+// A command's flags as the registry states them (apps/registry.cc): name, kind (text, number, integer, switch),
+// help, whether required, and an integer's range; what the package builds its functions' signatures from.
+py::list command_flags(const std::string& name) {
+  const auto& all = apps::commands();
+  const auto it = std::find_if(all.begin(), all.end(), [&](const apps::Command& c) { return c.name == name; });
+  if (it == all.end()) throw InputError("no command '" + name + "'");
+  py::list flags;
+  for (const apps::FlagSpec& f : it->flags) {
+    py::dict d;
+    d["name"] = f.name;
+    d["kind"] = f.kind == apps::FlagKind::Number    ? "number"
+                : f.kind == apps::FlagKind::Integer ? "integer"
+                : f.kind == apps::FlagKind::Switch  ? "switch"
+                                                    : "text";
+    d["help"] = f.help;
+    d["required"] = f.required;
+    d["min"] = f.min;
+    d["max"] = f.max;
+    flags.append(d);
+  }
+  return flags;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -386,6 +426,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("version", [] { return io::version() + " (commit " + io::commit_label() + ")"; });
   m.def("presets", [] { return model::preset_names(); });
   m.def("command_help", &apps::command_help);
+  m.def("command_flags", &command_flags);
   m.def("beam", [](const std::string& spec) { return beam_dict(config::resolve_beam(spec)); });
   m.def("parse_beam", [](const std::string& text, const std::string& name) {
     return beam_dict(config::parse_beam_toml(text, name));

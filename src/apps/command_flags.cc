@@ -14,6 +14,7 @@ namespace beamid::apps {
 
 model::BeamParameters read_beam(const Flags& a) {
   try {
+    if (const std::string* text = a.inline_content("beam")) return config::parse_beam_toml(*text, a.text("beam"));
     return config::resolve_beam(a.text("beam"));
   } catch (const InputError& error) {
     throw InputError("beamid " + a.command() + ": --beam: " + error.what());

@@ -24,7 +24,8 @@ std::vector<io::TimeSeries> read_channels(const Flags& a);
 using RecordReader = std::function<io::TimeSeries(const io::ImportOptions&)>;
 io::TimeSeries read_data(const Flags& a, const RecordReader& read);
 std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& read);
-// --beam: a preset or a beam/geometry TOML file (config/beam_file.h); its errors name the command and the flag.
+// --beam: a preset or a beam/geometry TOML file (config/beam_file.h), or TOML text given inline (Flags::set_inline);
+// its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width
 std::vector<FlagSpec> experiment_flag_specs();

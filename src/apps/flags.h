@@ -68,12 +68,20 @@ class Flags {
   std::vector<double> numbers(const std::string& flag) const;
   // InputError "beamid <command>: --flag = 'value': constraint" unless ok.
   void require(bool ok, const std::string& flag, const std::string& constraint) const;
+  // A file flag whose content is given inline instead of read from the named file (the Python package's beam
+  // dicts: --beam names "<beam dict>" and its TOML text comes with it); nothing when the file is to be read.
+  void set_inline(const std::string& flag, std::string content) { inline_[flag] = std::move(content); }
+  const std::string* inline_content(const std::string& flag) const {
+    const auto it = inline_.find(flag);
+    return it == inline_.end() ? nullptr : &it->second;
+  }
 
  private:
   [[noreturn]] void fail(const std::string& message) const;
   std::string command_;
   std::map<std::string, std::string> values_;
   std::vector<std::string> arguments_;
+  std::map<std::string, std::string> inline_;
 };
 
 }  // namespace beamid::apps

@@ -24,6 +24,10 @@ echo "$out"
 # from the fitted model's own noise-free record (a start 5 % off; LM's tolerance leaves 1e-6 relative at most).
 where=$(cd "$scratch/home" && "$HOME/beamid-env/bin/python" -c 'import beamid; print(beamid.__file__)')
 case "$where" in "$HOME/beamid-env/"*) ;; *) echo "FAIL: imported $where, not the environment's package"; exit 1;; esac
+# The installed package carries its type information (PEP 561: py.typed and the generated stubs).
+for f in py.typed __init__.pyi; do
+  [ -f "$(dirname "$where")/$f" ] || { echo "FAIL: the installed package has no $f"; exit 1; }
+done
 "$HOME/beamid-env/bin/python" - "$out" <<'PY'
 import sys, ast
 import beamid
