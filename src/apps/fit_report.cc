@@ -78,12 +78,14 @@ std::string modes_line(const ModeComparison& c) {
   return s;
 }
 
-void write_fit_report(const std::string& path, const FitReportInput& in) {
+namespace {
+
+using Markdown = std::ostringstream;
+
+// The command that ran, the record, the model, the cost and the optimizer.
+void header_section(Markdown& md, const FitReportInput& in, const costs::Evaluation& first) {
   const auto& o = in.options;
   const auto& r = in.result;
-  // The first record's own evaluation (a single record's is the fit's): its amplitude scale, spikes and (A4).
-  const costs::Evaluation& first = r.records.empty() ? r.final_evaluation : r.records.front().evaluation;
-  std::ostringstream md;
   md << "# beamid fit report\n\n";
   md << "beamid " << io::version() << " (commit " << io::commit_label() << "): `beamid fit";
   for (const auto& arg : in.arguments) md << " " << arg;
@@ -103,6 +105,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
   md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
      << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
 
+}
+
+// The record's modes beside the model's at the estimate.
+void modes_section(Markdown& md, const FitReportInput& in) {
   const ModeComparison modes = compare_modes(in);
   md << "## Modes\n\n";
   if (modes.status != "ok") {
@@ -118,6 +124,12 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     md << "\n";
   }
 
+}
+
+// The status, the estimates with their three uncertainties, and what each means.
+void result_section(Markdown& md, const FitReportInput& in) {
+  const auto& o = in.options;
+  const auto& r = in.result;
   md << "## Result\n\n";
   md << "Status **" << r.status << "** (" << r.termination << "); cost " << g(r.cost, 10) << "; " << r.evaluations
      << " model evaluations; " << g(r.wall_time_s, 3) << " s.\n\n";
@@ -140,6 +152,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
         "when the sandwich or the window sd is several times larger, the residuals are model error, not noise: "
         "quote the window sd (the conservative one). Covariance: "
      << r.covariance_status << ".\n\n";
+}
+
+// The estimates in each window (--windows).
+void spread_section(Markdown& md, const FitReportInput& in) {
   if (in.spread) {
     md << "Estimates in each of the " << in.spread->windows << " windows (the first keeps the excitation; the others "
        << "are free decays from an unknown state):\n\n| window | status |";
@@ -154,6 +170,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     }
     md << "\n";
   }
+}
+
+// The estimates' correlations (formal).
+void correlation_section(Markdown& md, const fit::FitResult& r) {
   if (r.correlation.size() > 0) {
     md << "| correlation |";
     for (const auto& p : r.parameters) md << " " << p.key << " |";
@@ -168,6 +188,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     }
     md << "\n";
   }
+}
+
+// Each record's own cost, weight and amplitude scale in a joint fit.
+void records_section(Markdown& md, const fit::FitResult& r) {
   if (r.records.size() > 1) {
     md << "Records of the joint fit, each with its own cost at the estimate (the joint cost is the sum of weight^2 x "
           "cost: time-domain residuals relative to each record's RMS):\n\n| record | name | status | cost | weight | "
@@ -180,6 +204,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     }
     md << "\n";
   }
+}
+
+// The conditioning of J at the estimate and its weak combinations.
+void identifiability_section(Markdown& md, const fit::FitResult& r) {
   const fit::Identifiability& id = r.identifiability;
   if (id.status == "ok")
     md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
@@ -196,6 +224,10 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
     md << "\n";
   } else
     md << "Identifiability: not computed (" << id.status << ").\n\n";
+}
+
+// Each stage of the best start.
+void stages_section(Markdown& md, const fit::FitResult& r) {
   md << "| stage | parameters | status | cost | evaluations | termination |\n|---|---|---|---|---|---|\n";
   for (const auto& s : r.stages) {
     std::string keys;
@@ -204,6 +236,14 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
        << s.result.evaluations << " | " << s.result.termination << " |\n";
   }
 
+}
+
+// The spike table and the spectra around each spike (spike costs), then the full spectra's file name; returns the
+// full spectra as CSV (bin, frequency_hz, data_magnitude, model_magnitude).
+std::string spectra_section(Markdown& md, const FitReportInput& in, const costs::Evaluation& first,
+                            const std::string& spectra_path) {
+  const auto& o = in.options;
+  const auto& r = in.result;
   // Spectra of data and fitted model (same window as the cost).
   signal::Dft dft(static_cast<int>(in.data.values.size()), in.data.dt_s, o.cost.window);
   const signal::Spectrum z = dft.transform(in.data.values);
@@ -234,19 +274,45 @@ void write_fit_report(const std::string& path, const FitReportInput& in) {
            << (have_model ? g(u.magnitude(k), 4) : "-") << " |\n";
       }
   }
-  const std::string spectra_path = path + ".spectra.csv";
   md << "\nFull spectra: `" << spectra_path << "` (bin, frequency_hz, data_magnitude, model_magnitude).\n";
 
-  // Both files by atomic rename: a reader (or a killed run) sees the old file or the new one, never half.
-  std::ostringstream spectra;
-  spectra << "bin,frequency_hz,data_magnitude,model_magnitude\n";
+  std::ostringstream csv;
+  csv << "bin,frequency_hz,data_magnitude,model_magnitude\n";
   for (int k = 0; k <= z.last_bin(); ++k) {
-    spectra << k << ",";
-    io::write_row(spectra, {z.frequency_hz(k), z.magnitude(k), have_model ? u.magnitude(k) : std::nan("")});
+    csv << k << ",";
+    io::write_row(csv, {z.frequency_hz(k), z.magnitude(k), have_model ? u.magnitude(k) : std::nan("")});
   }
+  return csv.str();
+}
+
+}  // namespace
+
+FitReport render_fit_report(const std::string& path, const FitReportInput& in) {
+  const auto& r = in.result;
+  // The first record's own evaluation (a single record's is the fit's): its amplitude scale, spikes and (A4).
+  const costs::Evaluation& first = r.records.empty() ? r.final_evaluation : r.records.front().evaluation;
+  Markdown md;
+  header_section(md, in, first);
+  modes_section(md, in);
+  result_section(md, in);
+  spread_section(md, in);
+  correlation_section(md, r);
+  records_section(md, r);
+  identifiability_section(md, r);
+  stages_section(md, r);
+  FitReport report;
+  report.spectra_path = path + ".spectra.csv";
+  report.spectra_csv = spectra_section(md, in, first, report.spectra_path);
+  report.markdown = md.str();
+  return report;
+}
+
+void write_fit_report(const std::string& path, const FitReportInput& in) {
+  const FitReport report = render_fit_report(path, in);
+  // Both files by atomic rename: a reader (or a killed run) sees the old file or the new one, never half.
   try {
-    io::write_file_atomic(path, md.str());
-    io::write_file_atomic(spectra_path, spectra.str());
+    io::write_file_atomic(path, report.markdown);
+    io::write_file_atomic(report.spectra_path, report.spectra_csv);
   } catch (const InputError& error) {
     throw InputError("beamid fit: --report = '" + path + "': " + error.what());
   }

@@ -38,6 +38,14 @@ ModeComparison compare_modes(const FitReportInput& input);
 std::string modes_line(const ModeComparison& comparison);
 
 // InputError when the file cannot be written.
+// The report as text: the Markdown (which names the spectra's file) and the full spectra as CSV.
+struct FitReport {
+  std::string markdown;
+  std::string spectra_path;  // path + ".spectra.csv"
+  std::string spectra_csv;
+};
+FitReport render_fit_report(const std::string& path, const FitReportInput& input);
+// render_fit_report, then both files written by atomic rename (InputError naming --report when a write fails).
 void write_fit_report(const std::string& path, const FitReportInput& input);
 
 }  // namespace beamid::apps
