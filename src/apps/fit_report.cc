@@ -209,21 +209,22 @@ void records_section(Markdown& md, const fit::FitResult& r) {
 // The conditioning of J at the estimate and its weak combinations.
 void identifiability_section(Markdown& md, const fit::FitResult& r) {
   const fit::Identifiability& id = r.identifiability;
-  if (id.status == "ok")
-    md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
-       << id.verdict << "); the weakest combination is " << id.combination() << ", formal standard deviation "
-       << g(id.weakest_sd, 3) << " (relative)."
-       << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
-       << "\n\n";
-  if (id.status == "ok" && id.weak.size() > 1) {
+  if (id.status != "ok") {
+    md << "Identifiability: not computed (" << id.status << ").\n\n";
+    return;
+  }
+  md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
+     << id.verdict << "); the weakest combination is " << id.combination() << ", formal standard deviation "
+     << g(id.weakest_sd, 3) << " (relative)."
+     << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
+     << "\n\n";
+  if (id.weak.size() > 1) {
     md << "Every combination with sqrt(lambda_max / lambda) above 1e3, weakest first:\n\n| combination | ratio | "
-          "formal sd "
-          "(relative) |\n|---|---|---|\n";
+          "formal sd (relative) |\n|---|---|---|\n";
     for (const auto& w : id.weak)
       md << "| " << id.combination(w.components) << " | " << g(w.ratio, 3) << " | " << g(w.sd, 3) << " |\n";
     md << "\n";
-  } else
-    md << "Identifiability: not computed (" << id.status << ").\n\n";
+  }
 }
 
 // Each stage of the best start.

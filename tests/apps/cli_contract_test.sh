@@ -103,6 +103,9 @@ check "fit: modes at the estimate" grep -q "modes at the estimate (data by matri
 check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
+# The identifiability paragraph says it was computed, or that it was not, never both (issue 31).
+check "fit report: identifiability computed, once" grep -q "^Identifiability: J at the estimate" "$tmp/fit.md"
+check "fit report: no 'not computed' beside it" sh -c '! grep -q "^Identifiability: not computed" "$1"' - "$tmp/fit.md"
 # Two channels of one test (mid-span and tip) fitted jointly: the same record's model, so EI comes back to round-off;
 # stderr lists each channel's own cost, the report the records' table.
 "$BEAMID" simulate --beam banks-aluminium --elements 4 --pulse-width 0.004 --sensor-x 0.2 >"$tmp/zmid.csv"
