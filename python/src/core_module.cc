@@ -1,11 +1,11 @@
 // beamid._core, the C++ half of the Python package (python/beamid/__init__.py is the other): the commands' typed
 // requests (api/), filled from the flags that the Python keyword arguments spell (sensor_x=0.2 is --sensor-x 0.2),
-// parsed by the command line's own parser (apps::parse_flags) and mapped by its own mappings (apps/flag_requests.h). A call and the same command line
-// therefore run one body of code with one validation and one set of messages, and give the same numbers bit for bit.
-// Results are NumPy arrays and dicts; records may come as arrays (samples, or samples x channels) instead of files.
-// InputError and NumericalError become beamid.InputError (a ValueError) and beamid.NumericalError (a RuntimeError)
-// carrying the command line's one-line message. The GIL is released around every computation, so that Python
-// threads can fit in parallel (the core is thread-safe: the studies run it on threads).
+// parsed by the command line's own parser (apps::parse_flags) and mapped by its own mappings (apps/flag_requests.h). A
+// call and the same command line therefore run one body of code with one validation and one set of messages, and give
+// the same numbers bit for bit. Results are NumPy arrays and dicts; records may come as arrays (samples, or samples x
+// channels) instead of files. InputError and NumericalError become beamid.InputError (a ValueError) and
+// beamid.NumericalError (a RuntimeError) carrying the command line's one-line message. The GIL is released around every
+// computation, so that Python threads can fit in parallel (the core is thread-safe: the studies run it on threads).
 // pybind11 stays in this file: it is the package's adapter.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -21,15 +21,15 @@
 #include <vector>
 
 #include "apps/cli.h"
-#include "apps/commands.h"
 #include "apps/command_flags.h"
-#include "apps/flag_requests.h"
+#include "apps/commands.h"
 #include "apps/fit_report.h"
+#include "apps/flag_requests.h"
 #include "config/beam_file.h"
+#include "core/errors.h"
 #include "io/provenance.h"
 #include "io/time_series.h"
 #include "model/beam_parameters.h"
-#include "core/errors.h"
 
 namespace py = pybind11;
 using namespace beamid;
@@ -265,8 +265,8 @@ py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double
   return d;
 }
 
-py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml, const py::object& data,
-               const py::object& time) {
+py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
+                const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
   std::optional<api::FitComputation> c;
   std::vector<io::TimeSeries> channels;

@@ -19,8 +19,7 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
     o.frequencies_hz = request.frequencies_hz;
     for (const double f : o.frequencies_hz)
       if (!(f > 0))
-        refuse(caller, "spike-frequencies", format_value(f),
-               "must be a comma-separated list of frequencies > 0 in Hz");
+        refuse(caller, "spike-frequencies", format_value(f), "must be a comma-separated list of frequencies > 0 in Hz");
     std::sort(o.frequencies_hz.begin(), o.frequencies_hz.end());
     if (request.count && *request.count != static_cast<int>(o.frequencies_hz.size()))
       refuse(caller, "spikes", std::to_string(*request.count),

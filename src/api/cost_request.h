@@ -15,12 +15,12 @@
 namespace beamid::api {
 
 struct SpikeRequest {
-  std::optional<int> count;                 // --spikes NM
-  std::optional<std::string> rule;          // --spike-rule: largest | prominence
-  std::optional<double> min_frequency_hz;   // --min-frequency
-  std::optional<double> max_frequency_hz;   // --max-frequency
-  std::vector<double> frequencies_hz;       // --spike-frequencies (then count, if given, must equal their number)
-  std::string artefacts = "reject";         // --artefacts: reject | keep (a record read from a file is a measured one)
+  std::optional<int> count;                // --spikes NM
+  std::optional<std::string> rule;         // --spike-rule: largest | prominence
+  std::optional<double> min_frequency_hz;  // --min-frequency
+  std::optional<double> max_frequency_hz;  // --max-frequency
+  std::vector<double> frequencies_hz;      // --spike-frequencies (then count, if given, must equal their number)
+  std::string artefacts = "reject";        // --artefacts: reject | keep (a record read from a file is a measured one)
 };
 
 struct WindowRequest {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <ostream>
 
-#include "io/resources.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/resources.h"
 
 namespace beamid::api {
 

@@ -60,8 +60,7 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
 // --welch K: the spikes picked on Welch's average of the (detrended) record, each refined on the whole record's DFT:
 // its largest local maximum within one Welch bin ((K + 1)/2 of the record's), which the cost's +-5 % window around
 // the frequency then finds however coarse the Welch bin was (signal/spikes.h).
-std::vector<double> welch_picks(const FitRequest& request, const io::TimeSeries& data,
-                                const costs::CostOptions& cost) {
+std::vector<double> welch_picks(const FitRequest& request, const io::TimeSeries& data, const costs::CostOptions& cost) {
   const Caller& caller = request.caller;
   if (!cost.spikes.frequencies_hz.empty())
     refuse(caller, "welch", std::to_string(*request.welch), "picks the spikes: leave out --spike-frequencies");
@@ -116,8 +115,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (request.seed < 0) refuse(caller, "seed", std::to_string(request.seed), "must be an integer >= 0");
   o.seed = static_cast<std::uint64_t>(request.seed);
   if (!(request.start_scale > 0)) refuse(caller, "start-scale", format_value(request.start_scale), "must be > 0");
-  if (!(request.bound_factor > 1))
-    refuse(caller, "bound-factor", format_value(request.bound_factor), "must be > 1");
+  if (!(request.bound_factor > 1)) refuse(caller, "bound-factor", format_value(request.bound_factor), "must be > 1");
   o.estimate = estimated_parameters(request);
   // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
   o.cost.pick_detrend = request.detrend.value_or(

@@ -28,27 +28,27 @@ namespace beamid::api {
 
 struct FitRequest {
   Caller caller{"beamid fit"};
-  std::string beam_name;                  // what the program says it fitted ("banks-aluminium", "my_beam.toml")
-  model::BeamParameters beam;             // --beam: the known parameters and the start of the estimated ones
-  int elements = 0;                       // --elements: Galerkin order N (required)
-  ExperimentRequest experiment;           // dt and samples, if given, must match the data's
-  std::vector<std::string> estimate;      // --estimate: the keys to estimate (required)
+  std::string beam_name;              // what the program says it fitted ("banks-aluminium", "my_beam.toml")
+  model::BeamParameters beam;         // --beam: the known parameters and the start of the estimated ones
+  int elements = 0;                   // --elements: Galerkin order N (required)
+  ExperimentRequest experiment;       // dt and samples, if given, must match the data's
+  std::vector<std::string> estimate;  // --estimate: the keys to estimate (required)
   std::map<std::string, std::pair<double, double>> bounds;  // --bounds KEY=LO:HI: explicit bounds of some keys
-  double bound_factor = 2.0;              // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
-  double start_scale = 1.0;               // --start-scale S: every estimated parameter starts at S x its --beam value
-  CostRequest cost;                       // --cost (required) and the spectrum choices
-  std::optional<std::string> optimizer;   // --optimizer (default: the cost's, fit::default_optimizer)
-  std::optional<int> max_evaluations;     // --max-evaluations per optimizer run
-  std::string strategy = fit::kDirect;    // --strategy
-  std::optional<std::string> refine;      // --refine: hybrid's second cost (default time)
-  std::string scaling = "linear";         // --scaling
-  int starts = 1;                         // --starts
-  long long seed = 1;                     // --seed (>= 0)
-  std::string integrator = "fast";        // --integrator
+  double bound_factor = 2.0;             // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
+  double start_scale = 1.0;              // --start-scale S: every estimated parameter starts at S x its --beam value
+  CostRequest cost;                      // --cost (required) and the spectrum choices
+  std::optional<std::string> optimizer;  // --optimizer (default: the cost's, fit::default_optimizer)
+  std::optional<int> max_evaluations;    // --max-evaluations per optimizer run
+  std::string strategy = fit::kDirect;   // --strategy
+  std::optional<std::string> refine;     // --refine: hybrid's second cost (default time)
+  std::string scaling = "linear";        // --scaling
+  int starts = 1;                        // --starts
+  long long seed = 1;                    // --seed (>= 0)
+  std::string integrator = "fast";       // --integrator
   std::string record_weights = fit::kRmsWeights;  // --record-weights (several channels)
-  std::optional<std::string> detrend;     // --detrend (default linear for a free decay, none otherwise)
-  std::optional<int> welch;               // --welch K: the spikes picked on Welch's average of K segments
-  std::optional<int> windows;             // --windows K: also the spread of the estimates over K windows
+  std::optional<std::string> detrend;             // --detrend (default linear for a free decay, none otherwise)
+  std::optional<int> welch;                       // --welch K: the spikes picked on Welch's average of K segments
+  std::optional<int> windows;                     // --windows K: also the spread of the estimates over K windows
 };
 
 // What compute_fit returns: the options the request gave, the records (several for several channels, else none: one

@@ -22,10 +22,16 @@ namespace beamid::api {
 // A model run as a request describes it: the beam, N and the experiment (beamid system's whole request).
 struct ModelRunRequest {
   Caller caller{"beamid system"};
-  std::string beam_name;           // what the program says it ran
-  model::BeamParameters beam;      // --beam
-  int elements = 0;                // --elements N (required)
-  ExperimentRequest experiment;    // --dt, --samples, ...
+  std::string beam_name;         // what the program says it ran
+  model::BeamParameters beam;    // --beam
+  int elements = 0;              // --elements N (required)
+  ExperimentRequest experiment;  // --dt, --samples, ...
+  // A run request whose errors start with `label` (the default of the requests that hold one).
+  static ModelRunRequest labelled(std::string label) {
+    ModelRunRequest r;
+    r.caller.label = std::move(label);
+    return r;
+  }
 };
 struct ModelRun {
   std::string beam_name;
@@ -40,11 +46,11 @@ ModelRun model_run(const ModelRunRequest& request, double bytes_per_sample, std:
 // beamid modes: the first `count` modes (all underdamped Galerkin modes, or 4 exact ones, by default).
 struct ModesRequest {
   Caller caller{"beamid modes"};
-  model::BeamParameters beam;      // --beam
-  std::optional<int> elements;     // --elements N: the Galerkin model's modes
-  bool exact = false;              // --exact: the exact (determinant) frequencies instead; one of the two
-  bool undamped = false;           // --undamped: the Galerkin model's undamped modes
-  std::optional<int> count;        // --count
+  model::BeamParameters beam;   // --beam
+  std::optional<int> elements;  // --elements N: the Galerkin model's modes
+  bool exact = false;           // --exact: the exact (determinant) frequencies instead; one of the two
+  bool undamped = false;        // --undamped: the Galerkin model's undamped modes
+  std::optional<int> count;     // --count
 };
 struct ModesResult {
   std::string kind;                   // "exact" | "undamped" | "damped"
@@ -58,11 +64,11 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings);
 
 // beamid simulate: the trace (clean) and the samples with noise_level's noise, if any.
 struct SimulateRequest {
-  ModelRunRequest run{Caller{"beamid simulate"}};
-  std::string integrator = "fast";  // --integrator
-  std::optional<double> rtol;       // --rtol (cvode)
-  std::optional<double> atol;       // --atol (cvode)
-  std::optional<int> max_order;     // --max-order (cvode)
+  ModelRunRequest run = ModelRunRequest::labelled("beamid simulate");
+  std::string integrator = "fast";    // --integrator
+  std::optional<double> rtol;         // --rtol (cvode)
+  std::optional<double> atol;         // --atol (cvode)
+  std::optional<int> max_order;       // --max-order (cvode)
   std::optional<double> noise_level;  // --noise-level: white noise of this times the clean signal's RMS (none: 0)
   std::optional<long long> seed;      // --seed of the noise (needs noise_level; default 1)
 };
@@ -84,7 +90,7 @@ SystemResult compute_system(const ModelRunRequest& request, std::ostream& warnin
 // beamid crb: the Cramér-Rao bound on `estimate` at the beam's values, with white noise of noise_sd (absolute) or
 // noise_level (times the clean signal's RMS): one of the two.
 struct CrbRequest {
-  ModelRunRequest run{Caller{"beamid crb"}};
+  ModelRunRequest run = ModelRunRequest::labelled("beamid crb");
   std::vector<std::string> estimate;  // --estimate (required)
   std::optional<double> noise_sd;     // --noise-sd
   std::optional<double> noise_level;  // --noise-level

@@ -21,9 +21,9 @@ namespace beamid::api {
 struct SpikesRequest {
   Caller caller{"beamid spikes"};
   SpikeRequest spikes;
-  WindowRequest window;             // not with welch (its segments are Hann-windowed)
+  WindowRequest window;                // not with welch (its segments are Hann-windowed)
   std::optional<std::string> detrend;  // --detrend (default linear: a record read from a file is a measured one)
-  std::optional<int> welch;         // --welch K: Welch's average of K segments instead of the record's DFT
+  std::optional<int> welch;            // --welch K: Welch's average of K segments instead of the record's DFT
 };
 struct SpikesResult {
   signal::Spectrum spectrum;

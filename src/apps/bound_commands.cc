@@ -7,11 +7,11 @@
 #include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "fit/cramer_rao.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "core/errors.h"
-#include "core/limits.h"
 #include "signal/noise.h"
 
 namespace beamid::apps {

@@ -3,8 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/commands.h"
-#include "io/provenance.h"
 #include "core/errors.h"
+#include "io/provenance.h"
 
 namespace beamid::apps {
 namespace {

@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "config/beam_file.h"
-#include "io/time_series.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/time_series.h"
 
 namespace beamid::apps {
 

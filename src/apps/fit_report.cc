@@ -5,11 +5,11 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "core/errors.h"
 #include "signal/matrix_pencil.h"
 #include "signal/spectrum.h"
 
@@ -104,7 +104,6 @@ void header_section(Markdown& md, const FitReportInput& in, const costs::Evaluat
   if (o.cost.unknown_amplitude) md << ", unknown excitation amplitude (scale " << g(first.amplitude_scale) << ")";
   md << "\n- optimizer `" << o.optimizer.method << "`, strategy `" << o.strategy << "`, " << o.starts
      << " start(s) (best: " << r.best_start << "), scaling " << o.scaling << ", seed " << o.seed << "\n\n";
-
 }
 
 // The record's modes beside the model's at the estimate.
@@ -123,7 +122,6 @@ void modes_section(Markdown& md, const FitReportInput& in) {
          << " |\n";
     md << "\n";
   }
-
 }
 
 // The status, the estimates with their three uncertainties, and what each means.
@@ -213,9 +211,9 @@ void identifiability_section(Markdown& md, const fit::FitResult& r) {
     md << "Identifiability: not computed (" << id.status << ").\n\n";
     return;
   }
-  md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " ("
-     << id.verdict << "); the weakest combination is " << id.combination() << ", formal standard deviation "
-     << g(id.weakest_sd, 3) << " (relative)."
+  md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " (" << id.verdict
+     << "); the weakest combination is " << id.combination() << ", formal standard deviation " << g(id.weakest_sd, 3)
+     << " (relative)."
      << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
      << "\n\n";
   if (id.weak.size() > 1) {
@@ -236,7 +234,6 @@ void stages_section(Markdown& md, const fit::FitResult& r) {
     md << "| " << s.name << " | " << keys << " | " << s.result.status << " | " << g(s.result.cost, 6) << " | "
        << s.result.evaluations << " | " << s.result.termination << " |\n";
   }
-
 }
 
 // The spike table and the spectra around each spike (spike costs), then the full spectra's file name; returns the

@@ -7,18 +7,18 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
-#include "apps/flag_requests.h"
 #include "apps/fit_report.h"
+#include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "config/beam_file.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "costs/cost.h"
 #include "fit/identification.h"
 #include "fit/window_spread.h"
 #include "io/provenance.h"
 #include "io/text.h"
 #include "io/time_series.h"
-#include "core/errors.h"
-#include "core/limits.h"
 #include "signal/spikes.h"
 
 namespace beamid::apps {

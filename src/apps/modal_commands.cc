@@ -6,10 +6,10 @@
 #include "apps/commands.h"
 #include "apps/flag_requests.h"
 #include "apps/flags.h"
-#include "io/provenance.h"
-#include "io/text.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/provenance.h"
+#include "io/text.h"
 #include "signal/matrix_pencil.h"
 
 namespace beamid::apps {

@@ -3,8 +3,8 @@
 
 #include "apps/command_flags.h"
 #include "apps/commands.h"
-#include "io/provenance.h"
 #include "core/limits.h"
+#include "io/provenance.h"
 
 namespace beamid::apps {
 namespace {
@@ -14,8 +14,8 @@ FlagSpec beam_flag() {
                    true);
 }
 FlagSpec elements_flag(bool required) {
-  return integer_flag("elements", "Galerkin order N (cubic B-spline elements)", core::kMinElements,
-                      core::kMaxElements, required);
+  return integer_flag("elements", "Galerkin order N (cubic B-spline elements)", core::kMinElements, core::kMaxElements,
+                      required);
 }
 
 std::vector<FlagSpec> joined(std::vector<FlagSpec> a, const std::vector<FlagSpec>& b) {

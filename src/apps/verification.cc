@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "core/errors.h"
 #include "model/exact_frequencies.h"
 #include "simulation/modal_simulator.h"
 #include "simulation/modal_truncation.h"
@@ -102,8 +102,7 @@ std::vector<ReductionRow> model_reduction_rows(const std::vector<std::string>& p
       simulation::Experiment e = experiment_for(name, beam.l);
       const simulation::TruncationSplit split =
           simulation::widest_gap(galerkin::undamped_modes(system).omega_rad_s, std::numbers::pi / e.dt_s);
-      const simulation::TruncationDiagnostics diagnostics =
-          simulation::truncation_diagnostics(system, split.retained);
+      const simulation::TruncationDiagnostics diagnostics = simulation::truncation_diagnostics(system, split.retained);
       for (const std::string& output : simulation::output_names().names()) {
         e.output = output;
         const simulation::ResponseProblem problem = simulation::make_problem(forms, system, e);
@@ -118,8 +117,8 @@ std::vector<ReductionRow> model_reduction_rows(const std::vector<std::string>& p
                         diagnostics, difference(truncated.y, exact.y).relative(),
                         difference(decoupled.y, exact.y).relative()});
       }
-      log << "verify: model reduction " << name << " " << label << ": " << split.retained << " of "
-          << system.M.rows() << " modes retained\n";
+      log << "verify: model reduction " << name << " " << label << ": " << split.retained << " of " << system.M.rows()
+          << " modes retained\n";
     }
   }
   return rows;
@@ -153,9 +152,9 @@ void write_model_reduction(const std::string& folder, const std::vector<Reductio
         << io::full_precision(row.truncated) << "," << io::full_precision(row.decoupled) << "\n";
     const std::string root_text = sci(root.real()) + (root.imag() != 0 ? " + " + sci(root.imag()) + "i" : "");
     md << "| " << row.preset << " | " << row.variant << " | " << row.retained << " of " << row.size << " | "
-       << fixed(row.gap_ratio, 1) << " | " << sci(row.diagnostics.coupling_relative, 1) << " | " << root_text
-       << " | " << sci(row.diagnostics.nearest_retained_relative, 1) << " | " << row.output << " | "
-       << sci(row.truncated) << " | " << sci(row.decoupled) << " |\n";
+       << fixed(row.gap_ratio, 1) << " | " << sci(row.diagnostics.coupling_relative, 1) << " | " << root_text << " | "
+       << sci(row.diagnostics.nearest_retained_relative, 1) << " | " << row.output << " | " << sci(row.truncated)
+       << " | " << sci(row.decoupled) << " |\n";
   }
   io::write_file_atomic(std::filesystem::path(folder) / "model_reduction.csv", csv.str());
   io::write_file_atomic(std::filesystem::path(folder) / "model_reduction.md", md.str());

@@ -5,10 +5,10 @@
 #include <fstream>
 
 #include "config/document.h"
-#include "io/files.h"
 #include "core/errors.h"
-#include "model/geometry.h"
 #include "core/limits.h"
+#include "io/files.h"
+#include "model/geometry.h"
 
 namespace beamid::config {
 namespace {

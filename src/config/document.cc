@@ -10,8 +10,8 @@
 #include <limits>
 #include <sstream>
 
-#include "io/files.h"
 #include "core/errors.h"
+#include "io/files.h"
 
 namespace beamid::config {
 

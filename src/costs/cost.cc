@@ -4,10 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/errors.h"
 #include "costs/least_squares.h"
 #include "costs/modal_cost.h"
 #include "costs/spike_costs.h"
-#include "core/errors.h"
 
 namespace beamid::costs {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "galerkin/second_order_system.h"
 #include "core/errors.h"
+#include "galerkin/second_order_system.h"
 #include "simulation/sensitivities.h"
 
 namespace beamid::fit {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <optional>
 
+#include "core/errors.h"
+#include "core/limits.h"
 #include "fit/joint_objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
-#include "core/errors.h"
-#include "core/limits.h"
 #include "signal/spikes.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
@@ -19,11 +19,11 @@ namespace beamid::fit {
 
 const core::NameSet& strategy_names() {
   static const core::NameSet names({{kDirect, "all estimated parameters at once"},
-                                     {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
-                                     {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"},
-                                     {kHybrid,
-                                      "the fit's cost (spike-smooth) from the start, then --refine (time or "
-                                      "freq-band) from its estimate"}});
+                                    {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
+                                    {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"},
+                                    {kHybrid,
+                                     "the fit's cost (spike-smooth) from the start, then --refine (time or "
+                                     "freq-band) from its estimate"}});
   return names;
 }
 

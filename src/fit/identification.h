@@ -32,12 +32,12 @@
 #include <string>
 #include <vector>
 
+#include "core/names.h"
 #include "costs/cost.h"
 #include "fit/identifiability.h"
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
 #include "model/beam_parameters.h"
-#include "core/names.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 

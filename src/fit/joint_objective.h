@@ -1,5 +1,5 @@
-// The cost of a joint fit (fit/identification.h): one Objective (fit/objective.h) per record, each with its own experiment, data and
-// beam, and the records' residual vectors stacked, each times its record's weight:
+// The cost of a joint fit (fit/identification.h): one Objective (fit/objective.h) per record, each with its own
+// experiment, data and beam, and the records' residual vectors stacked, each times its record's weight:
 //   r = [w_1 r_1; w_2 r_2; ...],  J = |r|^2 = sum_k w_k^2 J_k,
 // w_k = 1 for a single record (the fit is then exactly the single-record fit), and otherwise 1 / RMS(z_k) for the
 // time cost, sqrt(Nbar_k) / RMS(z_k) for freq-band and 1 for the dimensionless spike and modal costs.

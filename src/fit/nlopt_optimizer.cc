@@ -1,7 +1,6 @@
 // NLopt adapter (the C++ interface, nlopt.hpp): the only file that sees NLopt types.
-#include <nlopt.hpp>
-
 #include <map>
+#include <nlopt.hpp>
 #include <stdexcept>
 
 #include "fit/optimizer.h"

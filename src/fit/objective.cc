@@ -1,14 +1,15 @@
 // fit::Objective (fit/objective.h): one record's model output and cost, with the forms, simulator and DFT plans
 // built once.
+#include "fit/objective.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "fit/objective.h"
-#include "galerkin/modes.h"
-#include "galerkin/second_order_system.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
 #include "simulation/sensitivities.h"

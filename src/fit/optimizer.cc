@@ -12,11 +12,11 @@ namespace beamid::fit {
 
 const core::NameSet& optimizer_names() {
   static const core::NameSet names({{"lm", "Ceres Levenberg-Marquardt on the residual vector"},
-                                     {"bobyqa", "NLopt BOBYQA (quadratic models, derivative-free)"},
-                                     {"nelder-mead", "NLopt Nelder-Mead simplex"},
-                                     {"sbplx", "NLopt Subplex"},
-                                     {"direct-l", "NLopt DIRECT-L (global)"},
-                                     {"crs2-lm", "NLopt controlled random search (global)"}});
+                                    {"bobyqa", "NLopt BOBYQA (quadratic models, derivative-free)"},
+                                    {"nelder-mead", "NLopt Nelder-Mead simplex"},
+                                    {"sbplx", "NLopt Subplex"},
+                                    {"direct-l", "NLopt DIRECT-L (global)"},
+                                    {"crs2-lm", "NLopt controlled random search (global)"}});
   return names;
 }
 

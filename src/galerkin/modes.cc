@@ -6,8 +6,8 @@
 #include <limits>
 #include <numbers>
 
-#include "galerkin/complex_products.h"
 #include "core/errors.h"
+#include "galerkin/complex_products.h"
 
 namespace beamid::galerkin {
 

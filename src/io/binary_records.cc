@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.h"
 #include "io/record_samples.h"
 #include "io/uff58.h"
-#include "core/errors.h"
 
 namespace beamid::io {
 

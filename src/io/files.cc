@@ -3,8 +3,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "io/resources.h"
 #include "core/errors.h"
+#include "io/resources.h"
 
 namespace beamid::io {
 

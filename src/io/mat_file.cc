@@ -7,8 +7,8 @@
 #include <iostream>
 #include <memory>
 
-#include "io/resources.h"
 #include "core/errors.h"
+#include "io/resources.h"
 
 namespace beamid::io {
 namespace {

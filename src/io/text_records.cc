@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "io/record_samples.h"
 #include "core/errors.h"
+#include "io/record_samples.h"
 
 namespace beamid::io {
 namespace {

@@ -12,13 +12,13 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/errors.h"
 #include "io/files.h"
 #include "io/mat_file.h"
 #include "io/npy.h"
 #include "io/record_samples.h"
 #include "io/resources.h"
 #include "io/uff58.h"
-#include "core/errors.h"
 
 namespace beamid::io {
 

@@ -209,8 +209,8 @@ Spectrum welch_spectrum(const std::vector<double>& values, double dt_s, int segm
 
 const core::NameSet& detrend_names() {
   static const core::NameSet names({{kDetrendNone, "the record as it is"},
-                                     {kDetrendMean, "less its mean"},
-                                     {kDetrendLinear, "less its least-squares offset and linear trend"}});
+                                    {kDetrendMean, "less its mean"},
+                                    {kDetrendLinear, "less its least-squares offset and linear trend"}});
   return names;
 }
 

@@ -9,8 +9,8 @@ namespace beamid::simulation {
 
 const core::NameSet& excitation_names() {
   static const core::NameSet names({{kPulse, "F0 sin^2(pi t/tau) on [0, tau] at x_f, from rest"},
-                                     {kPluck, "released at rest from the static deflection under F0 at x_f"},
-                                     {kFreeDecay, "a record from an unknown state (fit only)"}});
+                                    {kPluck, "released at rest from the static deflection under F0 at x_f"},
+                                    {kFreeDecay, "a record from an unknown state (fit only)"}});
   return names;
 }
 

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <optional>
 
-#include "galerkin/modes.h"
 #include "core/errors.h"
+#include "galerkin/modes.h"
 
 namespace beamid::simulation {
 namespace {

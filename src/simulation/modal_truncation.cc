@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include "galerkin/modes.h"
 #include "core/errors.h"
+#include "galerkin/modes.h"
 #include "simulation/modal_simulator.h"
 
 namespace beamid::simulation {

@@ -5,9 +5,9 @@
 #include <complex>
 #include <optional>
 
+#include "core/errors.h"
 #include "galerkin/complex_products.h"
 #include "galerkin/modes.h"
-#include "core/errors.h"
 #include "simulation/modal_simulator.h"
 
 namespace beamid::simulation {

@@ -151,32 +151,26 @@ void bias_findings(const std::vector<BiasRow>& rows, bool control, Findings& f) 
   }
 }
 
-}  // namespace
+void claim(Findings& f, bool holds, int count, int total, const std::string& text) {
+  f.claims.push_back({holds, text, count, total});
+}
 
-Findings study_findings(const StudyResults& results, const Groups& groups, const LandscapeMetrics& landscape,
-                        const StartDistanceMetrics& start_distance) {
+// Success rates per cost (noise <= 1 %), and the frequency-domain costs against time, overall and per setting.
+void success_findings(const StudyResults& results, const Groups& groups, Findings& f) {
   const StudySpec& spec = *results.spec;
-  const bool several = spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1;
-  Findings f;
-  const auto claim = [&](bool holds, int count, int total, const std::string& text) {
-    f.claims.push_back({holds, text, count, total});
-  };
   auto by_cost = success_by_cost(results.cases, 0.01);
   for (const auto& cost : spec.sweep.cost)
     if (by_cost.count(cost))
       f.counts.push_back({cost + " succeeds in " + count_with_interval(by_cost[cost].successes, by_cost[cost].cases) +
                               " of the fits with noise <= 1 %",
                           by_cost[cost].successes, by_cost[cost].cases});
-  std::vector<SliceRow> slice_rows;  // the first experiment's
-  for (const auto& s : landscape.slices)
-    if (s.first_experiment && s.first_setting) slice_rows.push_back(s);
   const auto rate = [&](const std::string& c) { return by_cost.count(c) ? by_cost[c].rate() : -1.0; };
   // Rates are compared only from 10 fits per cost up: below that the intervals span most of [0, 1].
   const auto enough = [&](const std::string& c) { return by_cost.count(c) && by_cost[c].cases >= 10; };
   if (enough(kTime) && (enough(kSpike) || enough(kSmooth))) {
     const std::string best = rate(kSmooth) > rate(kSpike) ? kSmooth : kSpike;
     const double best_freq = rate(best);
-    claim(best_freq > rate(kTime), -1, -1,
+    claim(f, best_freq > rate(kTime), -1, -1,
           "a frequency-domain cost succeeds more often than the time-domain cost "
           "(noise <= 1 %: best spike cost, " +
               best + ", " + count_with_interval(by_cost[best].successes, by_cost[best].cases) + " against time " +
@@ -196,81 +190,91 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
         holds += m.at(kSmooth) >= m.at(kTime) ? 1 : 0;
       }
     if (total > 0)
-      claim(holds == total, holds, total,
+      claim(f, holds == total, holds, total,
             "spike-smooth succeeds at least as often as time in every setting (" + std::to_string(holds) + "/" +
                 std::to_string(total) + " settings)");
   }
-  if (several) {
-    for (const auto& cost : spec.sweep.cost) {
-      std::map<int, std::pair<int, int>> by_modes;
-      for (const CaseRow& r : results.cases)
-        if (r.unit->cost == cost) {
-          by_modes[r.modes()].first += r.success ? 1 : 0;
-          by_modes[r.modes()].second += 1;
-        }
-      if (by_modes.size() < 2) continue;
-      const auto& lo = by_modes.begin()->second;
-      const auto& hi = by_modes.rbegin()->second;
-      const double rlo = static_cast<double>(lo.first) / lo.second, rhi = static_cast<double>(hi.first) / hi.second;
-      claim(rhi < rlo, -1, -1,
-            cost + "'s success rate falls from " + count_with_interval(lo.first, lo.second) + " with " +
-                std::to_string(by_modes.begin()->first) + " mode(s) in the data to " +
-                count_with_interval(hi.first, hi.second) + " with " + std::to_string(by_modes.rbegin()->first));
-    }
+}
+
+// Each cost's success rate at the fewest and the most modes in the data (several experiments).
+void modes_findings(const StudyResults& results, Findings& f) {
+  const StudySpec& spec = *results.spec;
+  for (const auto& cost : spec.sweep.cost) {
+    std::map<int, std::pair<int, int>> by_modes;
+    for (const CaseRow& r : results.cases)
+      if (r.unit->cost == cost) {
+        by_modes[r.modes()].first += r.success ? 1 : 0;
+        by_modes[r.modes()].second += 1;
+      }
+    if (by_modes.size() < 2) continue;
+    const auto& lo = by_modes.begin()->second;
+    const auto& hi = by_modes.rbegin()->second;
+    const double rlo = static_cast<double>(lo.first) / lo.second, rhi = static_cast<double>(hi.first) / hi.second;
+    claim(f, rhi < rlo, -1, -1,
+          cost + "'s success rate falls from " + count_with_interval(lo.first, lo.second) + " with " +
+              std::to_string(by_modes.begin()->first) + " mode(s) in the data to " +
+              count_with_interval(hi.first, hi.second) + " with " + std::to_string(by_modes.rbegin()->first));
   }
-  if (several && !landscape.slices.empty()) {
-    // Median basin width (over the estimated parameters) at the fewest and the most modes, per cost.
-    for (const auto& cost : spec.landscape.cost) {
-      std::map<int, std::vector<double>> widths;
-      for (const auto& b : landscape.slices)  // only where the slice resolves the least-squares basin
-        if (b.cost == cost && b.first_setting && b.resolution.resolved())
-          widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
-      if (widths.size() < 2) continue;
-      const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);
-      claim(hi < lo, -1, -1,
-            cost + "'s median basin width narrows from " + pct(lo) + " with " + std::to_string(widths.begin()->first) +
-                " mode(s) in the data to " + pct(hi) + " with " + std::to_string(widths.rbegin()->first));
-    }
+}
+
+// Median basin width (over the estimated parameters) at the fewest and the most modes, per cost.
+void basin_findings(const StudySpec& spec, const LandscapeMetrics& landscape, Findings& f) {
+  for (const auto& cost : spec.landscape.cost) {
+    std::map<int, std::vector<double>> widths;
+    for (const auto& b : landscape.slices)  // only where the slice resolves the least-squares basin
+      if (b.cost == cost && b.first_setting && b.resolution.resolved())
+        widths[b.modes].push_back(b.shape.basin_upper - b.shape.basin_lower);
+    if (widths.size() < 2) continue;
+    const double lo = median(widths.begin()->second), hi = median(widths.rbegin()->second);
+    claim(f, hi < lo, -1, -1,
+          cost + "'s median basin width narrows from " + pct(lo) + " with " + std::to_string(widths.begin()->first) +
+              " mode(s) in the data to " + pct(hi) + " with " + std::to_string(widths.rbegin()->first));
   }
-  if (!slice_rows.empty()) {
-    const auto count = [&](const std::string& a, const std::string& b, auto better) {
-      int holds = 0, total = 0;
-      for (const auto& s : slice_rows)
-        if (s.cost == a)
-          for (const auto& t : slice_rows)
-            if (t.cost == b && t.parameter == s.parameter && s.resolution.resolved() && t.resolution.resolved())
-              ++total, holds += better(s.shape, t.shape) ? 1 : 0;
-      return std::make_pair(holds, total);
-    };
-    for (const std::string& freq : {kSmooth, kSpike}) {
-      const auto wider = count(freq, kTime, [](const SliceShape& f, const SliceShape& t) {
-        return f.basin_upper - f.basin_lower > t.basin_upper - t.basin_lower;
-      });
-      if (wider.second > 0)
-        claim(wider.first == wider.second, wider.first, wider.second,
-              "the " + freq + " basin is wider than time's along every axis (" + std::to_string(wider.first) + "/" +
-                  std::to_string(wider.second) + ")");
-    }
-    const auto fewer = count(kSmooth, kTime,
-                             [](const SliceShape& f, const SliceShape& t) { return f.local_minima <= t.local_minima; });
-    if (fewer.second > 0)
-      claim(fewer.first == fewer.second, fewer.first, fewer.second,
-            "spike-smooth has no more local minima than time along every axis (" + std::to_string(fewer.first) + "/" +
-                std::to_string(fewer.second) + ")");
-    // The staircase of (3.5) lives on the axes that move frequencies (stiffness and inertia); damping moves only
-    // magnitudes, which (3.5) compares continuously.
-    int flat_holds = 0, flat_total = 0;
+}
+
+// The first experiment's slices: basins, local minima and flat steps of the frequency costs against time's.
+void slice_findings(const std::vector<SliceRow>& slice_rows, Findings& out) {
+  const auto count = [&](const std::string& a, const std::string& b, auto better) {
+    int holds = 0, total = 0;
     for (const auto& s : slice_rows)
-      if (s.cost == kSpike && model::parameter_role(s.parameter) != "damping")
+      if (s.cost == a)
         for (const auto& t : slice_rows)
-          if (t.cost == kSmooth && t.parameter == s.parameter)
-            ++flat_total, flat_holds += s.shape.flat_share > t.shape.flat_share ? 1 : 0;
-    if (flat_total > 0)
-      claim(flat_holds == flat_total, flat_holds, flat_total,
-            "the paper's spike cost (3.5) has more flat steps (its staircase) than "
-            "spike-smooth along every stiffness and mass axis (" +
-                std::to_string(flat_holds) + "/" + std::to_string(flat_total) + ")");
+          if (t.cost == b && t.parameter == s.parameter && s.resolution.resolved() && t.resolution.resolved())
+            ++total, holds += better(s.shape, t.shape) ? 1 : 0;
+    return std::make_pair(holds, total);
+  };
+  for (const std::string& freq : {kSmooth, kSpike}) {
+    const auto wider = count(freq, kTime, [](const SliceShape& f, const SliceShape& t) {
+      return f.basin_upper - f.basin_lower > t.basin_upper - t.basin_lower;
+    });
+    if (wider.second > 0)
+      claim(out, wider.first == wider.second, wider.first, wider.second,
+            "the " + freq + " basin is wider than time's along every axis (" + std::to_string(wider.first) + "/" +
+                std::to_string(wider.second) + ")");
   }
+  const auto fewer =
+      count(kSmooth, kTime, [](const SliceShape& f, const SliceShape& t) { return f.local_minima <= t.local_minima; });
+  if (fewer.second > 0)
+    claim(out, fewer.first == fewer.second, fewer.first, fewer.second,
+          "spike-smooth has no more local minima than time along every axis (" + std::to_string(fewer.first) + "/" +
+              std::to_string(fewer.second) + ")");
+  // The staircase of (3.5) lives on the axes that move frequencies (stiffness and inertia); damping moves only
+  // magnitudes, which (3.5) compares continuously.
+  int flat_holds = 0, flat_total = 0;
+  for (const auto& s : slice_rows)
+    if (s.cost == kSpike && model::parameter_role(s.parameter) != "damping")
+      for (const auto& t : slice_rows)
+        if (t.cost == kSmooth && t.parameter == s.parameter)
+          ++flat_total, flat_holds += s.shape.flat_share > t.shape.flat_share ? 1 : 0;
+  if (flat_total > 0)
+    claim(out, flat_holds == flat_total, flat_holds, flat_total,
+          "the paper's spike cost (3.5) has more flat steps (its staircase) than "
+          "spike-smooth along every stiffness and mass axis (" +
+              std::to_string(flat_holds) + "/" + std::to_string(flat_total) + ")");
+}
+
+// Local fits from random starts that reach the reference minimum, per cost and against time.
+void multistart_findings(const LandscapeMetrics& landscape, Findings& f) {
   for (const auto& s : landscape.multistarts)
     f.counts.push_back({s.cost + ": " + count_with_interval(s.reached, s.started) +
                             " local fits from random starts reach the reference minimum (the best of all its fits, "
@@ -284,10 +288,27 @@ Findings study_findings(const StudyResults& results, const Groups& groups, const
   if (const MultistartSummary* t = reach(kTime))
     for (const std::string& freq : {kSmooth, kSpike})
       if (const MultistartSummary* q = reach(freq))
-        claim(q->reached * t->started > t->reached * q->started, -1, -1,
+        claim(f, q->reached * t->started > t->reached * q->started, -1, -1,
               "more random starts reach the minimum with " + freq + " than with time (" +
                   count_with_interval(q->reached, q->started) + " against " +
                   count_with_interval(t->reached, t->started) + ")");
+}
+
+}  // namespace
+
+Findings study_findings(const StudyResults& results, const Groups& groups, const LandscapeMetrics& landscape,
+                        const StartDistanceMetrics& start_distance) {
+  const StudySpec& spec = *results.spec;
+  const bool several = spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1;
+  Findings f;
+  success_findings(results, groups, f);
+  if (several) modes_findings(results, f);
+  if (several && !landscape.slices.empty()) basin_findings(spec, landscape, f);
+  std::vector<SliceRow> slice_rows;  // the first experiment's
+  for (const auto& s : landscape.slices)
+    if (s.first_experiment && s.first_setting) slice_rows.push_back(s);
+  if (!slice_rows.empty()) slice_findings(slice_rows, f);
+  multistart_findings(landscape, f);
   start_distance_findings(start_distance, f);
   efficiency_findings(spec, efficiency_rows(results, groups), f);
   bias_findings(bias_rows(results, groups), spec.truth.control, f);

@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/errors.h"
 #include "fit/cramer_rao.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
-#include "core/errors.h"
 #include "model/exact_frequencies.h"
 #include "signal/noise.h"
 #include "signal/spectrum.h"
@@ -196,8 +196,8 @@ void validate_plan(const StudySpec& spec, const Plan& plan) {
     try {
       fit::validate(unit_options(spec, u, spec.fit.spikes > 0 ? spec.fit.spikes : spec.fit.max_spikes));
     } catch (const InputError& e) {
-      throw InputError(spec.path + ": " + unit_kind_name(u.kind) + " " + u.id + " (N = " + std::to_string(u.elements) + ", cost " +
-                       u.cost + (u.method.empty() ? "" : ", method " + u.method) + "): " + e.what());
+      throw InputError(spec.path + ": " + unit_kind_name(u.kind) + " " + u.id + " (N = " + std::to_string(u.elements) +
+                       ", cost " + u.cost + (u.method.empty() ? "" : ", method " + u.method) + "): " + e.what());
     }
   }
 }
@@ -421,7 +421,7 @@ Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
              : unit.kind == UnitKind::Frequencies ? run_frequencies(spec, unit.elements)
              : unit.kind == UnitKind::Start       ? run_start(spec, unit, truth)
              : unit.kind == UnitKind::Bound       ? run_bound(spec, unit, truth)
-                                          : run_landscape(spec, unit, truth);
+                                                  : run_landscape(spec, unit, truth);
   r.set("kind", unit_kind_name(unit.kind));
   return r;
 }

@@ -120,23 +120,32 @@ RenderedFiles multistart_files(const StudySpec& spec, const std::vector<Multista
   return {{"landscape/multistart.csv", ms.str()}, {"landscape/multistart.md", md.str()}};
 }
 
-}  // namespace
+std::string resolution_csv(const Resolution& r) {
+  return io::round_trip(r.frequency_step) + "," + io::round_trip(r.predicted_basin) + "," + (r.resolved() ? "1" : "0");
+}
 
-RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetrics& metrics) {
-  const StudySpec& spec = *results.spec;
-  RenderedFiles files;
-  if (!spec.landscape.enabled) return files;
-  for (const LandscapeRow& l : results.landscape) {
-    const Unit& u = *l.unit;
-    const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
-    if (u.kind == UnitKind::Slice && first)
-      files.push_back(slice_file(l, true_value(spec, u.parameters[0]), first_setting(spec, u)));
-  }
-  for (const GridRow& g : metrics.grids)  // the grids whose lists agree in size (metrics.h)
-    files.push_back(grid_file(*g.row, true_value(spec, g.a), true_value(spec, g.b)));
-  const RenderedFiles ms = multistart_files(spec, metrics.multistarts);
-  files.insert(files.end(), ms.begin(), ms.end());
+// The step beside the predicted least-squares basin; "(coarse)" when it exceeds a third of it.
+std::string step_md(const Resolution& r) {
+  if (!std::isfinite(r.frequency_step) || !std::isfinite(r.predicted_basin)) return std::string("unknown");
+  return pct(r.frequency_step) + (r.resolved() ? "" : " (coarse: basin " + pct(r.predicted_basin) + ")");
+}
 
+std::string setting_csv(const Unit& u) { return std::to_string(u.elements) + "," + io::round_trip(u.noise); }
+
+std::string basin_md(const SliceRow& s) {
+  return s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
+                                 : std::string("unresolved");
+}
+
+std::string grid_label(const StudySpec& spec, const GridRow& g) {
+  return g.a + " x " + g.b +
+         (g.zoom ? " (+-" + pct(spec.landscape.zoom_range_factor - 1) + ", " +
+                       std::to_string(spec.landscape.zoom_points) + " points per axis)"
+                 : std::string());
+}
+
+// Every slice's basin against the predicted least-squares basin, for every experiment.
+Rendered basin_file(const LandscapeMetrics& metrics) {
   std::ostringstream basin;
   basin << "modes_in_data,pulse_width_s,samples,N,noise,cost,parameter,local_minima,basin_lower,basin_upper,"
            "basin_width,frequency_step,predicted_basin,resolved\n";
@@ -150,34 +159,18 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
           << "," << io::round_trip(s.resolution.frequency_step) << "," << io::round_trip(s.resolution.predicted_basin)
           << "," << (s.resolution.resolved() ? 1 : 0) << "\n";
   }
-  files.push_back({"landscape/basin.csv", basin.str()});
+  return {"landscape/basin.csv", basin.str()};
+}
 
+// The first experiment's slices and grids: one CSV row per setting, one Markdown row for the first setting; and the
+// multi-starts' reach.
+RenderedFiles smoothness_files(const StudySpec& spec, const LandscapeMetrics& metrics) {
   std::ostringstream csv, md;
   csv << "N,noise,cost,kind,parameters,local_minima,basin_lower,basin_upper,total_variation_ratio,flat_share,"
          "descent_share,frequency_step,predicted_basin,resolved\n";
   md << "| cost | slice or grid | step in frequency | local minima | basin around the minimum | TV / range | flat "
         "steps "
         "| grid points descending to the minimum |\n|---|---|---|---|---|---|---|---|\n";
-  const auto resolution_csv = [](const Resolution& r) {
-    return io::round_trip(r.frequency_step) + "," + io::round_trip(r.predicted_basin) + "," +
-           (r.resolved() ? "1" : "0");
-  };
-  // The step beside the predicted least-squares basin; "(coarse)" when it exceeds a third of it.
-  const auto step_md = [](const Resolution& r) {
-    if (!std::isfinite(r.frequency_step) || !std::isfinite(r.predicted_basin)) return std::string("unknown");
-    return pct(r.frequency_step) + (r.resolved() ? "" : " (coarse: basin " + pct(r.predicted_basin) + ")");
-  };
-  const auto setting_csv = [](const Unit& u) { return std::to_string(u.elements) + "," + io::round_trip(u.noise); };
-  const auto basin_md = [](const SliceRow& s) {
-    return s.resolution.resolved() ? signed_pct(s.shape.basin_lower) + " .. " + signed_pct(s.shape.basin_upper)
-                                   : std::string("unresolved");
-  };
-  const auto grid_label = [&](const GridRow& g) {
-    return g.a + " x " + g.b +
-           (g.zoom ? " (+-" + pct(spec.landscape.zoom_range_factor - 1) + ", " +
-                         std::to_string(spec.landscape.zoom_points) + " points per axis)"
-                   : std::string());
-  };
   for (const auto& s : metrics.slices) {
     if (!s.first_experiment) continue;
     csv << setting_csv(*s.row->unit) << "," << s.cost << ",slice," << s.parameter << "," << s.shape.local_minima << ","
@@ -194,48 +187,9 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
         << "," << g.shape.local_minima << ",nan,nan,nan," << io::round_trip(g.shape.flat_share) << ","
         << io::round_trip(g.shape.descent_share) << "," << resolution_csv(g.resolution) << "\n";
     if (!g.first_setting) continue;
-    md << "| " << g.cost << " | " << grid_label(g) << " | " << step_md(g.resolution) << " | " << g.shape.local_minima
-       << " | - | - | " << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share) << " |\n";
-  }
-  // Across N and noise (the first experiment): one column per setting, one row per slice or fine grid.
-  if (spec.landscape.elements.size() * spec.landscape.noise.size() > 1) {
-    std::ostringstream across;
-    across << "| cost | slice or grid |";
-    for (int n : spec.landscape.elements)
-      for (double noise : spec.landscape.noise) across << " N = " << n << ", noise " << pct(noise) << " |";
-    across << "\n|---|---|";
-    for (std::size_t i = 0; i < spec.landscape.elements.size() * spec.landscape.noise.size(); ++i) across << "---|";
-    across << "\n";
-    // Cells in plan order: the settings of one (cost, axis) follow the order N, then noise.
-    std::map<std::pair<std::string, std::string>, std::vector<std::string>> rows;
-    std::vector<std::pair<std::string, std::string>> order;
-    const auto cell = [&](const std::string& cost, const std::string& what, const std::string& text) {
-      const auto key = std::make_pair(cost, what);
-      if (!rows.count(key)) order.push_back(key);
-      rows[key].push_back(text);
-    };
-    for (const auto& s : metrics.slices)
-      if (s.first_experiment)
-        cell(s.cost, s.parameter,
-             basin_md(s) + ", " + minima(s.shape.local_minima) +
-                 (s.resolution.resolved() ? std::string() : " (coarse)"));
-    for (const auto& g : metrics.grids)
-      if (g.zoom)
-        cell(g.cost, grid_label(g),
-             minima(g.shape.local_minima) + ", " + pct(g.shape.descent_share) + " descend" +
-                 (g.resolution.resolved() ? std::string() : " (coarse)"));
-    std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
-      const auto rank = [&](const std::string& c) {
-        return std::find(spec.landscape.cost.begin(), spec.landscape.cost.end(), c) - spec.landscape.cost.begin();
-      };
-      return rank(x.first) < rank(y.first);
-    });
-    for (const auto& key : order) {
-      across << "| " << key.first << " | " << key.second << " |";
-      for (const auto& text : rows[key]) across << " " << text << " |";
-      across << "\n";
-    }
-    files.push_back({"landscape_across.md", across.str()});
+    md << "| " << g.cost << " | " << grid_label(spec, g) << " | " << step_md(g.resolution) << " | "
+       << g.shape.local_minima << " | - | - | " << pct(g.shape.flat_share) << " | " << pct(g.shape.descent_share)
+       << " |\n";
   }
   if (!metrics.multistarts.empty()) {
     md << "\nLocal fits from " << spec.landscape.multistarts
@@ -245,8 +199,70 @@ RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetri
     for (const auto& s : metrics.multistarts) md << " " << s.cost << " " << s.reached << "/" << s.started << ";";
     md << "\n";
   }
-  files.push_back({"landscape/smoothness.csv", csv.str()});
-  files.push_back({"smoothness.md", md.str()});
+  return {{"landscape/smoothness.csv", csv.str()}, {"smoothness.md", md.str()}};
+}
+
+// Across N and noise (the first experiment): one column per setting, one row per slice or fine grid.
+Rendered across_file(const StudySpec& spec, const LandscapeMetrics& metrics) {
+  std::ostringstream across;
+  across << "| cost | slice or grid |";
+  for (int n : spec.landscape.elements)
+    for (double noise : spec.landscape.noise) across << " N = " << n << ", noise " << pct(noise) << " |";
+  across << "\n|---|---|";
+  for (std::size_t i = 0; i < spec.landscape.elements.size() * spec.landscape.noise.size(); ++i) across << "---|";
+  across << "\n";
+  // Cells in plan order: the settings of one (cost, axis) follow the order N, then noise.
+  std::map<std::pair<std::string, std::string>, std::vector<std::string>> rows;
+  std::vector<std::pair<std::string, std::string>> order;
+  const auto cell = [&](const std::string& cost, const std::string& what, const std::string& text) {
+    const auto key = std::make_pair(cost, what);
+    if (!rows.count(key)) order.push_back(key);
+    rows[key].push_back(text);
+  };
+  for (const auto& s : metrics.slices)
+    if (s.first_experiment)
+      cell(s.cost, s.parameter,
+           basin_md(s) + ", " + minima(s.shape.local_minima) + (s.resolution.resolved() ? std::string() : " (coarse)"));
+  for (const auto& g : metrics.grids)
+    if (g.zoom)
+      cell(g.cost, grid_label(spec, g),
+           minima(g.shape.local_minima) + ", " + pct(g.shape.descent_share) + " descend" +
+               (g.resolution.resolved() ? std::string() : " (coarse)"));
+  std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
+    const auto rank = [&](const std::string& c) {
+      return std::find(spec.landscape.cost.begin(), spec.landscape.cost.end(), c) - spec.landscape.cost.begin();
+    };
+    return rank(x.first) < rank(y.first);
+  });
+  for (const auto& key : order) {
+    across << "| " << key.first << " | " << key.second << " |";
+    for (const auto& text : rows[key]) across << " " << text << " |";
+    across << "\n";
+  }
+  return {"landscape_across.md", across.str()};
+}
+
+}  // namespace
+
+RenderedFiles render_landscape(const StudyResults& results, const LandscapeMetrics& metrics) {
+  const StudySpec& spec = *results.spec;
+  RenderedFiles files;
+  if (!spec.landscape.enabled) return files;
+  for (const LandscapeRow& l : results.landscape) {
+    const Unit& u = *l.unit;
+    const bool first = u.pulse_width_s == spec.sweep.pulse_width_s.front() && u.samples == spec.sweep.samples.front();
+    if (u.kind == UnitKind::Slice && first)
+      files.push_back(slice_file(l, true_value(spec, u.parameters[0]), first_setting(spec, u)));
+  }
+  for (const GridRow& g : metrics.grids)  // the grids whose lists agree in size (metrics.h)
+    files.push_back(grid_file(*g.row, true_value(spec, g.a), true_value(spec, g.b)));
+  const RenderedFiles ms = multistart_files(spec, metrics.multistarts);
+  files.insert(files.end(), ms.begin(), ms.end());
+  files.push_back(basin_file(metrics));
+  const bool across = spec.landscape.elements.size() * spec.landscape.noise.size() > 1;
+  const RenderedFiles smoothness = smoothness_files(spec, metrics);
+  if (across) files.push_back(across_file(spec, metrics));
+  files.insert(files.end(), smoothness.begin(), smoothness.end());
   return files;
 }
 

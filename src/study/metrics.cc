@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
-#include "galerkin/modes.h"
 #include "study/start_distance.h"
 
 namespace beamid::study {
@@ -203,7 +203,8 @@ LandscapeMetrics landscape_metrics(const StudyResults& results) {
     s.reference_cost = kNaN;
     const Record* reference = nullptr;
     for (const LandscapeRow& l : results.landscape)
-      if (l.unit->kind == UnitKind::Multistart && l.unit->cost == cost && l.record.text("status").rfind("failed", 0) != 0 &&
+      if (l.unit->kind == UnitKind::Multistart && l.unit->cost == cost &&
+          l.record.text("status").rfind("failed", 0) != 0 &&
           (reference == nullptr || l.record.number("cost") < reference->number("cost"))) {
         reference = &l.record;
         s.reference_start = l.unit->index;

@@ -79,17 +79,18 @@ std::string fit_text(const StudySpec& spec) {
 // cost, N, method and start sees the same noisy record (common random numbers).
 std::uint64_t record_noise_seed(const StudySpec& spec, const Unit& truth, int samples, double noise, int replicate) {
   return core::mix64(spec.seed ^
-                       core::fnv1a64("noise;" + truth.canonical + ";record_samples=" + std::to_string(samples) +
-                                       ";noise=" + io::round_trip(noise) + ";replicate=" + std::to_string(replicate)));
+                     core::fnv1a64("noise;" + truth.canonical + ";record_samples=" + std::to_string(samples) +
+                                   ";noise=" + io::round_trip(noise) + ";replicate=" + std::to_string(replicate)));
 }
 
 }  // namespace
 
 const std::string& unit_kind_name(UnitKind kind) {
   static const std::map<UnitKind, std::string> names = {
-      {UnitKind::Truth, "truth"},           {UnitKind::Case, "case"},   {UnitKind::Slice, "slice"},
-      {UnitKind::Grid, "grid"},             {UnitKind::Multistart, "multistart"},
-      {UnitKind::Frequencies, "frequencies"}, {UnitKind::Start, "start"}, {UnitKind::Bound, "bound"}};
+      {UnitKind::Truth, "truth"},           {UnitKind::Case, "case"},
+      {UnitKind::Slice, "slice"},           {UnitKind::Grid, "grid"},
+      {UnitKind::Multistart, "multistart"}, {UnitKind::Frequencies, "frequencies"},
+      {UnitKind::Start, "start"},           {UnitKind::Bound, "bound"}};
   return names.at(kind);
 }
 
@@ -158,8 +159,8 @@ void plan_landscape_setting(const StudySpec& spec, const std::string& fit, std::
   // A noise-free unit's text is what it was before noise levels existed (its id, and a resumed store, stay valid).
   const std::string noise_text = noise == 0 ? "" : ";noise=" + io::round_trip(noise);
   const auto base = [&](double range_factor) {
-    return plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) + ";N=" + std::to_string(n) +
-           ";" + fit + ";range_factor=" + io::round_trip(range_factor) + noise_text;
+    return plan.truths[ti].canonical + ";record_samples=" + std::to_string(samples) + ";N=" + std::to_string(n) + ";" +
+           fit + ";range_factor=" + io::round_trip(range_factor) + noise_text;
   };
   const auto add = [&](Unit u) {
     u.truth = static_cast<int>(ti);

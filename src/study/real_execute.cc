@@ -7,12 +7,12 @@
 #include <tuple>
 
 #include "config/beam_file.h"
+#include "core/errors.h"
 #include "fit/window_spread.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
 #include "io/provenance.h"
-#include "core/errors.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 #include "study/format.h"

@@ -7,12 +7,12 @@
 
 #include "config/beam_file.h"
 #include "config/document.h"
+#include "core/errors.h"
+#include "core/limits.h"
 #include "costs/cost.h"
 #include "io/files.h"
 #include "io/text.h"
 #include "io/time_series.h"
-#include "core/errors.h"
-#include "core/limits.h"
 #include "signal/noise.h"
 
 namespace beamid::study {

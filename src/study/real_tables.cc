@@ -30,15 +30,23 @@ std::string notes_text(const io::TimeSeries& series) {
 
 }  // namespace
 
-RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results) {
-  std::ostringstream fits, modes, candidates, timings, md;
+namespace {
+
+// The CSV tables of a real study: fits, modes, candidates and timings, and the first candidate's overlays.
+struct RealCsv {
+  std::ostringstream fits, modes, candidates, timings;
+  std::vector<std::pair<std::string, Overlay>> overlays;
+};
+
+void real_csv(const RealStudySpec& spec, const RealResults& results, RealCsv& csv) {
+  std::ostringstream &fits = csv.fits, &modes = csv.modes, &candidates = csv.candidates, &timings = csv.timings;
+  auto& overlays = csv.overlays;
   fits << "candidate,cost,status,cost_value,evaluations,parameter,estimate,standard_error,robust_standard_error,"
           "window_sd,nominal,ratio_to_nominal,parameter_status\n";
   modes << "candidate,cost,record,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio\n";
   candidates << "candidate,cost,status,parameters,rms_frequency_misfit,worst_frequency_misfit,condition_number,"
                 "verdict,weakest_combination\n";
   timings << "candidate,cost,wall_time_s\n";
-  std::vector<std::pair<std::string, Overlay>> overlays;
   for (const RealFit& f : results.fits) {
     const std::string label = io::json_string(f.candidate) + "," + f.cost;
     timings << label << "," << io::round_trip(f.wall_time_s) << "\n";
@@ -69,8 +77,12 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
                << io::json_string(id.status == "ok" ? id.combination() : "") << "\n";
     if (f.overlay && f.candidate == spec.candidates.front().name) overlays.emplace_back(f.cost, *f.overlay);
   }
+}
 
-  // report.md: the generated block.
+using Markdown = std::ostringstream;
+
+// The block's first line: the study, its records, the model and what it estimates.
+void real_header(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   md << "*Study `" << spec.name << "` (`" << spec.path << "`), commit " << io::commit_label() << ": ";
   for (std::size_t k = 0; k < results.records.size(); ++k) {
     const io::TimeSeries& series = results.records[k].series;
@@ -91,6 +103,10 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
   md << "; the other parameters at their nominal values (`" << std::filesystem::path(spec.beam_file).filename().string()
      << "`)" << (spec.windows >= 2 ? "; window sd over " + std::to_string(spec.windows) + " disjoint windows" : "")
      << ".*\n\n";
+}
+
+// One computed claim per fit: its identified frequencies against the measured peaks.
+void real_claims(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   md << "Computed claims:\n\n";
   for (const RealFit& f : results.fits) {
     if (failed(f)) {
@@ -107,6 +123,10 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
        << ": every identified frequency within 1.5 % of its measured peak (" << within << "/" << total << "; worst "
        << g4(100 * f.worst_misfit) << " %)\n";
   }
+}
+
+// The candidate models side by side (several candidates only).
+void real_candidates(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   if (spec.candidates.size() > 1) {
     md << "\n| candidate | cost | status | estimated | RMS misfit (%) | worst (%) | condition (ln q) | verdict | "
           "weakest "
@@ -121,6 +141,10 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
          << (id.status == "ok" ? id.combination() : "-") << " |\n";
     }
   }
+}
+
+// Every estimate with its three uncertainties.
+void real_uncertainties(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   md << "\nThree uncertainties per estimate (REPORT 2.8 says which to quote): formal, sandwich (both from J at the "
         "estimate) and the sd over the disjoint windows (none for an estimate on its bound).\n";
   md << "\n| " << (spec.candidates.size() > 1 ? "candidate | " : "")
@@ -135,6 +159,10 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
          << (i < f.window_sd.size() && p.status == fit::kFree ? sd_text(f.window_sd[i]) : std::string("-")) << " | "
          << p.status << " |\n";
     }
+}
+
+// Per record: the measured modes beside every fit's identified ones; then the plots' links.
+void real_modes(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   for (std::size_t k = 0; k < results.records.size(); ++k) {
     const RealRecordData& record = results.records[k];
     md << "\n| " << (results.records.size() > 1 ? "`" + spec.records[k].name + "` mode" : "mode")
@@ -158,7 +186,19 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
      << (spec.candidates.size() > 1 || results.records.size() > 1 ? " (the first candidate's fits of the first record)"
                                                                   : "")
      << ".\n";
+}
 
+}  // namespace
+
+RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results) {
+  RealCsv csv;
+  real_csv(spec, results, csv);
+  Markdown md;  // report.md: the generated block
+  real_header(md, spec, results);
+  real_claims(md, spec, results);
+  real_candidates(md, spec, results);
+  real_uncertainties(md, spec, results);
+  real_modes(md, spec, results);
   Manifest manifest{spec.name, spec.question, spec.path, spec.file_hash, {}, {}};
   std::string files, notes;
   for (std::size_t k = 0; k < results.records.size(); ++k) {
@@ -169,12 +209,12 @@ RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& re
   RenderedFiles out = {
       {"manifest.json", manifest_json(manifest)},
       {"provenance.csv", provenance_csv(spec.name, static_cast<int>(spec.costs.size() * spec.candidates.size()))},
-      {"fits.csv", fits.str()},
-      {"modes.csv", modes.str()},
-      {"candidates.csv", candidates.str()},
-      {"timings.csv", timings.str()},
+      {"fits.csv", csv.fits.str()},
+      {"modes.csv", csv.modes.str()},
+      {"candidates.csv", csv.candidates.str()},
+      {"timings.csv", csv.timings.str()},
       {"report.md", md.str()}};
-  for (auto& f : render_overlay_files(overlays)) out.push_back(std::move(f));
+  for (auto& f : render_overlay_files(csv.overlays)) out.push_back(std::move(f));
   return out;
 }
 

@@ -20,6 +20,37 @@ std::string read(const RenderedFiles& files, const std::string& path) {
   return "";
 }
 
+// The plots plots/make_plots.sh makes from these tables (names fixed there): (file stem, what it shows).
+std::vector<std::pair<std::string, std::string>> plot_links(const StudySpec& spec, const RenderedFiles& tables) {
+  const auto& keys = spec.fit.estimate;
+  std::vector<std::pair<std::string, std::string>> images;
+  if (spec.landscape.enabled) {
+    images.emplace_back("landscape_slices", "cost slices through the truth, normalised to [0, 1]");
+    for (const auto& [a, b] : spec.landscape.pairs)
+      images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
+    if (spec.landscape.zoom_range_factor > 1)
+      for (int n : spec.landscape.elements)
+        for (double noise : spec.landscape.noise)
+          for (const auto& [a, b] : spec.landscape.pairs)
+            images.emplace_back(
+                "landscape_zoom_N" + std::to_string(n) + "-noise" + io::round_trip(noise) + "_" + a + "_" + b,
+                "fine cost surfaces over (" + a + ", " + b + ") at N = " + std::to_string(n) + ", noise " + pct(noise));
+  }
+  if (spec.start_distance.enabled)
+    images.emplace_back("start_distance",
+                        "share of starts that reach the minimum against the start's frequency offset");
+  if (spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1)
+    images.emplace_back("success_vs_modes", "success rate against the modes in the data");
+  if (spec.sweep.elements.size() > 1)
+    for (const auto& k : keys) images.emplace_back("bias_" + k, "RMSE of the relative error in " + k + " against N");
+  if (has(tables, "spectrum.csv")) {
+    images.emplace_back("spectrum", "data spectrum with the detected spikes and their 20 % supports");
+    images.emplace_back("overlay",
+                        "fits at N = " + std::to_string(spec.outputs.overlay_elements) + " in time and in frequency");
+  }
+  return images;
+}
+
 }  // namespace
 
 std::string render_report_block(const StudyResults& results, const Findings& findings, const RenderedFiles& tables) {
@@ -92,33 +123,9 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
               "from the 95 % Wilson bounds, and its ratio to the predicted 1/(2 f T):\n\n"
            << read(tables, "start_distance.md") << "\n";
   }
-  // Plot links: the images plots/make_plots.sh makes from these tables (names fixed there), SVG beside each PNG.
+  // Plot links, SVG beside each PNG.
   const std::string p = "plots/" + spec.name + "/";
-  std::vector<std::pair<std::string, std::string>> images;
-  if (spec.landscape.enabled) {
-    images.emplace_back("landscape_slices", "cost slices through the truth, normalised to [0, 1]");
-    for (const auto& [a, b] : spec.landscape.pairs)
-      images.emplace_back("landscape_grid_" + a + "_" + b, "cost surfaces over (" + a + ", " + b + ")");
-    if (spec.landscape.zoom_range_factor > 1)
-      for (int n : spec.landscape.elements)
-        for (double noise : spec.landscape.noise)
-          for (const auto& [a, b] : spec.landscape.pairs)
-            images.emplace_back(
-                "landscape_zoom_N" + std::to_string(n) + "-noise" + io::round_trip(noise) + "_" + a + "_" + b,
-                "fine cost surfaces over (" + a + ", " + b + ") at N = " + std::to_string(n) + ", noise " + pct(noise));
-  }
-  if (spec.start_distance.enabled)
-    images.emplace_back("start_distance",
-                        "share of starts that reach the minimum against the start's frequency offset");
-  if (spec.sweep.pulse_width_s.size() > 1 || spec.sweep.samples.size() > 1)
-    images.emplace_back("success_vs_modes", "success rate against the modes in the data");
-  if (spec.sweep.elements.size() > 1)
-    for (const auto& k : keys) images.emplace_back("bias_" + k, "RMSE of the relative error in " + k + " against N");
-  if (has(tables, "spectrum.csv")) {
-    images.emplace_back("spectrum", "data spectrum with the detected spikes and their 20 % supports");
-    images.emplace_back("overlay",
-                        "fits at N = " + std::to_string(spec.outputs.overlay_elements) + " in time and in frequency");
-  }
+  const std::vector<std::pair<std::string, std::string>> images = plot_links(spec, tables);
   report << "Plots (PNG; SVG beside each):\n\n";
   for (const auto& [name, what] : images) report << "- [" << what << "](" << p << name << ".png)\n";
   return report.str();

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "model/beam_parameters.h"
 #include "core/errors.h"
+#include "model/beam_parameters.h"
 
 namespace beamid::study {
 

@@ -7,10 +7,10 @@
 #include <mutex>
 #include <thread>
 
-#include "io/provenance.h"
-#include "io/resources.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/provenance.h"
+#include "io/resources.h"
 #include "study/execute.h"
 #include "study/plan.h"
 #include "study/store.h"

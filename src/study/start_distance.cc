@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "galerkin/modes.h"
 #include "core/errors.h"
+#include "galerkin/modes.h"
 #include "signal/noise.h"
 #include "study/format.h"
 #include "study/statistics.h"
-
 
 namespace beamid::study {
 Eigen::VectorXd random_direction(std::uint64_t seed, int dimension) {

@@ -9,9 +9,9 @@
 #include <mutex>
 #include <sstream>
 
+#include "core/errors.h"
 #include "io/files.h"
 #include "io/text.h"
-#include "core/errors.h"
 #include "signal/noise.h"
 
 namespace beamid::study {

@@ -6,9 +6,9 @@
 
 #include <sstream>
 
+#include "../fit/same_model_record.h"
 #include "apps/flag_requests.h"
 #include "apps/flags.h"
-#include "../fit/same_model_record.h"
 #include "core/errors.h"
 
 namespace beamid::api {

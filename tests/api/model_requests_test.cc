@@ -42,8 +42,8 @@ TEST(ModesRequest, ExactAndGalerkinFrequenciesOfTheThinBeam) {
   ASSERT_EQ(g.frequency_hz.size(), 4u);
   // The damped Galerkin modes at N = 16 against the undamped exact ones: the first two agree to 1e-4 (measured
   // 1.1e-7 and 6.6e-5: discretisation error, growing with the mode number, plus the damping's zeta^2 / 2 < 1.1e-6);
-  // the third and fourth are 7.0e-4 and 3.0e-3 high at this N, so they are only checked to lie above the exact ones, as a
-  // conforming Galerkin approximation's undamped frequencies must (Rayleigh-Ritz: upper bounds).
+  // the third and fourth are 7.0e-4 and 3.0e-3 high at this N, so they are only checked to lie above the exact ones, as
+  // a conforming Galerkin approximation's undamped frequencies must (Rayleigh-Ritz: upper bounds).
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(g.frequency_hz[k] / e.frequency_hz[k], 1, 1e-4) << "mode " << k + 1;
   for (int k = 2; k < 4; ++k) EXPECT_GT(g.frequency_hz[k], e.frequency_hz[k]) << "mode " << k + 1;
 }

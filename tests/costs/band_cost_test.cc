@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/errors.h"
 #include "costs/least_squares.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
-#include "core/errors.h"
 #include "thin_beam_fit.h"
 
 namespace beamid::costs {

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/errors.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
-#include "core/errors.h"
 #include "thin_beam_fit.h"
 
 namespace beamid::costs {

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "fit/identification.h"
 #include "core/errors.h"
+#include "fit/identification.h"
 #include "signal/noise.h"
 #include "signal/spikes.h"
 

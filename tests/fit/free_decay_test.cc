@@ -8,10 +8,10 @@
 #include <complex>
 #include <numbers>
 
+#include "core/errors.h"
 #include "fit/identification.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
-#include "core/errors.h"
 #include "simulation/simulator.h"
 
 namespace beamid {

@@ -13,10 +13,10 @@
 #include <fstream>
 #include <map>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "core/errors.h"
 #include "same_model_record.h"
 #include "signal/noise.h"
 

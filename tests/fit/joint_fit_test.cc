@@ -6,11 +6,11 @@
 
 #include <cmath>
 
-#include "fit/identification.h"
-#include "fit/objective.h"
-#include "fit/joint_objective.h"
-#include "galerkin/second_order_system.h"
 #include "core/errors.h"
+#include "fit/identification.h"
+#include "fit/joint_objective.h"
+#include "fit/objective.h"
+#include "galerkin/second_order_system.h"
 #include "same_model_record.h"
 #include "signal/noise.h"
 #include "simulation/simulator.h"

@@ -5,10 +5,10 @@
 
 #include <cmath>
 
+#include "core/errors.h"
 #include "fit/identification.h"
 #include "fit/window_spread.h"
 #include "galerkin/second_order_system.h"
-#include "core/errors.h"
 #include "same_model_record.h"
 #include "signal/noise.h"
 #include "simulation/simulator.h"

@@ -4,8 +4,8 @@
 
 #include "apps/cli.h"
 #include "config/beam_file.h"
-#include "io/time_series.h"
 #include "core/errors.h"
+#include "io/time_series.h"
 #include "study/study_spec.h"
 
 namespace beamid::fuzz {

@@ -8,10 +8,10 @@
 #include <complex>
 #include <string>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
-#include "core/errors.h"
 
 namespace beamid::galerkin {
 namespace {

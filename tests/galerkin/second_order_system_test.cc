@@ -12,8 +12,8 @@
 #include <tuple>
 #include <vector>
 
-#include "galerkin/modes.h"
 #include "core/errors.h"
+#include "galerkin/modes.h"
 #include "model/exact_frequencies.h"
 
 namespace beamid::galerkin {

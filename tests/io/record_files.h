@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "io/time_series.h"
 #include "core/errors.h"
+#include "io/time_series.h"
 
 namespace beamid::io {
 

@@ -13,8 +13,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "io/time_series.h"
 #include "core/errors.h"
+#include "io/time_series.h"
 #include "record_files.h"
 
 namespace beamid::io {

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "galerkin/modes.h"
 #include "core/errors.h"
+#include "galerkin/modes.h"
 #include "simulation/simulator.h"
 
 namespace beamid::signal {
@@ -90,8 +90,11 @@ TEST(MatrixPencil, ModesNearChosenFrequenciesTakeTheStrongestNearEach) {
   // A record with a strong mode the model lacks (30 Hz, the "torsion mode") between two chosen ones: the chosen
   // modes come back in the order asked, to round-off (1e-9, as above); near 17 Hz the stronger of two candidates
   // within 5 % (16.5 Hz, amplitude 0.8, against 17.1 Hz, 0.5) is taken; a frequency with none is named.
-  const std::vector<Tone> tones = {{5.3, 0.01, 1.0, 0.3},   {16.5, 0.01, 0.8, 0.2}, {17.1, 0.02, 0.5, -1.1},
-                                   {30.0, 0.004, 3.0, 0.7}, {42.7, 0.005, 0.2, 2.0}};
+  const std::vector<Tone> tones = {{5.3, 0.01, 1.0, 0.3},
+                                   {16.5, 0.01, 0.8, 0.2},
+                                   {17.1, 0.02, 0.5, -1.1},
+                                   {30.0, 0.004, 3.0, 0.7},
+                                   {42.7, 0.005, 0.2, 2.0}};
   const auto y = record(tones, 1e-3, 2048);
   const auto modes = modes_near(y, 1e-3, PencilOptions{}, {42.7, 5.3, 17.0}, 0.05);
   ASSERT_EQ(modes.size(), 3u);

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "costs/cost.h"
 #include "core/errors.h"
+#include "costs/cost.h"
 #include "signal/noise.h"
 
 namespace beamid::signal {

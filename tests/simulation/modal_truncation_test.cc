@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "model/beam_parameters.h"
-#include "core/errors.h"
 #include "simulation/modal_simulator.h"
 #include "test_systems.h"
 
@@ -101,8 +101,8 @@ TEST(ModalTruncation, DecouplingIsExactForDampingTheUndampedModesDiagonalise) {
 TEST(ModalTruncation, DecoupledKeepsEachDiscardedModeAsItsOwnOscillator) {
   // Load and sensor M phi_j act on mode j alone (phi_k^T M phi_j = delta_kj, up to round-off): under `decoupled` a
   // discarded mode j then answers as the oscillator m q'' + c q' + k q = m P(t), y = m q, with m, c, k = phi_j^T (M, C,
-  // K) phi_j, whatever the damping couples elsewhere, and under `truncated` not at all. The thin beam with cDI 30 % low,
-  // whose blocks the damping couples.
+  // K) phi_j, whatever the damping couples elsewhere, and under `truncated` not at all. The thin beam with cDI 30 %
+  // low, whose blocks the damping couples.
   model::BeamParameters beam = model::preset("banks-aluminium");
   beam.cDI *= 0.7;
   Case c = thin_beam(beam, 8);

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fit/cramer_rao.h"
 #include "core/errors.h"
+#include "fit/cramer_rao.h"
 
 namespace beamid::simulation {
 namespace {

@@ -6,9 +6,9 @@
 
 #include <cmath>
 
+#include "core/errors.h"
 #include "galerkin/modes.h"
 #include "galerkin/spline_space.h"
-#include "core/errors.h"
 
 namespace beamid::study {
 namespace {

@@ -11,8 +11,8 @@
 #include <limits>
 #include <sstream>
 
-#include "io/files.h"
 #include "core/errors.h"
+#include "io/files.h"
 
 namespace beamid::study {
 namespace {
