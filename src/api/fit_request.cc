@@ -109,8 +109,8 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   o.refine = request.refine.value_or(o.refine);
   o.scaling = request.scaling;
   o.record_weights = request.record_weights;
-  if (o.record_weights != fit::kRmsWeights && o.record_weights != fit::kNoiseWeights)
-    refuse(caller, "record-weights", o.record_weights, "must be one of rms, noise");
+  if (!fit::record_weight_names().contains(o.record_weights))
+    refuse(caller, "record-weights", o.record_weights, "must be one of " + fit::record_weight_names().list());
   o.starts = request.starts;
   if (request.seed < 0) refuse(caller, "seed", std::to_string(request.seed), "must be an integer >= 0");
   o.seed = static_cast<std::uint64_t>(request.seed);

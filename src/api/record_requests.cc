@@ -42,7 +42,7 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
                        " samples at dt = " + format_value(prediction.dt_s) + " s: must match the data's " +
                        std::to_string(data.values.size()) + " at " + format_value(data.dt_s) + " s");
   const costs::CostOptions options = cost_options(request.cost, caller);
-  if (options.model_poles == "eigenvalues")
+  if (options.model_poles == costs::kEigenvaluePoles)
     refuse(caller, "--model-poles = 'eigenvalues': a prediction file carries no eigenvalues");
   auto cost = costs::make_cost(options, data.values, data.dt_s);
   const std::vector<std::complex<double>> none;

@@ -68,7 +68,8 @@ std::vector<FlagSpec> cost_flags(bool required) {
   flags.push_back(switch_flag("unknown-amplitude",
                               "excitation amplitude unknown: solved in closed form (time, freq-band), scale-free "
                               "magnitudes (spike costs)"));
-  flags.push_back(text_flag("model-poles", "spike-smooth: dft | eigenvalues (default dft)"));
+  flags.push_back(
+      text_flag("model-poles", "spike-smooth: " + costs::model_pole_names().alternatives() + " (default dft)"));
   flags.push_back(
       text_flag("frequency-weight", "spike costs: " + costs::frequency_weight_names().alternatives() +
                                         " (default relative: a record read from a file is a measured one)"));

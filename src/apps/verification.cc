@@ -231,7 +231,7 @@ void write_verification(const std::string& folder, std::ostream& log) {
       if (!fast.ok()) throw NumericalError("verify: " + fast.status);
       for (double rtol : {1e-6, 1e-8, 1e-10}) {
         simulation::SimulatorOptions cvode_options;
-        cvode_options.integrator = "cvode";
+        cvode_options.integrator = simulation::kCvode;
         cvode_options.cvode.rtol = rtol;
         const simulation::Trace cvode = simulation::simulate(forms, beam, e, cvode_options);
         if (!cvode.ok()) throw NumericalError("verify: " + cvode.status);

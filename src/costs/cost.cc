@@ -53,6 +53,12 @@ const core::NameSet& frequency_weight_names() {
   return names;
 }
 
+const core::NameSet& model_pole_names() {
+  static const core::NameSet names({{kDftPoles, "the 3-bin estimate on the model's own DFT, as on the data's"},
+                                    {kEigenvaluePoles, "the model's eigenvalues"}});
+  return names;
+}
+
 bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
 
 std::optional<std::string> validation_error(const CostOptions& o) {
@@ -69,8 +75,7 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   for (const auto& [key, value] : factors)
     if (!(std::isfinite(value) && value > 0))
       return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
-  if (o.model_poles != "dft" && o.model_poles != "eigenvalues")
-    return "model_poles = '" + o.model_poles + "': must be one of dft, eigenvalues";
+  if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
   return std::nullopt;
 }
 

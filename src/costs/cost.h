@@ -66,6 +66,11 @@ inline const std::string kRelativeWeight = "relative";
 inline const std::string kInverseVarianceWeight = "inverse-variance";
 const core::NameSet& frequency_weight_names();
 
+// Where spike-smooth takes the model's poles from, by name.
+inline const std::string kDftPoles = "dft";
+inline const std::string kEigenvaluePoles = "eigenvalues";
+const core::NameSet& model_pole_names();
+
 struct CostOptions {
   std::string name = "time";                       // "time" | "spike" | "spike-smooth"
   signal::SpikeOptions spikes;                     // NM, peak rule, band, support level
@@ -73,7 +78,7 @@ struct CostOptions {
   std::optional<double> eps1, eps2, eps3;          // nothing: the defaults above
   double eps1_factor = 1, eps2_factor = 1;         // multiply eps1 and eps2, given or default (a study's variants)
   bool unknown_amplitude = false;                  // time: solve a in closed form; spike costs: scale-free magnitudes
-  std::string model_poles = "dft";                 // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
+  std::string model_poles = kDftPoles;             // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
   int first_free_sample = 0;                       // modal: the free decay starts here (after the excitation)
   std::string frequency_weight = kAbsoluteWeight;  // spike costs: across spikes (above)
   // Spike costs: the data's spikes are picked on the record less its offset ("mean") or offset and linear trend

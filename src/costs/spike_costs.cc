@@ -261,7 +261,7 @@ class SmoothSpikeCost final : public SpikeCostBase {
     const auto spectrum = model_spectrum(model, e);
     if (!spectrum) return e;
     const signal::Spectrum& u = *spectrum;
-    if (options_.model_poles == "eigenvalues") {
+    if (options_.model_poles == kEigenvaluePoles) {
       if (!poles_from_eigenvalues(model.poles_rad_s, u, e)) return e;
     } else {
       const std::vector<int> maxima = signal::local_maxima(u);
@@ -299,7 +299,7 @@ class SmoothSpikeCost final : public SpikeCostBase {
     return e;
   }
 
-  bool has_output_jacobian() const override { return !options_.unknown_amplitude && options_.model_poles == "dft"; }
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude && options_.model_poles == kDftPoles; }
   // The chain rule through the DFT (linear), the 3-bin estimator at the model's peak bins (held fixed) and the
   // magnitudes, d|U| = Re(conj(U) dU) / |U|.
   Eigen::MatrixXd output_jacobian(const ModelResponse& model, const Eigen::MatrixXd& dy) override {

@@ -134,7 +134,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   }
   const galerkin::SplineSpace space(elements);
   const galerkin::BeamForms forms(space, beam.l, beam.support);
-  if (simulation::has_exact_sensitivities(experiment, keys) && simulator.integrator == "fast") {
+  if (simulation::has_exact_sensitivities(experiment, keys) && simulator.integrator == simulation::kFast) {
     check_noise(noise_sd);
     const simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, experiment, keys);
     if (!s.trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + s.trace.status);

@@ -17,6 +17,13 @@
 
 namespace beamid::fit {
 
+const core::NameSet& record_weight_names() {
+  static const core::NameSet names(
+      {{kRmsWeights, "each record's residuals relative to its data's RMS (records of equal signal-to-noise ratio)"},
+       {kNoiseWeights, "maximum likelihood with each record's own noise level, reweighted until it settles"}});
+  return names;
+}
+
 const core::NameSet& strategy_names() {
   static const core::NameSet names({{kDirect, "all estimated parameters at once"},
                                     {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
@@ -168,10 +175,8 @@ void validate(const FitOptions& o) {
     throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost);
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
   if (o.starts < 1) throw InputError("starts = " + std::to_string(o.starts) + ": must be >= 1");
-  if (o.record_weights != kRmsWeights && o.record_weights != kNoiseWeights)
-    throw InputError("record_weights = '" + o.record_weights + "': must be one of rms, noise");
-  if (o.start_design != "lhs" && o.start_design != "random")
-    throw InputError("start_design = '" + o.start_design + "': must be one of lhs, random");
+  record_weight_names().require("record_weights", o.record_weights);
+  start_design_names().require("start_design", o.start_design);
   const ParameterMap map(o.start, o.estimate, o.scaling);
   // A length below a force, sensor or body position would take it off the beam mid-fit.
   for (const auto& e : o.estimate) {

@@ -73,6 +73,7 @@ struct FitOptions {
 
 inline const std::string kRmsWeights = "rms";
 inline const std::string kNoiseWeights = "noise";
+const core::NameSet& record_weight_names();
 
 // One record of a joint fit (above).
 struct Record {

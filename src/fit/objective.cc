@@ -46,12 +46,13 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
         static_cast<int>(std::min<double>(data.size(), std::floor(o.experiment.pulse_width_s / o.experiment.dt_s) + 1));
   cost_ = costs::make_cost(cost_options, data, o.experiment.dt_s);
   const galerkin::SplineSpace space(o.elements);
-  impl_ = std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l, o.start.support), o.experiment,
-                                      simulation::make_simulator(o.simulator),
-                                      o.cost.name == costs::kModalCost || (o.cost.name == costs::kSpikeSmoothCost &&
-                                                                           o.cost.model_poles == "eigenvalues"),
-                                      o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
-  const bool fast = o.simulator.integrator == "fast";
+  impl_ =
+      std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l, o.start.support), o.experiment,
+                                  simulation::make_simulator(o.simulator),
+                                  o.cost.name == costs::kModalCost || (o.cost.name == costs::kSpikeSmoothCost &&
+                                                                       o.cost.model_poles == costs::kEigenvaluePoles),
+                                  o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
+  const bool fast = o.simulator.integrator == simulation::kFast;
   impl_->pole_jacobian = cost_->has_pole_jacobian() && o.experiment.excitation != "free-decay" && fast;
   std::vector<std::string> keys;
   for (const auto& e : o.estimate) keys.push_back(e.key);

@@ -132,10 +132,15 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
   return result;
 }
 
+const core::NameSet& start_design_names() {
+  static const core::NameSet names({{"lhs", "Latin hypercube: one start in each of count strata of every axis"},
+                                    {"random", "independent uniform starts in the bounds"}});
+  return names;
+}
+
 std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, int count,
                                                   const std::string& design, std::uint64_t seed) {
-  if (design != "lhs" && design != "random")
-    throw InputError("start_design = '" + design + "': must be one of lhs, random");
+  start_design_names().require("start_design", design);
   std::mt19937_64 engine(seed);
   auto uniform = [&engine] { return static_cast<double>(engine() >> 11) * 0x1.0p-53; };  // [0, 1)
   const auto n = lower.size();

@@ -88,6 +88,8 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x, int l
 // Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
 // independent uniform points ("random"). Uniforms are drawn as (engine() >> 11) 2^-53 over std::mt19937_64 and the
 // shuffle is a Fisher-Yates on the same draws, so a seed gives the same points with any standard library.
+// The designs of the extra starts, by name: "lhs" (Latin hypercube) | "random" (uniform).
+const core::NameSet& start_design_names();
 std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, int count,
                                                   const std::string& design, std::uint64_t seed);
 

@@ -76,7 +76,7 @@ Trace ModalSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
     modes.emplace(system);
   } catch (const NumericalError& error) {
     Trace trace;
-    trace.stats.integrator = "fast";
+    trace.stats.integrator = kFast;
     trace.y.assign(static_cast<std::size_t>(p.samples), 0.0);
     trace.status = std::string("fast: ") + error.what();
     return trace;

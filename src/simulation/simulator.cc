@@ -1,14 +1,21 @@
 #include "simulation/simulator.h"
 
+#include <stdexcept>
+
 #include "core/errors.h"
 #include "simulation/cvode_simulator.h"
 #include "simulation/modal_simulator.h"
 
 namespace beamid::simulation {
 
+const core::NameSet& integrator_names() {
+  static const core::NameSet names({{kFast, "the exact modal closed form (modal_simulator.h)"},
+                                    {kCvode, "SUNDIALS CVODE, BDF, the reference (cvode_simulator.h)"}});
+  return names;
+}
+
 std::optional<std::string> validation_error(const SimulatorOptions& o) {
-  if (o.integrator != "fast" && o.integrator != "cvode")
-    return "integrator = '" + o.integrator + "': must be one of fast, cvode";
+  if (auto error = integrator_names().violation("integrator", o.integrator)) return error;
   if (!(o.cvode.rtol > 0 && o.cvode.rtol < 1))
     return "cvode.rtol = " + format_value(o.cvode.rtol) + ": must be in (0, 1)";
   if (!(o.cvode.atol >= 0 && std::isfinite(o.cvode.atol)))
@@ -24,8 +31,9 @@ std::optional<std::string> validation_error(const SimulatorOptions& o) {
 
 std::unique_ptr<Simulator> make_simulator(const SimulatorOptions& options) {
   if (auto error = validation_error(options)) throw InputError(*error);
-  if (options.integrator == "cvode") return std::make_unique<CvodeSimulator>(options.cvode);
-  return std::make_unique<ModalSimulator>();
+  if (options.integrator == kCvode) return std::make_unique<CvodeSimulator>(options.cvode);
+  if (options.integrator == kFast) return std::make_unique<ModalSimulator>();
+  throw std::logic_error("integrator '" + options.integrator + "' is in integrator_names() but has no simulator");
 }
 
 ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system,

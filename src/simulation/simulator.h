@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/names.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
 #include "simulation/experiment.h"
@@ -38,6 +39,7 @@ struct CvodeOptions {
 // The integrators' names (SimulatorOptions::integrator).
 inline const std::string kFast = "fast";
 inline const std::string kCvode = "cvode";
+const core::NameSet& integrator_names();
 
 struct SimulatorOptions {
   std::string integrator = "fast";  // "fast" | "cvode"
