@@ -258,22 +258,12 @@ FitResult fit(const FitOptions& o, const std::vector<double>& data) {
   return fit(o, std::vector<Record>{Record{"record1", o.start, o.experiment, data, {}}});
 }
 
-FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
-  if (given.empty()) throw InputError("records: none to fit");
-  std::vector<Record> records = given;
-  const std::vector<model::BeamParameters> starts = record_starts(given, o.estimate);
-  for (std::size_t r = 0; r < records.size(); ++r) records[r].start = starts[r];
-  const ParameterMap map(starts, o.estimate, o.scaling);
-  validate_records(o, records, map);
-  if (o.strategy == kHybrid) return fit_hybrid(o, records);
-  JointObjective objective(o, records, map);
+namespace {
 
-  const auto begin = std::chrono::steady_clock::now();
-  std::vector<Eigen::VectorXd> x_starts{map.coordinates(starts)};
-  if (o.starts > 1)
-    for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed))
-      x_starts.push_back(x);
-  FitResult result;
+// Every start through the strategy; the lowest final cost wins (ties: the earlier start). Adds their evaluations.
+StrategyRun best_of_starts(JointObjective& objective, const ParameterMap& map, const FitOptions& o,
+                           const std::vector<Eigen::VectorXd>& x_starts, const std::vector<Record>& records,
+                           FitResult& result) {
   StrategyRun best;
   for (std::size_t s = 0; s < x_starts.size(); ++s) {
     FitOptions seeded = o;
@@ -285,42 +275,42 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
       result.best_start = static_cast<int>(s);
     }
   }
-  // Maximum likelihood with each record's own noise level (FitOptions::record_weights): reweight by the records'
-  // residual sd at the estimate and fit again from it, until the weights settle.
-  if (o.record_weights == kNoiseWeights && records.size() > 1) {
-    FitOptions again = o;
-    again.strategy = kDirect;
-    for (int pass = 0; pass < 5 && !best.stages.empty() && best.stages.back().result.usable(); ++pass) {
-      const JointObjective::Output at = objective.evaluate(map.beams(best.x));
-      if (!at.evaluation.ok()) break;
-      std::vector<double> weights;
-      double change = 0;
-      for (std::size_t r = 0; r < records.size(); ++r) {
-        const Eigen::VectorXd& e = at.records[r].evaluation.residuals;
-        const double sd = std::sqrt(e.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(e.size(), 1)));
-        weights.push_back(1 / sd);
-        // Only the weights' ratios change the estimate: the change of each relative to record 1's.
-        change = std::max(change, std::abs(weights.back() / weights.front() * objective.weight(0) /
-                                               objective.weight(static_cast<int>(r)) -
-                                           1));
-      }
-      if (std::any_of(weights.begin(), weights.end(), [](double w) { return !(std::isfinite(w) && w > 0); })) break;
-      if (pass > 0 && change < 1e-3) break;
-      objective.set_weights(weights);
-      StrategyRun run = run_strategy(objective, map, again, best.x, records);
-      result.evaluations += run.evaluations;
-      if (run.stages.empty() || !run.stages.back().result.usable()) break;
-      best = std::move(run);
-    }
-  }
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  result.stages = best.stages;
-  result.status = best.stages.empty() ? "failed" : best.stages.back().result.status;
-  result.termination = best.stages.empty() ? "no stage ran" : best.stages.back().result.termination;
-  const std::vector<model::BeamParameters> estimates = map.estimates(best.x);  // inside the bounds, always
-  result.beam = estimates.front();
-  result.cost = best.cost;
+  return best;
+}
 
+// Maximum likelihood with each record's own noise level (FitOptions::record_weights): reweight by the records'
+// residual sd at the estimate and fit again from it, until the weights settle.
+void reweight_by_noise(JointObjective& objective, const ParameterMap& map, const FitOptions& o,
+                       const std::vector<Record>& records, StrategyRun& best, FitResult& result) {
+  FitOptions again = o;
+  again.strategy = kDirect;
+  for (int pass = 0; pass < 5 && !best.stages.empty() && best.stages.back().result.usable(); ++pass) {
+    const JointObjective::Output at = objective.evaluate(map.beams(best.x));
+    if (!at.evaluation.ok()) break;
+    std::vector<double> weights;
+    double change = 0;
+    for (std::size_t r = 0; r < records.size(); ++r) {
+      const Eigen::VectorXd& e = at.records[r].evaluation.residuals;
+      const double sd = std::sqrt(e.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(e.size(), 1)));
+      weights.push_back(1 / sd);
+      // Only the weights' ratios change the estimate: the change of each relative to record 1's.
+      change = std::max(
+          change,
+          std::abs(weights.back() / weights.front() * objective.weight(0) / objective.weight(static_cast<int>(r)) - 1));
+    }
+    if (std::any_of(weights.begin(), weights.end(), [](double w) { return !(std::isfinite(w) && w > 0); })) break;
+    if (pass > 0 && change < 1e-3) break;
+    objective.set_weights(weights);
+    StrategyRun run = run_strategy(objective, map, again, best.x, records);
+    result.evaluations += run.evaluations;
+    if (run.stages.empty() || !run.stages.back().result.usable()) break;
+    best = std::move(run);
+  }
+}
+
+// Each record's own evaluation and output at the estimate (the joint evaluation's parts).
+void record_results(JointObjective& objective, const std::vector<Record>& records,
+                    const std::vector<model::BeamParameters>& estimates, FitResult& result) {
   JointObjective::Output final_output = objective.evaluate(estimates);
   result.final_evaluation = final_output.evaluation;
   for (std::size_t r = 0; r < records.size(); ++r) {
@@ -335,7 +325,13 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
   }
   result.model_output = result.records.front().model_output;
   if (result.final_evaluation.ok()) result.cost = result.final_evaluation.value;
+}
 
+// The estimates with their formal and sandwich standard errors (physical units), correlations, identifiability and
+// bound statuses.
+void parameter_results(JointObjective& objective, const ParameterMap& map, const FitOptions& o, const StrategyRun& best,
+                       const std::vector<model::BeamParameters>& starts,
+                       const std::vector<model::BeamParameters>& estimates, FitResult& result) {
   // Standard errors from the formal covariance on all estimated coordinates, mapped to physical units.
   std::vector<int> all(static_cast<std::size_t>(map.size()));
   for (int i = 0; i < map.size(); ++i) all[static_cast<std::size_t>(i)] = i;
@@ -385,6 +381,38 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
     result.parameters.push_back(p);
   }
   if (at_bound && result.status != "failed") result.status += "-at-bound";
+}
+
+}  // namespace
+
+FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
+  if (given.empty()) throw InputError("records: none to fit");
+  std::vector<Record> records = given;
+  const std::vector<model::BeamParameters> starts = record_starts(given, o.estimate);
+  for (std::size_t r = 0; r < records.size(); ++r) records[r].start = starts[r];
+  const ParameterMap map(starts, o.estimate, o.scaling);
+  validate_records(o, records, map);
+  if (o.strategy == kHybrid) return fit_hybrid(o, records);
+  JointObjective objective(o, records, map);
+
+  const auto begin = std::chrono::steady_clock::now();
+  std::vector<Eigen::VectorXd> x_starts{map.coordinates(starts)};
+  if (o.starts > 1)
+    for (auto& x : space_filling_starts(map.lower(), map.upper(), o.starts - 1, o.start_design, o.seed))
+      x_starts.push_back(x);
+  FitResult result;
+  StrategyRun best = best_of_starts(objective, map, o, x_starts, records, result);
+  if (o.record_weights == kNoiseWeights && records.size() > 1)
+    reweight_by_noise(objective, map, o, records, best, result);
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  result.stages = best.stages;
+  result.status = best.stages.empty() ? "failed" : best.stages.back().result.status;
+  result.termination = best.stages.empty() ? "no stage ran" : best.stages.back().result.termination;
+  const std::vector<model::BeamParameters> estimates = map.estimates(best.x);  // inside the bounds, always
+  result.beam = estimates.front();
+  result.cost = best.cost;
+  record_results(objective, records, estimates, result);
+  parameter_results(objective, map, o, best, starts, estimates, result);
   return result;
 }
 
