@@ -61,6 +61,41 @@ T load(const char* p, bool swap) {
   return value;
 }
 
+// The integers of a shape tuple's text "(4096, 2)" (empty fields, as in "(4096,)", skipped).
+std::vector<std::size_t> dimensions(const std::string& shape, const std::string& path, std::size_t offset) {
+  std::vector<std::size_t> out;
+  const std::string inner = shape.substr(1, shape.size() - 2);
+  std::size_t begin = 0;
+  while (begin < inner.size()) {
+    auto comma = inner.find(',', begin);
+    if (comma == std::string::npos) comma = inner.size();
+    std::string field = inner.substr(begin, comma - begin);
+    field.erase(0, field.find_first_not_of(" "));
+    field.erase(field.find_last_not_of(" ") + 1);
+    if (!field.empty()) {
+      if (field.size() > 12 || field.find_first_not_of("0123456789") != std::string::npos)
+        fail(path, offset, "shape = " + shape + ": must hold non-negative integers");
+      out.push_back(std::stoull(field));
+    }
+    begin = comma + 1;
+  }
+  return out;
+}
+
+// One element of `item` bytes of kind 'f', 'i' or 'u' at p, byte-swapped when the file's order is not the host's.
+double element(const char* p, char kind, std::size_t item, bool swap) {
+  if (kind == 'f') return item == 8 ? load<double>(p, swap) : load<float>(p, swap);
+  if (kind == 'i')
+    return item == 1   ? load<std::int8_t>(p, swap)
+           : item == 2 ? load<std::int16_t>(p, swap)
+           : item == 4 ? load<std::int32_t>(p, swap)
+                       : static_cast<double>(load<std::int64_t>(p, swap));
+  return item == 1   ? load<std::uint8_t>(p, swap)
+         : item == 2 ? load<std::uint16_t>(p, swap)
+         : item == 4 ? load<std::uint32_t>(p, swap)
+                     : static_cast<double>(load<std::uint64_t>(p, swap));
+}
+
 }  // namespace
 
 bool is_npy(const std::string& bytes) { return bytes.compare(0, kMagic.size(), kMagic) == 0; }
@@ -115,21 +150,7 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   const std::string shape = dict_value(header, "shape", path, header_offset);
   if (shape.size() < 2 || shape.front() != '(' || shape.back() != ')')
     fail(path, header_offset, "shape = " + shape + ": must be a tuple such as (4096,) or (4096, 2)");
-  std::string inner = shape.substr(1, shape.size() - 2);
-  std::size_t begin = 0;
-  while (begin < inner.size()) {
-    auto comma = inner.find(',', begin);
-    if (comma == std::string::npos) comma = inner.size();
-    std::string field = inner.substr(begin, comma - begin);
-    field.erase(0, field.find_first_not_of(" "));
-    field.erase(field.find_last_not_of(" ") + 1);
-    if (!field.empty()) {
-      if (field.size() > 12 || field.find_first_not_of("0123456789") != std::string::npos)
-        fail(path, header_offset, "shape = " + shape + ": must hold non-negative integers");
-      array.shape.push_back(std::stoull(field));
-    }
-    begin = comma + 1;
-  }
+  array.shape = dimensions(shape, path, header_offset);
   if (array.shape.empty() || array.shape.size() > 2)
     fail(path, header_offset,
          "shape = " + shape + ": must have one or two dimensions (samples, or samples x channels either way)");
@@ -152,19 +173,7 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   const bool fortran_order = fortran == "True";
   for (std::size_t k = 0; k < count; ++k) {
     const char* p = bytes.data() + data_offset + k * item;
-    double v = 0;
-    if (kind == 'f')
-      v = item == 8 ? load<double>(p, swap) : load<float>(p, swap);
-    else if (kind == 'i')
-      v = item == 1   ? load<std::int8_t>(p, swap)
-          : item == 2 ? load<std::int16_t>(p, swap)
-          : item == 4 ? load<std::int32_t>(p, swap)
-                      : static_cast<double>(load<std::int64_t>(p, swap));
-    else
-      v = item == 1   ? load<std::uint8_t>(p, swap)
-          : item == 2 ? load<std::uint16_t>(p, swap)
-          : item == 4 ? load<std::uint32_t>(p, swap)
-                      : static_cast<double>(load<std::uint64_t>(p, swap));
+    const double v = element(p, kind, item, swap);
     // Fortran order stores column after column: element k is (k % rows, k / rows).
     const std::size_t index = fortran_order ? (k % rows) * columns + k / rows : k;
     array.values[index] = v;
