@@ -99,15 +99,107 @@ RealRecordSpec read_record(Table r, const std::string& default_name,
   return s;
 }
 
+using Relative = std::function<std::string(const std::string&)>;
+
+// [record] or [[record]]: one record, or up to kMaxRecords of them (record1, record2, ...).
+void read_records(const config::Document& document, const Relative& relative, RealStudySpec& s) {
+  Table root = document.root();
+  const std::optional<config::Node> node = root.get("record");
+  if (!node) document.required("record");  // the error for a missing [record]
+  if (node->is_array()) {
+    const std::vector<config::Node> items = node->elements();
+    if (items.size() > static_cast<std::size_t>(core::kMaxRecords))
+      root.fail("record", "[" + std::to_string(items.size()) + " tables]",
+                "must hold at most " + std::to_string(core::kMaxRecords) + " records");
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      const std::string name = "record" + std::to_string(k + 1);
+      s.records.push_back(read_record(items[k].table(name + ".", "record"), name, relative));
+    }
+  } else {
+    s.records.push_back(read_record(document.required("record"), "record1", relative));
+  }
+}
+
+// The k-th [[candidate]] (0-based): [fit]'s choices (`given`) with the candidate's own beam, values, records,
+// estimated keys and bounds.
+CandidateSpec read_candidate(const config::Node& item, std::size_t k, const CandidateSpec& given,
+                             const RealStudySpec& s, const std::string& path, const Relative& relative) {
+  const std::string prefix = "candidate" + std::to_string(k + 1) + ".";
+  Table r = item.table(prefix, "candidate");
+  CandidateSpec c = given;
+  c.name = r.string("name", std::nullopt);
+  for (const CandidateSpec& other : s.candidates)
+    if (other.name == c.name) r.fail("name", "'" + c.name + "'", "must differ from every other candidate's");
+  if (r.has("beam")) {
+    c.beam_file = relative(r.string("beam", std::nullopt));
+    if (!io::is_existing_file(c.beam_file)) r.fail("beam", "'" + c.beam_file + "'", "must be an existing beam file");
+  }
+  if (auto values = r.table("values"))
+    for (const auto& [key, value] : values->entries()) {
+      if (!value.is_number())
+        throw InputError(path + ":" + std::to_string(value.line()) + ": " + prefix + "values." + key + " = " +
+                         value.text() + ": must be a number");
+      c.values.emplace_back(key, *value.number());
+    }
+  if (r.has("records"))
+    for (const std::string& name : r.strings("records", false, {})) {
+      const auto found = std::find_if(s.records.begin(), s.records.end(),
+                                      [&](const RealRecordSpec& record) { return record.name == name; });
+      if (found == s.records.end()) r.fail("records", "'" + name + "'", "must name a [[record]] of the study");
+      c.records.push_back(static_cast<int>(found - s.records.begin()));
+    }
+  if (r.has("estimate")) c.estimate = estimated_keys(r, "estimate");
+  if (r.has("per_record")) c.per_record = estimated_keys(r, "per_record");
+  if (c.estimate.empty() && c.per_record.empty())
+    r.fail("estimate", "[]", "must name the parameters to estimate (here or in [fit])");
+  std::vector<std::string> all = c.estimate;
+  all.insert(all.end(), c.per_record.begin(), c.per_record.end());
+  for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
+    it = std::find(all.begin(), all.end(), it->first) == all.end() ? c.bounds.erase(it) : std::next(it);
+  for (const auto& [key, b] : read_bounds(r, path, prefix, all)) c.bounds[key] = b;
+  r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records"});
+  return c;
+}
+
+// A bound in [fit] of a key that no candidate estimates is a mistake, refused with the line of [fit].bounds.
+void check_bounds_used(const CandidateSpec& given, const RealStudySpec& s,
+                       const std::function<std::string(const std::string&)>& fit_bounds_line) {
+  for (const auto& [key, bounds] : given.bounds) {
+    bool used = false;
+    for (const CandidateSpec& c : s.candidates)
+      for (const auto& lists : {c.estimate, c.per_record})
+        used = used || std::find(lists.begin(), lists.end(), key) != lists.end();
+    if (!used) throw InputError(fit_bounds_line(key) + ": '" + key + "' is estimated by no model of the study");
+  }
+}
+
+// Every beam is read before anything runs, and every candidate's beams must have what it sets and estimates.
+void check_beams(const RealStudySpec& s, const std::string& path) {
+  for (const CandidateSpec& c : s.candidates)
+    for (const int index : c.records) {
+      const RealRecordSpec& record = s.records[static_cast<std::size_t>(index)];
+      const std::string where = path + ": candidate '" + c.name + "', record '" + record.name + "': ";
+      model::BeamParameters beam = config::load_beam_toml(!c.beam_file.empty()        ? c.beam_file
+                                                          : !record.beam_file.empty() ? record.beam_file
+                                                                                      : s.beam_file);
+      try {
+        for (const auto& [key, value] : c.values) model::set_nominal_value(beam, key, value);
+        if (auto error = model::validation_error(beam)) throw InputError(*error);
+        for (const auto& lists : {c.estimate, c.per_record})
+          for (const std::string& key : lists) model::parameter_value(beam, key);
+      } catch (const InputError& error) {
+        throw InputError(where + error.what());
+      }
+    }
+}
+
 }  // namespace
 
 RealStudySpec load_real_study(const std::string& path) {
   const config::Document document = config::Document::load(path, "cannot read the study file");
   document.root().only_tables({"study", "record", "beam", "fit", "candidate"});
   const fs::path dir = fs::path(path).parent_path();
-  const std::function<std::string(const std::string&)> relative = [&](const std::string& f) {
-    return fs::path(f).is_absolute() ? f : (dir / f).string();
-  };
+  const Relative relative = [&](const std::string& f) { return fs::path(f).is_absolute() ? f : (dir / f).string(); };
   RealStudySpec s;
   s.path = path;
   s.file_hash = io::hex64(core::fnv1a64(document.text()));
@@ -117,23 +209,7 @@ RealStudySpec load_real_study(const std::string& path) {
     s.question = r.string("question", std::nullopt);
     r.finish({"name", "question"});
   }
-  {
-    Table root = document.root();
-    const std::optional<config::Node> node = root.get("record");
-    if (!node) document.required("record");  // the error for a missing [record]
-    if (node->is_array()) {
-      const std::vector<config::Node> items = node->elements();
-      if (items.size() > static_cast<std::size_t>(core::kMaxRecords))
-        root.fail("record", "[" + std::to_string(items.size()) + " tables]",
-                  "must hold at most " + std::to_string(core::kMaxRecords) + " records");
-      for (std::size_t k = 0; k < items.size(); ++k) {
-        const std::string name = "record" + std::to_string(k + 1);
-        s.records.push_back(read_record(items[k].table(name + ".", "record"), name, relative));
-      }
-    } else {
-      s.records.push_back(read_record(document.required("record"), "record1", relative));
-    }
-  }
+  read_records(document, relative, s);
   {
     Table r = document.required("beam");
     s.beam_file = relative(r.string("file", std::nullopt));
@@ -161,42 +237,7 @@ RealStudySpec load_real_study(const std::string& path) {
   }
   if (const auto items = document.root().array("candidate", false)) {
     for (std::size_t k = 0; k < items->size(); ++k) {
-      const std::string prefix = "candidate" + std::to_string(k + 1) + ".";
-      Table r = (*items)[k].table(prefix, "candidate");
-      CandidateSpec c = given;
-      c.name = r.string("name", std::nullopt);
-      for (const CandidateSpec& other : s.candidates)
-        if (other.name == c.name) r.fail("name", "'" + c.name + "'", "must differ from every other candidate's");
-      if (r.has("beam")) {
-        c.beam_file = relative(r.string("beam", std::nullopt));
-        if (!io::is_existing_file(c.beam_file))
-          r.fail("beam", "'" + c.beam_file + "'", "must be an existing beam file");
-      }
-      if (auto values = r.table("values"))
-        for (const auto& [key, value] : values->entries()) {
-          if (!value.is_number())
-            throw InputError(path + ":" + std::to_string(value.line()) + ": " + prefix + "values." + key + " = " +
-                             value.text() + ": must be a number");
-          c.values.emplace_back(key, *value.number());
-        }
-      if (r.has("records"))
-        for (const std::string& name : r.strings("records", false, {})) {
-          const auto found = std::find_if(s.records.begin(), s.records.end(),
-                                          [&](const RealRecordSpec& record) { return record.name == name; });
-          if (found == s.records.end()) r.fail("records", "'" + name + "'", "must name a [[record]] of the study");
-          c.records.push_back(static_cast<int>(found - s.records.begin()));
-        }
-      if (r.has("estimate")) c.estimate = estimated_keys(r, "estimate");
-      if (r.has("per_record")) c.per_record = estimated_keys(r, "per_record");
-      if (c.estimate.empty() && c.per_record.empty())
-        r.fail("estimate", "[]", "must name the parameters to estimate (here or in [fit])");
-      std::vector<std::string> all = c.estimate;
-      all.insert(all.end(), c.per_record.begin(), c.per_record.end());
-      for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
-        it = std::find(all.begin(), all.end(), it->first) == all.end() ? c.bounds.erase(it) : std::next(it);
-      for (const auto& [key, b] : read_bounds(r, path, prefix, all)) c.bounds[key] = b;
-      r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records"});
-      s.candidates.push_back(std::move(c));
+      s.candidates.push_back(read_candidate((*items)[k], k, given, s, path, relative));
     }
   } else {
     s.candidates.push_back(given);
@@ -204,30 +245,8 @@ RealStudySpec load_real_study(const std::string& path) {
   for (CandidateSpec& c : s.candidates)
     if (c.records.empty())
       for (std::size_t k = 0; k < s.records.size(); ++k) c.records.push_back(static_cast<int>(k));
-  for (const auto& [key, bounds] : given.bounds) {
-    bool used = false;
-    for (const CandidateSpec& c : s.candidates)
-      for (const auto& lists : {c.estimate, c.per_record})
-        used = used || std::find(lists.begin(), lists.end(), key) != lists.end();
-    if (!used) throw InputError(fit_bounds_line(key) + ": '" + key + "' is estimated by no model of the study");
-  }
-  // Every beam is read before anything runs, and every candidate's beams must have what it sets and estimates.
-  for (const CandidateSpec& c : s.candidates)
-    for (const int index : c.records) {
-      const RealRecordSpec& record = s.records[static_cast<std::size_t>(index)];
-      const std::string where = path + ": candidate '" + c.name + "', record '" + record.name + "': ";
-      model::BeamParameters beam = config::load_beam_toml(!c.beam_file.empty()        ? c.beam_file
-                                                          : !record.beam_file.empty() ? record.beam_file
-                                                                                      : s.beam_file);
-      try {
-        for (const auto& [key, value] : c.values) model::set_nominal_value(beam, key, value);
-        if (auto error = model::validation_error(beam)) throw InputError(*error);
-        for (const auto& lists : {c.estimate, c.per_record})
-          for (const std::string& key : lists) model::parameter_value(beam, key);
-      } catch (const InputError& error) {
-        throw InputError(where + error.what());
-      }
-    }
+  check_bounds_used(given, s, fit_bounds_line);
+  check_beams(s, path);
   return s;
 }
 
