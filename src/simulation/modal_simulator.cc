@@ -151,6 +151,54 @@ int last_significant(complex lambda, double amplitude, double negligible, double
   return last;
 }
 
+constexpr int kAnchorEvery = 256;  // samples between exact re-evaluations of a recurrence
+
+// A mode kept out of the in-pulse split (ModalSimulator::run): one exact step at a time (e0 = 0 unless a pulse hits a
+// plucked beam): with rho(t + h) = e^{lambda h} rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt}
+// D(lambda h, -iwh))/4], three divided exponentials per mode and a few products per sample, re-anchored on the closed
+// form every kAnchorEvery samples. Adds Re(hg rho(t_i) + hk e0 e^{lambda t_i}) to y_i for i < first_free.
+void add_stepped_pulse_mode(std::vector<double>& y, complex l, complex hk, complex hg, complex e0, double w, double tau,
+                            double hs, int first_free) {
+  const complex step = std::exp(l * hs), turn = std::polar(1.0, w * hs);
+  const complex d0 = hs * divided_exp(l * hs, 0.0), d_plus = hs * divided_exp(l * hs, complex(0.0, w * hs)),
+                d_minus = hs * divided_exp(l * hs, complex(0.0, -w * hs));
+  complex rho, rotation;
+  for (int i = 0; i < first_free; ++i) {
+    if (i % kAnchorEvery == 0) {
+      rho = pulse_response(l, i * hs, tau);
+      rotation = std::polar(1.0, w * i * hs);
+    }
+    y[i] += (hg * rho).real();
+    if (e0 != 0.0) y[i] += (hk * e0 * std::exp(l * (i * hs))).real();
+    rho = step * rho + 0.5 * d0 - 0.25 * (rotation * d_plus + std::conj(rotation) * d_minus);
+    rotation *= turn;
+  }
+}
+
+// The shared part of the split modes inside the pulse, Re(B + G e^{iwt} + D e^{-iwt}), and the direct term.
+void add_split_pulse_terms(std::vector<double>& y, const ResponseProblem& p, double w, int first_free, complex beta_sum,
+                           complex gamma_sum, complex delta_sum, double direct) {
+  const complex turn = std::polar(1.0, w * p.dt_s);
+  complex rotation;
+  for (int i = 0; i < first_free; ++i) {
+    if (i % kAnchorEvery == 0) rotation = std::polar(1.0, w * i * p.dt_s);
+    y[i] += (beta_sum + gamma_sum * rotation + delta_sum * std::conj(rotation)).real() + direct * p.force_N(i * p.dt_s);
+    rotation *= turn;
+  }
+}
+
+// The split modes' exponentials inside the pulse: a term is dropped once below 1e-18 of the largest term's start.
+void add_in_pulse_exponentials(std::vector<double>& y, double dt_s, int first_free, std::vector<Exponential> in_pulse) {
+  double largest = 0;
+  for (const Exponential& term : in_pulse) largest = std::max(largest, std::abs(term.amplitude));
+  for (Exponential& term : in_pulse)
+    term.last =
+        std::abs(term.amplitude) <= 1e-18 * largest
+            ? -1
+            : last_significant(term.lambda, std::abs(term.amplitude), 1e-18 * largest, 0.0, dt_s, 0, first_free);
+  add_exponentials(y, 0, dt_s, 0.0, std::move(in_pulse));
+}
+
 }  // namespace
 
 Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
@@ -177,7 +225,6 @@ Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin
     // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
     // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
     const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
-    constexpr int kAnchorEvery = 256;  // samples between exact re-evaluations of a recurrence
 
     // Inside the pulse, rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds splits into
     //   rho(t) = alpha e^{lambda t} + beta + gamma e^{iwt} + delta e^{-iwt},
@@ -209,26 +256,7 @@ Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin
           const complex amplitude = hg * (w * w / (2.0 * l * (l * l + w * w))) + hk * e0(k);
           in_pulse.push_back({l, amplitude, first_free - 1});
         } else {
-          // One exact step at a time (e0 = 0 unless a pulse hits a plucked beam): with rho(t + h) = e^{lambda h}
-          // rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt} D(lambda h, -iwh))/4], three divided
-          // exponentials per mode and a few products per sample, re-anchored on the closed form every kAnchorEvery
-          // samples.
-          const double hs = p.dt_s;
-          const complex step = std::exp(l * hs), turn = std::polar(1.0, w * hs);
-          const complex d0 = hs * divided_exp(l * hs, 0.0), d_plus = hs * divided_exp(l * hs, complex(0.0, w * hs)),
-                        d_minus = hs * divided_exp(l * hs, complex(0.0, -w * hs));
-          const complex hg = hk * g(k);
-          complex rho, rotation;
-          for (int i = 0; i < first_free; ++i) {
-            if (i % kAnchorEvery == 0) {
-              rho = pulse_response(l, i * hs, tau);
-              rotation = std::polar(1.0, w * i * hs);
-            }
-            trace.y[i] += (hg * rho).real();
-            if (e0(k) != 0.0) trace.y[i] += (hk * e0(k) * std::exp(l * (i * hs))).real();
-            rho = step * rho + 0.5 * d0 - 0.25 * (rotation * d_plus + std::conj(rotation) * d_minus);
-            rotation *= turn;
-          }
+          add_stepped_pulse_mode(trace.y, l, hk, hk * g(k), e0(k), w, tau, p.dt_s, first_free);
         }
       }
       const complex amplitude =
@@ -237,28 +265,8 @@ Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin
       at_tau.push_back(amplitude);
       free_modes.push_back(k);
     }
-    // The shared part of the split modes inside the pulse, Re(B + G e^{iwt} + D e^{-iwt}), and the direct term.
-    {
-      const complex turn = std::polar(1.0, w * p.dt_s);
-      complex rotation;
-      for (int i = 0; i < first_free; ++i) {
-        if (i % kAnchorEvery == 0) rotation = std::polar(1.0, w * i * p.dt_s);
-        trace.y[i] +=
-            (beta_sum + gamma_sum * rotation + delta_sum * std::conj(rotation)).real() + direct * p.force_N(i * p.dt_s);
-        rotation *= turn;
-      }
-    }
-    // Exponentials inside the pulse: a term is dropped once below 1e-18 of the largest term's start.
-    if (!in_pulse.empty()) {
-      double largest = 0;
-      for (const Exponential& term : in_pulse) largest = std::max(largest, std::abs(term.amplitude));
-      for (Exponential& term : in_pulse)
-        term.last =
-            std::abs(term.amplitude) <= 1e-18 * largest
-                ? -1
-                : last_significant(term.lambda, std::abs(term.amplitude), 1e-18 * largest, 0.0, p.dt_s, 0, first_free);
-      add_exponentials(trace.y, 0, p.dt_s, 0.0, std::move(in_pulse));
-    }
+    add_split_pulse_terms(trace.y, p, w, first_free, beta_sum, gamma_sum, delta_sum, direct);
+    if (!in_pulse.empty()) add_in_pulse_exponentials(trace.y, p.dt_s, first_free, std::move(in_pulse));
 
     // Free decay: y_i = Re sum_k A_k e^{lambda_k (t_i - tau)}, each mode dropped once its amplitude is below 1e-18 of
     // the bound.
