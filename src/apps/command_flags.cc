@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 
@@ -72,6 +73,31 @@ io::TimeSeries read_data(const Flags& a, const RecordReader& read) {
 }
 
 io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); }
+
+namespace {
+
+// Whether two paths name one file: the same inode when both exist, else the same normalised absolute path.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
+    return std::filesystem::equivalent(a, b, error);
+  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+}
+
+}  // namespace
+
+void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& output_flags,
+                               const std::vector<std::string>& suffixes, const std::vector<std::string>& input_flags) {
+  for (const std::string& output : output_flags) {
+    if (!a.has(output)) continue;
+    for (const std::string& suffix : suffixes)
+      for (const std::string& input : input_flags)
+        if (a.has(input) && same_file(a.text(output) + suffix, a.text(input)))
+          a.require(false, output,
+                    "would overwrite the --" + input + " file" + (suffix.empty() ? "" : " (with " + suffix + ")") +
+                        ": an output never replaces an input; choose another path");
+  }
+}
 
 std::vector<FlagSpec> experiment_flag_specs() {
   return {

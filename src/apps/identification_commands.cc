@@ -107,6 +107,7 @@ int run_cost(const Flags& a, std::ostream& out) {
 }
 
 int run_fit(const Flags& a, std::ostream& out) {
+  refuse_overwriting_inputs(a, {"report"}, {"", ".spectra.csv"}, {"data", "beam"});
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");

@@ -38,6 +38,20 @@ else
 fi
 expect_error "samples 2e9" "--samples = '2000000000': must be an integer in 2..268435456" simulate "${S[@]}" --samples 2000000000
 "$BEAMID" simulate "${S[@]}" --pulse-width 0.004 >"$tmp/z.csv"
+
+# Data loss (issue 30): a report that would overwrite the record (or its .spectra.csv the beam file) is refused before
+# anything runs, and the record is left as it was; results that cannot be written to stdout are exit 1 with the
+# reason, not exit 0.
+cp "$tmp/z.csv" "$tmp/record.csv"
+before=$(md5sum <"$tmp/record.csv")
+expect_error "report over the record" "--report = '$tmp/record.csv': would overwrite the --data file" fit \
+  --data "$tmp/record.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --report "$tmp/record.csv"
+[ "$(md5sum <"$tmp/record.csv")" = "$before" ] && ok || bad "report over the record: the record changed"
+if [ -w /dev/full ]; then
+  timeout 60 "$BEAMID" simulate "${S[@]}" >/dev/full 2>"$tmp/err"; rc=$?
+  if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "standard output: cannot write the results: No space" \
+     "$tmp/err"; then ok; else bad "stdout on a full device (exit $rc): $(head -c 300 "$tmp/err")"; fi
+fi
 expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..1000" fit --data "$tmp/z.csv" "${S[@]}" \
   --estimate EI --cost time --starts 1000000000
 

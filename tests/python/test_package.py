@@ -355,3 +355,14 @@ def test_stubs_are_current():
         committed = f.read()
     assert p.stdout == committed, ("python/beamid/__init__.pyi is stale: PYTHONPATH=build/python /usr/bin/python3 "
                                    "tools/python_stubs.py > python/beamid/__init__.pyi")
+
+
+def test_a_report_never_overwrites_the_record(tmp_path):
+    # The fit refuses, before it runs, a report path that is the record it reads (issue 30: an output never
+    # overwrites an input); the record is unchanged.
+    record = tmp_path / "record.csv"
+    record.write_text(run("simulate", "--beam", "thick-steel", "--elements", "6", "--samples", "256"))
+    before = record.read_bytes()
+    with pytest.raises(beamid.InputError, match="would overwrite the --data file"):
+        beamid.fit(str(record), beam="thick-steel", elements=6, estimate="EI", cost="time", report=str(record))
+    assert record.read_bytes() == before
