@@ -95,6 +95,11 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
     app.parse(reversed);
   } catch (const CLI::CallForHelp&) {
     const auto [c, sub] = active();
+    // "beamid fitt --help": the help flag is seen before the unknown word; the word, not the help, is the answer.
+    if (!sub && args[1].rfind("-", 0) != 0) {
+      err << "beamid: " << one_line("unknown command '" + args[1] + "' (commands: " + command_list() + ")") << "\n";
+      return 2;
+    }
     out << (sub ? sub->help("beamid") : overview());
     return 0;
   } catch (const CLI::ParseError& e) {

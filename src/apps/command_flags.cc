@@ -52,6 +52,13 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
     } catch (const InputError& e) {
       throw InputError("beamid " + a.command() + ": --data: " + e.what());
     }
+    // One column twice (by index and name, or twice the same) would count its data twice in a joint fit and
+    // shrink the standard errors by sqrt(2): refused.
+    for (std::size_t k = 0; k + 1 < records.size(); ++k)
+      if (records[k].value_column == records.back().value_column)
+        a.require(false, "channel",
+                  "names the column '" + records.back().value_column + "' twice (channels " + std::to_string(k + 1) +
+                      " and " + std::to_string(records.size()) + ")");
   }
   return records;
 }

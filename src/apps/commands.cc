@@ -109,6 +109,8 @@ int run_verify(const Flags& a, std::ostream& out) {
 int run_report(const Flags& a, std::ostream& out) {
   const std::string path = a.text("update");
   const std::filesystem::path results = a.text_or("results", "results");
+  if (!std::filesystem::is_directory(results))
+    a.require(false, "results", "must be an existing folder of study results (results/)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("beamid report: --update = '" + path + "': cannot read the file");
   std::ostringstream text;

@@ -34,6 +34,12 @@ std::string one_line(const std::string& message) {
       out += c;
     }
   }
+  // A message quotes what a user gave, which can be a whole file's worth of text in one argument: the line keeps its
+  // head (where, key) and its tail (the constraint) and says how much of the middle it cut.
+  constexpr std::size_t kHead = 1000, kTail = 500;
+  if (out.size() > kHead + kTail + 100)
+    out = out.substr(0, kHead) + " ... [" + std::to_string(out.size() - kHead - kTail) + " characters cut] ... " +
+          out.substr(out.size() - kTail);
   return out;
 }
 

@@ -11,7 +11,8 @@ namespace beamid {
 
 // The message as one line of printable text: a line break, a tab or another control character that came in with a
 // user's input (a key, a field, a library's parse message quoting the input) is written as an escape ("\\n", "\\x01"),
-// so that an error is always exactly one line.
+// so that an error is always exactly one line; a message longer than 1,600 characters keeps its first 1,000 and last
+// 500 and says how many it cut between them.
 std::string one_line(const std::string& message);
 
 class InputError : public std::runtime_error {

@@ -150,6 +150,21 @@ expect_error "sensor-x off the beam" "--sensor-x = '0.2,0.9': channel 2: sensor_
   --data "$tmp/two.csv" --channel a,b --sensor-x 0.2,0.9 "${S[@]}" --estimate EI --cost time
 expect_error "channel list empty item" "must be a comma-separated list without empty items" fit \
   --data "$tmp/two.csv" --channel a,,b --sensor-x 0.2,0.3 "${S[@]}" --estimate EI --cost time
+# One column twice (by name, or by name and index) would count its data twice (issue 30).
+expect_error "channel twice" "--channel = 'a,a': names the column 'a' twice" fit \
+  --data "$tmp/two.csv" --channel a,a --sensor-x 0.2,0.3 "${S[@]}" --estimate EI --cost time
+expect_error "channel twice by index" "names the column 'a' twice" fit \
+  --data "$tmp/two.csv" --channel a,1 --sensor-x 0.2,0.3 "${S[@]}" --estimate EI --cost time
+# An unknown command with --help is an unknown command, not the overview with exit 0; a report of a results folder
+# that does not exist is an error; a 120 KB value is cut in its error line, whose head and constraint remain.
+expect_error "unknown command with --help" "unknown command 'fitt'" fitt --help
+expect_error "report of no results" "--results = '$tmp/none': must be an existing folder" report \
+  --update "$tmp/z.csv" --results "$tmp/none"
+long=$(head -c 120000 /dev/zero | tr '\0' 'x')
+timeout 60 "$BEAMID" fit --data "$tmp/two.csv" --channel a "${S[@]}" --estimate "$long" --cost time >"$tmp/out" \
+  2>"$tmp/err"; rc=$?
+if [ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && [ "$(wc -c <"$tmp/err")" -lt 2000 ] &&
+   grep -q "characters cut" "$tmp/err"; then ok; else bad "120 KB value (exit $rc): $(head -c 200 "$tmp/err")"; fi
 expect_error "channel list for spikes" "must name one channel (several are for beamid fit)" spikes \
   --data "$tmp/two.csv" --channel a,b
 expect_error "variable on csv" "name variables of a MAT-file; this is not one" spikes --data "$tmp/z.csv" --variable x

@@ -33,6 +33,13 @@ TEST(Errors, MessagesAreOneLineAndNumbersRoundTrip) {
   EXPECT_EQ(format_value(0.491), "0.491");
   EXPECT_EQ(format_value(1e-300), "1e-300");
   EXPECT_EQ(format_value(-std::numeric_limits<double>::infinity()), "-inf");
+  // A 120 KB value quoted in a message: the line keeps where (head) and the constraint (tail).
+  const std::string message = "beamid fit: --estimate = '" + std::string(120000, 'x') + "': must be a list of keys";
+  const std::string line = InputError(message).what();
+  EXPECT_LT(line.size(), 1700u);
+  EXPECT_EQ(line.rfind("beamid fit: --estimate = 'xxx", 0), 0u);
+  EXPECT_NE(line.find("characters cut"), std::string::npos);
+  EXPECT_EQ(line.substr(line.size() - 25), "': must be a list of keys");
 }
 
 }  // namespace
