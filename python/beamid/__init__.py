@@ -378,7 +378,7 @@ def _is(type_, value):
     if type_ is int:
         return isinstance(value, numbers.Integral)
     if type_ is str:
-        return isinstance(value, (str, os.PathLike))
+        return isinstance(value, str)
     return any(_is(t, value) for t in type_)
 
 
@@ -390,12 +390,17 @@ def _check_type(command, name, kind, value):
     elif item is not None:
         ok = _is(str, value) or _is(item, value)
     elif name == "beam":
-        ok = _is(str, value) or isinstance(value, dict)
+        ok = _is(str, value) or isinstance(value, (os.PathLike, dict))
+    elif name in _PATHS:  # a file: a string or a path object
+        ok = _is(str, value) or isinstance(value, os.PathLike)
     else:
         ok = _is(_KINDS[kind], value)
     if not ok:
         names = {float: "a number", int: "an integer", str: "a string", bool: "True or False"}
-        expected = names[item if item is not None and not isinstance(item, tuple) else _KINDS[kind]]
+        if isinstance(item, tuple):  # channel: a name or a 1-based index
+            expected = " or ".join(names[t] for t in item)
+        else:
+            expected = names[item if item is not None else _KINDS[kind]]
         if item is not None:
             expected += " or a list of them"
         raise TypeError(f"{command}(): {name} = {value!r}: must be {expected}")

@@ -17,9 +17,11 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
   o.max_frequency_hz = request.max_frequency_hz.value_or(o.max_frequency_hz);
   if (!request.frequencies_hz.empty()) {
     o.frequencies_hz = request.frequencies_hz;
+    std::string listed;  // the list as given, for its error
+    for (const double f : request.frequencies_hz) listed += (listed.empty() ? "" : ",") + format_value(f);
     for (const double f : o.frequencies_hz)
       if (!(f > 0))
-        refuse(caller, "spike-frequencies", format_value(f), "must be a comma-separated list of frequencies > 0 in Hz");
+        refuse(caller, "spike-frequencies", listed, "must be a comma-separated list of frequencies > 0 in Hz");
     std::sort(o.frequencies_hz.begin(), o.frequencies_hz.end());
     if (request.count && *request.count != static_cast<int>(o.frequencies_hz.size()))
       refuse(caller, "spikes", std::to_string(*request.count),

@@ -53,9 +53,10 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
       throw InputError("beamid " + a.command() + ": --data: " + e.what());
     }
     // One column twice (by index and name, or twice the same) would count its data twice in a joint fit and
-    // shrink the standard errors by sqrt(2): refused.
+    // shrink the standard errors by sqrt(2): refused. Two columns are the same when their names and their samples
+    // are (columns that share a name, as LVM and UFF channels may, are told apart by their data).
     for (std::size_t k = 0; k + 1 < records.size(); ++k)
-      if (records[k].value_column == records.back().value_column)
+      if (records[k].value_column == records.back().value_column && records[k].values == records.back().values)
         a.require(false, "channel",
                   "names the column '" + records.back().value_column + "' twice (channels " + std::to_string(k + 1) +
                       " and " + std::to_string(records.size()) + ")");
@@ -83,12 +84,16 @@ io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); 
 
 namespace {
 
-// Whether two paths name one file: the same inode when both exist, else the same normalised absolute path.
-bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+// Whether writing `output` would replace the existing file `input`: the same inode when both exist, else the same
+// normalised absolute path (false when either cannot be normalised: the write itself will then say why it fails). An
+// input that is not an existing file (a preset name) cannot be overwritten.
+bool overwrites(const std::filesystem::path& output, const std::filesystem::path& input) {
   std::error_code error;
-  if (std::filesystem::exists(a, error) && std::filesystem::exists(b, error))
-    return std::filesystem::equivalent(a, b, error);
-  return std::filesystem::weakly_canonical(a, error) == std::filesystem::weakly_canonical(b, error);
+  if (!std::filesystem::is_regular_file(input, error)) return false;
+  if (std::filesystem::exists(output, error)) return std::filesystem::equivalent(output, input, error) && !error;
+  std::error_code e1, e2;
+  const auto a = std::filesystem::weakly_canonical(output, e1), b = std::filesystem::weakly_canonical(input, e2);
+  return !e1 && !e2 && a == b;
 }
 
 }  // namespace
@@ -99,7 +104,7 @@ void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& o
     if (!a.has(output)) continue;
     for (const std::string& suffix : suffixes)
       for (const std::string& input : input_flags)
-        if (a.has(input) && same_file(a.text(output) + suffix, a.text(input)))
+        if (a.has(input) && overwrites(a.text(output) + suffix, a.text(input)))
           a.require(false, output,
                     "would overwrite the --" + input + " file" + (suffix.empty() ? "" : " (with " + suffix + ")") +
                         ": an output never replaces an input; choose another path");

@@ -28,8 +28,8 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
 // its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
 // Before anything runs: InputError when a file the command would write (`outputs`, with their suffixes: --report
-// writes REPORT and REPORT.spectra.csv) is one of the files it reads (`inputs`: --data, --beam), so that an output
-// never overwrites an input.
+// writes REPORT and REPORT.spectra.csv, each through a .tmp beside it) is one of the files it reads (`inputs`:
+// --data, --beam), so that an output never overwrites an input.
 void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& output_flags,
                                const std::vector<std::string>& suffixes, const std::vector<std::string>& input_flags);
 // --dt, --samples, --sensor-x, --output, --excitation, --force-x, --force-amplitude, --pulse-width

@@ -77,7 +77,8 @@ std::vector<FlagSpec> cost_flags(bool required) {
 }
 
 int run_spikes(const Flags& a, std::ostream& out) {
-  const api::SpikesResult r = api::compute_spikes(spikes_request_of(a), read_data(a));
+  const io::TimeSeries data = read_data(a);  // the record first, then the flags' request (their errors in that order)
+  const api::SpikesResult r = api::compute_spikes(spikes_request_of(a), data);
   const auto& picks = r.picks;
   const auto& peaks = r.peaks;
   if (static_cast<int>(picks.size()) < r.requested)
@@ -99,15 +100,17 @@ int run_spikes(const Flags& a, std::ostream& out) {
 }
 
 int run_cost(const Flags& a, std::ostream& out) {
-  const costs::Evaluation e =
-      api::compute_cost(cost_evaluation_request_of(a), read_data(a), io::read_time_series(a.text("prediction")));
+  // The record and the prediction first, then the flags' request (their errors in that order, as before).
+  const io::TimeSeries data = read_data(a);
+  const io::TimeSeries prediction = io::read_time_series(a.text("prediction"));
+  const costs::Evaluation e = api::compute_cost(cost_evaluation_request_of(a), data, prediction);
   out << "cost,value\n" << a.text("cost") << "," << io::full_precision(e.value) << "\n";
   if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";
   return 0;
 }
 
 int run_fit(const Flags& a, std::ostream& out) {
-  refuse_overwriting_inputs(a, {"report"}, {"", ".spectra.csv"}, {"data", "beam"});
+  refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");

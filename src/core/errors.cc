@@ -36,10 +36,16 @@ std::string one_line(const std::string& message) {
   }
   // A message quotes what a user gave, which can be a whole file's worth of text in one argument: the line keeps its
   // head (where, key) and its tail (the constraint) and says how much of the middle it cut.
+  // The cuts fall on character boundaries (never inside a UTF-8 sequence, whose continuation bytes are 10xxxxxx), so
+  // the line stays valid text (Python decodes it).
   constexpr std::size_t kHead = 1000, kTail = 500;
-  if (out.size() > kHead + kTail + 100)
-    out = out.substr(0, kHead) + " ... [" + std::to_string(out.size() - kHead - kTail) + " characters cut] ... " +
-          out.substr(out.size() - kTail);
+  if (out.size() > kHead + kTail + 100) {
+    const auto continuation = [&out](std::size_t i) { return (static_cast<unsigned char>(out[i]) & 0xC0) == 0x80; };
+    std::size_t head = kHead, tail = out.size() - kTail;
+    while (head > 0 && continuation(head)) --head;
+    while (tail < out.size() && continuation(tail)) ++tail;
+    out = out.substr(0, head) + " ... [" + std::to_string(tail - head) + " bytes cut] ... " + out.substr(tail);
+  }
   return out;
 }
 

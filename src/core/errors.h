@@ -11,8 +11,8 @@ namespace beamid {
 
 // The message as one line of printable text: a line break, a tab or another control character that came in with a
 // user's input (a key, a field, a library's parse message quoting the input) is written as an escape ("\\n", "\\x01"),
-// so that an error is always exactly one line; a message longer than 1,600 characters keeps its first 1,000 and last
-// 500 and says how many it cut between them.
+// so that an error is always exactly one line; a message longer than 1,600 bytes keeps about its first 1,000 and last
+// 500 (cut between UTF-8 characters) and says how many bytes it cut between them.
 std::string one_line(const std::string& message);
 
 class InputError : public std::runtime_error {

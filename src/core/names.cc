@@ -33,7 +33,7 @@ std::optional<std::string> NameSet::violation(const std::string& key, const std:
   return key + " = '" + value + "': must be one of " + list();
 }
 
-const std::string& NameSet::require(const std::string& key, const std::string& value) const {
+std::string NameSet::require(const std::string& key, const std::string& value) const {
   if (auto error = violation(key, value)) throw InputError(*error);
   return value;
 }

@@ -28,7 +28,7 @@ class NameSet {
   std::optional<std::string> violation(const std::string& key, const std::string& value) const;
   // The value itself when it is a name of the set; else InputError "key = 'value': must be one of a, b, c". For the
   // code that maps a name to what it selects (an adapter's enum, a constructor): an unknown name is never a default.
-  const std::string& require(const std::string& key, const std::string& value) const;
+  std::string require(const std::string& key, const std::string& value) const;
 
  private:
   std::vector<Entry> entries_;

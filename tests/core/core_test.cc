@@ -38,8 +38,26 @@ TEST(Errors, MessagesAreOneLineAndNumbersRoundTrip) {
   const std::string line = InputError(message).what();
   EXPECT_LT(line.size(), 1700u);
   EXPECT_EQ(line.rfind("beamid fit: --estimate = 'xxx", 0), 0u);
-  EXPECT_NE(line.find("characters cut"), std::string::npos);
+  EXPECT_NE(line.find("bytes cut"), std::string::npos);
   EXPECT_EQ(line.substr(line.size() - 25), "': must be a list of keys");
+  // Two-byte characters (U+00E9) throughout: no cut falls inside one, so the line is valid UTF-8.
+  std::string accents;
+  for (int i = 0; i < 3000; ++i) accents += "\xc3\xa9";
+  const std::string cut = InputError("--estimate = '" + accents + "'").what();
+  int continuation_run = 0;
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    const auto u = static_cast<unsigned char>(cut[i]);
+    if ((u & 0xC0) == 0x80) {
+      ASSERT_GT(i, 0u);
+      ASSERT_EQ(static_cast<unsigned char>(cut[i - 1]), 0xC3) << "a continuation byte without its lead, at " << i;
+      ++continuation_run;
+    } else if (u == 0xC3) {
+      ASSERT_LT(i + 1, cut.size());
+      ASSERT_EQ(static_cast<unsigned char>(cut[i + 1]) & 0xC0, 0x80)
+          << "a lead byte without its continuation, at " << i;
+    }
+  }
+  EXPECT_GT(continuation_run, 0);
 }
 
 }  // namespace
