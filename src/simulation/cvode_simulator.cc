@@ -128,6 +128,7 @@ std::string flag_name(int flag) {
 struct Session {
   SUNContext context = nullptr;
   N_Vector y = nullptr, atol = nullptr;
+  N_Vector local_error = nullptr, weights = nullptr;  // for the step diagnosis
   SUNMatrix a = nullptr;
   SUNLinearSolver solver = nullptr;
   void* cvode = nullptr;
@@ -135,11 +136,135 @@ struct Session {
     if (cvode) CVodeFree(&cvode);
     if (solver) SUNLinSolFree(solver);
     if (a) SUNMatDestroy(a);
-    if (atol) N_VDestroy(atol);
-    if (y) N_VDestroy(y);
+    for (N_Vector* v : {&weights, &local_error, &atol, &y})
+      if (*v) N_VDestroy(*v);
     if (context) SUNContext_Free(&context);
   }
 };
+
+// The absolute tolerances, per component, when CvodeOptions::atol is 0: each block of w (block components from start)
+// at its natural size w_scale, the velocities at that size times the Rayleigh frequency of the static deflection.
+void set_absolute_tolerances(const CvodeOptions& options, const Eigen::VectorXd& w_scale, double rayleigh_rad_s,
+                             int block, Eigen::Map<Eigen::VectorXd> atol) {
+  const int n = static_cast<int>(w_scale.size());
+  const double tiny = std::numeric_limits<double>::min();
+  for (int start = 0; start < n; start += block) {
+    // 1e-3 on the first block (transverse displacement, what sensors see); 1 on the rotations, whose thin-beam
+    // equations carry round-off noise (a huge shear balance cancelling) that a tighter tolerance would chase.
+    const double factor = start == 0 ? 1e-3 : 1.0;
+    const double size = std::max(tiny, factor * options.rtol * w_scale.segment(start, block).cwiseAbs().maxCoeff());
+    atol.segment(start, block).setConstant(size);
+    // Velocities: the block's size times the Rayleigh frequency of the static deflection; 10x looser for the rotation
+    // velocities. Those carry a round-off floor: the thin beam's shear balance kAG (u_x - alpha) / rho_r2 turns an
+    // eps-level error in u_x - alpha into a rotation acceleration about 1e13 times larger, and once the response
+    // reaches its static size (a pulse longer than a quarter period of mode 1) that floor lies above rtol 1e-10 of
+    // the block's size, so CVODE chased it. Measured at N = 48, 0.3 s of record: 167,840 steps after a 100 ms pulse
+    // against 18,670 after a 4 ms one, with the largest weighted local error in the rotation velocities, and at
+    // rtol 1e-9 only 8,674 (a genuine accuracy limit falls by 10^(1/5) = 1.6x per decade, not 19x). The sensor
+    // never sees a rotation velocity: with the looser bound the long pulse takes 19,896 steps, its velocity agrees
+    // with the exact modal solution to 5.8e-9 of max |v| (8.0e-9 before) and its acceleration to 3.2e-7 (2.4e-7
+    // before: the acceleration sits at that round-off floor either way); the 4 ms pulse is unchanged (18,413
+    // steps; acceleration 6.9e-8, 5.5e-8 before). 100x looser took the thin beam's acceleration past 1e-7.
+    const double velocity_factor = start == 0 ? 1.0 : 10.0;
+    atol.segment(n + start, block).setConstant(std::max(tiny, velocity_factor * size * rayleigh_rad_s));
+  }
+}
+
+// Attaches CvodeOptions::linear_solver to the session: "dense" (the cross-check, with the analytic Jacobian) or the
+// structured solver above (which the caller owns). Returns CVODE's flag.
+int attach_linear_solver(Session& s, StructuredSolver& structured, const galerkin::SecondOrderSystem& system,
+                         const std::string& linear_solver, int n) {
+  if (linear_solver == "dense") {
+    s.a = SUNDenseMatrix(2 * n, 2 * n, s.context);
+    s.solver = SUNLinSol_Dense(s.y, s.a, s.context);
+    const int flag = CVodeSetLinearSolver(s.cvode, s.solver, s.a);
+    if (flag < 0) return flag;
+    return CVodeSetJacFn(s.cvode, jacobian_trampoline);
+  }
+  structured.cvode = s.cvode;
+  structured.system = &system;
+  s.solver = SUNLinSolNewEmpty(s.context);
+  s.solver->content = &structured;
+  s.solver->ops->gettype = structured_type;
+  s.solver->ops->solve = structured_solve;
+  s.solver->ops->free = structured_free;
+  return CVodeSetLinearSolver(s.cvode, s.solver, nullptr);
+}
+
+// Adds CVODE's counters to stats (CVodeReInit resets them: they are added up across the restart).
+void add_counters(void* cvode, bool dense, SimulationStats& stats) {
+  long value = 0;
+  CVodeGetNumSteps(cvode, &value), stats.steps += value;
+  CVodeGetNumRhsEvals(cvode, &value), stats.rhs_evaluations += value;
+  CVodeGetNumJacEvals(cvode, &value), stats.jacobian_evaluations += value;
+  if (dense) CVodeGetNumLinSolvSetups(cvode, &value), stats.linear_solver_setups += value;
+  CVodeGetNumErrTestFails(cvode, &value), stats.error_test_failures += value;
+  CVodeGetNumNonlinSolvConvFails(cvode, &value), stats.nonlinear_convergence_failures += value;
+}
+
+// Step-size diagnosis (SimulationStats::dominant_error_block): per output time, the block of the component with the
+// largest weighted local error estimate, and the last step and order.
+class StepDiagnosis {
+ public:
+  StepDiagnosis(Session& s, int n, int block)
+      : s_(s),
+        n_(n),
+        block_(block),
+        names_(block == n ? std::vector<std::string>{"state", "state"}
+                          : std::vector<std::string>{"displacement", "rotation", "displacement velocity",
+                                                     "rotation velocity"}),
+        counts_(names_.size(), 0) {
+    s.local_error = N_VNew_Serial(2 * n, s.context);
+    s.weights = N_VNew_Serial(2 * n, s.context);
+  }
+
+  void record() {
+    if (CVodeGetEstLocalErrors(s_.cvode, s_.local_error) < 0 || CVodeGetErrWeights(s_.cvode, s_.weights) < 0) return;
+    const double* e = N_VGetArrayPointer(s_.local_error);
+    const double* w = N_VGetArrayPointer(s_.weights);
+    int worst = 0;
+    for (int j = 1; j < 2 * n_; ++j)
+      if (std::abs(e[j] * w[j]) > std::abs(e[worst] * w[worst])) worst = j;
+    const int velocity = worst >= n_ ? 1 : 0;
+    const int within = (worst % n_) / block_;
+    ++counts_[static_cast<std::size_t>(block_ == n_ ? velocity : 2 * velocity + within)];
+    double h = 0;
+    int q = 0;
+    CVodeGetLastStep(s_.cvode, &h);
+    CVodeGetLastOrder(s_.cvode, &q);
+    steps_s_.push_back(h);
+    orders_.push_back(q);
+  }
+
+  void finish(SimulationStats& stats) const {
+    if (steps_s_.empty()) return;
+    const auto most = std::max_element(counts_.begin(), counts_.end()) - counts_.begin();
+    stats.dominant_error_block = names_[static_cast<std::size_t>(most)];
+    const auto middle = [](std::vector<double> v) {
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    stats.median_step_s = middle(steps_s_);
+    stats.median_order = static_cast<int>(middle(orders_));
+  }
+
+ private:
+  Session& s_;
+  const int n_, block_;
+  const std::vector<std::string> names_;
+  std::vector<long> counts_;
+  std::vector<double> steps_s_, orders_;
+};
+
+// The sensor's reading c^T w, c^T v or c^T a at time t_s from the state [w; v].
+double sensor_output(const ResponseProblem& p, const Rhs& rhs, double t_s, const double* state,
+                     std::vector<double>& accel) {
+  const int n = rhs.n;
+  if (p.derivative == 0) return p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(state, n));
+  if (p.derivative == 1) return p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(state + n, n));
+  rhs.acceleration(t_s, state, state + n, accel.data());
+  return p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(accel.data(), n));
+}
 
 }  // namespace
 
@@ -188,27 +313,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   if (options_.atol > 0) {
     atol.setConstant(options_.atol);
   } else {
-    const double tiny = std::numeric_limits<double>::min();
-    for (int start = 0; start < n; start += block) {
-      // 1e-3 on the first block (transverse displacement, what sensors see); 1 on the rotations, whose thin-beam
-      // equations carry round-off noise (a huge shear balance cancelling) that a tighter tolerance would chase.
-      const double factor = start == 0 ? 1e-3 : 1.0;
-      const double size = std::max(tiny, factor * options_.rtol * w_scale.segment(start, block).cwiseAbs().maxCoeff());
-      atol.segment(start, block).setConstant(size);
-      // Velocities: the block's size times the Rayleigh frequency of the static deflection; 10x looser for the rotation
-      // velocities. Those carry a round-off floor: the thin beam's shear balance kAG (u_x - alpha) / rho_r2 turns an
-      // eps-level error in u_x - alpha into a rotation acceleration about 1e13 times larger, and once the response
-      // reaches its static size (a pulse longer than a quarter period of mode 1) that floor lies above rtol 1e-10 of
-      // the block's size, so CVODE chased it. Measured at N = 48, 0.3 s of record: 167,840 steps after a 100 ms pulse
-      // against 18,670 after a 4 ms one, with the largest weighted local error in the rotation velocities, and at
-      // rtol 1e-9 only 8,674 (a genuine accuracy limit falls by 10^(1/5) = 1.6x per decade, not 19x). The sensor
-      // never sees a rotation velocity: with the looser bound the long pulse takes 19,896 steps, its velocity agrees
-      // with the exact modal solution to 5.8e-9 of max |v| (8.0e-9 before) and its acceleration to 3.2e-7 (2.4e-7
-      // before: the acceleration sits at that round-off floor either way); the 4 ms pulse is unchanged (18,413
-      // steps; acceleration 6.9e-8, 5.5e-8 before). 100x looser took the thin beam's acceleration past 1e-7.
-      const double velocity_factor = start == 0 ? 1.0 : 10.0;
-      atol.segment(n + start, block).setConstant(std::max(tiny, velocity_factor * size * rayleigh_rad_s));
-    }
+    set_absolute_tolerances(options_, w_scale, rayleigh_rad_s, block, atol);
   }
 
   s.cvode = CVodeCreate(CV_BDF, s.context);
@@ -223,68 +328,15 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   CVodeSetStabLimDet(s.cvode, SUNTRUE);
   CVodeSetMaxOrd(s.cvode, options_.max_order);
   StructuredSolver structured;
-  if (options_.linear_solver == "dense") {
-    s.a = SUNDenseMatrix(2 * n, 2 * n, s.context);
-    s.solver = SUNLinSol_Dense(s.y, s.a, s.context);
-    CVodeSetLinearSolver(s.cvode, s.solver, s.a);
-    CVodeSetJacFn(s.cvode, jacobian_trampoline);
-  } else {
-    structured.cvode = s.cvode;
-    structured.system = &system;
-    s.solver = SUNLinSolNewEmpty(s.context);
-    s.solver->content = &structured;
-    s.solver->ops->gettype = structured_type;
-    s.solver->ops->solve = structured_solve;
-    s.solver->ops->free = structured_free;
-    flag = CVodeSetLinearSolver(s.cvode, s.solver, nullptr);
-    if (flag < 0) return failed("CVodeSetLinearSolver", flag);
-  }
-
-  // CVodeReInit resets the counters: add them up across the restart.
-  const auto collect = [&] {
-    long value = 0;
-    CVodeGetNumSteps(s.cvode, &value), trace.stats.steps += value;
-    CVodeGetNumRhsEvals(s.cvode, &value), trace.stats.rhs_evaluations += value;
-    CVodeGetNumJacEvals(s.cvode, &value), trace.stats.jacobian_evaluations += value;
-    if (options_.linear_solver == "dense")
-      CVodeGetNumLinSolvSetups(s.cvode, &value), trace.stats.linear_solver_setups += value;
-    CVodeGetNumErrTestFails(s.cvode, &value), trace.stats.error_test_failures += value;
-    CVodeGetNumNonlinSolvConvFails(s.cvode, &value), trace.stats.nonlinear_convergence_failures += value;
-  };
+  const bool dense = options_.linear_solver == "dense";
+  flag = attach_linear_solver(s, structured, system, options_.linear_solver, n);
+  if (flag < 0) return failed("CVodeSetLinearSolver", flag);
 
   const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
   bool restarted = !pulse;
   if (pulse) CVodeSetStopTime(s.cvode, p.pulse_width_s);
   std::vector<double> accel(static_cast<std::size_t>(n));
-  // Step-size diagnosis (SimulationStats::dominant_error_block): per output time, the block of the component with
-  // the largest weighted local error estimate, and the last step and order.
-  const std::vector<std::string> block_names =
-      block == n ? std::vector<std::string>{"state", "state"}
-                 : std::vector<std::string>{"displacement", "rotation", "displacement velocity", "rotation velocity"};
-  std::vector<long> block_counts(block_names.size(), 0);
-  std::vector<double> steps_s, orders;
-  N_Vector local_error = N_VNew_Serial(2 * n, s.context), weights = N_VNew_Serial(2 * n, s.context);
-  const auto release = [&] {
-    N_VDestroy(local_error);
-    N_VDestroy(weights);
-  };
-  const auto diagnose = [&] {
-    if (CVodeGetEstLocalErrors(s.cvode, local_error) < 0 || CVodeGetErrWeights(s.cvode, weights) < 0) return;
-    const double* e = N_VGetArrayPointer(local_error);
-    const double* w = N_VGetArrayPointer(weights);
-    int worst = 0;
-    for (int j = 1; j < 2 * n; ++j)
-      if (std::abs(e[j] * w[j]) > std::abs(e[worst] * w[worst])) worst = j;
-    const int velocity = worst >= n ? 1 : 0;
-    const int within = (worst % n) / block;
-    ++block_counts[static_cast<std::size_t>(block == n ? velocity : 2 * velocity + within)];
-    double h = 0;
-    int q = 0;
-    CVodeGetLastStep(s.cvode, &h);
-    CVodeGetLastOrder(s.cvode, &q);
-    steps_s.push_back(h);
-    orders.push_back(q);
-  };
+  StepDiagnosis diagnosis(s, n, block);
   for (int i = 0; i < p.samples; ++i) {
     const double t_out = i * p.dt_s;
     if (i > 0) {
@@ -292,41 +344,23 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
       if (!restarted && t_out > p.pulse_width_s) {
         double t_reached = 0;
         flag = CVode(s.cvode, p.pulse_width_s, s.y, &t_reached, CV_NORMAL);
-        if (flag < 0) return release(), failed("CVode", flag);
-        collect();
+        if (flag < 0) return failed("CVode", flag);
+        add_counters(s.cvode, dense, trace.stats);
         flag = CVodeReInit(s.cvode, p.pulse_width_s, s.y);
-        if (flag < 0) return release(), failed("CVodeReInit", flag);
+        if (flag < 0) return failed("CVodeReInit", flag);
         CVodeSetStopTime(s.cvode, 2 * p.samples * p.dt_s + p.pulse_width_s);  // past the last sample: no stop
         restarted = true;
       }
       double t_reached = 0;
       flag = CVode(s.cvode, t_out, s.y, &t_reached, CV_NORMAL);
-      if (flag < 0) return release(), failed("CVode at t = " + format_value(t_out) + " s", flag);
-      diagnose();
+      if (flag < 0) return failed("CVode at t = " + format_value(t_out) + " s", flag);
+      diagnosis.record();
     }
-    const double* state = N_VGetArrayPointer(s.y);
-    if (p.derivative == 0) {
-      trace.y[i] = p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(state, n));
-    } else if (p.derivative == 1) {
-      trace.y[i] = p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(state + n, n));
-    } else {
-      rhs.acceleration(t_out, state, state + n, accel.data());
-      trace.y[i] = p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(accel.data(), n));
-    }
+    trace.y[i] = sensor_output(p, rhs, t_out, N_VGetArrayPointer(s.y), accel);
   }
-  collect();
-  release();
+  add_counters(s.cvode, dense, trace.stats);
   trace.stats.linear_solver_setups += structured.factorizations;
-  if (!steps_s.empty()) {
-    const auto most = std::max_element(block_counts.begin(), block_counts.end()) - block_counts.begin();
-    trace.stats.dominant_error_block = block_names[static_cast<std::size_t>(most)];
-    const auto middle = [](std::vector<double> v) {
-      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-      return v[v.size() / 2];
-    };
-    trace.stats.median_step_s = middle(steps_s);
-    trace.stats.median_order = static_cast<int>(middle(orders));
-  }
+  diagnosis.finish(trace.stats);
   return trace;
 }
 
