@@ -173,6 +173,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
     r.set("status", std::string("failed: ") + e.what());
   }
   r.set("wall_time_s", seconds_since(t0));
+  r.set("kind", unit_kind_name(UnitKind::Truth));
   return r;
 }
 

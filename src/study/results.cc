@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "model/beam_parameters.h"
+#include "study/record_schema.h"
 
 namespace beamid::study {
 
@@ -39,13 +40,13 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
   results.plan = &plan;
   int missing = 0;
   for (const Unit& t : plan.truths) {
-    if (auto r = store.load(t.id))
+    if (auto r = load_unit(store, t, spec.fit.estimate))
       results.truths.push_back(std::move(*r));
     else
       ++missing;
   }
   for (const Unit& u : plan.units) {
-    auto r = store.load(u.id);
+    auto r = load_unit(store, u, spec.fit.estimate);
     if (!r) {
       ++missing;
       continue;

@@ -13,6 +13,7 @@
 #include "io/resources.h"
 #include "study/execute.h"
 #include "study/plan.h"
+#include "study/record_schema.h"
 #include "study/store.h"
 #include "study/tables.h"
 
@@ -143,7 +144,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   std::vector<Record> truths(plan.truths.size());
   std::vector<int> missing_truths;
   for (std::size_t i = 0; i < plan.truths.size(); ++i) {
-    if (auto r = store.load(plan.truths[i].id))
+    if (auto r = load_unit(store, plan.truths[i], spec.fit.estimate))
       truths[i] = *r;
     else
       missing_truths.push_back(static_cast<int>(i));
@@ -162,7 +163,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   }
   std::vector<const Unit*> pending;
   for (const Unit* u : mine) {
-    if (store.load(u->id))
+    if (load_unit(store, *u, spec.fit.estimate))
       ++summary.reused;
     else
       pending.push_back(u);
@@ -184,7 +185,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   summary.computed = static_cast<int>(pending.size());
   summary.failed = failed;
   int present = 0;
-  for (const Unit& u : plan.units) present += store.load(u.id) ? 1 : 0;
+  for (const Unit& u : plan.units) present += load_unit(store, u, spec.fit.estimate) ? 1 : 0;
   if (present == static_cast<int>(plan.units.size())) {
     write_tables(spec, plan, store, options.output_dir);
     summary.tables = true;

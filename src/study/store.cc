@@ -125,7 +125,19 @@ Store::Store(std::string directory, std::string code_version, std::ostream* log)
   if (ec) throw InputError(directory_ + ": cannot create the study store folder: " + ec.message());
 }
 
-std::optional<Record> Store::load(const std::string& id) const {
+namespace {
+
+// Why the record read back as unit id's is not that unit's, or "".
+std::string binding_violation(const Record& r, const std::string& id) {
+  if (!r.has("unit")) return "no unit id";
+  if (r.text("unit") != id)
+    return "it is the record of unit " + r.text("unit").substr(0, 40) + ", not of " + id + " (renamed or swapped)";
+  return "";
+}
+
+}  // namespace
+
+std::optional<Record> Store::load(const std::string& id, const RecordCheck& check) const {
   const fs::path path = fs::path(directory_) / (id + ".rec");
   std::error_code ec;
   if (!fs::exists(path, ec)) return std::nullopt;
@@ -134,9 +146,10 @@ std::optional<Record> Store::load(const std::string& id) const {
     const std::string text = io::read_file(path, "cannot read the study record", kMaxRecordBytes);
     if (const auto body = checked_body(text, why)) {
       Record r = Record::parse(*body, path.string());
-      if (r.has("code") && r.text("code") == code_version_) return r;
-      if (r.has("code")) return std::nullopt;  // another build's: recomputed
-      why = "no code version";
+      if (r.has("code") && r.text("code") != code_version_) return std::nullopt;  // another build's: recomputed
+      why = r.has("code") ? binding_violation(r, id) : "no code version";
+      if (why.empty() && check) why = check(r);
+      if (why.empty()) return r;
     } else if (text.find(kCheck) == std::string::npos) {
       // A record of an earlier build, written before records had check lines: not damage, just not ours.
       try {
@@ -162,6 +175,7 @@ std::optional<Record> Store::load(const std::string& id) const {
 }
 
 void Store::save(const std::string& id, Record record) const {
+  record.set("unit", id);
   record.set("code", code_version_);
   const std::string body = record.serialise();
   io::write_file_atomic(fs::path(directory_) / (id + ".rec"), body + check_line(body));
@@ -178,7 +192,15 @@ int Store::absorb(const std::string& other) const {
     const fs::path target = fs::path(directory_) / entry.path().filename();
     const std::string text = io::read_file(entry.path(), "a study record");
     std::string why;
-    if (!checked_body(text, why)) continue;  // a damaged shard record is left behind: the merge names it missing
+    // A damaged shard record, or one under another unit's name, is left behind: the merge names it missing.
+    const auto body = checked_body(text, why);
+    if (!body) continue;
+    try {
+      if (!binding_violation(Record::parse(*body, entry.path().string()), entry.path().stem().string()).empty())
+        continue;
+    } catch (const InputError&) {
+      continue;
+    }
     io::write_file_atomic(target, text);
     ++count;
   }

@@ -3,11 +3,15 @@
 // resumed one skips everything already stored. A record is "key<TAB>value" lines; lists of numbers are space
 // separated in 17 significant digits. Each record carries the code version that made it; a record from another
 // build is ignored (recomputed), so a resumed study never mixes results of different code.
-// Every record checks itself: its last line is "#check<TAB><length of the lines before><TAB><their FNV-1a 64 hash>".
-// A record that is cut short, altered or unreadable fails the check; it is named on the log, moved aside to
-// store/damaged/ and recomputed, so no damage to the store can crash or stop a study.
+// Every record checks itself: its last line is "#check<TAB><length of the lines before><TAB><their FNV-1a 64 hash>",
+// and the lines include the unit's id ("unit"), which is itself a hash of everything that determines the unit's
+// result (plan.h), so a record is bound to its unit and to the inputs that made it. A record that is cut short,
+// altered or unreadable, that belongs to another unit (renamed or swapped), or that fails the caller's schema check
+// (record_schema.h) is named on the log, moved aside to store/damaged/ and recomputed, so no damage to the store can
+// crash or stop a study, nor be reused.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -40,10 +44,12 @@ class Store {
   // Creates the folder if needed. Damaged records are reported on `log` (one line each; std::cerr when null).
   Store(std::string directory, std::string code_version, std::ostream* log = nullptr);
   const std::string& directory() const { return directory_; }
-  // The stored record of unit `id`, if there is one made by this code version that passes its check (a damaged
-  // one is moved aside and reported).
-  std::optional<Record> load(const std::string& id) const;
-  // Stamps the code version and writes atomically.
+  // Why a record read back does not fit the caller's expectations, or "" when it does.
+  using RecordCheck = std::function<std::string(const Record&)>;
+  // The stored record of unit `id`, if there is one made by this code version that passes its check, is unit id's
+  // and passes `check` (a damaged one is moved aside and reported).
+  std::optional<Record> load(const std::string& id, const RecordCheck& check = {}) const;
+  // Stamps the unit's id and the code version and writes atomically.
   void save(const std::string& id, Record record) const;
   // Copies every record file of another store folder into this one (for merging shards); returns how many.
   int absorb(const std::string& other_directory) const;

@@ -118,5 +118,32 @@ TEST(Store, DamagedRecordsAreNamedMovedAsideAndRecomputed) {
   fs::remove_all(dir);
 }
 
+// A record is bound to its unit: its id is inside the checked content, so an intact record under another unit's name
+// (two records swapped, a file renamed) is named, moved aside and recomputed, and a shard's misnamed record is not
+// merged; the caller's own check (the schema, record_schema.h) moves aside what it refuses in the same way.
+TEST(Store, RecordsUnderAnotherUnitsNameOrRefusedByTheCallerAreMovedAside) {
+  const fs::path dir = scratch("binding"), merged = scratch("binding-merged");
+  std::ostringstream log;
+  const Store store(dir.string(), "v", &log);
+  Record r;
+  r.set("x", 1.0);
+  store.save("u1", r);
+  EXPECT_EQ(store.load("u1")->text("unit"), "u1");
+  fs::rename(dir / "u1.rec", dir / "u2.rec");
+  EXPECT_FALSE(store.load("u2"));
+  EXPECT_TRUE(fs::exists(dir / "damaged" / "u2.rec"));
+  EXPECT_NE(log.str().find("it is the record of unit u1, not of u2 (renamed or swapped)"), std::string::npos)
+      << log.str();
+  store.save("u3", r);
+  fs::copy_file(dir / "u3.rec", dir / "u4.rec");
+  EXPECT_EQ(Store(merged.string(), "v").absorb(dir.string()), 1);  // u3 only
+  EXPECT_FALSE(fs::exists(merged / "u4.rec"));
+  const auto refuse = [](const Record& record) { return record.has("y") ? "" : std::string("field 'y' is missing"); };
+  EXPECT_FALSE(store.load("u3", refuse));
+  EXPECT_TRUE(fs::exists(dir / "damaged" / "u3.rec"));
+  EXPECT_NE(log.str().find("u3.rec: field 'y' is missing"), std::string::npos) << log.str();
+  for (const auto& p : {dir, merged}) fs::remove_all(p);
+}
+
 }  // namespace
 }  // namespace beamid::study

@@ -9,10 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/provenance.h"
 #include "study/plan.h"
+#include "study/record_schema.h"
 #include "study/runner.h"
 #include "study/tables.h"
 
@@ -180,6 +183,53 @@ TEST_F(StudyRunner, AnInterruptedRunResumesToTheSameTables) {
   EXPECT_EQ(tables(root_ / "resumed"), reference_);
 }
 
+// Every record the runner stored, truths included, follows its kind's declared schema (record_schema.h): the writer
+// and the reader agree on one list of fields.
+TEST_F(StudyRunner, EveryStoredRecordFollowsItsDeclaredSchema) {
+  const Plan plan = make_plan(spec_);
+  const Store store((root_ / "one" / "store").string(), io::commit_label());
+  std::map<UnitKind, int> kinds;
+  for (const auto* units : {&plan.truths, &plan.units})
+    for (const Unit& u : *units) {
+      const auto r = store.load(u.id);
+      ASSERT_TRUE(r) << u.id;
+      EXPECT_EQ(schema_violation(*r, u, spec_.fit.estimate), "") << unit_kind_name(u.kind) << " " << u.id;
+      ++kinds[u.kind];
+    }
+  // The mini study has truths, cases, slices, grids, multistart fits and the frequencies of its N.
+  EXPECT_EQ(kinds.size(), 6u);
+}
+
+// Issue 30: two records swapped inside a finished store (each intact, under the other's name) were reused and changed
+// the tables. Each record carries its unit's id inside its checked content, so both are named, moved aside and
+// recomputed, and the tables come out as before. A record under its own name that lacks a declared field (a record
+// of another kind, say) is treated the same way.
+TEST_F(StudyRunner, SwappedOrMisshapenRecordsAreMovedAsideAndRecomputed) {
+  fs::copy(root_ / "one", root_ / "swapped", fs::copy_options::recursive);
+  const Plan plan = make_plan(spec_);
+  std::vector<std::string> cases;
+  for (const Unit& u : plan.units)
+    if (u.kind == UnitKind::Case) cases.push_back(u.id);
+  ASSERT_GE(cases.size(), 3u);
+  const fs::path store = root_ / "swapped" / "store";
+  const auto file = [&](const std::string& id) { return store / (id + ".rec"); };
+  fs::rename(file(cases[0]), store / "held");
+  fs::rename(file(cases[1]), file(cases[0]));
+  fs::rename(store / "held", file(cases[1]));
+  // A landscape unit's record, valid and checked, stored under the third case's own id.
+  Record other = *Store(store.string(), io::commit_label()).load(plan.units.back().id);
+  Store(store.string(), io::commit_label()).save(cases[2], other);
+  RunOptions o;
+  o.output_dir = (root_ / "swapped").string();
+  std::ostringstream log;
+  const RunSummary s = run_study(spec_, o, log, false);
+  EXPECT_EQ(s.computed, 3) << log.str();
+  EXPECT_NE(log.str().find("(renamed or swapped)"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("field 'termination' is missing"), std::string::npos) << log.str();
+  EXPECT_EQ(tables(root_ / "swapped"), reference_);
+  EXPECT_TRUE(fs::exists(store / "damaged" / (cases[0] + ".rec")));
+}
+
 TEST_F(StudyRunner, ShardsMergeIntoTheTablesOfOneRun) {
   for (int k = 1; k <= 2; ++k) {
     RunOptions o;
@@ -220,6 +270,14 @@ TEST_F(StudyRunner, ACaseThatCannotRunIsARowWithItsStatus) {
       ++failed_rows;
     }
   EXPECT_EQ(failed_rows, 3);
+  // The failed cases' records follow the declared schema too (their fields are set to "not run" values first).
+  const Plan plan = make_plan(spec);
+  const Store store((root_ / "failing" / "store").string(), io::commit_label());
+  for (const Unit& u : plan.units) {
+    const auto r = store.load(u.id);
+    ASSERT_TRUE(r) << u.id;
+    EXPECT_EQ(schema_violation(*r, u, spec.fit.estimate), "") << u.id;
+  }
 }
 
 TEST(StudyValidation, EveryUnitIsCheckedBeforeAnyRuns) {
@@ -275,6 +333,18 @@ TEST(StudyRunnerExperiments, StartDistanceCurvesForEveryExperiment) {
   o.jobs = 1;
   std::ostringstream log;
   ASSERT_TRUE(run_study(all, o, log, false).tables);
+  {  // the start-distance records follow the declared schema
+    const Plan plan = make_plan(all);
+    const Store store((dir / "store").string(), io::commit_label());
+    std::set<UnitKind> kinds;
+    for (const Unit& u : plan.units) {
+      const auto r = store.load(u.id);
+      ASSERT_TRUE(r) << u.id;
+      EXPECT_EQ(schema_violation(*r, u, all.fit.estimate), "") << u.id;
+      kinds.insert(u.kind);
+    }
+    EXPECT_TRUE(kinds.count(UnitKind::Start));
+  }
   const auto files = tables(dir);
   fs::remove_all(dir);
   std::istringstream radius(files.at("start_distance/radius.csv"));
