@@ -105,7 +105,12 @@ class StateSpaceModes {
   // Exact for a simple eigenvalue; within a cluster (above) only the cluster's mean moves smoothly.
   Eigen::VectorXcd eigenvalue_derivative(const SecondOrderSystem& d) const;
 
-  // Underdamped modes (Im lambda > 0), sorted by natural frequency.
+  // Underdamped modes (Im lambda > 0), sorted by natural frequency, without the pairs that are critically damped to
+  // within 1e-6 (zeta > 1 - 1e-6): a nearly multiple real eigenvalue, such as the shear relaxation rate kAG/kAcs that
+  // all shear modes share, splits under round-off into complex pairs with zeta = 1 - 1e-19 (extended precision) or
+  // 1 - 1e-10 (double), and even a genuine pair that close to critical is no vibration: its damped frequency is
+  // |lambda| sqrt(1 - zeta^2) < 1.4e-3 |lambda|, and it decays by e^-4400 within one damped period.
+  static constexpr double kCriticalMargin = 1e-6;
   std::vector<DampedMode> underdamped_modes() const;
 
  private:
@@ -119,8 +124,43 @@ class StateSpaceModes {
                             Eigen::MatrixXd& ct);
   bool iterate_damped_modes(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
                             Eigen::VectorXcd& stiffness_forms);
-  void decompose_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
-                              const Eigen::VectorXd& scale, Eigen::VectorXcd& stiffness_forms);
+  // Eigenvalues with their vectors q_k in the undamped basis, as the dense decompositions find them.
+  struct Eigenpairs {
+    Eigen::VectorXcd lambda;
+    Eigen::MatrixXcd q;
+  };
+  // The dense decomposition of the state matrix A (above): accurate to eps ||A|| in lambda, so for the eigenvalues
+  // much larger than eps ||A|| in magnitude.
+  static Eigenpairs decompose_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
+                                           const Eigen::MatrixXd& kt, const Eigen::VectorXd& scale);
+  // The same for the reversed pencil mu^2 K~ + mu C~ + M~ in mu = 1/lambda, accurate to eps ||B|| in mu: for the
+  // small eigenvalues of a beam whose damping rates span more orders of magnitude than double precision resolves in
+  // A (below). Returns lambda = 1/mu.
+  static Eigenpairs decompose_reversed_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
+                                                    const Eigen::MatrixXd& kt);
+  // The larger eigenvalues of a graded spectrum from `dense`, the smaller from `reversed` (modes.cc); NumericalError
+  // when they do not add up to 2n.
+  static Eigenpairs combine_graded(const Eigenpairs& dense, const Eigenpairs& reversed, const Eigen::MatrixXd& mt,
+                                   const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt, const Eigen::VectorXd& scale);
+  // Newton's method on T~(lambda) q = 0 from each pair (inverse iteration with the Rayleigh functional, modes.cc), to
+  // round-off in a few steps; a pair whose residual does not fall is left as it is for the checks to judge.
+  static void refine_eigenpairs(Eigenpairs& pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
+                                const Eigen::MatrixXd& kt);
+  // The relative residual an eigenpair of a dense decomposition may have before the graded path (below) recomputes
+  // the pairs, and after it before the modes are refused. A residual eta moves an eigenvalue by about eta times its
+  // condition and its vector by eta over its gap; the outputs need 1e-7 (the iteration accepts 1e-8 and, within
+  // blocks, 1e-7). Measured: the dense path's largest residual is 5e-13 to 2e-12 for thick-steel (N = 4-16) and up to
+  // 1.2e-8 on the thin beam's first mode with cDI 10x its preset (eps ||A|| with ||A|| ~ 5e8 1/s against
+  // lambda ~ 15 1/s), which the Rayleigh functional then corrects; with cDI/EI = 10-2000 s it is 2e-5 to 1 (modes of
+  // the wrong sign, spurious pairs), and 1e-14 to 1e-10 after the graded path.
+  static constexpr double kDenseResidual = 1e-7;
+  // Takes the eigenpairs (q_, lambda_, their products and q_k^T K~ q_k into stiffness_forms).
+  void adopt(Eigenpairs pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
+             Eigen::VectorXcd& stiffness_forms);
+  // Why an eigenpair cannot be trusted, or "": its residual T~(lambda) q against the size of its terms above
+  // kDenseResidual, or a pole in the right half-plane (a passive beam, M > 0, C >= 0, K > 0, cannot gain energy:
+  // Re lambda = -q^H C~ q / (2 q^H M~ q) <= 0 for a complex lambda, and a real one is negative).
+  std::string doubtful_eigenpair(const Eigen::MatrixXd& kt) const;
   // Everything after the eigenpairs: refinement, normalisation, clusters and the condition estimate; returns rcond.
   double finish(const Eigen::VectorXcd& stiffness_forms, const Eigen::VectorXd& scale);
   // lambda_k from the Rayleigh functional of T at x_k (modes.cc), given the forms a_k = x_k^T M x_k, b_k = x_k^T C x_k,
