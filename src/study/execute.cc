@@ -16,6 +16,7 @@
 #include "signal/spectrum.h"
 #include "simulation/simulator.h"
 #include "study/overlay.h"
+#include "study/record_schema.h"
 #include "study/start_distance.h"
 
 namespace beamid::study {
@@ -174,6 +175,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
   }
   r.set("wall_time_s", seconds_since(t0));
   r.set("kind", unit_kind_name(UnitKind::Truth));
+  r.set("inputs", inputs_hash(truth));
   return r;
 }
 
@@ -424,6 +426,7 @@ Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
              : unit.kind == UnitKind::Bound       ? run_bound(spec, unit, truth)
                                                   : run_landscape(spec, unit, truth);
   r.set("kind", unit_kind_name(unit.kind));
+  r.set("inputs", inputs_hash(unit));
   return r;
 }
 

@@ -1,6 +1,8 @@
 #include "study/record_schema.h"
 
 #include "core/errors.h"
+#include "core/hash.h"
+#include "io/text.h"
 
 namespace beamid::study {
 namespace {
@@ -20,9 +22,16 @@ void add_fit(std::vector<FieldSpec>& fields, const std::vector<std::string>& est
 
 }  // namespace
 
+std::string inputs_hash(const Unit& unit) {
+  return io::hex64(core::fnv1a64(unit.canonical + ";seed=" + std::to_string(unit.seed) + ";noise_seed=" +
+                                 std::to_string(unit.noise_seed) + ";overlay=" + (unit.overlay ? "1" : "0")));
+}
+
 std::vector<FieldSpec> declared_fields(UnitKind kind, const std::vector<std::string>& estimate) {
-  std::vector<FieldSpec> fields = {
-      {"kind", FieldType::Text}, {"status", FieldType::Text}, {"wall_time_s", FieldType::Number}};
+  std::vector<FieldSpec> fields = {{"kind", FieldType::Text},
+                                   {"inputs", FieldType::Text},
+                                   {"status", FieldType::Text},
+                                   {"wall_time_s", FieldType::Number}};
   switch (kind) {
     case UnitKind::Truth:
     case UnitKind::Slice:
@@ -65,6 +74,8 @@ std::string schema_violation(const Record& record, const Unit& unit, const std::
   }
   if (record.text("kind") != unit_kind_name(unit.kind))
     return "it is a '" + record.text("kind") + "' record, where the unit is a '" + unit_kind_name(unit.kind) + "'";
+  if (record.text("inputs") != inputs_hash(unit))
+    return "it was made from other inputs than the unit's (another study seed, or without its overlay)";
   return "";
 }
 

@@ -20,13 +20,18 @@ struct FieldSpec {
   FieldType type;
 };
 
+// A hash of everything that made a unit's record beyond its id (the canonical text the id hashes): its seed and its
+// record's noise seed, which derive from the study's seed, and whether it computes an overlay. Stored in the record
+// ("inputs") and compared on reading, so that a record made with another study seed, say, is recomputed.
+std::string inputs_hash(const Unit& unit);
+
 // The fields every record of `kind` carries, for a study that estimates `estimate` (the per-parameter fields
-// "estimate.EI", "relative_error.EI", ... are listed for each key). Includes "kind" (the unit kind's name) and
-// "status"; the store adds "unit" and "code" itself.
+// "estimate.EI", "relative_error.EI", ... are listed for each key). Includes "kind" (the unit kind's name), "inputs"
+// (inputs_hash) and "status"; the store adds "unit" and "code" itself.
 std::vector<FieldSpec> declared_fields(UnitKind kind, const std::vector<std::string>& estimate);
 
-// Why `record` does not follow the schema of `unit` (the first field missing, of the wrong type, or a kind that is
-// not the unit's), or "" when it does.
+// Why `record` does not follow the schema of `unit` (the first field missing, of the wrong type, a kind that is not
+// the unit's, or other inputs), or "" when it does.
 std::string schema_violation(const Record& record, const Unit& unit, const std::vector<std::string>& estimate);
 
 // The stored record of `unit`, checked against its schema (a record that does not follow it is moved aside).

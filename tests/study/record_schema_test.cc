@@ -1,6 +1,7 @@
 // The store's declared schema (record_schema.h) against the writer: a unit of every kind whose truth failed still
 // writes every declared field (its "not run" values), and the reader refuses a record that lacks one, has one of the
-// wrong type, or is of another kind. (Records of units that ran are checked in study_runner_test.cc.)
+// wrong type, is of another kind or was made from other inputs (another study seed). (Records of units that ran are
+// checked in study_runner_test.cc.)
 #include "study/record_schema.h"
 
 #include <gtest/gtest.h>
@@ -34,6 +35,7 @@ TEST(RecordSchema, ARecordWithoutAFieldOfTheWrongTypeOrKindIsRefused) {
   const std::vector<std::string> estimate = {"EI"};
   Record r;
   r.set("kind", std::string("bound"));
+  r.set("inputs", inputs_hash(u));
   r.set("status", std::string("ok"));
   r.set("wall_time_s", 0.5);
   r.set("noise_sd", 1e-3);
@@ -47,6 +49,9 @@ TEST(RecordSchema, ARecordWithoutAFieldOfTheWrongTypeOrKindIsRefused) {
   Record wrong_kind = r;
   wrong_kind.set("kind", std::string("case"));
   EXPECT_EQ(schema_violation(wrong_kind, u, estimate), "it is a 'case' record, where the unit is a 'bound'");
+  Unit reseeded = u;  // the same unit id in a study with another seed
+  reseeded.seed = u.seed + 1;
+  EXPECT_NE(schema_violation(r, reseeded, estimate).find("made from other inputs"), std::string::npos);
 }
 
 }  // namespace

@@ -230,6 +230,28 @@ TEST_F(StudyRunner, SwappedOrMisshapenRecordsAreMovedAsideAndRecomputed) {
   EXPECT_TRUE(fs::exists(store / "damaged" / (cases[0] + ".rec")));
 }
 
+// Issue 30 (a second pass): a unit's id does not include the study seed (so that ids stay stable), and a study rerun
+// with another seed into the same folder reused every record of the first seed. The records carry a hash of their
+// seeds (record_schema.h), so every unit is recomputed, and the tables are those of a fresh run with the new seed.
+TEST_F(StudyRunner, ARerunWithAnotherSeedRecomputesEveryUnit) {
+  fs::copy(root_ / "one", root_ / "reseeded", fs::copy_options::recursive);
+  std::string text = kMini;
+  text.replace(text.find("seed = 11"), 9, "seed = 12");
+  const StudySpec reseeded = parse_study(text, "mini.toml", ".");
+  RunOptions o;
+  o.output_dir = (root_ / "reseeded").string();
+  std::ostringstream log;
+  const RunSummary s = run_study(reseeded, o, log, false);
+  EXPECT_EQ(s.reused, 0) << log.str();
+  EXPECT_EQ(s.computed, s.units);
+  RunOptions fresh;
+  fresh.output_dir = (root_ / "seed12").string();
+  std::ostringstream fresh_log;
+  ASSERT_TRUE(run_study(reseeded, fresh, fresh_log, false).tables);
+  EXPECT_EQ(tables(root_ / "reseeded"), tables(root_ / "seed12"));
+  EXPECT_NE(tables(root_ / "seed12"), reference_);
+}
+
 TEST_F(StudyRunner, ShardsMergeIntoTheTablesOfOneRun) {
   for (int k = 1; k <= 2; ++k) {
     RunOptions o;
