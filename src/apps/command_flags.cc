@@ -1,7 +1,11 @@
 #include "apps/command_flags.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -9,6 +13,7 @@
 #include "config/beam_file.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/files.h"
 #include "io/time_series.h"
 
 namespace beamid::apps {
@@ -97,6 +102,21 @@ bool overwrites(const std::filesystem::path& output, const std::filesystem::path
 }
 
 }  // namespace
+
+void check_output_file(const Flags& a, const std::string& flag) {
+  if (!a.has(flag)) return;
+  const std::string path = a.text(flag);
+  a.require(!path.empty(), flag, "must name a file");
+  a.require(path.back() != '/', flag, "names a folder; give a file name");
+  const std::string problem = io::replaceable_output_problem(path);
+  a.require(problem.empty(), flag, problem + "; an output replaces only a regular file");
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::filesystem::path folder = parent.empty() ? std::filesystem::path(".") : parent;
+  a.require(io::is_existing_folder(folder), flag, "its folder '" + folder.string() + "' does not exist");
+  errno = 0;
+  a.require(::access(folder.c_str(), W_OK) == 0, flag,
+            "cannot write in folder '" + folder.string() + "' (" + std::strerror(errno) + ")");
+}
 
 void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& output_flags,
                                const std::vector<std::string>& suffixes, const std::vector<std::string>& input_flags) {

@@ -27,6 +27,10 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h), or TOML text given inline (Flags::set_inline);
 // its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);
+// Before anything runs: InputError naming the flag when an output file's path cannot be written: empty, an existing
+// folder, device, pipe or link (io::replaceable_output_problem), a folder that does not exist, or one the user may
+// not write in; so that a long computation is not lost at its end.
+void check_output_file(const Flags& a, const std::string& flag);
 // Before anything runs: InputError when a file the command would write (`outputs`, with their suffixes: --report
 // writes REPORT and REPORT.spectra.csv, each through a .tmp beside it) is one of the files it reads (`inputs`:
 // --data, --beam), so that an output never overwrites an input.

@@ -117,7 +117,19 @@ int run_report(const Flags& a, std::ostream& out) {
   text << in.rdbuf();
   std::map<std::string, std::string> contents;
   for (const auto& name : io::block_names(text.str(), path)) {
+    // A block's text comes from results/<name>.md and nowhere else: a name that leaves the results folder (absolute,
+    // or through '..') is refused, and so is a block file that is the report itself (it would paste itself in).
+    const std::filesystem::path relative(name);
+    bool inside = !name.empty() && !relative.is_absolute();
+    for (const auto& part : relative) inside = inside && part != "..";
+    if (!inside)
+      throw InputError("beamid report: " + path + ": block '" + name +
+                       "': must be a relative name inside the --results folder (not absolute, no '..')");
     const std::filesystem::path file = results / (name + ".md");
+    std::error_code ec;
+    if (std::filesystem::equivalent(file, path, ec) && !ec)
+      throw InputError("beamid report: " + path + ": block '" + name + "' would read the report itself (" +
+                       file.string() + ")");
     std::ifstream block(file, std::ios::binary);
     if (!block) {
       out << "report: block '" << name << "' kept: " << file.string() << " does not exist\n";

@@ -110,6 +110,7 @@ int run_cost(const Flags& a, std::ostream& out) {
 }
 
 int run_fit(const Flags& a, std::ostream& out) {
+  check_output_file(a, "report");
   refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();

@@ -1,5 +1,8 @@
 #include "io/files.h"
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -14,6 +17,27 @@ void make_folder(const std::filesystem::path& path) {
   if (ec) throw InputError(path.string() + ": cannot create folder (" + ec.message() + ")");
 }
 
+std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(folder, ec)) return "";
+  if (!fs::is_directory(folder, ec)) return "exists and is not a folder";
+  const fs::path root = fs::weakly_canonical(folder, ec);
+  if (ec) return "";
+  for (const std::string& input : inputs) {
+    if (input.empty()) continue;
+    const fs::path file = fs::weakly_canonical(input, ec);
+    if (ec) continue;
+    const auto [end, at] = std::mismatch(root.begin(), root.end(), file.begin(), file.end());
+    if (end == root.end())
+      return "holds the input " + input + ", which an output of the same name would replace; write elsewhere";
+  }
+  if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
+    return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
+           "could overwrite; write into a new or empty folder";
+  return "";
+}
+
 bool is_existing_file(const std::filesystem::path& path) {
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec) && !ec;
@@ -24,18 +48,54 @@ bool is_existing_folder(const std::filesystem::path& path) {
   return std::filesystem::is_directory(path, ec) && !ec;
 }
 
+std::string replaceable_output_problem(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(path, ec);
+  if (ec || !fs::exists(status)) return "";
+  if (fs::is_directory(status)) return "is a folder";
+  if (fs::is_symlink(status)) return "is a symbolic link (an output is written as a new file, which would replace it)";
+  if (!fs::is_regular_file(status)) return "is not a regular file (a device, pipe or socket)";
+  return "";
+}
+
+namespace {
+
+// The OS's reason for the last failed call, or a generic one.
+std::string os_reason(int error) { return error != 0 ? std::strerror(error) : "an unknown reason"; }
+
+}  // namespace
+
 void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+  // An output only replaces a regular file: a device (/dev/null), a pipe or a link given as an output path would be
+  // replaced by a plain file (as root, /dev/null itself).
+  if (const std::string problem = replaceable_output_problem(path); !problem.empty())
+    throw InputError(path.string() + ": " + problem + ": an output replaces only a regular file; choose another path");
   if (path.has_parent_path()) make_folder(path.parent_path());
   const std::filesystem::path temporary = path.string() + ".tmp";
+  std::error_code ec;
+  // A failed or short write (a full disk, a read-only folder, a quota) names the OS's reason and leaves neither the
+  // temporary nor a partial file under the final name.
+  const auto fail = [&](int error) {
+    std::filesystem::remove(temporary, ec);
+    throw InputError(path.string() + ": cannot write (" + os_reason(error) + ")");
+  };
   {
+    errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) fail(errno);
     out << text;
     out.flush();
-    if (!out) throw InputError(temporary.string() + ": cannot write");
+    if (!out) fail(errno);
+    out.close();
+    if (!out) fail(errno);
   }
-  std::error_code ec;
   std::filesystem::rename(temporary, path, ec);
-  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
+  if (ec) {
+    const std::string reason = ec.message();
+    std::filesystem::remove(temporary, ec);
+    throw InputError(path.string() + ": cannot write (" + reason + ")");
+  }
 }
 
 std::string read_file(const std::filesystem::path& path, const std::string& cannot_read, std::uintmax_t max_bytes) {

@@ -1,15 +1,27 @@
 // Writing files so that a reader never sees half of one: the text goes to "<path>.tmp", which is then renamed over
-// the path (atomic on POSIX file systems). Folders are created as needed. InputError naming the path when the file
-// cannot be written.
+// the path (atomic on POSIX file systems). Folders are created as needed. InputError "path: cannot write (<the OS's
+// reason>)" when the file cannot be written, with the temporary removed; refused before anything is written when the
+// path exists and is not a regular file (replaceable_output_problem).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace beamid::io {
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+
+// Why an existing path cannot be an output ("is a folder", "is a symbolic link ...", "is not a regular file ..."), or
+// "" when it does not exist or is a regular file.
+std::string replaceable_output_problem(const std::filesystem::path& path);
+
+// Why `folder` cannot take a command's output files (tables, reports), or "" when it can: it exists and is not a
+// folder; it holds files but is not an earlier output of beamid (no manifest.json, no store/), so that files of the
+// user's could be overwritten by the tables' names; or one of `inputs` (the command's input files) lies inside it,
+// where a table of the same name would replace it.
+std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs);
 
 // Creates a folder and its parents; InputError "path: cannot create folder (<reason>)" when the path is too long,
 // is a file, or is not writable.

@@ -251,6 +251,11 @@ RealStudySpec load_real_study(const std::string& path) {
 }
 
 int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std::ostream& log) {
+  std::vector<std::string> inputs = {spec.path, spec.beam_file};
+  for (const RealRecordSpec& r : spec.records) inputs.insert(inputs.end(), {r.file, r.beam_file});
+  for (const CandidateSpec& c : spec.candidates) inputs.push_back(c.beam_file);
+  if (const std::string problem = io::output_folder_problem(output_dir, inputs); !problem.empty())
+    throw InputError("beamid real: --output " + output_dir + ": " + problem);
   const RealResults results = compute_real_study(spec, log);
   for (const Rendered& f : render_real_study(spec, results))
     io::write_file_atomic(std::filesystem::path(output_dir) / f.path, f.text);

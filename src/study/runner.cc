@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/files.h"
 #include "io/provenance.h"
 #include "io/resources.h"
 #include "study/execute.h"
@@ -113,6 +114,9 @@ std::optional<std::string> validation_error(const RunOptions& o) {
 
 RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostream& log, bool terminal) {
   if (auto e = validation_error(options)) throw InputError("beamid study: " + *e);
+  if (const std::string problem = io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path});
+      !problem.empty())
+    throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Plan plan = make_plan(spec);
   const int jobs = job_count(options.jobs);
   const std::vector<const Unit*> mine = shard(plan.units, options.shard_index, options.shard_count);

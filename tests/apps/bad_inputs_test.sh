@@ -191,5 +191,39 @@ expect_error "windows 1" "--windows = '1'" fit --data "$tmp/z.csv" "${S[@]}" --e
 printf '\x93NUMPY\x01\x00\x10\x00{"descr": 5}   \n' >"$tmp/bad.npy"
 expect_error "npy without descr quotes" "bad.npy: byte 10" spikes --data "$tmp/bad.npy" --sample-rate 1000
 
+# Outputs (issue 30, second pass): a report path that is a pipe, a link or a folder, or whose folder is missing, is
+# refused before the fit runs (the pipe and the link's target are left as they were); a study or real output folder
+# that holds the user's files, or an input, is refused before anything is written.
+F=(fit --data "$tmp/record.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time)
+mkfifo "$tmp/pipe"
+expect_error "report into a pipe" "--report = '$tmp/pipe': is not a regular file" "${F[@]}" --report "$tmp/pipe"
+[ -p "$tmp/pipe" ] && ok || bad "report into a pipe: the pipe was replaced"
+echo "kept" >"$tmp/target.md" && ln -s "$tmp/target.md" "$tmp/link.md"
+expect_error "report through a link" "is a symbolic link" "${F[@]}" --report "$tmp/link.md"
+[ -L "$tmp/link.md" ] && [ "$(cat "$tmp/target.md")" = "kept" ] && ok || bad "report through a link: replaced"
+expect_error "report in a missing folder" "its folder '$tmp/no/such' does not exist" "${F[@]}"   --report "$tmp/no/such/r.md"
+[ ! -e "$tmp/no" ] && ok || bad "report in a missing folder: the folder was created"
+expect_error "report named as a folder" "names a folder; give a file name" "${F[@]}" --report "$tmp/rdir/"
+expect_error "empty report" "--report = '': must name a file" "${F[@]}" --report ""
+mkdir "$tmp/mine" && echo "my notes" >"$tmp/mine/cases.csv"
+expect_error "study into a user's folder" "holds files but no manifest.json or store/" study \
+  "$SRC/studies/smoke.toml" --output "$tmp/mine"
+[ "$(cat "$tmp/mine/cases.csv")" = "my notes" ] && ok || bad "study into a user's folder: cases.csv overwritten"
+mkdir "$tmp/in" && cp "$SRC/studies/smoke.toml" "$tmp/in/study.toml"
+expect_error "study into its own folder" "holds the input $tmp/in/study.toml" study "$tmp/in/study.toml" \
+  --output "$tmp/in"
+
+# Report blocks read only from the results folder, and never the report itself.
+mkdir -p "$tmp/res" && echo "secret" >"$tmp/outside.md"
+printf '<!-- BEGIN GENERATED ../outside -->\nold\n<!-- END GENERATED ../outside -->\n' >"$tmp/rep.md"
+expect_error "block name outside results" "block '../outside': must be a relative name inside the --results folder" \
+  report --update "$tmp/rep.md" --results "$tmp/res"
+printf '<!-- BEGIN GENERATED %s -->\nold\n<!-- END GENERATED %s -->\n' "$tmp/outside" "$tmp/outside" >"$tmp/rep.md"
+expect_error "absolute block name" "must be a relative name inside the --results folder" report --update \
+  "$tmp/rep.md" --results "$tmp/res"
+printf '<!-- BEGIN GENERATED self -->\nold\n<!-- END GENERATED self -->\n' >"$tmp/res/self.md"
+expect_error "block that is the report" "block 'self' would read the report itself" report --update "$tmp/res/self.md" \
+  --results "$tmp/res"
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -1,0 +1,82 @@
+// Output files (issue 30): a failed write names the OS's reason and leaves neither a temporary nor a partial file; a
+// path that exists and is not a regular file (a pipe, a link, a folder) is never replaced; an output folder that
+// holds the user's files or an input is refused.
+#include "io/files.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "core/errors.h"
+
+namespace beamid::io {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("beamid-files-test-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(WriteFileAtomic, AFailedWriteNamesTheReasonAndLeavesNothingBehind) {
+  const fs::path dir = scratch("failed");
+  // The temporary's name taken by a folder: the open fails with the OS's own reason.
+  fs::create_directory(dir / "out.csv.tmp");
+  const std::string m = message_of([&] { write_file_atomic(dir / "out.csv", "x\n"); });
+  EXPECT_NE(m.find("out.csv: cannot write (Is a directory)"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+  fs::remove_all(dir);
+}
+
+TEST(WriteFileAtomic, NeverReplacesAPipeALinkOrAFolder) {
+  const fs::path dir = scratch("special");
+  ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0600), 0);
+  { std::ofstream(dir / "target") << "kept"; }
+  fs::create_symlink(dir / "target", dir / "link");
+  fs::create_directory(dir / "folder");
+  for (const std::string name : {"pipe", "link", "folder"}) {
+    const std::string m = message_of([&] { write_file_atomic(dir / name, "x\n"); });
+    EXPECT_NE(m.find("an output replaces only a regular file"), std::string::npos) << name << ": " << m;
+  }
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(dir / "pipe")));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "link")));
+  write_file_atomic(dir / "target", "new\n");  // a regular file is replaced
+  std::ifstream in(dir / "target");
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "new");
+  fs::remove_all(dir);
+}
+
+TEST(OutputFolder, RefusesAFolderOfTheUsersFilesOrOneThatHoldsAnInput) {
+  const fs::path dir = scratch("folders");
+  EXPECT_EQ(output_folder_problem(dir / "new", {}), "");  // a new folder
+  EXPECT_EQ(output_folder_problem(dir, {}), "");          // an empty one
+  { std::ofstream(dir / "cases.csv") << "my notes"; }
+  EXPECT_NE(output_folder_problem(dir, {}).find("no manifest.json or store/"), std::string::npos);
+  { std::ofstream(dir / "manifest.json") << "{}"; }
+  EXPECT_EQ(output_folder_problem(dir, {}), "");  // an earlier output of beamid
+  { std::ofstream(dir / "study.toml") << ""; }
+  EXPECT_NE(output_folder_problem(dir, {(dir / "study.toml").string()}).find("holds the input"), std::string::npos);
+  EXPECT_EQ(output_folder_problem(dir, {(dir.parent_path() / "elsewhere.toml").string()}), "");
+  EXPECT_NE(output_folder_problem(dir / "cases.csv", {}).find("not a folder"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace beamid::io
