@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include "core/errors.h"
@@ -239,6 +240,22 @@ TEST(RecordFormats, MalformedMatFilesAreErrorsNotCrashes) {
   std::string endian = header;
   endian[126] = 'X';
   EXPECT_NE(error_of(write("endian.mat", endian), o).find("byte 126: endian indicator"), std::string::npos);
+  // A valid file cut in half (libmatio read it as complete, zero-filled) and cut inside its last variable.
+  std::vector<double> values(2 * 512), t(512);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sin(0.01 * static_cast<double>(i)) + 2;
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = 1e-3 * static_cast<double>(i);
+  std::ifstream in(write_mat("whole.mat", MAT_FT_MAT5, values, 512, t), std::ios::binary);
+  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ImportOptions named;
+  named.variable = "record";
+  named.sample_rate_hz = 1000;
+  named.channel = "1";
+  for (const std::size_t size : {whole.size() / 2, whole.size() - 8}) {
+    const std::string m = error_of(write("cut.mat", whole.substr(0, size)), named);
+    EXPECT_NE(m.find("bytes of data, but the file ends"), std::string::npos) << size << ": " << m;
+    EXPECT_NE(m.find("truncated or corrupt"), std::string::npos) << m;
+  }
+  EXPECT_EQ(error_of(write("whole-again.mat", whole), named), "no error");
   // --variable on a file that is not a MAT-file.
   o.variable = "x";
   EXPECT_NE(error_of(write("plain.csv", "t_s,y\n0,1\n1,2\n"), o).find("not one"), std::string::npos);
