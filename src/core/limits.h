@@ -24,6 +24,16 @@ inline constexpr int kMaxAttachments = 100;
 // Records of one joint fit (a real study's [[record]]s): far more than a lab series, and each is a full fit's work.
 inline constexpr int kMaxRecords = 64;
 
+// Samples of a record the matrix pencil takes (signal/matrix_pencil.h): its Hankel matrix is Nbar x 600 doubles and
+// its QR costs about 2 Nbar 600^2 flops (measured 0.6 s at Nbar = 4096), so 2^18 samples take about 1.3 GB and
+// 40 s; 1e6 ran for minutes without a word and 1e7 ended in bad_alloc. A longer record is cut (--start, --duration)
+// or resampled (--resample-rate) first.
+inline constexpr int kMaxPencilSamples = 1 << 18;
+// Units a study may plan: a unit's plan entry (its canonical text and settings) takes about 1 KB, and one takes
+// about 1 s to run, so a million units are 1 GB of plan and 6 days on 2 threads; a sweep of 1e8 planned into 7 GB
+// and then ended in bad_alloc. A larger design is split into several study files (or sharded, beamid merge).
+inline constexpr double kMaxStudyUnits = 1e6;
+
 // Measured resource use (peak RSS and wall time on this machine, `/usr/bin/time`), for the estimates that guard a
 // run before it starts (apps/command_flags.cc, study/runner.cc):
 inline constexpr double kSecondsPerEvaluationAtN200 = 3.2;  // one model evaluation, growing as N^3

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/limits.h"
 
 namespace beamid::signal {
 
@@ -18,6 +19,11 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     if (!std::isfinite(y[static_cast<std::size_t>(i)]))
       throw InputError("sample " + std::to_string(i) + " = " + format_value(y[static_cast<std::size_t>(i)]) +
                        ": must be finite");
+  if (n > core::kMaxPencilSamples)
+    throw InputError("the record has " + std::to_string(n) + " samples: the matrix pencil takes at most " +
+                     std::to_string(core::kMaxPencilSamples) +
+                     " (its Hankel matrix and QR grow as Nbar L^2); cut the record (--start, --duration) or lower its "
+                     "rate (--resample-rate)");
   const int pencil = std::min(n / 3, o.max_columns - 1);  // L
   const int order = o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil);
   if (order > pencil || pencil < 2)

@@ -1,9 +1,12 @@
 #include "study/plan.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <sstream>
 
+#include "core/errors.h"
+#include "core/limits.h"
 #include "io/text.h"
 #include "model/beam_parameters.h"
 #include "signal/noise.h"
@@ -311,6 +314,19 @@ void plan_frequencies(const StudySpec& spec, Plan& plan) {
 }  // namespace
 
 Plan make_plan(const StudySpec& spec) {
+  // The sweep's size before it is planned (core::kMaxStudyUnits): truths x record lengths x noise draws x N x costs x
+  // methods x starts.
+  const auto& w = spec.sweep;
+  double draws = 0;
+  for (double noise : w.noise) draws += noise == 0 ? 1 : w.replicates;
+  const double cases = static_cast<double>(std::max<std::size_t>(1, w.pulse_width_s.size())) *
+                       static_cast<double>(w.samples.size()) * draws * static_cast<double>(w.elements.size()) *
+                       static_cast<double>(w.cost.size()) * static_cast<double>(w.method.size()) *
+                       static_cast<double>(w.start.size());
+  if (cases > core::kMaxStudyUnits)
+    throw InputError(spec.path + ": [sweep] makes " + io::round_trip(cases) + " cases: more than the " +
+                     io::round_trip(core::kMaxStudyUnits) +
+                     " units a study may plan (about 1 s and 1 KB each); split it into several study files");
   Plan plan;
   plan_truths(spec, plan);
   const std::string fit = fit_text(spec);

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/limits.h"
 #include "galerkin/modes.h"
 #include "simulation/simulator.h"
 
@@ -119,6 +120,19 @@ TEST(MatrixPencil, RefusesWhatItCannotDo) {
   o.order = 1;  // below 2 K
   EXPECT_THROW(matrix_pencil(y, 1e-3, o), InputError);
   EXPECT_THROW(matrix_pencil(std::vector<double>(60, 0.0), 1e-3, PencilOptions{}), InputError);
+}
+
+// Issue 30: a record of 1e6 samples ran for minutes and one of 1e7 ended in bad_alloc; a record longer than
+// core::kMaxPencilSamples is refused at once, naming the count and what to do.
+TEST(MatrixPencil, RefusesARecordTooLongForItsHankelMatrix) {
+  const std::vector<double> y(static_cast<std::size_t>(core::kMaxPencilSamples) + 1, 1.0);
+  try {
+    matrix_pencil(y, 1e-3, PencilOptions{});
+    FAIL() << "a record of " << y.size() << " samples was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("262145 samples: the matrix pencil takes at most 262144"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -302,6 +302,21 @@ TEST_F(StudyRunner, ACaseThatCannotRunIsARowWithItsStatus) {
   }
 }
 
+// Issue 30: a sweep of 1e8 units planned into 7 GB and then ended in bad_alloc; one above core::kMaxStudyUnits is
+// refused before it is planned, with its size.
+TEST(StudyValidation, ASweepTooLargeToPlanIsRefusedBeforePlanning) {
+  std::string text = kMini;
+  text.replace(text.find("replicates = 2"), 14, "replicates = 100000");
+  text.replace(text.find("elements = [4]"), 14, "elements = [4, 5, 6, 7, 8, 9]");
+  const StudySpec spec = parse_study(text, "mini.toml", ".");
+  try {
+    make_plan(spec);
+    FAIL() << "the sweep was planned";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mini.toml: [sweep] makes 1200012 cases"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StudyValidation, EveryUnitIsCheckedBeforeAnyRuns) {
   // The beam length cannot be estimated (the Galerkin forms are built for one length): the study file parses, but
   // the plan is refused before any truth is simulated, naming the file, the unit and the reason.
