@@ -369,9 +369,13 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
                         e.upper,
                         kFree,
                         robust_error(i)};
+    // Within 1e-6 of the range in the optimizer's coordinates, and within 1e-3 of the bound's own value: with very
+    // wide linear bounds (--bound-factor 1e6: [v/1e6, 1e6 v]) 1e-6 of the range is v itself, and an interior estimate
+    // near the truth was reported at-lower-bound without a standard error. At the usual widths (factor 10, or log
+    // coordinates) the first test is the tighter one, so the second changes nothing there.
     const double margin = 1e-6 * (upper(i) - lower(i));
-    if (best.x(i) - lower(i) <= margin) p.status = kAtLowerBound;
-    if (upper(i) - best.x(i) <= margin) p.status = kAtUpperBound;
+    if (best.x(i) - lower(i) <= margin && p.estimate - e.lower <= 1e-3 * std::abs(e.lower)) p.status = kAtLowerBound;
+    if (upper(i) - best.x(i) <= margin && e.upper - p.estimate <= 1e-3 * std::abs(e.upper)) p.status = kAtUpperBound;
     if (p.status != kFree) p.standard_error = p.robust_standard_error = std::numeric_limits<double>::quiet_NaN();
     at_bound = at_bound || p.status != kFree;
     if (result.status == "failed") {

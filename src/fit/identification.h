@@ -89,7 +89,8 @@ struct Record {
 std::string default_optimizer(const std::string& cost);
 
 // A parameter's status: "free" (inside its bounds), "at-lower-bound" or "at-upper-bound" (within 1e-6 of the bound
-// range of it, in the optimizer's coordinates: the bound, not the data, decided the value), or "failed" (the fit
+// range of it, in the optimizer's coordinates, and within 1e-3 of the bound's value: the bound, not the data, decided
+// the value), or "failed" (the fit
 // failed: the estimate is NaN, never the start shown as a result).
 inline const std::string kFree = "free";
 inline const std::string kAtLowerBound = "at-lower-bound";

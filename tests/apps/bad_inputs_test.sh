@@ -225,5 +225,12 @@ printf '<!-- BEGIN GENERATED self -->\nold\n<!-- END GENERATED self -->\n' >"$tm
 expect_error "block that is the report" "block 'self' would read the report itself" report --update "$tmp/res/self.md" \
   --results "$tmp/res"
 
+# Very wide linear bounds (issue 30): [v/1e6, 1e6 v] made 1e-6 of the range as large as v, and the estimate near the
+# truth was reported at-lower-bound without a standard error; it is free, with one.
+timeout 60 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time \
+  --bound-factor 1e6 >"$tmp/out" 2>"$tmp/err"
+if grep -q "^EI,.*,free," "$tmp/out" && ! grep -q "^EI,[^,]*,nan" "$tmp/out"; then ok; else
+  bad "wide bounds: $(head -c 300 "$tmp/out")"; fi
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
