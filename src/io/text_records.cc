@@ -53,6 +53,26 @@ Table read_csv(std::istream& in, const std::string& path) {
   if (t.names.size() < 2)
     throw InputError(path + ":1: header '" + shown(trim(line)) +
                      "': must name at least two columns separated by commas (time in s, then one or more signals)");
+  // A file without a header would lose its first sample as "names" (issue 30): a first line of numbers is refused.
+  bool numbers = true;
+  for (const auto& n : t.names) {
+    const std::string cell = trim(n);
+    char* end = nullptr;
+    std::strtod(cell.c_str(), &end);
+    numbers = numbers && !cell.empty() && end == cell.c_str() + cell.size();
+  }
+  if (numbers)
+    throw InputError(path + ":1: '" + shown(trim(line)) +
+                     "': the first line holds numbers, not column names: a CSV record starts with a header such as "
+                     "t_s,displacement_m");
+  // The time column is in seconds: one named in another unit ("t_ms", "time (ms)") would be read 1000x off.
+  const std::string time = t.names.front();
+  for (const std::string unit : {"ms", "us", "ns", "min", "h"})
+    if ((time.size() > unit.size() + 1 &&
+         time.compare(time.size() - unit.size() - 1, std::string::npos, "_" + unit) == 0) ||
+        time.find("(" + unit + ")") != std::string::npos)
+      throw InputError(path + ":1: time column '" + shown(trim(time)) + "' is in " + unit +
+                       ": beamid reads the time in seconds (convert it, e.g. t_s)");
   for (const auto& n : t.names) {
     // A unit in the name, "accel_g" or "accel (g)", is taken as the column's unit.
     const bool g = n.size() > 2 && (n.substr(n.size() - 2) == "_g" || n.find("(g)") != std::string::npos);

@@ -232,5 +232,12 @@ timeout 60 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6
 if grep -q "^EI,.*,free," "$tmp/out" && ! grep -q "^EI,[^,]*,nan" "$tmp/out"; then ok; else
   bad "wide bounds: $(head -c 300 "$tmp/out")"; fi
 
+# A CSV without a header lost its first sample as "names", and a time column in ms was read as seconds (issue 30).
+tail -n +2 "$tmp/z.csv" >"$tmp/headerless.csv"
+expect_error "headerless csv" "headerless.csv:1: '0.0000000000000000e+00,0.000000000000000... (45 characters)': the first line holds numbers" \
+  spikes --data "$tmp/headerless.csv"
+sed '1s/.*/t_ms,y/' "$tmp/z.csv" >"$tmp/ms.csv"
+expect_error "time in ms" "ms.csv:1: time column 't_ms' is in ms: beamid reads the time in seconds" spikes --data "$tmp/ms.csv"
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
