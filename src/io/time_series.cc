@@ -177,8 +177,11 @@ TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
   if (peak > 1e150)
     throw InputError(path + ": " + s.value_column + " reaches " + format_value(peak) +
                      ": beyond 1e150, its spectrum would overflow (rescale the record)");
-  const bool constant = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
-  for (std::size_t i = 0; i + 2 < v.size() && peak > 0 && !constant; ++i)
+  // A constant record holds no vibration: a fit of it "converged" to an arbitrary stiffness with a standard error.
+  if (std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); }))
+    throw InputError(path + ": " + s.value_column + " is " + format_value(v.front()) +
+                     " in every sample: a constant record holds no vibration to analyse");
+  for (std::size_t i = 0; i + 2 < v.size() && peak > 0; ++i)
     if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
       throw InputError(in.where(i) + ": " + s.value_column + " = " + format_value(v[i]) +
                        " on 3 or more consecutive samples at the record's peak: the signal is "

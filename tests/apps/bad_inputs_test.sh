@@ -239,5 +239,10 @@ expect_error "headerless csv" "headerless.csv:1: '0.0000000000000000e+00,0.00000
 sed '1s/.*/t_ms,y/' "$tmp/z.csv" >"$tmp/ms.csv"
 expect_error "time in ms" "ms.csv:1: time column 't_ms' is in ms: beamid reads the time in seconds" spikes --data "$tmp/ms.csv"
 
+# A constant record "converged" to an arbitrary EI with a standard error (issue 30).
+awk -F, 'NR == 1 { print; next } { print $1 ",0.001" }' "$tmp/z.csv" >"$tmp/constant.csv"
+expect_error "constant record" "is 0.001 in every sample: a constant record holds no vibration" fit \
+  --data "$tmp/constant.csv" "${S[@]}" --estimate EI --cost time
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -118,14 +118,14 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
             std::string::npos);
   // A window outside the record.
   ImportOptions late;
-  late.channel = "1";
+  late.channel = "2";  // (ax_g is constant, itself refused)
   late.start_s = 5;
   EXPECT_NE(error_of(write("two.csv", two), late).find("start = 5 s: must lie inside the record, [0, 0.7] s"),
             std::string::npos)
       << error_of(write("two.csv", two), late);
   // A window that starts inside and runs past the end.
   ImportOptions long_window;
-  long_window.channel = "1";
+  long_window.channel = "2";
   long_window.start_s = 0.5;
   long_window.duration_s = 10;
   EXPECT_NE(error_of(write("two.csv", two), long_window).find("of the requested samples"), std::string::npos)
