@@ -68,9 +68,15 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = frequency_weight_names().violation("frequency_weight", o.frequency_weight)) return error;
   if (auto error = signal::detrend_names().violation("detrend", o.pick_detrend)) return error;
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
+  // At most 1e100: a weight of 1e308 overflowed the cost to inf, which the fit then reported as a result.
   for (const auto& [key, value] : eps)
-    if (value && !(std::isfinite(*value) && *value >= 0))
-      return std::string(key) + " = " + format_value(*value) + ": must be finite and >= 0";
+    if (value && !(std::isfinite(*value) && *value >= 0 && *value <= 1e100))
+      return std::string(key) + " = " + format_value(*value) + ": must be in [0, 1e100]";
+  // Every term weighted 0 makes the spike cost 0 everywhere, and a fit of it "converges" at its start.
+  const auto zero = [](const std::optional<double>& w) { return w && *w == 0; };
+  if (is_spike_cost(o.name) && zero(o.eps1) && zero(o.eps2) && (o.name != "spike-smooth" || zero(o.eps3)))
+    return std::string(o.name == "spike-smooth" ? "eps1 = eps2 = eps3 = 0" : "eps1 = eps2 = 0") +
+           ": every term of the " + o.name + " cost would weigh nothing; at least one weight must be > 0";
   const std::pair<const char*, double> factors[] = {{"eps1_factor", o.eps1_factor}, {"eps2_factor", o.eps2_factor}};
   for (const auto& [key, value] : factors)
     if (!(std::isfinite(value) && value > 0))

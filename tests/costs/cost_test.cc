@@ -259,8 +259,22 @@ TEST(CostOptions, InvalidChoicesAreNamed) {
   EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band, modal");
   o.name = "spike";
   o.eps1 = -1.0;
-  EXPECT_EQ(*validation_error(o), "eps1 = -1: must be finite and >= 0");
+  EXPECT_EQ(*validation_error(o), "eps1 = -1: must be in [0, 1e100]");
   EXPECT_THROW(make_cost(o, tones({{1, 20, 0}}), kDt), InputError);
+  // Issue 30: a weight of 1e308 overflowed the cost to inf, and all weights 0 made the cost 0 everywhere (the fit
+  // "converged" at its start).
+  o.eps1 = 1e308;
+  EXPECT_EQ(*validation_error(o), "eps1 = 1e+308: must be in [0, 1e100]");
+  o.eps1 = 0.0;
+  o.eps2 = 0.0;
+  EXPECT_EQ(*validation_error(o), "eps1 = eps2 = 0: every term of the spike cost would weigh nothing; at least one "
+                                  "weight must be > 0");
+  o.name = "spike-smooth";
+  EXPECT_FALSE(validation_error(o)) << "eps3 (default) still weighs the decay rates";
+  o.eps3 = 0.0;
+  EXPECT_NE(validation_error(o)->find("eps1 = eps2 = eps3 = 0"), std::string::npos);
+  o.name = "time";
+  EXPECT_FALSE(validation_error(o)) << "the time cost has no such weights";
   CostOptions short_record;
   EXPECT_THROW(make_cost(short_record, std::vector<double>(5, 0.0), kDt), InputError);
 }
