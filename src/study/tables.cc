@@ -1,6 +1,8 @@
 #include "study/tables.h"
 
 #include <filesystem>
+#include <set>
+#include <sstream>
 
 #include "io/files.h"
 #include "io/text.h"
@@ -87,9 +89,31 @@ RenderedFiles render_tables(const StudyResults& results) {
 }
 
 void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, const std::string& output_dir) {
+  namespace fs = std::filesystem;
   const StudyResults results = load_results(spec, plan, store);
-  for (const Rendered& f : render_tables(results))
-    io::write_file_atomic(std::filesystem::path(output_dir) / f.path, f.text);
+  const RenderedFiles files = render_tables(results);
+  for (const Rendered& f : files) io::write_file_atomic(fs::path(output_dir) / f.path, f.text);
+  // The tables an earlier run wrote that this one does not (a section removed from the study file) are removed, so
+  // that the folder holds this run's tables only; the list of what was written is kept beside the store. Only
+  // relative paths inside the folder are ever removed.
+  const fs::path list = fs::path(store.directory()) / "tables.txt";
+  std::set<std::string> now;
+  for (const Rendered& f : files) now.insert(f.path);
+  if (io::is_existing_file(list)) {
+    std::istringstream earlier(io::read_file(list, "cannot read the list of written tables"));
+    std::string path;
+    while (std::getline(earlier, path)) {
+      const fs::path relative(path);
+      bool inside = !path.empty() && !relative.is_absolute();
+      for (const auto& part : relative) inside = inside && part != "..";
+      std::error_code ec;
+      if (inside && !now.count(path) && fs::is_regular_file(fs::path(output_dir) / relative, ec))
+        fs::remove(fs::path(output_dir) / relative, ec);
+    }
+  }
+  std::string text;
+  for (const std::string& path : now) text += path + "\n";
+  io::write_file_atomic(list, text);
 }
 
 }  // namespace beamid::study

@@ -252,6 +252,25 @@ TEST_F(StudyRunner, ARerunWithAnotherSeedRecomputesEveryUnit) {
   EXPECT_NE(tables(root_ / "seed12"), reference_);
 }
 
+// Issue 30: a study rerun without a section left that section's old tables beside the new ones. The tables an
+// earlier run wrote and this one does not are removed: the folder equals a fresh run's.
+TEST_F(StudyRunner, ARerunWithoutASectionRemovesItsOldTables) {
+  fs::copy(root_ / "one", root_ / "shrunk", fs::copy_options::recursive);
+  std::string text = kMini;
+  text.replace(text.find("[landscape]"), std::string::npos, "");
+  const StudySpec without = parse_study(text, "mini.toml", ".");
+  RunOptions o;
+  o.output_dir = (root_ / "shrunk").string();
+  std::ostringstream log;
+  ASSERT_TRUE(run_study(without, o, log, false).tables);
+  RunOptions fresh;
+  fresh.output_dir = (root_ / "fresh-without").string();
+  ASSERT_TRUE(run_study(without, fresh, log, false).tables);
+  const auto shrunk = tables(root_ / "shrunk"), expected = tables(root_ / "fresh-without");
+  EXPECT_LT(shrunk.size(), reference_.size());
+  EXPECT_EQ(shrunk, expected);
+}
+
 TEST_F(StudyRunner, ShardsMergeIntoTheTablesOfOneRun) {
   for (int k = 1; k <= 2; ++k) {
     RunOptions o;
