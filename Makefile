@@ -73,7 +73,7 @@ FUZZ_SECONDS ?= 60
 # not the clock, ends every target.
 FUZZ_SEED    ?= 0
 FUZZ_RUNS    ?= -1
-FUZZ_TARGETS := beam_file study_file csv_record lvm_record npy_record uff_record command_line
+FUZZ_TARGETS := beam_file study_file csv_record lvm_record npy_record uff_record command_line store_record report_blocks
 fuzz:
 	@bash .ci/deps.sh fuzz
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \

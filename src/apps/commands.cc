@@ -117,15 +117,9 @@ int run_report(const Flags& a, std::ostream& out) {
   text << in.rdbuf();
   std::map<std::string, std::string> contents;
   for (const auto& name : io::block_names(text.str(), path)) {
-    // A block's text comes from results/<name>.md and nowhere else: a name that leaves the results folder (absolute,
-    // or through '..') is refused, and so is a block file that is the report itself (it would paste itself in).
-    const std::filesystem::path relative(name);
-    bool inside = !name.empty() && !relative.is_absolute();
-    for (const auto& part : relative) inside = inside && part != "..";
-    if (!inside)
-      throw InputError("beamid report: " + path + ": block '" + name +
-                       "': must be a relative name inside the --results folder (not absolute, no '..')");
-    const std::filesystem::path file = results / (name + ".md");
+    // A block's text comes from results/<name>.md and nowhere else (io::block_source), and never from the report
+    // itself (it would paste itself in).
+    const std::filesystem::path file = io::block_source(results, name, "beamid report: " + path);
     std::error_code ec;
     if (std::filesystem::equivalent(file, path, ec) && !ec)
       throw InputError("beamid report: " + path + ": block '" + name + "' would read the report itself (" +

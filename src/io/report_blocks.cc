@@ -61,6 +61,17 @@ std::vector<std::string> split_lines(const std::string& text) {
 
 }  // namespace
 
+std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,
+                                   const std::string& source_name) {
+  const std::filesystem::path relative(name);
+  bool inside = !name.empty() && !relative.is_absolute();
+  for (const auto& part : relative) inside = inside && part != "..";
+  if (!inside)
+    throw InputError(source_name + ": block '" + name +
+                     "': must be a relative name inside the --results folder (not absolute, no '..')");
+  return results / (name + ".md");
+}
+
 std::vector<std::string> block_names(const std::string& text, const std::string& source_name) {
   std::vector<std::string> names;
   for (const auto& b : scan(split_lines(text), source_name)) names.push_back(b.name);

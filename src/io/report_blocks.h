@@ -7,6 +7,7 @@
 // rewritten; everything people wrote around them stays as it is.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,6 +16,11 @@ namespace beamid::io {
 
 // Names of the blocks in `text`, in order. InputError (naming source:line) for an unmatched or mismatched marker.
 std::vector<std::string> block_names(const std::string& text, const std::string& source_name);
+
+// The file that fills block `name`: results/<name>.md. InputError naming the report (source_name) and the block when
+// the name would leave the results folder (empty, absolute, or through '..').
+std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,
+                                   const std::string& source_name);
 
 // `text` with the content of each named block replaced by contents.at(name) (blocks not in `contents` are kept).
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,

@@ -1,11 +1,19 @@
 #include "fuzz_targets.h"
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <sstream>
 
 #include "apps/cli.h"
 #include "config/beam_file.h"
 #include "core/errors.h"
+#include "io/report_blocks.h"
 #include "io/time_series.h"
+#include "study/record_schema.h"
+#include "study/store.h"
 #include "study/study_spec.h"
 
 namespace beamid::fuzz {
@@ -77,10 +85,51 @@ void command_line(const std::uint8_t* data, std::size_t size) {
     throw std::logic_error("command line: status " + std::to_string(status) + ", stderr '" + e + "'");
 }
 
+// A store record as found on disk (a damaged, altered or foreign one): the store reads it back checked against a
+// case's schema, or moves it aside, and never crashes. Each input is one file in a per-process folder.
+void store_record(const std::uint8_t* data, std::size_t size) {
+  namespace fs = std::filesystem;
+  static const fs::path dir = fs::temp_directory_path() / ("beamid-fuzz-store-" + std::to_string(::getpid()));
+  std::ostringstream log;
+  const study::Store store(dir.string(), "fuzz", &log);
+  {
+    std::ofstream out(dir / "0123456789abcdef.rec", std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  study::Unit unit;
+  unit.kind = study::UnitKind::Case;
+  unit.id = "0123456789abcdef";
+  expect_value_or_error([&] {
+    const auto record = study::load_unit(store, unit, {"EI", "rho"});
+    if (record) record->numbers("estimate.EI");
+  });
+  std::error_code ec;
+  fs::remove_all(dir / "damaged", ec);
+  if (log.str().find('\n') != log.str().size() - 1 && !log.str().empty())
+    throw std::logic_error("store: a log that is not one line: " + log.str());
+}
+
+// A report with generated blocks: its names and the replaced text, and each block's source file, or a one-line error
+// (a name outside the results folder among them).
+void report_blocks(const std::uint8_t* data, std::size_t size) {
+  const std::string text = text_of(data, size);
+  expect_value_or_error([&] {
+    std::map<std::string, std::string> contents;
+    for (const std::string& name : io::block_names(text, "fuzz.md")) {
+      const auto file = io::block_source("results", name, "fuzz.md");
+      if (file.is_absolute() || file.lexically_normal().string().rfind("results", 0) != 0)
+        throw std::logic_error("block '" + name + "' reads " + file.string() + ", outside results/");
+      contents[name] = "generated\n";
+    }
+    io::replace_blocks(text, contents, "fuzz.md");
+  });
+}
+
 const std::vector<Target>& targets() {
   static const std::vector<Target> all = {
-      {"beam_file", beam_file},   {"study_file", study_file}, {"csv_record", csv_record},    {"lvm_record", lvm_record},
-      {"npy_record", npy_record}, {"uff_record", uff_record}, {"command_line", command_line}};
+      {"beam_file", beam_file},       {"study_file", study_file},     {"csv_record", csv_record},
+      {"lvm_record", lvm_record},     {"npy_record", npy_record},     {"uff_record", uff_record},
+      {"command_line", command_line}, {"store_record", store_record}, {"report_blocks", report_blocks}};
   return all;
 }
 

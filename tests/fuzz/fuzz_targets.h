@@ -18,6 +18,8 @@ void lvm_record(const std::uint8_t* data, std::size_t size);    // LabVIEW .lvm 
 void npy_record(const std::uint8_t* data, std::size_t size);    // NumPy .npy array
 void uff_record(const std::uint8_t* data, std::size_t size);    // UFF dataset 58, ASCII or binary
 void command_line(const std::uint8_t* data, std::size_t size);  // beamid arguments, NUL-separated
+void store_record(const std::uint8_t* data, std::size_t size);  // a study store record file (study/store.h)
+void report_blocks(const std::uint8_t* data, std::size_t size);  // a report with generated blocks (io/report_blocks.h)
 
 struct Target {
   std::string name;

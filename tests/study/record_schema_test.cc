@@ -5,6 +5,10 @@
 #include "study/record_schema.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <sstream>
 
 #include "study/execute.h"
 
@@ -52,6 +56,23 @@ TEST(RecordSchema, ARecordWithoutAFieldOfTheWrongTypeOrKindIsRefused) {
   Unit reseeded = u;  // the same unit id in a study with another seed
   reseeded.seed = u.seed + 1;
   EXPECT_NE(schema_violation(r, reseeded, estimate).find("made from other inputs"), std::string::npos);
+}
+
+// The store_record fuzzer's seed (tests/fuzz/corpus/store_record/case.rec) is a valid, checked record of a case that
+// follows the schema, so that the fuzzer starts from records that reach every check.
+TEST(RecordSchema, TheFuzzSeedIsAValidCaseRecord) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("beamid-schema-seed-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(fs::path(BEAMID_SOURCE_DIR) / "tests/fuzz/corpus/store_record/case.rec", dir / "0123456789abcdef.rec");
+  std::ostringstream log;
+  const Store store(dir.string(), "fuzz", &log);
+  Unit u;
+  u.kind = UnitKind::Case;
+  u.id = "0123456789abcdef";
+  EXPECT_TRUE(load_unit(store, u, {"EI", "rho"})) << log.str();
+  fs::remove_all(dir);
 }
 
 }  // namespace
