@@ -62,7 +62,8 @@ test-sanitize: deps
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
-# libFuzzer on every reader (beam and geometry TOML, study TOML, CSV, LVM, .npy, UFF 58, the command line) for FUZZ_SECONDS each,
+# libFuzzer on every reader (beam and geometry TOML, study TOML, CSV, LVM, .npy, UFF 58, the command line, the study
+# store's records, the report's generated blocks) for FUZZ_SECONDS each,
 # under ASan and UBSan, from the seeds and regressions in tests/fuzz/corpus/<target>/. A finding is written to
 # build-fuzz/crash-<target>-*: add it to the corpus (it then runs in `make test`) and fix the reader.
 FUZZ_BUILD   ?= build-fuzz
