@@ -52,7 +52,7 @@ int run_report(const Flags& flags, std::ostream& out);
 int run_study(const Flags& flags, std::ostream& out);
 // beamid merge STUDY.toml --shards DIR1,DIR2 [--output DIR]: combine shard runs into the tables of one run
 int run_merge(const Flags& flags, std::ostream& out);
-// beamid real STUDY.toml [--output DIR]: fit a measured free-decay record with each cost (study/real_study.h)
+// beamid real STUDY.toml [--output DIR]: fit a measured free-decay record with each cost (study/real/real_study.h)
 int run_real(const Flags& flags, std::ostream& out);
 
 // The flags of the commands that share them.

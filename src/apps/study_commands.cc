@@ -12,9 +12,9 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/resources.h"
-#include "study/real_study.h"
-#include "study/runner.h"
-#include "study/store.h"
+#include "study/real/real_study.h"
+#include "study/run/runner.h"
+#include "study/run/store.h"
 
 namespace beamid::apps {
 namespace {

@@ -12,9 +12,9 @@
 #include "core/errors.h"
 #include "io/report_blocks.h"
 #include "io/time_series.h"
-#include "study/record_schema.h"
-#include "study/store.h"
-#include "study/study_spec.h"
+#include "study/run/record_schema.h"
+#include "study/run/store.h"
+#include "study/spec/study_spec.h"
 
 namespace beamid::fuzz {
 namespace {

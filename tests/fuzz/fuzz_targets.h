@@ -11,14 +11,14 @@
 
 namespace beamid::fuzz {
 
-void beam_file(const std::uint8_t* data, std::size_t size);     // [beam] and [geometry] TOML
-void study_file(const std::uint8_t* data, std::size_t size);    // study TOML
-void csv_record(const std::uint8_t* data, std::size_t size);    // CSV time series
-void lvm_record(const std::uint8_t* data, std::size_t size);    // LabVIEW .lvm time series
-void npy_record(const std::uint8_t* data, std::size_t size);    // NumPy .npy array
-void uff_record(const std::uint8_t* data, std::size_t size);    // UFF dataset 58, ASCII or binary
-void command_line(const std::uint8_t* data, std::size_t size);  // beamid arguments, NUL-separated
-void store_record(const std::uint8_t* data, std::size_t size);  // a study store record file (study/store.h)
+void beam_file(const std::uint8_t* data, std::size_t size);      // [beam] and [geometry] TOML
+void study_file(const std::uint8_t* data, std::size_t size);     // study TOML
+void csv_record(const std::uint8_t* data, std::size_t size);     // CSV time series
+void lvm_record(const std::uint8_t* data, std::size_t size);     // LabVIEW .lvm time series
+void npy_record(const std::uint8_t* data, std::size_t size);     // NumPy .npy array
+void uff_record(const std::uint8_t* data, std::size_t size);     // UFF dataset 58, ASCII or binary
+void command_line(const std::uint8_t* data, std::size_t size);   // beamid arguments, NUL-separated
+void store_record(const std::uint8_t* data, std::size_t size);   // a study store record file (study/run/store.h)
 void report_blocks(const std::uint8_t* data, std::size_t size);  // a report with generated blocks (io/report_blocks.h)
 
 struct Target {

@@ -1,10 +1,10 @@
 // Units of work that compute: the Galerkin frequencies of the truth beam against the exact ones (Rayleigh-Ritz: from
 // above, closer as N grows), and the overlay a case keeps in its record, read back exactly.
-#include "study/execute.h"
+#include "study/run/execute.h"
 
 #include <gtest/gtest.h>
 
-#include "study/overlay.h"
+#include "study/tables/overlay.h"
 
 namespace beamid::study {
 namespace {

@@ -24,8 +24,8 @@
 #include <sstream>
 
 #include "model/beam_parameters.h"
-#include "study/runner.h"
-#include "study/study_spec.h"
+#include "study/run/runner.h"
+#include "study/spec/study_spec.h"
 
 namespace beamid::study {
 namespace {

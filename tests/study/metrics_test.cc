@@ -1,6 +1,6 @@
 // The study metrics on cases whose answer is known by hand: statistics of relative errors, landscape shapes, and the
 // multi-start reach count with its reference minimum (the best of all fits of a cost, the truth start included).
-#include "study/metrics.h"
+#include "study/analysis/metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <tuple>
 
 #include "model/beam_parameters.h"
-#include "study/claims.h"
-#include "study/study_spec.h"
+#include "study/analysis/claims.h"
+#include "study/spec/study_spec.h"
 
 namespace beamid::study {
 namespace {

@@ -4,7 +4,7 @@
 // Timoshenko beam with a light tip mass): it tests the model, the import, the free-decay fit and the pairing by
 // frequency together. 1.5 % is about 12 bins at mode 5 and 1 bin at mode 1 (df = 0.125 Hz); the spread of the
 // measured frequencies about a single scale is under 1 %.
-#include "study/real_study.h"
+#include "study/real/real_study.h"
 
 #include <gtest/gtest.h>
 

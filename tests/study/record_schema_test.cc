@@ -2,7 +2,7 @@
 // writes every declared field (its "not run" values), and the reader refuses a record that lacks one, has one of the
 // wrong type, is of another kind or was made from other inputs (another study seed). (Records of units that ran are
 // checked in study_runner_test.cc.)
-#include "study/record_schema.h"
+#include "study/run/record_schema.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "study/execute.h"
+#include "study/run/execute.h"
 
 namespace beamid::study {
 namespace {

@@ -1,6 +1,6 @@
 // Start-distance curves: the starts land at the frequency offset asked for, the sensitivities obey the scaling
 // identities of the Galerkin model, and the 50 % radius is the hand-computed crossing.
-#include "study/start_distance.h"
+#include "study/analysis/start_distance.h"
 
 #include <gtest/gtest.h>
 

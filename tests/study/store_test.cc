@@ -1,7 +1,7 @@
 // The study store: a record reads back exactly as written (every double round-trips, lists and text included), a
 // record made by another build is not reused, and absorbing a shard's store copies its records (what
 // `beamid merge` does).
-#include "study/store.h"
+#include "study/run/store.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -14,10 +14,10 @@
 
 #include "core/errors.h"
 #include "io/provenance.h"
-#include "study/plan.h"
-#include "study/record_schema.h"
-#include "study/runner.h"
-#include "study/tables.h"
+#include "study/plan/plan.h"
+#include "study/run/record_schema.h"
+#include "study/run/runner.h"
+#include "study/tables/tables.h"
 
 namespace beamid::study {
 namespace {

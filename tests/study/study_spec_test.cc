@@ -1,5 +1,5 @@
 // Study files are strict: every error names file:line, the key, the value and the violated constraint.
-#include "study/study_spec.h"
+#include "study/spec/study_spec.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <set>
 
 #include "core/errors.h"
-#include "study/plan.h"
+#include "study/plan/plan.h"
 
 namespace beamid::study {
 namespace {

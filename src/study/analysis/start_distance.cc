@@ -1,0 +1,192 @@
+#include "study/analysis/start_distance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+#include "galerkin/modes.h"
+#include "signal/noise.h"
+#include "study/analysis/statistics.h"
+#include "study/tables/format.h"
+
+namespace beamid::study {
+Eigen::VectorXd random_direction(std::uint64_t seed, int dimension) {
+  const std::vector<double> g = signal::gaussian_deviates(seed, static_cast<std::size_t>(dimension));
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(g.data(), dimension);
+  return u / u.norm();
+}
+
+OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamParameters& truth,
+                         const std::vector<std::string>& keys, int modes, const Eigen::VectorXd& direction,
+                         double offset, double bound_factor) {
+  const Eigen::MatrixXd g = galerkin::frequency_sensitivities(forms, truth, keys, modes);
+  const double slope = (g * direction).cwiseAbs().maxCoeff();  // max_k |d log f_k / ds| along u
+  OffsetStart out;
+  const double limit = 0.9 * std::log(bound_factor) / direction.cwiseAbs().maxCoeff();
+  out.step = slope > 0 ? std::log1p(offset) / slope : limit;
+  if (!(slope > 0) || out.step > limit) out.step = limit, out.shrunk = true;
+  out.start = truth;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    model::set_parameter_value(
+        out.start, keys[i],
+        model::parameter_value(out.start, keys[i]) * std::exp(out.step * direction(static_cast<Eigen::Index>(i))));
+  const Eigen::VectorXd f0 = galerkin::lowest_undamped_modes(forms, truth, modes).omega_rad_s,
+                        f1 = galerkin::lowest_undamped_modes(forms, out.start, modes).omega_rad_s;
+  out.frequency_offset = (f1.array() / f0.array() - 1).abs().maxCoeff();
+  return out;
+}
+
+HalfRadius half_radius(const std::vector<double>& offsets, const std::vector<double>& rates) {
+  HalfRadius r;
+  if (offsets.empty() || offsets.size() != rates.size()) throw InputError("half_radius: no curve");
+  if (!(rates.front() >= 0.5)) {
+    r.below = true;
+    r.value = offsets.front();
+    return r;
+  }
+  for (std::size_t j = 1; j < rates.size(); ++j) {
+    if (rates[j] >= 0.5) continue;
+    const double a = std::log(offsets[j - 1]), b = std::log(offsets[j]);
+    r.value = std::exp(a + (rates[j - 1] - 0.5) / (rates[j - 1] - rates[j]) * (b - a));
+    return r;
+  }
+  r.above = true;
+  r.value = offsets.back();
+  return r;
+}
+
+std::string radius_text(const HalfRadius& r) {
+  const std::string percent = g3(100 * r.value) + " %";
+  return r.below ? "< " + percent : r.above ? "> " + percent : percent;
+}
+
+void predict_basins(const std::vector<double>& f, const std::vector<double>& zeta, double record_s,
+                    StartDistanceMetrics& m) {
+  m.record_s = record_s;
+  const auto fitted = static_cast<std::size_t>(m.fitted_modes);
+  if (fitted == 0 || f.size() < fitted || zeta.size() < fitted) return;
+  // f is the natural frequency |lambda| / (2 pi) and zeta = -Re(lambda) / |lambda|, so sigma = 2 pi f zeta.
+  const auto decay_limited = [&](std::size_t k) {
+    return 1 / (2 * f[k] * std::min(record_s, 1 / (2 * M_PI * f[k] * zeta[k])));
+  };
+  m.highest_mode_hz = f[fitted - 1];
+  m.predicted_basin = 1 / (2 * m.highest_mode_hz * record_s);
+  m.predicted_basin_highest_decay = decay_limited(fitted - 1);
+  m.limiting_mode = 0;
+  for (std::size_t k = 0; k < fitted; ++k)
+    if (m.limiting_mode == 0 || decay_limited(k) < m.predicted_basin_decay) {
+      m.limiting_mode = static_cast<int>(k + 1);
+      m.limiting_mode_hz = f[k];
+      m.decay_rate_1_s = 2 * M_PI * f[k] * zeta[k];
+      m.predicted_basin_decay = decay_limited(k);
+    }
+}
+
+bool predict_basins(const StudyResults& results, int truth, int samples, StartDistanceMetrics& m) {
+  const auto t = static_cast<std::size_t>(truth);
+  if (t >= results.truths.size() || !results.truths[t].has("mode_frequency_hz") ||
+      !results.truths[t].has("mode_damping_ratio"))
+    return false;
+  predict_basins(results.truths[t].numbers("mode_frequency_hz"), results.truths[t].numbers("mode_damping_ratio"),
+                 samples * results.spec->truth.experiment.dt_s, m);
+  return true;
+}
+
+bool reaches(const StudySpec& spec, const Record& reference, const Record& fit) {
+  if (fit.text("status") == "failed" || reference.text("status") == "failed") return false;
+  for (const auto& key : spec.fit.estimate) {
+    const double a = reference.number("estimate." + key), b = fit.number("estimate." + key);
+    const double tolerance =
+        model::parameter_role(key) == "damping" ? spec.start_distance.damping_agreement : spec.start_distance.agreement;
+    if (!(std::abs(b - a) <= tolerance * std::abs(a))) return false;  // NaN: not reached
+  }
+  return true;
+}
+
+StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
+  const StudySpec& spec = *results.spec;
+  const auto& d = spec.start_distance;
+  StartDistanceMetrics m;
+  m.reached.assign(results.starts.size(), false);
+  if (!d.enabled) return m;
+  // The experiments in plan order (the truth index and record length of the start units).
+  std::vector<std::pair<int, int>> experiments;
+  for (const auto& row : results.starts) {
+    const std::pair<int, int> e{row.unit->truth, row.unit->samples};
+    if (std::find(experiments.begin(), experiments.end(), e) == experiments.end()) experiments.push_back(e);
+  }
+  m.experiments = static_cast<int>(experiments.size());
+  for (std::size_t ei = 0; ei < experiments.size(); ++ei) {
+    // Plain copies, not a structured binding: C++17 lambdas may not capture structured bindings (clang rejects it).
+    const int truth = experiments[ei].first;
+    const int samples = experiments[ei].second;
+    const auto in_experiment = [&](const Unit& u) { return u.truth == truth && u.samples == samples; };
+    for (const auto& [cost, method] : d.runs) {
+      StartRun run;
+      run.cost = cost;
+      run.method = method;
+      run.experiment = static_cast<int>(ei);
+      run.truth = truth;
+      run.samples = samples;
+      run.pulse_width_s = results.plan->truths[static_cast<std::size_t>(truth)].pulse_width_s;
+      for (const auto& row : results.starts)
+        if (in_experiment(*row.unit) && row.unit->cost == cost && row.unit->method == method && row.unit->index < 0)
+          run.reference = &row;
+      run.reference_ok = run.reference && run.reference->record.text("status") != "failed";
+      for (double offset : d.offsets) {
+        StartCurvePoint p;
+        p.offset = offset;
+        std::vector<double> evaluations;
+        for (std::size_t i = 0; i < results.starts.size(); ++i) {
+          const LandscapeRow& row = results.starts[i];
+          const Unit& u = *row.unit;
+          if (!in_experiment(u) || u.cost != cost || u.method != method || u.index < 0 || u.offset != offset) continue;
+          if (!run.reference_ok) continue;
+          ++p.fits;
+          m.reached[i] = reaches(spec, run.reference->record, row.record);
+          p.reached += m.reached[i] ? 1 : 0;
+          p.shrunk += row.record.number("shrunk") > 0 ? 1 : 0;
+          evaluations.push_back(row.record.number("evaluations"));
+        }
+        p.median_evaluations = median(evaluations);
+        run.points.push_back(p);
+      }
+      if (run.reference) {
+        const Record& r = run.reference->record;
+        run.fitted_modes = r.has("fitted_modes") ? static_cast<int>(r.number("fitted_modes")) : 0;
+        run.modes_in_data = r.has("modes_in_data") ? static_cast<int>(r.number("modes_in_data")) : 0;
+      }
+      if (run.reference_ok) {
+        std::vector<double> offsets, rates, lows, highs;
+        for (const auto& p : run.points) {
+          const auto [low, high] = wilson_interval(p.reached, p.fits);
+          offsets.push_back(p.offset);
+          rates.push_back(p.rate());
+          lows.push_back(low);
+          highs.push_back(high);
+        }
+        run.radius = half_radius(offsets, rates);
+        run.radius_low = half_radius(offsets, lows);
+        run.radius_high = half_radius(offsets, highs);
+      }
+      run.record_s = samples * spec.truth.experiment.dt_s;
+      StartDistanceMetrics prediction;
+      prediction.fitted_modes = run.fitted_modes;
+      if (run.fitted_modes > 0 && predict_basins(results, truth, samples, prediction)) {
+        run.predicted_basin = prediction.predicted_basin;
+        run.predicted_basin_decay = prediction.predicted_basin_decay;
+        run.predicted_basin_highest_decay = prediction.predicted_basin_highest_decay;
+        run.limiting_mode = prediction.limiting_mode;
+        // The study-wide predictions are the first experiment's (from its first run with a known mode count).
+        if (ei == 0 && m.fitted_modes == 0) {
+          m.fitted_modes = run.fitted_modes;
+          predict_basins(results, truth, samples, m);
+        }
+      }
+      m.runs.push_back(run);
+    }
+  }
+  return m;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,104 @@
+// Start-distance curves (study_spec.h, StartDistanceSpec): the starts at a prescribed frequency offset, and the
+// metrics of the curves (share of starts that reach the minimum, against the offset, and the offset at which that
+// share falls through one half), as pure functions. Theory (comparison.md section 1): least squares on a record of
+// length T has a basin of about 1/(2 f T) in relative frequency for its highest fitted mode f, the offset at which
+// that mode's phase is off by half a cycle at the end of the record.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "galerkin/second_order_system.h"
+#include "model/beam_parameters.h"
+#include "study/analysis/results.h"
+
+namespace beamid::study {
+
+// A unit vector of `dimension` components, uniform on the sphere (normalised standard normal deviates of `seed`).
+Eigen::VectorXd random_direction(std::uint64_t seed, int dimension);
+
+struct OffsetStart {
+  model::BeamParameters start;
+  double step = 0;              // s: log q = log q_true + s u
+  bool shrunk = false;          // s was reduced to keep every parameter within 0.9 of the log bound range
+  double frequency_offset = 0;  // max_k |f_k(start) / f_k(truth) - 1| over the fitted modes, exact
+};
+// The start at frequency offset r in direction u (study_spec.h): s = log(1 + r) / max_k |g_k . u|, g = the
+// sensitivities above, then shrunk to max_i |s u_i| <= 0.9 log(bound_factor) when it would leave the bounds.
+OffsetStart offset_start(const galerkin::BeamForms& forms, const model::BeamParameters& truth,
+                         const std::vector<std::string>& keys, int modes, const Eigen::VectorXd& direction,
+                         double offset, double bound_factor);
+
+// The offset at which a success curve falls through 1/2: rates[j] at offsets[j] (increasing, > 0). Interpolated
+// linearly in log offset between the last offset of the leading run of rates >= 1/2 and the next one. `below` when
+// the first rate is already < 1/2, `above` when no rate falls below 1/2 (value is then that end of the range).
+struct HalfRadius {
+  double value = 0;
+  bool below = false, above = false;
+};
+HalfRadius half_radius(const std::vector<double>& offsets, const std::vector<double>& rates);
+// "0.31 %", "< 0.05 %" or "> 20 %".
+std::string radius_text(const HalfRadius& r);
+
+// The curves of a finished study.
+struct StartCurvePoint {
+  double offset = 0;
+  int reached = 0, fits = 0, shrunk = 0;  // fits: directions whose outcome is known (the reference fit ok)
+  double median_evaluations = 0;
+  double rate() const { return fits > 0 ? static_cast<double>(reached) / fits : std::nan(""); }
+};
+struct StartRun {
+  std::string cost, method;
+  // The experiment (study_spec.h: start_distance.experiments): its truth, record length and modes, and its own
+  // predicted basins (as StartDistanceMetrics's below, which are the first experiment's).
+  int experiment = 0;  // 0-based, in plan order (pulse widths, then record lengths)
+  int truth = 0, samples = 0;
+  double pulse_width_s = 0, record_s = 0;
+  int modes_in_data = 0, fitted_modes = 0;
+  double predicted_basin = std::nan(""), predicted_basin_decay = std::nan("");
+  double predicted_basin_highest_decay = std::nan("");
+  int limiting_mode = 0;
+  const LandscapeRow* reference = nullptr;     // the fit from the truth (nullptr when missing)
+  bool reference_ok = false;                   // it did not fail
+  std::vector<StartCurvePoint> points;         // by offset
+  HalfRadius radius, radius_low, radius_high;  // from the rates, their Wilson lower and upper bounds
+};
+struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print "-" for them)
+  int fitted_modes = 0;
+  double highest_mode_hz = std::nan("");  // the truth's mode `fitted_modes`
+  double record_s = 0;
+  double predicted_basin = std::nan("");  // 1 / (2 f T)
+  // The same with each mode's own duration: a mode of decay rate sigma is visible for about 1/sigma, so its phase
+  // error accumulates only over T_eff = min(T, 1/sigma), and the basin is that of the most restrictive fitted mode,
+  // min_k 1 / (2 f_k T_eff,k) (the highest mode when the modes decay slowly, as on the thin beam; a lower, longer-lived
+  // one when the highest decays fast, as on the thick beam).
+  // Neither is the measured radius: the cost sums the modes' terms weighted by their energy, so the radius lies
+  // between the most restrictive term's basin and the dominant mode's; the highest mode's 1/(2 f T_eff) is kept
+  // beside it (radius.csv).
+  int limiting_mode = 0;                   // 1-based: the k of the minimum
+  double limiting_mode_hz = std::nan("");  // its f_k
+  double decay_rate_1_s = std::nan("");    // its sigma_k
+  double predicted_basin_decay = std::nan("");
+  double predicted_basin_highest_decay = std::nan("");  // 1 / (2 f T_eff) of mode `fitted_modes`
+  int experiments = 1;
+  std::vector<StartRun> runs;  // experiment-major, then in the order of start_distance.runs
+  std::vector<bool> reached;   // per results.starts row
+};
+// Fills the predictions above (highest_mode_hz, record_s, predicted_basin, limiting_mode ...
+// predicted_basin_highest_decay) for the first m.fitted_modes modes of natural frequencies f (Hz) and damping ratios
+// zeta, on a record of record_s.
+void predict_basins(const std::vector<double>& f, const std::vector<double>& zeta, double record_s,
+                    StartDistanceMetrics& m);
+// The same for truth record `truth` of a finished study (its modes' frequencies and damping ratios) on a record of
+// `samples` samples, for m.fitted_modes modes; false, and m's predictions left unknown, when the truth's modes are not
+// recorded.
+bool predict_basins(const StudyResults& results, int truth, int samples, StartDistanceMetrics& m);
+// Whether `fit` reached the minimum of `reference`: not failed, and every estimate within start_distance.agreement
+// (damping parameters: damping_agreement) of the reference's, relatively.
+bool reaches(const StudySpec& spec, const Record& reference, const Record& fit);
+StartDistanceMetrics start_distance_metrics(const StudyResults& results);
+
+}  // namespace beamid::study

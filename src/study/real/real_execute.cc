@@ -1,0 +1,204 @@
+// The computing half of a real-data study (real_study.h): import the records, measure their peaks, fit them jointly
+// with each candidate model and cost, and evaluate the identified model; every fit that fails is a result with its
+// status.
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+
+#include "config/beam_file.h"
+#include "core/errors.h"
+#include "fit/window_spread.h"
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "galerkin/spline_space.h"
+#include "io/provenance.h"
+#include "signal/spectrum.h"
+#include "signal/spikes.h"
+#include "study/real/real_study.h"
+#include "study/tables/format.h"
+
+namespace beamid::study {
+namespace {
+
+RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r) {
+  RealRecordData out;
+  io::ImportOptions import;
+  import.channel = r.channel;
+  import.units = r.units;
+  import.start_s = r.start_s;
+  import.duration_s = r.duration_s;
+  import.resample = r.resample;
+  import.sample_rate_hz = r.sample_rate_hz;
+  import.resample_rate_hz = r.resample_rate_hz;
+  import.variable = r.variable;
+  import.time_variable = r.time_variable;
+  out.series = io::read_time_series(r.file, import);
+  out.nominal = config::load_beam_toml(r.beam_file.empty() ? spec.beam_file : r.beam_file);
+  // The data's sub-bin peak frequencies near peaks_hz, and damping ratios sigma / |lambda| from the 3-bin rates.
+  signal::SpikeOptions spikes;
+  spikes.frequencies_hz = r.peaks_hz;
+  spikes.count = static_cast<int>(r.peaks_hz.size());
+  signal::Dft dft(static_cast<int>(out.series.values.size()), out.series.dt_s);
+  const signal::Spectrum z = dft.transform(out.series.values);
+  for (const auto& s : signal::detect_spikes(z, spikes)) {
+    const auto e = signal::three_bin_estimate(z, s.bin);
+    out.measured_hz.push_back(e.ok ? e.frequency_hz : s.frequency_hz);
+    const double w = 2 * std::numbers::pi * out.measured_hz.back();
+    out.measured_zeta.push_back(e.ok ? e.decay_rate_1_s / std::hypot(e.decay_rate_1_s, w) : std::nan(""));
+  }
+  if (out.measured_hz.size() != r.peaks_hz.size())
+    throw InputError(spec.path + ": record '" + r.name +
+                     "'.peaks_hz: " + std::to_string(r.peaks_hz.size() - out.measured_hz.size()) +
+                     " of the peaks have no local maximum of the record's spectrum within 5 %");
+  return out;
+}
+
+// The records as one candidate models them: each record's beam (the candidate's file, else the record's), the
+// candidate's nominal values on it, as a free decay with its own spikes.
+std::vector<fit::Record> candidate_records(const RealStudySpec& spec, const CandidateSpec& c,
+                                           const std::vector<RealRecordData>& data) {
+  std::vector<fit::Record> records;
+  for (const int index : c.records) {
+    const auto k = static_cast<std::size_t>(index);
+    fit::Record r;
+    r.name = spec.records[k].name;
+    r.start = c.beam_file.empty() ? data[k].nominal : config::load_beam_toml(c.beam_file);
+    for (const auto& [key, value] : c.values) model::set_nominal_value(r.start, key, value);
+    r.experiment.excitation = simulation::kFreeDecay;
+    r.experiment.dt_s = data[k].series.dt_s;
+    r.experiment.samples = static_cast<int>(data[k].series.values.size());
+    r.data = data[k].series.values;
+    r.spike_frequencies_hz = spec.records[k].peaks_hz;
+    records.push_back(std::move(r));
+  }
+  return records;
+}
+
+// The candidate's estimated keys with their bounds: shared keys around record 1's nominal value, per-record keys
+// (recordK.KEY) around record K's; a position's upper bound at most the beam's length.
+std::vector<fit::EstimatedParameter> candidate_estimate(const CandidateSpec& c,
+                                                        const std::vector<fit::Record>& records) {
+  std::vector<fit::EstimatedParameter> estimate;
+  const auto bounded = [&](const std::string& key, const std::string& local, const model::BeamParameters& beam) {
+    const double v = model::parameter_value(beam, local);
+    const bool position = model::attachment_field(local) && model::attachment_field(local)->second == "x";
+    fit::EstimatedParameter p = fit::bounds_around(key, v, 2);
+    if (position) p.upper = beam.l;
+    if (c.bounds.count(local)) std::tie(p.lower, p.upper) = c.bounds.at(local);
+    estimate.push_back(p);
+  };
+  for (const std::string& key : c.estimate) bounded(key, key, records.front().start);
+  for (const std::string& key : c.per_record)
+    for (std::size_t k = 0; k < records.size(); ++k)
+      bounded("record" + std::to_string(k + 1) + "." + key, key, records[k].start);
+  return estimate;
+}
+
+// Every record's identified modes: the Galerkin modes at the estimate nearest to each measured peak.
+void identify_modes(const RealStudySpec& spec, const std::vector<RealRecordData>& all, const fit::FitResult& r,
+                    RealFit& f) {
+  const galerkin::SplineSpace space(spec.elements);
+  double squares = 0;
+  int count = 0;
+  f.worst_misfit = 0;
+  for (std::size_t k = 0; k < f.records.size(); ++k) {
+    const auto damped = galerkin::StateSpaceModes(galerkin::assemble(space, r.records[k].beam)).underdamped_modes();
+    f.identified_hz.emplace_back();
+    f.zeta.emplace_back();
+    for (const double measured : all[static_cast<std::size_t>(f.records[k])].measured_hz) {
+      const galerkin::DampedMode* best = nullptr;
+      for (const auto& d : damped)
+        if (best == nullptr || std::abs(d.frequency_hz - measured) < std::abs(best->frequency_hz - measured)) best = &d;
+      f.identified_hz.back().push_back(best->frequency_hz);
+      f.zeta.back().push_back(best->damping_ratio);
+      const double e = best->frequency_hz / measured - 1;
+      squares += e * e;
+      f.worst_misfit = std::max(f.worst_misfit, std::abs(e));
+      ++count;
+    }
+  }
+  f.rms_misfit = std::sqrt(squares / count);
+}
+
+}  // namespace
+
+RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
+  RealResults out;
+  for (const RealRecordSpec& r : spec.records) out.records.push_back(import_record(spec, r));
+  log << "beamid real " << spec.path << " (commit " << io::commit_label() << "): " << out.records.size()
+      << " record(s) (";
+  for (std::size_t k = 0; k < out.records.size(); ++k)
+    log << (k ? "; " : "") << out.records[k].series.values.size() << " samples at "
+        << g4(1 / out.records[k].series.dt_s) << " Hz from " << spec.records[k].file;
+  log << "), " << spec.candidates.size() << " candidate(s) x " << spec.costs.size()
+      << " cost(s) at N = " << spec.elements << "\n";
+
+  for (const CandidateSpec& candidate : spec.candidates) {
+    const std::vector<fit::Record> records = candidate_records(spec, candidate, out.records);
+    fit::FitOptions base;
+    base.start = records.front().start;
+    base.experiment = records.front().experiment;
+    base.elements = spec.elements;
+    base.cost.spikes.frequencies_hz = records.front().spike_frequencies_hz;
+    base.cost.spikes.count = static_cast<int>(base.cost.spikes.frequencies_hz.size());
+    base.cost.frequency_weight = spec.frequency_weight;
+    base.optimizer.max_evaluations = spec.max_evaluations;
+    base.estimate = candidate_estimate(candidate, records);
+    for (const auto& cost : spec.costs) {
+      fit::FitOptions o = base;
+      o.cost.name = cost;
+      o.optimizer.method = fit::default_optimizer(cost);
+      const auto t0 = std::chrono::steady_clock::now();
+      RealFit f;
+      f.candidate = candidate.name;
+      f.records = candidate.records;
+      f.cost = cost;
+      fit::FitResult r;
+      try {
+        r = fit::fit(o, records);
+        f.status = r.status;
+      } catch (const std::exception& e) {
+        f.status = std::string("failed: ") + e.what();
+      }
+      log << candidate.name << ", " << cost << ": " << f.status << ", cost " << g4(r.cost) << ", " << r.evaluations
+          << " evaluations";
+      if (f.status.rfind("failed", 0) == 0) {
+        log << "\n";
+        f.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        out.fits.push_back(f);
+        continue;
+      }
+      f.cost_value = r.cost;
+      f.evaluations = r.evaluations;
+      f.parameters = r.parameters;
+      f.identifiability = r.identifiability;
+      identify_modes(spec, out.records, r, f);
+      if (spec.windows >= 2) {
+        try {  // records too short for the windows: the fit stays, without a window spread
+          const fit::WindowSpread w = fit::window_spread(o, records, r, spec.windows);
+          f.window_sd = w.sd;
+          f.windows_used = w.used;
+          log << ", " << w.used << "/" << w.windows << " windows";
+        } catch (const InputError& e) {
+          log << ", no window spread: " << e.what();
+        }
+      }
+      log << "\n";
+      fit::FitOptions first = o;  // the first record's model (its spikes are the base options')
+      first.start = records.front().start;
+      first.experiment = records.front().experiment;
+      first.estimate.clear();
+      try {  // residuals in time and frequency; a failure leaves the fit without an overlay, never stops the study
+        f.overlay = compute_overlay(first, records.front().data, r.records.front().beam);
+      } catch (const std::exception& e) {
+        log << candidate.name << ", " << cost << ": no overlay: " << e.what() << "\n";
+      }
+      f.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      out.fits.push_back(std::move(f));
+    }
+  }
+  return out;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,268 @@
+#include "study/real/real_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+
+#include "config/beam_file.h"
+#include "config/document.h"
+#include "core/errors.h"
+#include "core/limits.h"
+#include "costs/cost.h"
+#include "io/files.h"
+#include "io/text.h"
+#include "io/time_series.h"
+#include "signal/noise.h"
+
+namespace beamid::study {
+namespace fs = std::filesystem;
+namespace {
+
+using config::Table;
+
+}  // namespace
+
+namespace {
+
+// fit.bounds or a candidate's: a table KEY = [lower, upper] over keys in `estimated` (any key when it is empty).
+std::map<std::string, std::pair<double, double>> read_bounds(Table& r, const std::string& path,
+                                                             const std::string& prefix,
+                                                             const std::vector<std::string>& estimated) {
+  std::map<std::string, std::pair<double, double>> bounds;
+  auto table = r.table("bounds");
+  if (!table) return bounds;
+  for (const auto& [k, value] : table->entries()) {
+    const std::vector<config::Node> a = value.elements();
+    const auto line = path + ":" + std::to_string(value.line()) + ": " + prefix + "bounds." + k;
+    if (!estimated.empty() && std::find(estimated.begin(), estimated.end(), k) == estimated.end())
+      throw InputError(line + ": '" + k + "' is not estimated (estimate or per_record)");
+    if (!value.is_array() || a.size() != 2 || !a[0].is_number() || !a[1].is_number())
+      throw InputError(line + " = " + value.text() + ": must be [lower, upper]");
+    const double lo = *a[0].number(), hi = *a[1].number();
+    if (!(lo >= 0 && hi > lo))
+      throw InputError(line + " = [" + format_value(lo) + ", " + format_value(hi) + "]: must have 0 <= lower < upper");
+    bounds[k] = {lo, hi};
+  }
+  return bounds;
+}
+
+std::vector<std::string> parameter_keys() {
+  std::vector<std::string> keys;
+  for (const auto& info : model::parameter_table()) keys.emplace_back(info.key);
+  return keys;
+}
+
+// Estimated keys: the lumped ones and those of a clamp spring or an attachment (checked against the beams later).
+std::vector<std::string> estimated_keys(Table& r, const std::string& key) {
+  if (!r.has(key)) return {};
+  std::vector<std::string> keys = r.strings(key, false, {});
+  const std::vector<std::string> lumped = parameter_keys();
+  for (const std::string& k : keys)
+    if (std::find(lumped.begin(), lumped.end(), k) == lumped.end() && k.rfind("support.", 0) != 0 &&
+        !model::attachment_field(k))
+      r.fail(
+          key, "'" + k + "'",
+          "must name beam parameters (" + Table::join(lumped) + ", support.k_theta, support.k_w, attachmentK.m/J/x)");
+  return keys;
+}
+
+RealRecordSpec read_record(Table r, const std::string& default_name,
+                           const std::function<std::string(const std::string&)>& relative) {
+  const auto positive = [](double v) { return v > 0; };
+  RealRecordSpec s;
+  s.name = r.string("name", default_name);
+  s.file = relative(r.string("file", std::nullopt));
+  if (!io::is_existing_file(s.file)) r.fail("file", "'" + s.file + "'", "must be an existing record file");
+  s.channel = r.string("channel", "");
+  s.units = r.string("units", s.units, {"auto", "g", "as-is"});
+  if (r.has("start_s"))
+    s.start_s = r.number(
+        "start_s", std::nullopt, [](double v) { return v >= 0; }, "must be >= 0");
+  if (r.has("duration_s")) s.duration_s = r.number("duration_s", std::nullopt, positive, "must be > 0");
+  s.resample = r.boolean("resample", false);
+  s.peaks_hz = r.numbers("peaks_hz", positive, "must be > 0 (Hz)");
+  if (s.peaks_hz.empty()) r.fail("peaks_hz", "[]", "must list the measured peak frequencies of the modes to fit");
+  std::sort(s.peaks_hz.begin(), s.peaks_hz.end());
+  if (r.has("beam")) {
+    s.beam_file = relative(r.string("beam", std::nullopt));
+    if (!io::is_existing_file(s.beam_file)) r.fail("beam", "'" + s.beam_file + "'", "must be an existing beam file");
+  }
+  if (r.has("sample_rate_hz"))
+    s.sample_rate_hz = r.number("sample_rate_hz", std::nullopt, positive, "must be > 0 (Hz)");
+  if (r.has("resample_rate_hz"))
+    s.resample_rate_hz = r.number("resample_rate_hz", std::nullopt, positive, "must be > 0 (Hz)");
+  s.variable = r.string("variable", "");
+  s.time_variable = r.string("time_variable", "");
+  r.finish({"name", "file", "channel", "units", "start_s", "duration_s", "resample", "peaks_hz", "beam",
+            "sample_rate_hz", "resample_rate_hz", "variable", "time_variable"});
+  return s;
+}
+
+using Relative = std::function<std::string(const std::string&)>;
+
+// [record] or [[record]]: one record, or up to kMaxRecords of them (record1, record2, ...).
+void read_records(const config::Document& document, const Relative& relative, RealStudySpec& s) {
+  Table root = document.root();
+  const std::optional<config::Node> node = root.get("record");
+  if (!node) document.required("record");  // the error for a missing [record]
+  if (node->is_array()) {
+    const std::vector<config::Node> items = node->elements();
+    if (items.size() > static_cast<std::size_t>(core::kMaxRecords))
+      root.fail("record", "[" + std::to_string(items.size()) + " tables]",
+                "must hold at most " + std::to_string(core::kMaxRecords) + " records");
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      const std::string name = "record" + std::to_string(k + 1);
+      s.records.push_back(read_record(items[k].table(name + ".", "record"), name, relative));
+    }
+  } else {
+    s.records.push_back(read_record(document.required("record"), "record1", relative));
+  }
+}
+
+// The k-th [[candidate]] (0-based): [fit]'s choices (`given`) with the candidate's own beam, values, records,
+// estimated keys and bounds.
+CandidateSpec read_candidate(const config::Node& item, std::size_t k, const CandidateSpec& given,
+                             const RealStudySpec& s, const std::string& path, const Relative& relative) {
+  const std::string prefix = "candidate" + std::to_string(k + 1) + ".";
+  Table r = item.table(prefix, "candidate");
+  CandidateSpec c = given;
+  c.name = r.string("name", std::nullopt);
+  for (const CandidateSpec& other : s.candidates)
+    if (other.name == c.name) r.fail("name", "'" + c.name + "'", "must differ from every other candidate's");
+  if (r.has("beam")) {
+    c.beam_file = relative(r.string("beam", std::nullopt));
+    if (!io::is_existing_file(c.beam_file)) r.fail("beam", "'" + c.beam_file + "'", "must be an existing beam file");
+  }
+  if (auto values = r.table("values"))
+    for (const auto& [key, value] : values->entries()) {
+      if (!value.is_number())
+        throw InputError(path + ":" + std::to_string(value.line()) + ": " + prefix + "values." + key + " = " +
+                         value.text() + ": must be a number");
+      c.values.emplace_back(key, *value.number());
+    }
+  if (r.has("records"))
+    for (const std::string& name : r.strings("records", false, {})) {
+      const auto found = std::find_if(s.records.begin(), s.records.end(),
+                                      [&](const RealRecordSpec& record) { return record.name == name; });
+      if (found == s.records.end()) r.fail("records", "'" + name + "'", "must name a [[record]] of the study");
+      c.records.push_back(static_cast<int>(found - s.records.begin()));
+    }
+  if (r.has("estimate")) c.estimate = estimated_keys(r, "estimate");
+  if (r.has("per_record")) c.per_record = estimated_keys(r, "per_record");
+  if (c.estimate.empty() && c.per_record.empty())
+    r.fail("estimate", "[]", "must name the parameters to estimate (here or in [fit])");
+  std::vector<std::string> all = c.estimate;
+  all.insert(all.end(), c.per_record.begin(), c.per_record.end());
+  for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
+    it = std::find(all.begin(), all.end(), it->first) == all.end() ? c.bounds.erase(it) : std::next(it);
+  for (const auto& [key, b] : read_bounds(r, path, prefix, all)) c.bounds[key] = b;
+  r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records"});
+  return c;
+}
+
+// A bound in [fit] of a key that no candidate estimates is a mistake, refused with the line of [fit].bounds.
+void check_bounds_used(const CandidateSpec& given, const RealStudySpec& s,
+                       const std::function<std::string(const std::string&)>& fit_bounds_line) {
+  for (const auto& [key, bounds] : given.bounds) {
+    bool used = false;
+    for (const CandidateSpec& c : s.candidates)
+      for (const auto& lists : {c.estimate, c.per_record})
+        used = used || std::find(lists.begin(), lists.end(), key) != lists.end();
+    if (!used) throw InputError(fit_bounds_line(key) + ": '" + key + "' is estimated by no model of the study");
+  }
+}
+
+// Every beam is read before anything runs, and every candidate's beams must have what it sets and estimates.
+void check_beams(const RealStudySpec& s, const std::string& path) {
+  for (const CandidateSpec& c : s.candidates)
+    for (const int index : c.records) {
+      const RealRecordSpec& record = s.records[static_cast<std::size_t>(index)];
+      const std::string where = path + ": candidate '" + c.name + "', record '" + record.name + "': ";
+      model::BeamParameters beam = config::load_beam_toml(!c.beam_file.empty()        ? c.beam_file
+                                                          : !record.beam_file.empty() ? record.beam_file
+                                                                                      : s.beam_file);
+      try {
+        for (const auto& [key, value] : c.values) model::set_nominal_value(beam, key, value);
+        if (auto error = model::validation_error(beam)) throw InputError(*error);
+        for (const auto& lists : {c.estimate, c.per_record})
+          for (const std::string& key : lists) model::parameter_value(beam, key);
+      } catch (const InputError& error) {
+        throw InputError(where + error.what());
+      }
+    }
+}
+
+}  // namespace
+
+RealStudySpec load_real_study(const std::string& path) {
+  const config::Document document = config::Document::load(path, "cannot read the study file");
+  document.root().only_tables({"study", "record", "beam", "fit", "candidate"});
+  const fs::path dir = fs::path(path).parent_path();
+  const Relative relative = [&](const std::string& f) { return fs::path(f).is_absolute() ? f : (dir / f).string(); };
+  RealStudySpec s;
+  s.path = path;
+  s.file_hash = io::hex64(core::fnv1a64(document.text()));
+  {
+    Table r = document.required("study");
+    s.name = r.string("name", std::nullopt);
+    s.question = r.string("question", std::nullopt);
+    r.finish({"name", "question"});
+  }
+  read_records(document, relative, s);
+  {
+    Table r = document.required("beam");
+    s.beam_file = relative(r.string("file", std::nullopt));
+    r.finish({"file"});
+  }
+  CandidateSpec given;
+  std::function<std::string(const std::string&)> fit_bounds_line;
+  {
+    Table r = document.required("fit");
+    s.elements = r.integer("elements", s.elements, core::kMinElements, core::kMaxElements);
+    given.estimate = estimated_keys(r, "estimate");
+    given.per_record = estimated_keys(r, "per_record");
+    if (given.estimate.empty() && given.per_record.empty() && !document.root().has("candidate"))
+      r.fail("estimate", "[]", "must name the parameters to estimate (or per_record, or [[candidate]]s)");
+    s.costs = r.strings("costs", true, costs::cost_names().names());
+    s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, core::kMaxEvaluations);
+    s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
+    s.windows = r.integer("windows", 0, 0, 64);
+    if (s.windows == 1) r.fail("windows", "1", "must be 0 (none) or >= 2");
+    // Bounds of any key a candidate may estimate; one that no model estimates is refused below.
+    given.bounds = read_bounds(r, path, "fit.", {});
+    fit_bounds_line = [r](const std::string& key) { return r.where("bounds") + ": fit.bounds." + key; };
+    r.finish(
+        {"elements", "estimate", "per_record", "costs", "max_evaluations", "frequency_weight", "bounds", "windows"});
+  }
+  if (const auto items = document.root().array("candidate", false)) {
+    for (std::size_t k = 0; k < items->size(); ++k) {
+      s.candidates.push_back(read_candidate((*items)[k], k, given, s, path, relative));
+    }
+  } else {
+    s.candidates.push_back(given);
+  }
+  for (CandidateSpec& c : s.candidates)
+    if (c.records.empty())
+      for (std::size_t k = 0; k < s.records.size(); ++k) c.records.push_back(static_cast<int>(k));
+  check_bounds_used(given, s, fit_bounds_line);
+  check_beams(s, path);
+  return s;
+}
+
+int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std::ostream& log) {
+  std::vector<std::string> inputs = {spec.path, spec.beam_file};
+  for (const RealRecordSpec& r : spec.records) inputs.insert(inputs.end(), {r.file, r.beam_file});
+  for (const CandidateSpec& c : spec.candidates) inputs.push_back(c.beam_file);
+  if (const std::string problem = io::output_folder_problem(output_dir, inputs); !problem.empty())
+    throw InputError("beamid real: --output " + output_dir + ": " + problem);
+  const RealResults results = compute_real_study(spec, log);
+  for (const Rendered& f : render_real_study(spec, results))
+    io::write_file_atomic(std::filesystem::path(output_dir) / f.path, f.text);
+  log << "tables written to " << output_dir << "\n";
+  int failed = 0;
+  for (const RealFit& f : results.fits) failed += f.status.rfind("failed", 0) == 0 ? 1 : 0;
+  return failed;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,120 @@
+// A real-data study (studies/real-*.toml): measured free-decay records fitted with each cost, and with each
+// candidate model, reported against the records' own spectral peaks. There is no truth: what is compared is the
+// model at the estimate with the measurement (identified against measured peak frequencies, damping ratios per mode,
+// the identified parameters against their nominal values, their three uncertainties, and what each candidate model
+// leaves undetermined).
+//
+//   [study]        name, question
+//   [record]       file (relative to the study file), channel, units, start_s, duration_s, resample,
+//                  peaks_hz: the measured peak frequencies of the modes the model has (the spikes are chosen near
+//                  them, and data and model are paired by frequency, so torsion modes and mains lines are left out),
+//                  name, beam (a beam file of this record's own: its length, attachments; default [beam].file),
+//                  sample_rate_hz, variable, time_variable, resample_rate_hz (.npy, .mat, UFF: io/time_series.h).
+//                  [[record]] instead: several records fitted jointly (fit/identification.h), e.g. one strip at
+//                  several lengths, sharing the parameters in fit.estimate.
+//   [beam]         file: a beam TOML ([beam] or [geometry]) giving the nominal values and the starts
+//   [fit]          elements, estimate (shared by every record), per_record (estimated for each record: recordK.KEY),
+//                  costs, bounds (a table KEY = [lo, hi]; default [v/2, 2v] around each record's nominal v),
+//                  max_evaluations, frequency_weight, windows (K >= 2: also the spread over K disjoint windows,
+//                  fit/window_spread.h; 0: not done)
+//   [[candidate]]  optional alternative models, each fitted with every cost: name, and any of beam (file, replacing
+//                  every record's), values (a table KEY = nominal value, e.g. "support.k_theta" = 6000 makes the
+//                  clamp compliant), estimate, per_record, bounds (over [fit]'s), records (the names of the records
+//                  it fits; default all). Without candidates, [fit] is the one model ("as given"). A position's
+//                  default bounds end at the beam's length.
+//
+// Writes to results/<name>/: fits.csv (candidate, cost, parameter, estimate, three standard errors, nominal, ratio),
+// modes.csv (candidate, cost, record, mode, measured and identified frequency, damping ratio), candidates.csv (fit
+// quality and identifiability per candidate and cost), overlay.csv, spectrum.csv, spikes.csv (the first candidate
+// and record), manifest.json, provenance.csv, report.md (the REPORT.md block) and timings.csv.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fit/identification.h"
+#include "io/time_series.h"
+#include "model/beam_parameters.h"
+#include "study/tables/overlay.h"
+#include "study/tables/rendered.h"
+
+namespace beamid::study {
+
+struct RealRecordSpec {
+  std::string name;  // given, or "record1", "record2", ...
+  std::string file, channel, units = "auto";
+  std::optional<double> start_s, duration_s;
+  bool resample = false;
+  std::vector<double> peaks_hz;
+  std::string beam_file;  // empty: the study's [beam] file
+  // The formats without a time base, and a rate (io/time_series.h): .npy and .mat arrays need sample_rate_hz (or a
+  // .mat time_variable); variable names a .mat file's record; resample_rate_hz resamples any record.
+  std::optional<double> sample_rate_hz, resample_rate_hz;
+  std::string variable, time_variable;
+};
+
+struct CandidateSpec {
+  std::string name = "as given";
+  std::string beam_file;                               // empty: each record's
+  std::vector<std::pair<std::string, double>> values;  // nominal values set on every record's beam
+  std::vector<std::string> estimate, per_record;       // shared keys; keys estimated for each record
+  std::vector<int> records;                            // indices of the records it fits (all by default)
+  std::map<std::string, std::pair<double, double>> bounds;
+};
+
+struct RealStudySpec {
+  std::string path, name, question, file_hash;
+  std::vector<RealRecordSpec> records;  // at least one
+  std::string beam_file;
+  int elements = 16;
+  std::vector<CandidateSpec> candidates;  // at least one
+  std::vector<std::string> costs;
+  int max_evaluations = 3000;
+  std::string frequency_weight = "relative";  // spike costs (costs/cost.h): a measured record's default
+  int windows = 0;                            // 0: no window spread
+};
+
+// Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).
+RealStudySpec load_real_study(const std::string& path);
+
+// One candidate's fit of the records with one cost (a failed fit has its status and nothing else).
+struct RealFit {
+  std::string candidate, cost, status;
+  double cost_value = std::numeric_limits<double>::infinity();
+  long evaluations = 0;
+  double wall_time_s = 0;
+  std::vector<fit::ParameterEstimate> parameters;
+  std::vector<double> window_sd;  // per parameter (empty without windows; NaN where too few windows converged)
+  int windows_used = 0;
+  fit::Identifiability identifiability;
+  std::vector<int> records;                              // the study's records it fitted (indices)
+  std::vector<std::vector<double>> identified_hz, zeta;  // [its record][mode]: the model's modes nearest each peak
+  std::optional<Overlay> overlay;                        // of the first record
+  // RMS and largest |f_identified / f_measured - 1| over every record's modes (NaN for a failed fit).
+  double rms_misfit = std::numeric_limits<double>::quiet_NaN(), worst_misfit = rms_misfit;
+};
+
+struct RealRecordData {
+  io::TimeSeries series;
+  model::BeamParameters nominal;                   // the record's beam file
+  std::vector<double> measured_hz, measured_zeta;  // 3-bin estimates at the record's peaks near peaks_hz
+};
+
+struct RealResults {
+  std::vector<RealRecordData> records;
+  std::vector<RealFit> fits;  // candidate-major, in the order of the candidates and of fit.costs
+};
+
+// Imports the records and fits them with each candidate and cost (real_execute.cc); progress on `log`.
+RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log);
+// Every table of the study (real_tables.cc), from its results alone.
+RenderedFiles render_real_study(const RealStudySpec& spec, const RealResults& results);
+// Computes, renders and writes the tables to `output_dir`. Returns the number of failed fits.
+int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std::ostream& log);
+
+}  // namespace beamid::study

@@ -1,0 +1,433 @@
+#include "study/run/execute.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/errors.h"
+#include "fit/cramer_rao.h"
+#include "fit/identification.h"
+#include "fit/objective.h"
+#include "galerkin/modes.h"
+#include "galerkin/second_order_system.h"
+#include "galerkin/spline_space.h"
+#include "model/exact_frequencies.h"
+#include "signal/noise.h"
+#include "signal/spectrum.h"
+#include "simulation/simulator.h"
+#include "study/analysis/start_distance.h"
+#include "study/run/record_schema.h"
+#include "study/tables/overlay.h"
+
+namespace beamid::study {
+namespace {
+
+void set(model::BeamParameters& beam, const std::string& key, double v) { model::set_parameter_value(beam, key, v); }
+double value(const model::BeamParameters& beam, const std::string& key) { return model::parameter_value(beam, key); }
+
+simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
+  simulation::Experiment e = spec.truth.experiment;
+  e.pulse_width_s = unit.pulse_width_s;
+  e.samples = unit.samples;
+  return e;
+}
+
+// The clean record of a unit: the truth's samples cut to the unit's record length.
+std::vector<double> clean_record(const Record& truth, int samples) {
+  std::vector<double> y = truth.numbers("y");
+  if (static_cast<int>(y.size()) < samples) throw NumericalError("truth record shorter than the case's record");
+  y.resize(static_cast<std::size_t>(samples));
+  return y;
+}
+
+// The fit options of a unit with `spikes` spikes: the truth gives the fixed parameters, the bounds [v/F, v F] and,
+// for landscape units, the start; a case adds its method and its start factors. The optimizer is the cost's default
+// unless the method names one.
+fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes) {
+  const model::BeamParameters beam = spec.truth.parameters;
+  fit::FitOptions o;
+  o.start = beam;
+  o.elements = unit.elements;
+  o.experiment = experiment_of(spec, unit);
+  o.cost.name = unit.cost;
+  o.cost.window.name = spec.fit.window;
+  o.cost.frequency_weight = spec.fit.frequency_weight;
+  o.cost.spikes.count = spikes;
+  o.cost.spikes.rule = spec.fit.spike_rule;
+  o.cost.spikes.min_frequency_hz = spec.fit.min_frequency_hz;
+  if (spec.fit.max_frequency_hz > 0) o.cost.spikes.max_frequency_hz = spec.fit.max_frequency_hz;
+  for (const auto& key : spec.fit.estimate) {
+    const double v = value(beam, key);
+    o.estimate.push_back(fit::bounds_around(key, v, spec.fit.bound_factor));
+  }
+  o.scaling = spec.fit.scaling;
+  o.optimizer.max_evaluations = spec.fit.max_evaluations;
+  o.optimizer.xtol_rel = spec.fit.xtol_rel;
+  o.optimizer.method = fit::default_optimizer(unit.cost);
+  o.seed = unit.seed;
+  o.optimizer.seed = unit.seed;
+  if (!unit.method.empty()) {  // cases and start-distance fits
+    const MethodSpec& m = spec.method(unit.method);
+    o.strategy = m.strategy;
+    o.refine = m.refine;
+    if (m.optimizer != "default") o.optimizer.method = m.optimizer;
+    o.starts = m.starts;
+    if (!m.window.empty()) o.cost.window.name = m.window;
+    if (!m.frequency_weight.empty()) o.cost.frequency_weight = m.frequency_weight;
+    o.cost.eps1_factor = m.eps1_factor;
+    o.cost.eps2_factor = m.eps2_factor;
+  }
+  if (unit.kind == UnitKind::Case)
+    for (const auto& [key, factor] : spec.start(unit.start).factor) set(o.start, key, value(o.start, key) * factor);
+  return o;
+}
+
+// The same for a record: the number of spikes follows the modes in the clean data when fit.spikes is "auto".
+fit::FitOptions fit_options(const StudySpec& spec, const Unit& unit, const std::vector<double>& clean,
+                            const Record& truth, int& modes, int& spikes) {
+  modes = modes_in_data(clean, spec.truth.experiment.dt_s, truth.numbers("mode_frequency_hz"));
+  spikes = spec.fit.spikes > 0 ? spec.fit.spikes : std::clamp(modes, 1, spec.fit.max_spikes);
+  return unit_options(spec, unit, spikes);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A fit's outcome in a record (cases and start-distance fits alike).
+void record_fit(Record& r, const fit::FitResult& result) {
+  r.set("status", result.status);
+  r.set("termination", result.termination);
+  r.set("cost", result.cost);
+  r.set("evaluations", static_cast<double>(result.evaluations));
+  for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+}
+
+// The fields of a fit that has not run (so that a failure before the fit still leaves every column).
+void record_unrun_fit(Record& r, const std::vector<std::string>& keys) {
+  r.set("status", std::string("failed"));
+  r.set("termination", std::string("not run"));
+  r.set("cost", std::numeric_limits<double>::infinity());
+  r.set("evaluations", 0.0);
+  for (const auto& key : keys) r.set("estimate." + key, std::numeric_limits<double>::quiet_NaN());
+}
+
+Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
+  const std::vector<double> clean = clean_record(truth, unit.samples);
+  const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+  int modes = 0, spikes = 0;
+  fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+  model::BeamParameters estimate = spec.truth.parameters;
+  for (const auto& key : spec.fit.estimate) {
+    const double v = result.number("estimate." + key);
+    if (std::isfinite(v)) set(estimate, key, v);
+  }
+  return compute_overlay(o, data, estimate);
+}
+
+}  // namespace
+
+Record run_truth(const StudySpec& spec, const Unit& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const model::BeamParameters beam = spec.truth.parameters;
+    const galerkin::SplineSpace space(spec.truth.elements);
+    const galerkin::BeamForms forms(space, beam.l, beam.support);
+    // The truth is the exact modal closed form at N_truth (simulation/modal_simulator.h: no time-stepping error, about
+    // 0.05 s at N = 48); it differs from every fitted model by the discretisation N_truth against N, which is what
+    // keeps the study clear of the inverse crime. CVODE, an independent integrator of the same equations, checks it
+    // once per study: the first truth's agreement (max |y_fast - y_cvode| / max |y|) is recorded and stated in the
+    // manifest. At rtol 1e-10 it is CVODE's own error, 1e-8 (displacement) to 1e-7 (acceleration) of max |y|.
+    simulation::SimulatorOptions options;
+    options.integrator = simulation::kFast;
+    const simulation::Experiment experiment = experiment_of(spec, truth);
+    const simulation::Trace trace = simulation::simulate(forms, beam, experiment, options);
+    if (truth.cvode_check && trace.ok()) {
+      simulation::SimulatorOptions check;
+      check.integrator = simulation::kCvode;
+      check.cvode.rtol = spec.truth.rtol;
+      const simulation::Trace cvode = simulation::simulate(forms, beam, experiment, check);
+      r.set("cvode_status", cvode.status);
+      r.set("cvode_steps", static_cast<double>(cvode.stats.steps));
+      if (cvode.ok()) {
+        double y_max = 0, difference = 0;
+        for (std::size_t i = 0; i < trace.y.size(); ++i) {
+          y_max = std::max(y_max, std::abs(trace.y[i]));
+          difference = std::max(difference, std::abs(trace.y[i] - cvode.y[i]));
+        }
+        r.set("cvode_max_difference_over_max_y", difference / y_max);
+      }
+    }
+    const galerkin::StateSpaceModes modes(galerkin::combine(forms, beam));
+    std::vector<double> f, zeta;
+    for (const auto& m : modes.underdamped_modes()) {
+      f.push_back(m.frequency_hz);
+      zeta.push_back(m.damping_ratio);
+    }
+    r.set("status", trace.status);
+    r.set("y", trace.y);
+    r.set("mode_frequency_hz", f);
+    r.set("mode_damping_ratio", zeta);
+    r.set("integrator", trace.stats.integrator);
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  r.set("kind", unit_kind_name(UnitKind::Truth));
+  r.set("inputs", inputs_hash(truth));
+  return r;
+}
+
+int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vector<double>& mode_frequency_hz) {
+  signal::Dft dft(static_cast<int>(clean.size()), dt_s);
+  const signal::Spectrum s = dft.transform(clean);
+  std::vector<double> peak;
+  for (double f : mode_frequency_hz) {
+    const long k = std::lround(f / s.df_hz());
+    if (k < 1 || k + 1 > s.last_bin()) continue;  // at or above Nyquist: not resolvable
+    peak.push_back(std::max({s.magnitude(k - 1), s.magnitude(k), s.magnitude(k + 1)}));
+  }
+  if (peak.empty()) return 0;
+  const double largest = *std::max_element(peak.begin(), peak.end());
+  return static_cast<int>(std::count_if(peak.begin(), peak.end(), [&](double p) { return p >= 1e-2 * largest; }));
+}
+
+void validate_plan(const StudySpec& spec, const Plan& plan) {
+  for (const Unit& u : plan.units) {
+    if (u.kind == UnitKind::Frequencies || u.kind == UnitKind::Bound) continue;  // no fit
+    try {
+      fit::validate(unit_options(spec, u, spec.fit.spikes > 0 ? spec.fit.spikes : spec.fit.max_spikes));
+    } catch (const InputError& e) {
+      throw InputError(spec.path + ": " + unit_kind_name(u.kind) + " " + u.id + " (N = " + std::to_string(u.elements) +
+                       ", cost " + u.cost + (u.method.empty() ? "" : ", method " + u.method) + "): " + e.what());
+    }
+  }
+}
+
+Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  record_unrun_fit(r, spec.fit.estimate);
+  r.set("a4", std::string("-"));
+  const model::BeamParameters beam = spec.truth.parameters;
+  for (const auto& key : spec.fit.estimate) {
+    r.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
+    r.set("relative_error." + key, std::numeric_limits<double>::quiet_NaN());
+  }
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    int modes = 0, spikes = 0;
+    const fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("modes_in_data", static_cast<double>(modes));
+    r.set("spikes", static_cast<double>(costs::is_spike_cost(unit.cost) ? spikes : 0));
+    const fit::FitResult result = fit::fit(o, data);
+    record_fit(r, result);
+    r.set("best_start", static_cast<double>(result.best_start));
+    r.set("a4", result.final_evaluation.a4);
+    for (const auto& p : result.parameters) {
+      const double t = value(beam, p.key);
+      r.set("standard_error." + p.key, p.standard_error);
+      r.set("relative_error." + p.key, (p.estimate - t) / t);
+    }
+    if (unit.overlay) {  // the fit in time and frequency, for the overlay plots
+      try {
+        store_overlay(r, case_overlay(spec, unit, truth, r));
+      } catch (const std::exception& e) {
+        r.set("overlay.status", std::string("failed: ") + e.what());
+      }
+    }
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed"));
+    r.set("termination", e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("ok"));
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    int modes = 0, spikes = 0;
+    fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("modes_in_data", static_cast<double>(modes));
+    // A noisy landscape sees the record of the sweep's replicate 0 at its noise level (the same draw as its cases).
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    const model::BeamParameters beam = spec.truth.parameters;
+    const double F = unit.range_factor > 1 ? unit.range_factor : spec.landscape.range_factor;
+    // Log-spaced axis v F^(2j/(P-1) - 1), j = 0..P-1: the middle point (P odd) is the true value.
+    const auto axis = [&](const std::string& key, int points) {
+      std::vector<double> x(static_cast<std::size_t>(points));
+      for (int j = 0; j < points; ++j)
+        x[static_cast<std::size_t>(j)] = value(beam, key) * std::pow(F, 2.0 * j / (points - 1) - 1);
+      return x;
+    };
+    if (unit.kind == UnitKind::Slice || unit.kind == UnitKind::Grid) {
+      fit::Objective objective(o, data);
+      const auto cost_at = [&](const model::BeamParameters& b) {
+        const double c = objective.evaluate(b).evaluation.value;
+        return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
+      };
+      if (unit.kind == UnitKind::Slice) {
+        const std::vector<double> x = axis(unit.parameters[0], unit.points);
+        std::vector<double> c;
+        for (double v : x) {
+          model::BeamParameters b = beam;
+          set(b, unit.parameters[0], v);
+          c.push_back(cost_at(b));
+        }
+        r.set("x", x);
+        r.set("cost", c);
+      } else {
+        const std::vector<double> x = axis(unit.parameters[0], unit.points);
+        const std::vector<double> y = axis(unit.parameters[1], unit.points);
+        std::vector<double> c;
+        for (double u : x)
+          for (double v : y) {
+            model::BeamParameters b = beam;
+            set(b, unit.parameters[0], u);
+            set(b, unit.parameters[1], v);
+            c.push_back(cost_at(b));
+          }
+        r.set("x", x);
+        r.set("y", y);
+        r.set("cost", c);
+      }
+    } else {  // multistart: index -1 starts at the truth (the reference minimum), others at random points
+      if (unit.index >= 0) {
+        Eigen::VectorXd lower(static_cast<int>(o.estimate.size())), upper(lower.size());
+        for (std::size_t i = 0; i < o.estimate.size(); ++i) {
+          lower[static_cast<int>(i)] = std::log(o.estimate[i].lower);
+          upper[static_cast<int>(i)] = std::log(o.estimate[i].upper);
+        }
+        // One Latin hypercube (in log coordinates) per cost, shared by its multistart units; this unit takes point k.
+        const auto points = fit::space_filling_starts(lower, upper, spec.landscape.multistarts, "lhs",
+                                                      core::derive_seed(spec.seed, "multistart;" + unit.cost));
+        for (std::size_t i = 0; i < o.estimate.size(); ++i)
+          set(o.start, o.estimate[i].key, std::exp(points[static_cast<std::size_t>(unit.index)][static_cast<int>(i)]));
+      }
+      for (const auto& e : o.estimate) r.set("start." + e.key, value(o.start, e.key));
+      const fit::FitResult result = fit::fit(o, data);
+      r.set("status", result.status);
+      r.set("cost", result.cost);
+      r.set("evaluations", static_cast<double>(result.evaluations));
+      for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
+    }
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  record_unrun_fit(r, spec.fit.estimate);
+  r.set("frequency_offset", 0.0);
+  r.set("shrunk", 0.0);
+  for (const auto& key : spec.fit.estimate) r.set("start." + key, std::numeric_limits<double>::quiet_NaN());
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    const std::vector<double> clean = clean_record(truth, unit.samples);
+    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    int modes = 0, spikes = 0;
+    fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
+    r.set("fitted_modes", static_cast<double>(spikes));
+    r.set("modes_in_data", static_cast<double>(modes));
+    if (unit.index >= 0) {
+      // The fitted modes: the spikes of a spike cost; for the others the same number, so that every run is started
+      // at the same frequency offset of the same modes.
+      const galerkin::SplineSpace space(unit.elements);
+      const galerkin::BeamForms forms(space, spec.truth.parameters.l, spec.truth.parameters.support);
+      const Eigen::VectorXd u =
+          random_direction(core::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
+                           static_cast<int>(spec.fit.estimate.size()));
+      const OffsetStart s =
+          offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset, spec.fit.bound_factor);
+      for (const auto& key : spec.fit.estimate) set(o.start, key, value(s.start, key));
+      r.set("frequency_offset", s.frequency_offset);
+      r.set("shrunk", s.shrunk ? 1.0 : 0.0);
+    }
+    for (const auto& key : spec.fit.estimate) r.set("start." + key, value(o.start, key));
+    record_fit(r, fit::fit(o, data));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed"));
+    r.set("termination", e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("failed"));
+  r.set("noise_sd", std::numeric_limits<double>::quiet_NaN());
+  for (const auto& key : spec.fit.estimate) r.set("relative_sd." + key, std::numeric_limits<double>::quiet_NaN());
+  try {
+    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+    // The noise the cases add: level x RMS of the clean record (signal/noise.h).
+    const double noise_sd = unit.noise * signal::rms(clean_record(truth, unit.samples));
+    const fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements,
+                                                             experiment_of(spec, unit), spec.fit.estimate, noise_sd);
+    r.set("status", b.status);
+    r.set("method", b.method);
+    r.set("noise_sd", noise_sd);
+    r.set("rcond", b.rcond);
+    for (std::size_t i = 0; i < b.keys.size(); ++i)
+      r.set("relative_sd." + b.keys[i], b.relative_sd(static_cast<Eigen::Index>(i)));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: ") + e.what());
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_frequencies(const StudySpec& spec, int elements) {
+  Record r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.set("status", std::string("ok"));
+  const model::BeamParameters& beam = spec.truth.parameters;
+  std::vector<double> exact;
+  try {
+    for (double w : model::timoshenko_frequencies_rad_s(beam, 4)) exact.push_back(w / (2 * M_PI));
+  } catch (const std::exception& e) {
+    r.set("status", std::string("failed: exact frequencies: ") + e.what());
+  }
+  r.set("exact_hz", exact);
+  {
+    const int n = elements;
+    std::vector<double> f;
+    try {
+      const galerkin::SplineSpace space(n);
+      const auto modes = galerkin::undamped_modes(galerkin::assemble(space, beam));
+      for (std::size_t m = 0; m < exact.size() && static_cast<int>(m) < modes.omega_rad_s.size(); ++m)
+        f.push_back(modes.omega_rad_s[static_cast<int>(m)] / (2 * M_PI));
+    } catch (const std::exception& e) {
+      r.set("status", "failed: N = " + std::to_string(n) + ": " + e.what());
+    }
+    r.set("galerkin_hz", f);
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+Record run_unit(const StudySpec& spec, const Unit& unit, const Record& truth) {
+  Record r = unit.kind == UnitKind::Case          ? run_case(spec, unit, truth)
+             : unit.kind == UnitKind::Frequencies ? run_frequencies(spec, unit.elements)
+             : unit.kind == UnitKind::Start       ? run_start(spec, unit, truth)
+             : unit.kind == UnitKind::Bound       ? run_bound(spec, unit, truth)
+                                                  : run_landscape(spec, unit, truth);
+  r.set("kind", unit_kind_name(unit.kind));
+  r.set("inputs", inputs_hash(unit));
+  return r;
+}
+
+}  // namespace beamid::study

@@ -1,0 +1,345 @@
+#include "study/spec/study_spec.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "config/beam_file.h"
+#include "config/document.h"
+#include "core/errors.h"
+#include "core/limits.h"
+#include "costs/cost.h"
+#include "fit/identification.h"
+#include "fit/optimizer.h"
+#include "io/files.h"
+#include "io/text.h"
+#include "model/beam_parameters.h"
+#include "signal/noise.h"
+
+namespace beamid::study {
+namespace {
+
+using config::Node;
+using config::Table;
+
+const auto positive = [](double v) { return v > 0; };
+const auto non_negative = [](double v) { return v >= 0; };
+constexpr int kMaxInt = std::numeric_limits<int>::max();
+
+std::vector<std::string> cost_names() { return costs::cost_names().names(); }
+
+void read_experiment(Table& r, simulation::Experiment& e) {
+  e.dt_s = r.number("dt_s", e.dt_s, positive, "must be > 0");
+  e.samples = r.integer("samples", e.samples, core::kMinStudySamples, core::kMaxStudySamples);
+  e.excitation = r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck});  // simulable
+  if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, non_negative, "must be >= 0");
+  e.force_amplitude_N = r.number("force_amplitude_N", e.force_amplitude_N, positive, "must be > 0");
+  e.pulse_width_s = r.number("pulse_width_s", e.pulse_width_s, positive, "must be > 0");
+  if (r.has("sensor_x_m")) e.sensor_x_m = r.number("sensor_x_m", std::nullopt, non_negative, "must be >= 0");
+  e.output = r.string("output", e.output, simulation::output_names().names());
+}
+
+}  // namespace
+
+const StartSpec& StudySpec::start(const std::string& n) const {
+  for (const auto& s : starts)
+    if (s.name == n) return s;
+  throw InputError(path + ": no start named '" + n + "'");
+}
+
+const MethodSpec& StudySpec::method(const std::string& n) const {
+  for (const auto& m : methods)
+    if (m.name == n) return m;
+  throw InputError(path + ": no method named '" + n + "'");
+}
+
+namespace {
+
+// [study]: the name, the question and the seed.
+void read_study_table(const config::Document& document, StudySpec& spec) {
+  Table r = document.required("study");
+  spec.name = r.string("name", std::nullopt);
+  if (spec.name.empty() || spec.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
+    r.fail("name", "'" + spec.name + "'", "must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
+  spec.question = r.string("question", std::nullopt);
+  const double seed = r.number(
+      "seed", std::nullopt, [](double v) { return v >= 0 && v < 9.007199254740992e15 && v == std::floor(v); },
+      "must be an integer in 0..2^53");
+  spec.seed = static_cast<std::uint64_t>(seed);
+  r.finish({"name", "question", "seed"});
+}
+
+// [truth]: the beam, N_truth, the integrator's tolerance and the experiment, validated on the beam.
+void read_truth(const config::Document& document, const std::string& directory, StudySpec& spec) {
+  Table r = document.required("truth");
+  TruthSpec& t = spec.truth;
+  t.beam = r.string("beam", std::nullopt);
+  if (!model::is_preset(t.beam)) {
+    std::filesystem::path p(t.beam);
+    if (p.is_relative()) p = std::filesystem::path(directory) / p;
+    t.beam_path = p.string();
+    if (!io::is_existing_file(p))
+      r.fail("beam", "'" + t.beam + "'",
+             "must be a preset (" + Table::join(model::preset_names()) + ") or an existing beam TOML file");
+  }
+  // A control study fits the truth's own model (an inverse crime on purpose): what remains is the estimator's own
+  // bias and variance, the yardstick for the studies whose truth is finer than every fit.
+  t.control = r.boolean("control", false);
+  t.elements =
+      r.integer("elements", 48, t.control ? core::kMinElements : core::kMinTruthElements, core::kMaxTruthElements);
+  t.rtol = r.number(
+      "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
+  read_experiment(r, t.experiment);
+  r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
+            "pulse_width_s", "sensor_x_m", "output"});
+  t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
+  const model::BeamParameters& beam = t.parameters;
+  if (auto e = simulation::validation_error(t.experiment, beam.l)) {
+    // The message starts with the offending key ("force_x_m = 0.9: ..."): point at its line.
+    const std::string key = e->substr(0, e->find(' '));
+    throw InputError(r.where(key) + ": truth." + *e);
+  }
+}
+
+// [fit]: what is estimated, the spikes and band, the bounds and the optimizer's budget and tolerances.
+void read_fit(const config::Document& document, StudySpec& spec) {
+  Table r = document.required("fit");
+  FitSpec& f = spec.fit;
+  std::vector<std::string> keys;
+  for (const auto& info : model::parameter_table()) keys.emplace_back(info.key);
+  f.estimate = r.strings("estimate", true, keys);
+  if (const auto n = r.get("spikes")) {
+    if (n->is_string()) {
+      if (*n->string() != "auto") r.fail("spikes", n->text(), "must be an integer >= 1 or 'auto'");
+      f.spikes = 0;
+    } else {
+      f.spikes = r.integer("spikes", 3, 1, core::kMaxSpikes);
+    }
+  }
+  f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, core::kMaxSpikes);
+  f.spike_rule = r.string("spike_rule", f.spike_rule, {"largest", "prominence"});
+  f.min_frequency_hz = r.number("min_frequency_hz", 0.0, non_negative, "must be >= 0");
+  f.max_frequency_hz = r.number("max_frequency_hz", 0.0, non_negative, "must be >= 0 (0: up to Nyquist)");
+  if (f.max_frequency_hz > 0 && f.max_frequency_hz <= f.min_frequency_hz)
+    r.fail("max_frequency_hz", format_value(f.max_frequency_hz), "must exceed fit.min_frequency_hz");
+  f.window = r.string("window", f.window, {"rectangular", "hann", "exponential"});
+  f.frequency_weight = r.string("frequency_weight", f.frequency_weight, costs::frequency_weight_names().names());
+  f.bound_factor = r.number(
+      "bound_factor", f.bound_factor, [](double v) { return v > 1; }, "must be > 1");
+  f.scaling = r.string("scaling", f.scaling, {"linear", "log"});
+  f.max_evaluations = r.integer("max_evaluations", f.max_evaluations, 10, core::kMaxEvaluations);
+  f.xtol_rel = r.number(
+      "xtol_rel", f.xtol_rel, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+  f.success_tolerance = r.number("success_tolerance", f.success_tolerance, positive, "must be > 0");
+  f.damping_tolerance = r.number("damping_tolerance", f.success_tolerance, positive, "must be > 0");
+  r.finish({"estimate", "spikes", "max_spikes", "spike_rule", "min_frequency_hz", "max_frequency_hz", "window",
+            "frequency_weight", "bound_factor", "scaling", "max_evaluations", "xtol_rel", "success_tolerance",
+            "damping_tolerance"});
+}
+
+// [starts.NAME] and [methods.NAME].
+void read_starts_and_methods(const config::Document& document, StudySpec& spec) {
+  // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
+  if (const auto starts = document.table("starts", false)) {
+    for (const auto& [n, node] : starts->entries()) {
+      Table r = node.table("starts." + n + ".", "starts." + n);
+      StartSpec s{n, {}};
+      for (const auto& key : spec.fit.estimate)
+        s.factor[key] = r.number(
+            key, std::nullopt, [&](double v) { return v > 1 / spec.fit.bound_factor && v < spec.fit.bound_factor; },
+            "must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = " +
+                format_value(spec.fit.bound_factor));
+      r.finish(spec.fit.estimate);
+      spec.starts.push_back(s);
+    }
+  }
+  if (const auto methods = document.table("methods", false)) {
+    std::vector<std::string> optimizers = fit::optimizer_names().names();
+    optimizers.insert(optimizers.begin(), "default");
+    for (const auto& [n, node] : methods->entries()) {
+      Table r = node.table("methods." + n + ".", "methods." + n);
+      MethodSpec m;
+      m.name = n;
+      m.strategy = r.string("strategy", m.strategy, fit::strategy_names().names());
+      m.optimizer = r.string("optimizer", m.optimizer, optimizers);
+      m.starts = r.integer("starts", 1, 1, core::kMaxStarts);
+      m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost});
+      if (r.has("refine") && m.strategy != fit::kHybrid)
+        r.fail("refine", "'" + m.refine + "'", "applies to strategy = 'hybrid' only");
+      if (r.has("window")) m.window = r.string("window", std::nullopt, {"rectangular", "hann", "exponential"});
+      if (r.has("frequency_weight"))
+        m.frequency_weight = r.string("frequency_weight", std::nullopt, costs::frequency_weight_names().names());
+      const auto positive_factor = [](double v) { return v > 0 && v <= 1e6; };
+      m.eps1_factor = r.number("eps1_factor", 1.0, positive_factor, "must be in (0, 1e6]");
+      m.eps2_factor = r.number("eps2_factor", 1.0, positive_factor, "must be in (0, 1e6]");
+      r.finish(
+          {"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor"});
+      spec.methods.push_back(m);
+    }
+  }
+}
+
+// [sweep]: the Cartesian product of the cases (fitted N coarser than the truth's up to finest_fit).
+void read_sweep(const config::Document& document, const std::string& source, int finest_fit, StudySpec& spec) {
+  Table r = document.required("sweep");
+  SweepSpec& s = spec.sweep;
+  s.elements = r.integers("elements", true, 1, finest_fit);
+  s.cost = r.strings("cost", true, cost_names());
+  s.noise = r.numbers(
+      "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+  if (s.noise.empty()) s.noise = {0.0};
+  s.replicates = r.integer("replicates", 1, 1, 100000);
+  std::vector<std::string> method_names, start_names;
+  for (const auto& m : spec.methods) method_names.push_back(m.name);
+  for (const auto& st : spec.starts) start_names.push_back(st.name);
+  if (method_names.empty()) throw InputError(source + ":1: no [methods.NAME] table: a study needs at least one method");
+  if (start_names.empty()) throw InputError(source + ":1: no [starts.NAME] table: a study needs at least one start");
+  s.method = r.strings("method", true, method_names);
+  s.start = r.strings("start", true, start_names);
+  s.pulse_width_s = r.numbers("pulse_width_s", positive, "must be > 0");
+  if (s.pulse_width_s.empty()) s.pulse_width_s = {spec.truth.experiment.pulse_width_s};
+  s.samples = r.integers("samples", false, 16, spec.truth.experiment.samples);
+  if (s.samples.empty()) s.samples = {spec.truth.experiment.samples};
+  r.finish({"elements", "cost", "noise", "replicates", "method", "start", "pulse_width_s", "samples"});
+}
+
+// [landscape]: slices, grids and multi-starts of the costs through the truth.
+void read_landscape(const config::Document& document, int finest_fit, StudySpec& spec) {
+  if (auto landscape = document.table("landscape", false)) {
+    Table& r = *landscape;
+    LandscapeSpec& l = spec.landscape;
+    l.enabled = true;
+    // elements: one order (16) or a list ([8, 16]).
+    if (const auto node = r.get("elements"); node && !node->is_array())
+      l.elements = {r.integer("elements", std::nullopt, 1, finest_fit)};
+    else if (node)
+      l.elements = r.integers("elements", true, 1, finest_fit);
+    l.noise = r.numbers(
+        "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    if (l.noise.empty()) l.noise = {0.0};
+    l.cost = r.strings("cost", true, cost_names());
+    l.range_factor = r.number(
+        "range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
+    l.points = r.integer("points", l.points, 5, 4001);
+    l.grid_points = r.integer("grid_points", l.grid_points, 3, 401);
+    l.multistarts = r.integer("multistarts", l.multistarts, 0, 10000);
+    l.zoom_range_factor = r.number(
+        "zoom_range_factor", 0.0, [](double v) { return v > 1; }, "must be > 1");
+    l.zoom_points = r.integer("zoom_points", l.zoom_points, 3, 401);
+    if (const auto pairs = r.array("pairs", false)) {
+      for (const Node& item : *pairs) {
+        const std::vector<Node> p = item.elements();
+        const auto bad = [&](const std::string& why) { r.element_fail("pairs", item, item.text(), why); };
+        if (!item.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string())
+          bad("must be a pair of parameter names, [\"EI\", \"rho\"]");
+        const std::string a = *p[0].string(), b = *p[1].string();
+        for (const auto& k : {a, b})
+          if (std::find(spec.fit.estimate.begin(), spec.fit.estimate.end(), k) == spec.fit.estimate.end())
+            bad("'" + k + "' is not in fit.estimate");
+        if (a == b) bad("the two names must differ");
+        l.pairs.emplace_back(a, b);
+      }
+    }
+    if (l.zoom_range_factor > 1 && l.pairs.empty())
+      r.fail("zoom_range_factor", format_value(l.zoom_range_factor), "needs landscape.pairs (the grids it zooms)");
+    r.finish({"elements", "noise", "cost", "range_factor", "points", "pairs", "grid_points", "zoom_range_factor",
+              "zoom_points", "multistarts"});
+  }
+}
+
+// [start_distance]: the runs, offsets and directions of the start-distance curves.
+void read_start_distance(const config::Document& document, int finest_fit, StudySpec& spec) {
+  if (auto table = document.table("start_distance", false)) {
+    Table& r = *table;
+    StartDistanceSpec& d = spec.start_distance;
+    d.enabled = true;
+    d.elements = r.integer("elements", d.elements, 1, finest_fit);
+    d.offsets = r.numbers(
+        "offsets", [](double v) { return v > 0 && v < 1; }, "must be in (0, 1) (relative frequency offsets)");
+    if (d.offsets.empty()) r.fail("offsets", "[]", "must list at least one offset");
+    if (!std::is_sorted(d.offsets.begin(), d.offsets.end())) r.fail("offsets", "[...]", "must be in increasing order");
+    d.directions = r.integer("directions", d.directions, 1, 100000);
+    d.noise = r.number(
+        "noise", 0.0, [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    d.agreement = r.number(
+        "agreement", d.agreement, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    d.damping_agreement = r.number(
+        "damping_agreement", d.damping_agreement, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
+    std::vector<std::string> method_names;
+    for (const auto& m : spec.methods) method_names.push_back(m.name);
+    // Runs as "cost/method": not every pairing is meaningful (a hybrid's cost is its global stage).
+    const auto runs = r.array("runs", true);
+    for (const Node& item : *runs) {
+      const auto bad = [&](const std::string& why) { r.element_fail("runs", item, item.text(), why); };
+      if (!item.is_string()) bad("must be a string \"cost/method\"");
+      const std::string text = *item.string();
+      const auto slash = text.find('/');
+      if (slash == std::string::npos) bad("must be \"cost/method\", e.g. \"time/direct\"");
+      const std::string cost = text.substr(0, slash), method = text.substr(slash + 1);
+      if (!costs::cost_names().contains(cost)) bad("cost '" + cost + "' must be one of " + costs::cost_names().list());
+      if (std::find(method_names.begin(), method_names.end(), method) == method_names.end())
+        bad("method '" + method + "' must be one of the [methods.NAME] tables (" + Table::join(method_names) + ")");
+      if (std::find(d.runs.begin(), d.runs.end(), std::pair(cost, method)) != d.runs.end()) bad("is listed twice");
+      d.runs.emplace_back(cost, method);
+    }
+    d.every_experiment = r.string("experiments", "first", {"first", "all"}) == "all";
+    r.finish({"elements", "offsets", "directions", "noise", "agreement", "damping_agreement", "runs", "experiments"});
+  }
+}
+
+// [outputs]: the overlay case, the efficiency bounds and the bias decomposition.
+void read_outputs(const config::Document& document, StudySpec& spec) {
+  if (auto outputs = document.table("outputs", false)) {
+    Table& r = *outputs;
+    OutputsSpec& o = spec.outputs;
+    o.overlay_elements = r.integer("overlay_elements", 0, 0, kMaxInt);
+    if (o.overlay_elements != 0 && std::find(spec.sweep.elements.begin(), spec.sweep.elements.end(),
+                                             o.overlay_elements) == spec.sweep.elements.end())
+      r.fail("overlay_elements", std::to_string(o.overlay_elements), "must be one of sweep.elements");
+    o.overlay_noise = r.number("overlay_noise", 0.0, non_negative, "must be >= 0");
+    if (std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), o.overlay_noise) == spec.sweep.noise.end())
+      r.fail("overlay_noise", format_value(o.overlay_noise), "must be one of sweep.noise");
+    o.efficiency = r.boolean("efficiency", false);
+    o.bias_decomposition = r.boolean("bias_decomposition", false);
+    if (o.bias_decomposition &&
+        std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), 0.0) == spec.sweep.noise.end())
+      r.fail("bias_decomposition", "true", "needs 0 in sweep.noise (the noise-free fit is the bias of the minimum)");
+    r.finish({"overlay_elements", "overlay_noise", "efficiency", "bias_decomposition"});
+  }
+  if (spec.outputs.overlay_elements == 0)
+    spec.outputs.overlay_elements = *std::max_element(spec.sweep.elements.begin(), spec.sweep.elements.end());
+}
+
+}  // namespace
+
+StudySpec parse_study(const std::string& text, const std::string& source, const std::string& directory) {
+  const config::Document document = config::Document::parse(text, source);
+  const Table root = document.root();
+  root.only_tables({"study", "truth", "fit", "starts", "methods", "sweep", "landscape", "start_distance", "outputs"});
+  StudySpec spec;
+  spec.path = source;
+  spec.file_hash = io::hex64(core::fnv1a64(text));
+  read_study_table(document, spec);
+  read_truth(document, directory, spec);
+  // Fitted orders: coarser than the truth's (no inverse crime), or up to it in a control study.
+  const int finest_fit = spec.truth.control ? spec.truth.elements : spec.truth.elements - 1;
+  read_fit(document, spec);
+  read_starts_and_methods(document, spec);
+  read_sweep(document, source, finest_fit, spec);
+  read_landscape(document, finest_fit, spec);
+  read_start_distance(document, finest_fit, spec);
+  read_outputs(document, spec);
+  return spec;
+}
+
+StudySpec load_study(const std::string& path) {
+  const std::string text = io::read_file(path, "cannot read the study file", config::kMaxFileBytes);
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return parse_study(text, path, dir.empty() ? "." : dir);
+}
+
+}  // namespace beamid::study

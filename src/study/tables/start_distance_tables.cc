@@ -1,0 +1,116 @@
+#include "study/tables/start_distance_tables.h"
+
+#include <sstream>
+
+#include "io/text.h"
+#include "study/analysis/metrics.h"
+#include "study/tables/format.h"
+
+namespace beamid::study {
+namespace {
+
+// A radius with its interval: "0.31 % (0.22-0.40 %)", the ends marked "<" or ">" where the curve leaves the range.
+std::string radius_with_interval(const StartRun& run) {
+  if (!run.reference_ok) return "- (the fit from the truth failed)";
+  return radius_text(run.radius) + " (" + radius_text(run.radius_low) + " to " + radius_text(run.radius_high) + ")";
+}
+
+std::string flag(const HalfRadius& r) { return r.below ? "below" : r.above ? "above" : "inside"; }
+
+// The experiment of a run, as the last columns of the CSV files: experiment,pulse_width_s,samples,modes_in_data.
+std::string experiment_csv(const StartRun& run) {
+  return "," + std::to_string(run.experiment) + "," + io::round_trip(run.pulse_width_s) + "," +
+         std::to_string(run.samples) + "," + std::to_string(run.modes_in_data);
+}
+
+}  // namespace
+
+RenderedFiles render_start_distance(const StudyResults& results, const StartDistanceMetrics& m) {
+  const StudySpec& spec = *results.spec;
+  RenderedFiles files;
+  if (!spec.start_distance.enabled) return files;
+  const auto& keys = spec.fit.estimate;
+  {
+    std::ostringstream os;
+    os << "cost,method,offset,direction,frequency_offset,shrunk,status,reached,evaluations,cost_value";
+    for (const auto& k : keys) os << ",start." << k;
+    for (const auto& k : keys) os << ",estimate." << k;
+    os << ",pulse_width_s,samples,modes_in_data\n";
+    for (std::size_t i = 0; i < results.starts.size(); ++i) {
+      const LandscapeRow& row = results.starts[i];
+      const Unit& u = *row.unit;
+      const Record& r = row.record;
+      os << u.cost << "," << u.method << "," << io::round_trip(u.offset) << "," << u.index << ","
+         << io::round_trip(r.number("frequency_offset")) << "," << r.number("shrunk") << "," << r.text("status") << ","
+         << (u.index < 0    ? "reference"
+             : m.reached[i] ? "1"
+                            : "0")
+         << "," << r.number("evaluations") << "," << io::round_trip(r.number("cost"));
+      for (const auto& k : keys) os << "," << io::round_trip(r.number("start." + k));
+      for (const auto& k : keys) os << "," << io::round_trip(r.number("estimate." + k));
+      os << "," << io::round_trip(u.pulse_width_s) << "," << u.samples << ","
+         << (r.has("modes_in_data") ? r.text("modes_in_data") : "nan") << "\n";
+    }
+    files.push_back({"start_distance/fits.csv", os.str()});
+  }
+  {
+    std::ostringstream os;
+    os << "cost,method,offset,reached,fits,rate,wilson_low,wilson_high,shrunk,median_evaluations,experiment,"
+          "pulse_width_s,samples,modes_in_data\n";
+    for (const auto& run : m.runs)
+      for (const auto& p : run.points) {
+        const auto [low, high] = wilson_interval(p.reached, p.fits);
+        os << run.cost << "," << run.method << "," << io::round_trip(p.offset) << "," << p.reached << "," << p.fits
+           << "," << io::round_trip(p.rate()) << "," << io::round_trip(low) << "," << io::round_trip(high) << ","
+           << p.shrunk << "," << io::round_trip(p.median_evaluations) << experiment_csv(run) << "\n";
+      }
+    files.push_back({"start_distance/curves.csv", os.str()});
+  }
+  {
+    std::ostringstream os;
+    os << "cost,method,reference_status,half_radius,half_radius_low,half_radius_high,position,predicted_basin,"
+          "ratio_to_predicted,predicted_basin_decay_limited,ratio_to_decay_limited,limiting_mode,"
+          "predicted_basin_highest_mode_decay_limited,experiment,pulse_width_s,samples,modes_in_data,fitted_modes\n";
+    for (const auto& run : m.runs)
+      os << run.cost << "," << run.method << ","
+         << (run.reference ? run.reference->record.text("status") : std::string("missing")) << ","
+         << io::round_trip(run.reference_ok ? run.radius.value : std::nan("")) << ","
+         << io::round_trip(run.reference_ok ? run.radius_low.value : std::nan("")) << ","
+         << io::round_trip(run.reference_ok ? run.radius_high.value : std::nan("")) << ","
+         << (run.reference_ok ? flag(run.radius) : "-") << "," << io::round_trip(run.predicted_basin) << ","
+         << io::round_trip(run.reference_ok ? run.radius.value / run.predicted_basin : std::nan("")) << ","
+         << io::round_trip(run.predicted_basin_decay) << ","
+         << io::round_trip(run.reference_ok ? run.radius.value / run.predicted_basin_decay : std::nan("")) << ","
+         << run.limiting_mode << "," << io::round_trip(run.predicted_basin_highest_decay) << experiment_csv(run) << ","
+         << run.fitted_modes << "\n";
+    files.push_back({"start_distance/radius.csv", os.str()});
+  }
+  {
+    std::ostringstream os;
+    // With several experiments, each row opens with its own: modes in the data (fitted) and the pulse width.
+    const bool several = m.experiments > 1;
+    os << (several ? "| modes in data (fitted) | pulse |" : "|")
+       << " cost | method | 50 % radius (95 % interval) | x 1/(2 f T) | x min_k 1/(2 f_k T_eff,k) |";
+    for (double r : spec.start_distance.offsets) os << " " << pct(r) << " |";
+    os << " evaluations (median) |\n|" << (several ? "---|---|" : "") << "---|---|---|---|---|";
+    for (std::size_t j = 0; j < spec.start_distance.offsets.size(); ++j) os << "---|";
+    os << "---|\n";
+    for (const auto& run : m.runs) {
+      if (several)
+        os << "| " << run.modes_in_data << " (" << run.fitted_modes << ") | " << g3(1e3 * run.pulse_width_s) << " ms ";
+      os << "| " << run.cost << " | " << run.method << " | " << radius_with_interval(run) << " | "
+         << (run.reference_ok ? g3(run.radius.value / run.predicted_basin) : "-") << " | "
+         << (run.reference_ok ? g3(run.radius.value / run.predicted_basin_decay) : "-") << " |";
+      std::vector<double> evaluations;
+      for (const auto& p : run.points) {
+        os << " " << p.reached << "/" << p.fits << " |";
+        evaluations.push_back(p.median_evaluations);
+      }
+      os << " " << g3(median(evaluations)) << " |\n";
+    }
+    files.push_back({"start_distance.md", os.str()});
+  }
+  return files;
+}
+
+}  // namespace beamid::study
