@@ -18,6 +18,7 @@ the same numbers bit for bit. Records (``data``) are a file path, as on the comm
 
 The computations release the GIL: fits on several threads run in parallel.
 """
+import atexit
 import functools
 import inspect
 import numbers
@@ -47,24 +48,45 @@ def presets():
     return list(_core.presets())
 
 
+# The computations running on the core's worker threads (below), each as the event its worker sets when it ends: one
+# interrupted by Ctrl-C finishes in the background. (Not Thread.join: in Python 3.11 a join interrupted by
+# KeyboardInterrupt leaves the thread reported as no longer alive while it still runs.)
+_running = set()
+
+
+@atexit.register
+def _wait_for_core():
+    """Waits for the computations still running on the core's worker threads; at exit, before the process destroys its
+    static objects: a fit interrupted by Ctrl-C just before a script ended went on using them, and the interpreter
+    crashed with a segmentation fault at exit (issue 30)."""
+    for done in list(_running):
+        done.wait()
+        _running.discard(done)
+
+
 def _call(function, *args):
     """Runs a core computation on a worker thread and waits for it there, so that Ctrl-C (or a Jupyter interrupt)
     raises KeyboardInterrupt in the caller at once. The core cannot be stopped part-way: an interrupted computation
-    finishes in the background and its result is dropped. From other threads the core is called directly."""
+    finishes in the background and its result is dropped (the interpreter waits for it at exit). From other threads
+    the core is called directly."""
     if threading.current_thread() is not threading.main_thread():
         return function(*args)
     box = {}
+    done = threading.Event()
 
     def work():
         try:
             box["value"] = function(*args)
         except BaseException as error:  # handed to the caller below
             box["error"] = error
+        finally:
+            done.set()
 
-    worker = threading.Thread(target=work, name="beamid-core", daemon=True)
-    worker.start()
-    while worker.is_alive():
-        worker.join(0.05)
+    _running.add(done)
+    threading.Thread(target=work, name="beamid-core", daemon=True).start()
+    while not done.wait(0.05):
+        pass
+    _running.discard(done)
     if "error" in box:
         raise box["error"]
     return box["value"]
