@@ -112,6 +112,9 @@ void check_output_file(const Flags& a, const std::string& flag) {
   a.require(problem.empty(), flag, problem + "; an output replaces only a regular file");
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   const std::filesystem::path folder = parent.empty() ? std::filesystem::path(".") : parent;
+  std::error_code ec;
+  a.require(!std::filesystem::exists(folder, ec) || io::is_existing_folder(folder), flag,
+            "'" + folder.string() + "' is a file, not a folder");
   a.require(io::is_existing_folder(folder), flag, "its folder '" + folder.string() + "' does not exist");
   errno = 0;
   a.require(::access(folder.c_str(), W_OK) == 0, flag,

@@ -204,6 +204,7 @@ expect_error "report through a link" "is a symbolic link" "${F[@]}" --report "$t
 expect_error "report in a missing folder" "its folder '$tmp/no/such' does not exist" "${F[@]}"   --report "$tmp/no/such/r.md"
 [ ! -e "$tmp/no" ] && ok || bad "report in a missing folder: the folder was created"
 expect_error "report named as a folder" "names a folder; give a file name" "${F[@]}" --report "$tmp/rdir/"
+expect_error "report under a file" "'$tmp/record.csv' is a file, not a folder" "${F[@]}" --report "$tmp/record.csv/r.md"
 expect_error "empty report" "--report = '': must name a file" "${F[@]}" --report ""
 mkdir "$tmp/mine" && echo "my notes" >"$tmp/mine/cases.csv"
 expect_error "study into a user's folder" "holds files but no manifest.json or store/" study \
