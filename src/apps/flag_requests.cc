@@ -114,7 +114,10 @@ std::map<std::string, std::pair<double, double>> bounds_of(const Flags& a) {
     const double l = std::strtod(lo.c_str(), &end1), h = std::strtod(hi.c_str(), &end2);
     if (lo.empty() || hi.empty() || *end1 || *end2)
       throw InputError(where + "--bounds item '" + item + "': LO and HI must be numbers");
-    bounds[item.substr(0, eq)] = {l, h};
+    // A key given twice was decided by its last item without a word.
+    if (!bounds.emplace(item.substr(0, eq), std::pair{l, h}).second)
+      throw InputError(where + "--bounds item '" + item + "': " + item.substr(0, eq) +
+                       " is bounded twice; give each key once");
   }
   return bounds;
 }

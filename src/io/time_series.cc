@@ -51,8 +51,15 @@ std::size_t choose_channel(const std::vector<std::string>& names, const std::str
                        "): choose one with --channel NAME or --channel INDEX");
     return 0;
   }
+  // A name that several columns share (LVM and UFF channels may) does not choose one: the first was taken silently.
+  std::vector<std::size_t> named;
   for (std::size_t c = 0; c < names.size(); ++c)
-    if (names[c] == channel) return c;
+    if (names[c] == channel) named.push_back(c);
+  if (named.size() > 1)
+    throw InputError(path + ": channel = '" + shown(channel) + "': " + std::to_string(named.size()) + " " + what +
+                     " are named so (" + std::to_string(named[0] + 1) + ", " + std::to_string(named[1] + 1) +
+                     (named.size() > 2 ? ", ..." : "") + "): choose one with --channel INDEX");
+  if (named.size() == 1) return named.front();
   char* end = nullptr;
   const long index = std::strtol(channel.c_str(), &end, 10);
   if (end == channel.c_str() + channel.size() && index >= 1 && index <= static_cast<long>(names.size()))

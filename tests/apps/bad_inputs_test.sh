@@ -245,5 +245,12 @@ awk -F, 'NR == 1 { print; next } { print $1 ",0.001" }' "$tmp/z.csv" >"$tmp/cons
 expect_error "constant record" "is 0.001 in every sample: a constant record holds no vibration" fit \
   --data "$tmp/constant.csv" "${S[@]}" --estimate EI --cost time
 
+# A key bounded twice (the last item won) and a channel name two columns share (the first was taken) are refused.
+expect_error "bounds twice" "--bounds item 'EI=0.2:2': EI is bounded twice" fit --data "$tmp/z.csv" "${S[@]}" \
+  --estimate EI --cost time --bounds EI=0.1:1,EI=0.2:2
+paste -d, "$tmp/z.csv" <(cut -d, -f2 "$tmp/z.csv") | sed '1s/.*/t_s,v,v/' >"$tmp/shared_name.csv"
+expect_error "ambiguous channel" "channel = 'v': 2 signal columns are named so (1, 2): choose one with --channel INDEX" \
+  spikes --data "$tmp/shared_name.csv" --channel v
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
