@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <complex>
+#include <optional>
 #include <vector>
 
 namespace beamid::galerkin {
@@ -19,6 +21,19 @@ inline Eigen::MatrixXcd real_times(const Eigen::MatrixXd& a, const Eigen::Matrix
 // x_k^T y_k for every column k (transpose, not adjoint).
 inline Eigen::VectorXcd column_products(const Eigen::MatrixXcd& x, const Eigen::MatrixXcd& y) {
   return x.cwiseProduct(y).colwise().sum().transpose();
+}
+
+// The root of a x^2 + b x + c = 0 nearest `near`: the Rayleigh functional's root for T(lambda) = lambda^2 M + lambda C
+// + K at a vector x (a = x^T M x, b = x^T C x, c = x^T K x; transpose, not adjoint), which the damped modes use to
+// refine an eigenvalue (modes.cc, damped_iteration.cc). From the cancellation-free pair x1 = q / a, x2 = c / q with
+// q = -(b + sign root) / 2; none when a or q vanishes.
+inline std::optional<std::complex<double>> nearest_root(std::complex<double> a, std::complex<double> b,
+                                                        std::complex<double> c, std::complex<double> near) {
+  const std::complex<double> root = std::sqrt(b * b - 4.0 * a * c);
+  const std::complex<double> q = -0.5 * (b + (std::real(std::conj(b) * root) >= 0 ? root : -root));
+  if (std::abs(a) == 0 || std::abs(q) == 0) return std::nullopt;
+  const std::complex<double> x1 = q / a, x2 = c / q;
+  return std::abs(x1 - near) <= std::abs(x2 - near) ? x1 : x2;
 }
 
 // The eigenvectors x_k of a real pencil, whose eigenvalues are real or come in conjugate pairs, held once as real

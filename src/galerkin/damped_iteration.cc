@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <optional>
 #include <vector>
 
+#include "galerkin/complex_products.h"
 #include "galerkin/modes.h"
 
 namespace beamid::galerkin {
@@ -308,11 +310,9 @@ bool DampedIteration::complex_step(Start& st, double& size) {
   kc_.imag() = products_.col(st.im).segment(2 * n, n);
   const complex a = (qc_.array() * mc_.array()).sum(), b = (qc_.array() * cc_.array()).sum(),
                 c = (qc_.array() * kc_.array()).sum();
-  const complex root = std::sqrt(b * b - 4.0 * a * c);
-  const complex half = -0.5 * (b + (std::real(std::conj(b) * root) >= 0 ? root : -root));
-  if (std::abs(a) == 0 || std::abs(half) == 0) return false;
-  const complex x1 = half / a, x2 = c / half;
-  const complex lambda = std::abs(x1 - st.lambda) <= std::abs(x2 - st.lambda) ? x1 : x2;
+  const std::optional<complex> root = nearest_root(a, b, c, st.lambda);
+  if (!root) return false;
+  const complex lambda = *root;
   if (!(lambda.imag() > 1e-8 * std::abs(lambda))) return false;  // turned real: its conjugate would duplicate it
   st.lambda = lambda;
   const complex l2 = lambda * lambda;

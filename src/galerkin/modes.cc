@@ -116,9 +116,10 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod m
     cluster_gram_.clear();
   }
   const Eigenpairs dense = decompose_state_matrix(mt, ct, kt, scale);
-  adopt(dense, mt, ct, kt, stiffness_forms);
+  Eigen::MatrixXcd stiffness_q;  // K~ q_k, for the forms and the residuals
+  adopt(dense, mt, ct, kt, stiffness_q, stiffness_forms);
   rcond_ = finish(stiffness_forms, scale);
-  std::string doubt = doubtful_eigenpair(kt);
+  std::string doubt = doubtful_eigenpair(stiffness_q);
   if (!doubt.empty()) {
     // A graded spectrum (heavy Kelvin-Voigt damping: the thin beam with cDI = 1e3, kAcs = 1e9 has damping rates up
     // to 5e16 1/s and eigenvalues down to 5e-4 1/s): A's absolute error eps ||A|| swamps the small eigenvalues, which
@@ -129,9 +130,9 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod m
     cluster_gram_.clear();
     Eigenpairs graded = combine_graded(dense, decompose_reversed_state_matrix(mt, ct, kt), mt, ct, kt, scale);
     refine_eigenpairs(graded, mt, ct, kt);
-    adopt(std::move(graded), mt, ct, kt, stiffness_forms);
+    adopt(std::move(graded), mt, ct, kt, stiffness_q, stiffness_forms);
     rcond_ = finish(stiffness_forms, scale);
-    doubt = doubtful_eigenpair(kt);
+    doubt = doubtful_eigenpair(stiffness_q);
     if (!doubt.empty())
       throw NumericalError("the damped modes cannot be computed accurately in double precision: " + doubt +
                            " (the damping rates span too many orders of magnitude)");
@@ -185,189 +186,6 @@ void StateSpaceModes::separate_close_modes(const Eigen::VectorXd& omega, Eigen::
   }
 }
 
-StateSpaceModes::Eigenpairs StateSpaceModes::decompose_state_matrix(const Eigen::MatrixXd& mt,
-                                                                    const Eigen::MatrixXd& ct,
-                                                                    const Eigen::MatrixXd& kt,
-                                                                    const Eigen::VectorXd& scale) {
-  const Eigen::Index n = mt.rows();
-  const Eigen::LLT<Eigen::MatrixXd> mass(0.5 * (mt + mt.transpose()));
-  if (mass.info() != Eigen::Success) throw NumericalError("mass matrix is not positive definite");
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  a.topRightCorner(n, n) = scale.asDiagonal();
-  a.bottomLeftCorner(n, n) = -mass.solve(kt) * scale.cwiseInverse().asDiagonal();
-  a.bottomRightCorner(n, n) = -mass.solve(ct);
-
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(a, true);
-  if (eig.info() != Eigen::Success) throw NumericalError("state-space eigen-decomposition did not converge");
-  Eigenpairs pairs{eig.eigenvalues(), Eigen::MatrixXcd(n, 2 * n)};
-  // q_k = D^-1 (v_k)_top = (v_k)_bottom / lambda_k, taken component by component from the half with the larger
-  // divisor: the eigensolver's error is eps |v_k| in every component, so the top half loses accuracy in the components
-  // where D_j < |lambda_k| (overdamped modes) and the bottom half where D_j > |lambda_k|.
-  const Eigen::MatrixXcd& v = eig.eigenvectors();
-  for (Eigen::Index k = 0; k < 2 * n; ++k)
-    for (Eigen::Index j = 0; j < n; ++j)
-      pairs.q(j, k) = scale(j) >= std::abs(pairs.lambda(k)) ? v(j, k) / scale(j) : v(n + j, k) / pairs.lambda(k);
-  return pairs;
-}
-
-StateSpaceModes::Eigenpairs StateSpaceModes::decompose_reversed_state_matrix(const Eigen::MatrixXd& mt,
-                                                                             const Eigen::MatrixXd& ct,
-                                                                             const Eigen::MatrixXd& kt) {
-  // mu^2 K~ q + mu C~ q + M~ q = 0 in z = [E q; mu q] with E = sqrt(diag M~) (M~ ~ I after the undamped rotation):
-  //   B = [ 0                 E          ]
-  //       [ -K~^-1 M~ E^-1    -K~^-1 C~  ],
-  // whose entries are of the size of the relaxation times c/k and 1/omega^2 (2e3 s for cDI/EI = 2e3 s).
-  const Eigen::Index n = mt.rows();
-  const Eigen::LLT<Eigen::MatrixXd> stiffness(0.5 * (kt + kt.transpose()));
-  if (stiffness.info() != Eigen::Success) throw NumericalError("stiffness matrix is not positive definite");
-  const Eigen::VectorXd e = mt.diagonal().cwiseMax(0.0).cwiseSqrt();
-  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  b.topRightCorner(n, n) = e.asDiagonal();
-  b.bottomLeftCorner(n, n) = -stiffness.solve(mt) * e.cwiseInverse().asDiagonal();
-  b.bottomRightCorner(n, n) = -stiffness.solve(ct);
-  Eigen::EigenSolver<Eigen::MatrixXd> eig(b, true);
-  if (eig.info() != Eigen::Success) throw NumericalError("reversed state-space eigen-decomposition did not converge");
-  const Eigen::VectorXcd mu = eig.eigenvalues();
-  const Eigen::MatrixXcd& v = eig.eigenvectors();
-  Eigenpairs pairs{Eigen::VectorXcd(2 * n), Eigen::MatrixXcd(n, 2 * n)};
-  for (Eigen::Index k = 0; k < 2 * n; ++k) {
-    // lambda = conj(mu) / |mu|^2, so that a conjugate pair of mu gives an exact conjugate pair of lambda; mu = 0
-    // (an infinite lambda) cannot come from a positive definite M~ and is left infinite for the checks to refuse.
-    pairs.lambda(k) = std::conj(mu(k)) / std::norm(mu(k));
-    for (Eigen::Index j = 0; j < n; ++j)  // as in decompose_state_matrix, from the half with the larger divisor
-      pairs.q(j, k) = e(j) >= std::abs(mu(k)) ? v(j, k) / e(j) : v(n + j, k) / mu(k);
-  }
-  return pairs;
-}
-
-StateSpaceModes::Eigenpairs StateSpaceModes::combine_graded(const Eigenpairs& dense, const Eigenpairs& reversed,
-                                                            const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
-                                                            const Eigen::MatrixXd& kt, const Eigen::VectorXd& scale) {
-  // ||A|| and ||B|| by their largest blocks' max norms (only their ratio matters, within a factor of order one).
-  const double norm_a =
-      std::max({scale.maxCoeff(), (ct.cwiseAbs().rowwise().sum().array() / mt.diagonal().array()).maxCoeff()});
-  const double norm_b = std::max({mt.diagonal().cwiseSqrt().maxCoeff(),
-                                  (ct.cwiseAbs().rowwise().sum().array() / kt.diagonal().array()).maxCoeff()});
-  const double threshold = std::sqrt(norm_a / norm_b);
-  const Eigen::Index m = dense.lambda.size();
-  Eigenpairs out{Eigen::VectorXcd(m), Eigen::MatrixXcd(dense.q.rows(), m)};
-  Eigen::Index k = 0;
-  const auto take = [&](const Eigenpairs& from, bool large) {
-    for (Eigen::Index j = 0; j < from.lambda.size(); ++j) {
-      const double size = std::abs(from.lambda(j));
-      if (!std::isfinite(size) || (size > threshold) != large) continue;  // (mu = 0 gives no finite lambda)
-      if (k == m)
-        throw NumericalError(
-            "the damped modes cannot be computed accurately in double precision: the two "
-            "decompositions of the graded spectrum disagree about its eigenvalues near " +
-            format_value(threshold) + " 1/s");
-      out.lambda(k) = from.lambda(j);
-      out.q.col(k++) = from.q.col(j);
-    }
-  };
-  take(dense, true);
-  take(reversed, false);
-  if (k != m)
-    throw NumericalError(
-        "the damped modes cannot be computed accurately in double precision: the two "
-        "decompositions of the graded spectrum disagree about its eigenvalues near " +
-        format_value(threshold) + " 1/s");
-  return out;
-}
-
-namespace {
-
-// max_j |(T~(lambda) q)_j| / max_j (|lambda|^2 |M~ q|_j + |lambda| |C~ q|_j + |K~ q|_j).
-double relative_residual(complex l, const Eigen::VectorXcd& mq, const Eigen::VectorXcd& cq,
-                         const Eigen::VectorXcd& kq) {
-  double residual = 0, size = 0;
-  for (Eigen::Index j = 0; j < mq.size(); ++j) {
-    residual = std::max(residual, std::abs(l * l * mq(j) + l * cq(j) + kq(j)));
-    size = std::max(size, std::norm(l) * std::abs(mq(j)) + std::abs(l) * std::abs(cq(j)) + std::abs(kq(j)));
-  }
-  return residual / size;
-}
-
-}  // namespace
-
-void StateSpaceModes::refine_eigenpairs(Eigenpairs& pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
-                                        const Eigen::MatrixXd& kt) {
-  // For T(lambda) x = 0 Newton's method is inverse iteration with a moving shift: x <- T(lambda)^-1 T'(lambda) x with
-  // T' = 2 lambda M~ + C~, then lambda <- the root of the Rayleigh functional x^T T(lambda) x = 0 nearest lambda
-  // (transpose: T is complex symmetric). It converges quadratically from the combined decompositions' pairs, whose
-  // eigenvalues are already accurate to their decomposition's error; T(lambda) is factored with partial pivoting,
-  // which is backward stable for its graded rows. A complex pair's partner is its conjugate; a real pair stays real.
-  constexpr int kSteps = 6;
-  const Eigen::MatrixXcd m = mt.cast<complex>(), c = ct.cast<complex>(), k = kt.cast<complex>();
-  for (Eigen::Index p = 0; p < pairs.lambda.size(); ++p) {
-    complex l = pairs.lambda(p);
-    if (l.imag() < 0 || !std::isfinite(std::abs(l))) continue;  // set with its partner, or left to the checks
-    const bool real = l.imag() == 0;
-    Eigen::VectorXcd x = pairs.q.col(p);
-    double best = relative_residual(l, m * x, c * x, k * x);
-    for (int step = 0; step < kSteps && best > 1e-14; ++step) {
-      const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(l * l * m + l * c + k);
-      Eigen::VectorXcd y = lu.solve((2.0 * l * m + c) * x);
-      Eigen::Index at = 0;
-      y.cwiseAbs().maxCoeff(&at);
-      if (!(std::abs(y(at)) > 0) || !y.allFinite()) break;
-      y /= y(at);
-      if (real) y = y.real().cast<complex>();
-      const Eigen::VectorXcd my = m * y, cy = c * y, ky = k * y;
-      const complex a = (y.transpose() * my)(0);
-      const complex b = (y.transpose() * cy)(0), cc = (y.transpose() * ky)(0);
-      const complex root = std::sqrt(b * b - 4.0 * a * cc);
-      const complex half = -0.5 * (b + (std::real(std::conj(b) * root) >= 0 ? root : -root));
-      if (std::abs(a) == 0 || std::abs(half) == 0) break;
-      const complex x1 = half / a, x2 = cc / half;
-      complex next = std::abs(x1 - l) <= std::abs(x2 - l) ? x1 : x2;
-      if (real) next = next.real();
-      const double residual = relative_residual(next, my, cy, ky);
-      if (!(residual < best)) break;
-      best = residual;
-      l = next;
-      x = y;
-    }
-    const complex partner = std::conj(pairs.lambda(p));
-    pairs.lambda(p) = l;
-    pairs.q.col(p) = x;
-    if (real) continue;
-    for (Eigen::Index j = 0; j < pairs.lambda.size(); ++j)  // (the reversed pairs may come partner first)
-      if (j != p && pairs.lambda(j) == partner) {
-        pairs.lambda(j) = std::conj(l);
-        pairs.q.col(j) = x.conjugate();
-        break;
-      }
-  }
-}
-
-void StateSpaceModes::adopt(Eigenpairs pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
-                            const Eigen::MatrixXd& kt, Eigen::VectorXcd& stiffness_forms) {
-  lambda_ = std::move(pairs.lambda);
-  q_ = std::move(pairs.q);
-  mass_q_ = real_times(mt, q_);
-  damping_q_ = real_times(ct, q_);
-  stiffness_forms = column_products(q_, real_times(kt, q_));
-}
-
-std::string StateSpaceModes::doubtful_eigenpair(const Eigen::MatrixXd& kt) const {
-  const Eigen::MatrixXcd stiffness_q = real_times(kt, q_);
-  const auto text = [](complex l) {
-    return format_value(l.real()) + (l.imag() < 0 ? " - " : " + ") + format_value(std::abs(l.imag())) + "i 1/s";
-  };
-  for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
-    const complex l = lambda_(k);
-    if (!std::isfinite(std::abs(l))) return "an eigenvalue is not finite";
-    // Passivity, to the round-off of the eigenvalue itself.
-    if (l.real() > 1e-10 * std::abs(l))
-      return "eigenvalue " + text(l) + " lies in the right half-plane, which a passive beam cannot have";
-    const double residual = relative_residual(l, mass_q_.col(k), damping_q_.col(k), stiffness_q.col(k));
-    if (!(residual <= kDenseResidual))
-      return "eigenvalue " + text(l) + " has a relative residual of " + format_value(residual);
-  }
-  return "";
-}
-
 double StateSpaceModes::finish(const Eigen::VectorXcd& stiffness_forms, const Eigen::VectorXd& scale) {
   const Eigen::VectorXcd mass_forms = column_products(q_, mass_q_);
   const Eigen::VectorXcd damping_forms = column_products(q_, damping_q_);
@@ -402,12 +220,9 @@ void StateSpaceModes::refine_eigenvalues(const Eigen::VectorXcd& a, const Eigen:
   // relative (else x is too inaccurate, e.g. inside a cluster of nearly equal shear relaxation rates).
   for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
     if (lambda_(k).imag() < 0) continue;  // set with its partner below
-    const complex root = std::sqrt(b(k) * b(k) - 4.0 * a(k) * c(k));
-    // Cancellation-free roots of a x^2 + b x + c: q = -(b + sign root)/2, x1 = q/a, x2 = c/q.
-    const complex q = -0.5 * (b(k) + (std::real(std::conj(b(k)) * root) >= 0 ? root : -root));
-    if (std::abs(a(k)) == 0 || std::abs(q) == 0) continue;
-    const complex x1 = q / a(k), x2 = c(k) / q;
-    const complex best = std::abs(x1 - lambda_(k)) <= std::abs(x2 - lambda_(k)) ? x1 : x2;
+    const std::optional<complex> root = nearest_root(a(k), b(k), c(k), lambda_(k));
+    if (!root) continue;
+    const complex best = *root;
     if (!(std::abs(best - lambda_(k)) < 1e-6 * std::abs(lambda_(k)))) continue;
     if (lambda_(k).imag() == 0) {
       lambda_(k) = best.real();

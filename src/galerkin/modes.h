@@ -115,11 +115,14 @@ class StateSpaceModes {
 
  private:
   // The damped modes in the undamped modal basis by a Jacobi iteration from the decoupled modes (damped_iteration.cc),
-  // or by the dense eigen-decomposition of the balanced state matrix; both set lambda_, q_, mass_q_ and damping_q_. The
-  // iteration returns false when the damping couples the modes too strongly for it (then the dense one runs).
-  // Rotates each group of nearly equal undamped frequencies (shapes_, M Phi, C Phi and M~, K~, C~ with them) so that
-  // M~ = I and K~ is diagonal within the group to round-off, unless every member of the group is overdamped on its own
-  // (its roots then go to the iteration's Rayleigh-Ritz blocks, which take the coupling within the group; modes.cc).
+  // or by the dense eigen-decomposition of the balanced state matrix (dense_modes.cc); both set lambda_, q_, mass_q_
+  // and damping_q_. The iteration returns false when the damping couples the modes too strongly for it (then the dense
+  // one runs).
+  //
+  // separate_close_modes rotates each group of nearly equal undamped frequencies (shapes_, M Phi, C Phi and M~, K~, C~
+  // with them) so that M~ = I and K~ is diagonal within the group to round-off, unless every member of the group is
+  // overdamped on its own (its roots then go to the iteration's Rayleigh-Ritz blocks, which take the coupling within
+  // the group; modes.cc).
   void separate_close_modes(const Eigen::VectorXd& omega, Eigen::MatrixXd& mt, Eigen::MatrixXd& kt,
                             Eigen::MatrixXd& ct);
   bool iterate_damped_modes(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
@@ -138,12 +141,13 @@ class StateSpaceModes {
   // A (below). Returns lambda = 1/mu.
   static Eigenpairs decompose_reversed_state_matrix(const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
                                                     const Eigen::MatrixXd& kt);
-  // The larger eigenvalues of a graded spectrum from `dense`, the smaller from `reversed` (modes.cc); NumericalError
-  // when they do not add up to 2n.
+  // The larger eigenvalues of a graded spectrum from `dense`, the smaller from `reversed` (dense_modes.cc);
+  // NumericalError when they do not add up to 2n.
   static Eigenpairs combine_graded(const Eigenpairs& dense, const Eigenpairs& reversed, const Eigen::MatrixXd& mt,
                                    const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt, const Eigen::VectorXd& scale);
-  // Newton's method on T~(lambda) q = 0 from each pair (inverse iteration with the Rayleigh functional, modes.cc), to
-  // round-off in a few steps; a pair whose residual does not fall is left as it is for the checks to judge.
+  // Newton's method on T~(lambda) q = 0 from each pair (inverse iteration with the Rayleigh functional,
+  // dense_modes.cc), to round-off in a few steps; a pair whose residual does not fall is left as it is for the checks
+  // to judge.
   static void refine_eigenpairs(Eigenpairs& pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct,
                                 const Eigen::MatrixXd& kt);
   // The relative residual an eigenpair of a dense decomposition may have before the graded path (below) recomputes
@@ -154,13 +158,14 @@ class StateSpaceModes {
   // lambda ~ 15 1/s), which the Rayleigh functional then corrects; with cDI/EI = 10-2000 s it is 2e-5 to 1 (modes of
   // the wrong sign, spurious pairs), and 1e-14 to 1e-10 after the graded path.
   static constexpr double kDenseResidual = 1e-7;
-  // Takes the eigenpairs (q_, lambda_, their products and q_k^T K~ q_k into stiffness_forms).
+  // Takes the eigenpairs (q_, lambda_, their products; K~ q_k into stiffness_q and q_k^T K~ q_k into
+  // stiffness_forms).
   void adopt(Eigenpairs pairs, const Eigen::MatrixXd& mt, const Eigen::MatrixXd& ct, const Eigen::MatrixXd& kt,
-             Eigen::VectorXcd& stiffness_forms);
+             Eigen::MatrixXcd& stiffness_q, Eigen::VectorXcd& stiffness_forms);
   // Why an eigenpair cannot be trusted, or "": its residual T~(lambda) q against the size of its terms above
   // kDenseResidual, or a pole in the right half-plane (a passive beam, M > 0, C >= 0, K > 0, cannot gain energy:
   // Re lambda = -q^H C~ q / (2 q^H M~ q) <= 0 for a complex lambda, and a real one is negative).
-  std::string doubtful_eigenpair(const Eigen::MatrixXd& kt) const;
+  std::string doubtful_eigenpair(const Eigen::MatrixXcd& stiffness_q) const;
   // Everything after the eigenpairs: refinement, normalisation, clusters and the condition estimate; returns rcond.
   double finish(const Eigen::VectorXcd& stiffness_forms, const Eigen::VectorXd& scale);
   // lambda_k from the Rayleigh functional of T at x_k (modes.cc), given the forms a_k = x_k^T M x_k, b_k = x_k^T C x_k,

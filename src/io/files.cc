@@ -38,6 +38,13 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   return "";
 }
 
+bool stays_inside(const std::filesystem::path& relative) {
+  if (relative.empty() || relative.is_absolute()) return false;
+  for (const auto& part : relative)
+    if (part == "..") return false;
+  return true;
+}
+
 bool is_existing_file(const std::filesystem::path& path) {
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec) && !ec;

@@ -23,6 +23,10 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 // where a table of the same name would replace it.
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs);
 
+// Whether a relative path stays inside the folder it is joined to: not empty, not absolute, and no ".." part. For
+// names that come from files (a report's block names, the list of tables a study wrote), which must not reach out.
+bool stays_inside(const std::filesystem::path& relative);
+
 // Creates a folder and its parents; InputError "path: cannot create folder (<reason>)" when the path is too long,
 // is a file, or is not writable.
 void make_folder(const std::filesystem::path& path);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/files.h"
 
 namespace beamid::io {
 namespace {
@@ -63,10 +64,7 @@ std::vector<std::string> split_lines(const std::string& text) {
 
 std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,
                                    const std::string& source_name) {
-  const std::filesystem::path relative(name);
-  bool inside = !name.empty() && !relative.is_absolute();
-  for (const auto& part : relative) inside = inside && part != "..";
-  if (!inside)
+  if (!stays_inside(name))
     throw InputError(source_name + ": block '" + name +
                      "': must be a relative name inside the --results folder (not absolute, no '..')");
   return results / (name + ".md");

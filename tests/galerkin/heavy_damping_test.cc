@@ -23,9 +23,9 @@ namespace {
 
 using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 
-// The underdamped eigenvalues (Im > 0, not critically damped to within kCriticalMargin) of M, C, K in long double: the undamped modes Phi of (K, M), then the balanced
-// state matrix [0 D; -M~^-1 K~ D^-1, -M~^-1 C~] with D = sqrt(diag K~), as StateSpaceModes builds it, decomposed with
-// 11 more bits. Sorted by |lambda|.
+// The underdamped eigenvalues (Im > 0, not critically damped to within kCriticalMargin) of M, C, K in long double: the
+// undamped modes Phi of (K, M), then the balanced state matrix [0 D; -M~^-1 K~ D^-1, -M~^-1 C~] with D = sqrt(diag K~),
+// as StateSpaceModes builds it, decomposed with 11 more bits. Sorted by |lambda|.
 std::vector<std::complex<long double>> long_double_underdamped(const SecondOrderSystem& s) {
   const LongMatrix m = s.M.cast<long double>(), c = s.C.cast<long double>(), k = s.K.cast<long double>();
   const Eigen::GeneralizedSelfAdjointEigenSolver<LongMatrix> undamped(k, m);
@@ -64,9 +64,10 @@ TEST(HeavyDamping, UnderdampedModesMatchAnExtendedPrecisionReference) {
     const SecondOrderSystem s = thin_beam(8, cDI, kAcs);
     const auto reference = long_double_underdamped(s);
     const std::vector<DampedMode> modes = StateSpaceModes(s).underdamped_modes();
-    ASSERT_EQ(modes.size(), reference.size()) << "cDI " << cDI << ", kAcs " << kAcs << ": the reference's first is "
-                                               << static_cast<double>(std::abs(reference[0])) << " 1/s, zeta - 1 = "
-                                               << static_cast<double>(-reference[0].real() / std::abs(reference[0]) - 1);
+    ASSERT_EQ(modes.size(), reference.size())
+        << "cDI " << cDI << ", kAcs " << kAcs << ": the reference's first is "
+        << static_cast<double>(std::abs(reference[0]))
+        << " 1/s, zeta - 1 = " << static_cast<double>(-reference[0].real() / std::abs(reference[0]) - 1);
     for (std::size_t i = 0; i < modes.size(); ++i) {
       // long double's own error is 2^-64 ||A|| ~ 3e-7 1/s for kAcs = 1e5 (||A|| ~ 5e12 1/s), 2e-8 of the first
       // mode's 15.5 1/s; 1e-7 relative leaves a margin and catches any spurious or misplaced mode by orders.
@@ -93,7 +94,9 @@ TEST(HeavyDamping, APassiveBeamHasNoPoleInTheRightHalfPlane) {
         EXPECT_GT(m.damping_ratio, 0) << "N = " << elements;
         EXPECT_LT(m.damping_ratio, 1) << "N = " << elements;
       }
-      if (cDI == 1e3) EXPECT_TRUE(modes.underdamped_modes().empty()) << "N = " << elements;
+      if (cDI == 1e3) {
+        EXPECT_TRUE(modes.underdamped_modes().empty()) << "N = " << elements;
+      }
     }
   }
 }

@@ -103,12 +103,9 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
     std::istringstream earlier(io::read_file(list, "cannot read the list of written tables"));
     std::string path;
     while (std::getline(earlier, path)) {
-      const fs::path relative(path);
-      bool inside = !path.empty() && !relative.is_absolute();
-      for (const auto& part : relative) inside = inside && part != "..";
       std::error_code ec;
-      if (inside && !now.count(path) && fs::is_regular_file(fs::path(output_dir) / relative, ec))
-        fs::remove(fs::path(output_dir) / relative, ec);
+      if (io::stays_inside(path) && !now.count(path) && fs::is_regular_file(fs::path(output_dir) / path, ec))
+        fs::remove(fs::path(output_dir) / path, ec);
     }
   }
   std::string text;
