@@ -33,9 +33,9 @@ for row in result.parameters:
     print(f"{row['parameter']:6s} {row['estimate']:.6g} +- {row['standard_error']:.2g} (sandwich "
           f"{row['robust_standard_error']:.2g})")
 
-y = data["values"] - np.mean(data["values"])
+y = data.values - np.mean(data.values)
 spectrum = np.abs(np.fft.rfft(y))
-frequency_hz = np.fft.rfftfreq(len(y), data["dt_s"])
+frequency_hz = np.fft.rfftfreq(len(y), data.dt_s)
 figure, axes = plt.subplots(figsize=(7, 3.5))
 axes.semilogy(frequency_hz, spectrum, lw=0.7, label="record (|DFT|)")
 for k, mode in enumerate(result.modes):

@@ -6,6 +6,7 @@ differs from what this prints.
 
     PYTHONPATH=build/python /usr/bin/python3 tools/python_stubs.py > python/beamid/__init__.pyi
 """
+import dataclasses
 import inspect
 import typing
 
@@ -21,30 +22,6 @@ import numpy as np
 class InputError(ValueError): ...
 class NumericalError(RuntimeError): ...
 
-class FitResult:
-    estimates: dict[str, float]
-    parameters: np.ndarray
-    standard_errors: dict[str, float]
-    status: str
-    termination: str
-    cost: float
-    evaluations: int
-    wall_time_s: float
-    covariance_status: str
-    correlation: np.ndarray
-    identifiability: dict
-    modes: np.ndarray
-    modes_status: str
-    beam: dict
-    model_output: np.ndarray
-    records: list
-    a4: str
-    messages: list[str]
-    commit: str
-    def __init__(self, raw: dict) -> None: ...
-    @property
-    def ok(self) -> bool: ...
-    def to_pandas(self) -> Any: ...
 '''
 
 
@@ -74,8 +51,35 @@ def stub(name, function):
     return f"def {name}({', '.join(parameters)}) -> {returns}: ..."
 
 
+def returns(function):
+    """A method's return annotation as stub text (Any when it has none)."""
+    kind = function.__annotations__.get("return")
+    return "Any" if kind is None else getattr(kind, "__name__", str(kind)).replace("ndarray", "np.ndarray")
+
+
+def class_stub(cls):
+    """A result dataclass: its fields with their types, then its methods and properties."""
+    lines = [f"class {cls.__name__}:"]
+    for f in dataclasses.fields(cls):
+        kind = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", str(f.type))
+        lines.append(f"    {f.name}: {'np.ndarray' if kind == 'ndarray' else kind}")
+    for name, member in sorted(vars(cls).items()):
+        if isinstance(member, property):
+            lines += ["    @property", f"    def {name}(self) -> {returns(member.fget)}: ..."]
+        elif inspect.isfunction(member) and not name.startswith("_"):
+            lines.append(f"    def {name}(self) -> {returns(member)}: ...")
+    for name in ("keys", "to_dict"):  # from the mapping-style base
+        lines.append(f"    def {name}(self) -> Any: ...")
+    lines.append("    def __getitem__(self, name: str) -> Any: ...")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     lines = [HEADER]
+    for name in beamid.__all__:
+        obj = getattr(beamid, name)
+        if inspect.isclass(obj) and dataclasses.is_dataclass(obj):
+            lines.append(class_stub(obj))
     for name in beamid.__all__:
         obj = getattr(beamid, name)
         if inspect.isfunction(obj):

@@ -32,8 +32,9 @@ import numpy as np
 from . import _core
 from ._core import InputError, NumericalError
 from .results import load_results, read_table
+from .values import CostValue, CramerRao, FitResult, Record, Spikes, System
 
-__all__ = ["InputError", "NumericalError", "FitResult", "version", "presets", "beam", "beam_toml", "modes",
+__all__ = ["InputError", "NumericalError", "FitResult", "Spikes", "CostValue", "CramerRao", "System", "Record", "version", "presets", "beam", "beam_toml", "modes",
            "simulate", "system", "spikes", "cost", "fit", "crb", "modal_id", "read_record", "load_results",
            "read_table"]
 
@@ -232,88 +233,29 @@ def simulate(**flags) -> np.ndarray:
     return _call(_core.simulate, _arguments(f), toml)["y"]
 
 
-def system(**flags) -> dict:
+def system(**flags) -> "System":
     """``beamid system``: the Galerkin matrices M, C, K (arrays) with the experiment's load, sensor, initial state and
-    sampling, as a dict."""
+    sampling, as a :class:`System`."""
     f, toml = _beam_argument(flags)
-    return dict(_call(_core.system, _arguments(f), toml))
+    return System._from_core(_call(_core.system, _arguments(f), toml))
 
 
-def spikes(data, time=None, **flags) -> dict:
-    """``beamid spikes``: a dict with ``picks`` (the spikes, ascending: bin, frequency_hz, magnitude, n_left,
-    n_right) and ``skipped`` (peaks passed over as artefacts, with the reason)."""
+def spikes(data, time=None, **flags) -> "Spikes":
+    """``beamid spikes``: a :class:`Spikes` with ``picks`` (the spikes, ascending: bin, frequency_hz, magnitude,
+    n_left, n_right, a structured array) and ``skipped`` (peaks passed over as artefacts, with the reason)."""
     array, f = _record_flags(data, flags)
-    return dict(_call(_core.spikes, _arguments(f), array, time))
+    return Spikes._from_core(_call(_core.spikes, _arguments(f), array, time))
 
 
-def cost(data, prediction, time=None, **flags) -> dict:
+def cost(data, prediction, time=None, **flags) -> "CostValue":
     """``beamid cost``: the value of ``cost=`` for a prediction (a file, or an array at the data's step) against the
-    data; returns a dict with value, residuals, amplitude_scale and the (A4) check."""
+    data; returns a :class:`CostValue` with value, residuals, amplitude_scale and the (A4) check."""
     array, f = _record_flags(data, flags)
     if isinstance(prediction, (str, os.PathLike)):
         f["prediction"], predicted = os.fspath(prediction), None
     else:
         f["prediction"], predicted = "<array>", np.asarray(prediction, dtype=float)
-    return dict(_call(_core.cost, _arguments(f), array, time, predicted))
-
-
-class FitResult:
-    """What ``beamid fit`` prints and reports, as values.
-
-    estimates         {key: estimate}
-    parameters        structured array: parameter, estimate, standard_error, start, lower, upper, status,
-                      robust_standard_error, window_sd, window_standard_error (as the command's CSV)
-    standard_errors   {key: formal standard error} (NaN at a bound)
-    status            converged | max-evaluations | failed (with "-at-bound" when an estimate ends on a bound)
-    termination, cost, evaluations, wall_time_s, covariance_status, correlation (array), identifiability (dict)
-    modes             structured array: data_hz, data_damping_ratio, model_hz, model_damping_ratio at the estimate
-    beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)
-    model_output      the model's output at the estimate (array)
-    records           per record of a joint fit: name, cost, status, weight, amplitude_scale
-    a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
-    messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
-                      identifiability; fit() also issues each as a warning
-    """
-
-    def __init__(self, raw):
-        self._raw = raw
-        rows = raw["parameters"]
-        width = max([len(r["parameter"]) for r in rows] + [1])
-        status_width = max([len(r["status"]) for r in rows] + [1])
-        dtype = [("parameter", f"U{width}"), ("estimate", "f8"), ("standard_error", "f8"), ("start", "f8"),
-                 ("lower", "f8"), ("upper", "f8"), ("status", f"U{status_width}"), ("robust_standard_error", "f8"),
-                 ("window_sd", "f8"), ("window_standard_error", "f8")]
-        self.parameters = np.array([tuple(r[name] for name, _ in dtype) for r in rows], dtype=dtype)
-        self.estimates = dict(raw["estimates"])
-        self.standard_errors = {r["parameter"]: r["standard_error"] for r in rows}
-        for key in ("status", "termination", "cost", "evaluations", "wall_time_s", "covariance_status",
-                    "correlation", "identifiability", "beam", "model_output", "records", "commit"):
-            setattr(self, key, raw[key])
-        mode_fields = [("data_hz", "f8"), ("data_damping_ratio", "f8"), ("model_hz", "f8"),
-                       ("model_damping_ratio", "f8")]
-        self.modes = np.array([tuple(m[name] for name, _ in mode_fields) for m in raw["modes"]], dtype=mode_fields)
-        self.modes_status = raw["modes_status"]
-        self.a4 = raw["a4"]
-        self.messages = list(raw["messages"])
-
-    @property
-    def ok(self):
-        """Whether the fit produced estimates (status not "failed")."""
-        return self.status != "failed"
-
-    def to_pandas(self):
-        """The parameters table as a pandas DataFrame, indexed by parameter (pandas is optional: Debian's
-        python3-pandas). The other tables are structured arrays, which pandas.DataFrame takes as they are."""
-        try:
-            import pandas
-        except ImportError as error:
-            raise ImportError("FitResult.to_pandas needs pandas (Debian: apt install python3-pandas); "
-                              "result.parameters is the same table as a NumPy structured array") from error
-        return pandas.DataFrame(self.parameters).set_index("parameter")
-
-    def __repr__(self):
-        estimates = ", ".join(f"{k}={v:.6g}" for k, v in self.estimates.items())
-        return f"FitResult({self.status}, cost={self.cost:.6g}, evaluations={self.evaluations}, {estimates})"
+    return CostValue._from_core(_call(_core.cost, _arguments(f), array, time, predicted))
 
 
 def fit(data, time=None, **flags) -> "FitResult":
@@ -326,18 +268,18 @@ def fit(data, time=None, **flags) -> "FitResult":
     ``report=PATH`` writes the command's Markdown report (and PATH.spectra.csv beside it), creating its folder."""
     array, f = _record_flags(data, flags)
     f, toml = _beam_argument(f)
-    result = FitResult(_call(_core.fit, _arguments(f), toml, array, time))
+    result = FitResult._from_core(_call(_core.fit, _arguments(f), toml, array, time))
     _append_beam_to_report(f, toml)
     for message in result.messages:
         warnings.warn("beamid fit: " + message, stacklevel=3)
     return result
 
 
-def crb(**flags) -> dict:
-    """``beamid crb``: the Cramér-Rao bound; a dict with parameters, value, crb_sd, crb_relative_sd (arrays in the
-    order of ``estimate``), the noise sd assumed, the covariance of ln q and the method."""
+def crb(**flags) -> "CramerRao":
+    """``beamid crb``: the Cramér-Rao bound, a :class:`CramerRao` with parameters, value, crb_sd, crb_relative_sd
+    (arrays in the order of ``estimate``), the noise sd assumed, the covariance of ln q and the method."""
     f, toml = _beam_argument(flags)
-    return dict(_call(_core.crb, _arguments(f), toml))
+    return CramerRao._from_core(_call(_core.crb, _arguments(f), toml))
 
 
 def modal_id(data, time=None, **flags) -> np.ndarray:
@@ -353,12 +295,12 @@ def modal_id(data, time=None, **flags) -> np.ndarray:
     return table
 
 
-def read_record(path, **flags) -> dict:
+def read_record(path, **flags) -> "Record":
     """A record file as beamid reads it (CSV, .lvm, .npy, .mat, UFF 58, with the import flags: channel, units, start,
-    duration, sample_rate, variable, time_variable, resample, resample_rate): a dict with values (array), dt_s, t0_s,
-    unit, format, channel and notes."""
+    duration, sample_rate, variable, time_variable, resample, resample_rate): a :class:`Record` with values (array),
+    dt_s, t0_s, unit, format, channel and notes."""
     try:
-        return dict(_call(_core.read_record, _arguments(dict(flags, data=path))))
+        return Record._from_core(_call(_core.read_record, _arguments(dict(flags, data=path))))
     except InputError as error:  # the core reads it with modal-id's import flags
         raise InputError(str(error).replace("beamid modal-id:", "beamid.read_record:")) from None
 

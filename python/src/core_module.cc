@@ -2,7 +2,8 @@
 // requests (api/), filled from the flags that the Python keyword arguments spell (sensor_x=0.2 is --sensor-x 0.2),
 // parsed by the command line's own parser (apps::parse_flags) and mapped by its own mappings (apps/flag_requests.h). A
 // call and the same command line therefore run one body of code with one validation and one set of messages, and give
-// the same numbers bit for bit. Results are NumPy arrays and dicts; records may come as arrays (samples, or samples x
+// the same numbers bit for bit. Results are NumPy arrays and dicts, which python/beamid/values.py turns into the
+// package's typed result dataclasses; records may come as arrays (samples, or samples x
 // channels) instead of files. InputError and NumericalError become beamid.InputError (a ValueError) and
 // beamid.NumericalError (a RuntimeError) carrying the command line's one-line message. The GIL is released around every
 // computation, so that Python threads can fit in parallel (the core is thread-safe: the studies run it on threads).

@@ -3,6 +3,7 @@ in and out, beams as dicts, study results as arrays, and computations that relea
 
 Run by ctest (python.pytest) with PYTHONPATH=<build>/python, BEAMID=<build>/beamid and SRC=<source folder>.
 """
+import dataclasses
 import io
 import os
 import subprocess
@@ -202,6 +203,36 @@ def test_system_crb_and_costs():
     shifted = beamid.cost(data=y, prediction=1.1 * y, sample_rate=1e4, cost="time")
     # Least squares on the samples: 0.1 y off costs 0.01 sum y^2.
     assert shifted["value"] == pytest.approx(0.01 * np.sum(y**2), rel=1e-12)
+
+
+def test_results_are_typed_values():
+    # Each computation returns a dataclass whose fields are the core's values, reachable as attributes and (for
+    # scripts written against the dicts) as items; the attribute and the item are the same object.
+    bound = beamid.crb(beam="thick-steel", elements=8, estimate=["EI", "rho"], noise_level=0.01, samples=512)
+    assert isinstance(bound, beamid.CramerRao) and dataclasses.is_dataclass(bound)
+    assert bound.parameters == ["EI", "rho"] and bound["crb_sd"] is bound.crb_sd
+    assert set(bound.to_dict()) == {f.name for f in dataclasses.fields(beamid.CramerRao)}
+    # The relative bound is the absolute one over the value (the same numbers, two columns of one table).
+    assert np.allclose(bound.crb_relative_sd, bound.crb_sd / bound.value, rtol=1e-12)
+    # The covariance is of ln q: its diagonal's square roots are the relative bounds (to first order, exactly here).
+    assert np.allclose(np.sqrt(np.diag(bound.covariance)), bound.crb_relative_sd, rtol=1e-12)
+    with pytest.raises(KeyError):
+        bound["no_such_field"]
+    s = beamid.system(beam="thick-steel", elements=4)
+    assert isinstance(s, beamid.System) and s.elements == 4 and s.M.shape[0] == s.load.shape[0]
+    y = beamid.simulate(beam="thick-steel", elements=6, dt=1e-4, samples=2048, output="acceleration")
+    picked = beamid.spikes(data=y, sample_rate=1e4, spikes=2)
+    assert isinstance(picked, beamid.Spikes) and picked.picks.dtype.names[:2] == ("bin", "frequency_hz")
+    # The picks' frequencies are their bins' (k df), ascending.
+    assert np.array_equal(picked.picks["frequency_hz"], picked.picks["bin"] * picked.df_hz)
+    assert np.all(np.diff(picked.picks["frequency_hz"]) > 0) and picked.requested == 2
+    value = beamid.cost(data=y, prediction=y, sample_rate=1e4, cost="time")
+    assert isinstance(value, beamid.CostValue) and value.value == 0 and value.a4 == "ok"
+    record = beamid.read_record(os.path.join(STEEL, "timeseries_data.lvm"), start=1.2, duration=8)
+    assert isinstance(record, beamid.Record) and record.time_s[0] == record.t0_s
+    assert record.time_s[-1] == pytest.approx(record.t0_s + record.dt_s * (len(record.values) - 1), rel=1e-15)
+    for result in (bound, s, picked, value, record):
+        assert type(result).__name__ in repr(result)
 
 
 def test_spikes_and_modal_id_on_the_real_record():
