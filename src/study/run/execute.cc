@@ -94,6 +94,34 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// How a unit's record says it failed: a fit keeps "failed" as its status and the reason as its termination (the
+// columns of cases and start-distance fits); the other kinds say "failed: <reason>" in their status.
+enum class Failure { AsTermination, InStatus };
+
+// A unit's body run on its record (prefilled with the fields a failure leaves), timed: whatever it throws becomes the
+// record's status, never a crash of the study.
+template <typename Body>
+Record timed(Record r, Failure failure, Body body) {
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    body(r);
+  } catch (const std::exception& e) {
+    if (failure == Failure::AsTermination) {
+      r.set("status", std::string("failed"));
+      r.set("termination", e.what());
+    } else {
+      r.set("status", std::string("failed: ") + e.what());
+    }
+  }
+  r.set("wall_time_s", seconds_since(t0));
+  return r;
+}
+
+// A unit that works on the truth's record cannot run when the truth failed; it fails with the truth's reason.
+void require_truth(const Record& truth) {
+  if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+}
+
 // A fit's outcome in a record (cases and start-distance fits alike).
 void record_fit(Record& r, const fit::FitResult& result) {
   r.set("status", result.status);
@@ -128,9 +156,7 @@ Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& trut
 }  // namespace
 
 Record run_truth(const StudySpec& spec, const Unit& truth) {
-  Record r;
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
+  Record record = timed(Record(), Failure::InStatus, [&](Record& r) {
     const model::BeamParameters beam = spec.truth.parameters;
     const galerkin::SplineSpace space(spec.truth.elements);
     const galerkin::BeamForms forms(space, beam.l, beam.support);
@@ -170,13 +196,10 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
     r.set("mode_frequency_hz", f);
     r.set("mode_damping_ratio", zeta);
     r.set("integrator", trace.stats.integrator);
-  } catch (const std::exception& e) {
-    r.set("status", std::string("failed: ") + e.what());
-  }
-  r.set("wall_time_s", seconds_since(t0));
-  r.set("kind", unit_kind_name(UnitKind::Truth));
-  r.set("inputs", inputs_hash(truth));
-  return r;
+  });
+  record.set("kind", unit_kind_name(UnitKind::Truth));
+  record.set("inputs", inputs_hash(truth));
+  return record;
 }
 
 int modes_in_data(const std::vector<double>& clean, double dt_s, const std::vector<double>& mode_frequency_hz) {
@@ -206,17 +229,16 @@ void validate_plan(const StudySpec& spec, const Plan& plan) {
 }
 
 Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
-  Record r;
-  const auto t0 = std::chrono::steady_clock::now();
-  record_unrun_fit(r, spec.fit.estimate);
-  r.set("a4", std::string("-"));
+  Record prefilled;
+  record_unrun_fit(prefilled, spec.fit.estimate);
+  prefilled.set("a4", std::string("-"));
   const model::BeamParameters beam = spec.truth.parameters;
   for (const auto& key : spec.fit.estimate) {
-    r.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
-    r.set("relative_error." + key, std::numeric_limits<double>::quiet_NaN());
+    prefilled.set("standard_error." + key, std::numeric_limits<double>::quiet_NaN());
+    prefilled.set("relative_error." + key, std::numeric_limits<double>::quiet_NaN());
   }
-  try {
-    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+  return timed(std::move(prefilled), Failure::AsTermination, [&](Record& r) {
+    require_truth(truth);
     const std::vector<double> clean = clean_record(truth, unit.samples);
     const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
     int modes = 0, spikes = 0;
@@ -239,20 +261,14 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
         r.set("overlay.status", std::string("failed: ") + e.what());
       }
     }
-  } catch (const std::exception& e) {
-    r.set("status", std::string("failed"));
-    r.set("termination", e.what());
-  }
-  r.set("wall_time_s", seconds_since(t0));
-  return r;
+  });
 }
 
 Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& truth) {
-  Record r;
-  const auto t0 = std::chrono::steady_clock::now();
-  r.set("status", std::string("ok"));
-  try {
-    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+  Record prefilled;
+  prefilled.set("status", std::string("ok"));
+  return timed(std::move(prefilled), Failure::InStatus, [&](Record& r) {
+    require_truth(truth);
     const std::vector<double> clean = clean_record(truth, unit.samples);
     int modes = 0, spikes = 0;
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
@@ -319,22 +335,17 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
       r.set("evaluations", static_cast<double>(result.evaluations));
       for (const auto& p : result.parameters) r.set("estimate." + p.key, p.estimate);
     }
-  } catch (const std::exception& e) {
-    r.set("status", std::string("failed: ") + e.what());
-  }
-  r.set("wall_time_s", seconds_since(t0));
-  return r;
+  });
 }
 
 Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
-  Record r;
-  const auto t0 = std::chrono::steady_clock::now();
-  record_unrun_fit(r, spec.fit.estimate);
-  r.set("frequency_offset", 0.0);
-  r.set("shrunk", 0.0);
-  for (const auto& key : spec.fit.estimate) r.set("start." + key, std::numeric_limits<double>::quiet_NaN());
-  try {
-    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+  Record prefilled;
+  record_unrun_fit(prefilled, spec.fit.estimate);
+  prefilled.set("frequency_offset", 0.0);
+  prefilled.set("shrunk", 0.0);
+  for (const auto& key : spec.fit.estimate) prefilled.set("start." + key, std::numeric_limits<double>::quiet_NaN());
+  return timed(std::move(prefilled), Failure::AsTermination, [&](Record& r) {
+    require_truth(truth);
     const std::vector<double> clean = clean_record(truth, unit.samples);
     const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
     int modes = 0, spikes = 0;
@@ -357,22 +368,17 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
     }
     for (const auto& key : spec.fit.estimate) r.set("start." + key, value(o.start, key));
     record_fit(r, fit::fit(o, data));
-  } catch (const std::exception& e) {
-    r.set("status", std::string("failed"));
-    r.set("termination", e.what());
-  }
-  r.set("wall_time_s", seconds_since(t0));
-  return r;
+  });
 }
 
 Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
-  Record r;
-  const auto t0 = std::chrono::steady_clock::now();
-  r.set("status", std::string("failed"));
-  r.set("noise_sd", std::numeric_limits<double>::quiet_NaN());
-  for (const auto& key : spec.fit.estimate) r.set("relative_sd." + key, std::numeric_limits<double>::quiet_NaN());
-  try {
-    if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+  Record prefilled;
+  prefilled.set("status", std::string("failed"));
+  prefilled.set("noise_sd", std::numeric_limits<double>::quiet_NaN());
+  for (const auto& key : spec.fit.estimate)
+    prefilled.set("relative_sd." + key, std::numeric_limits<double>::quiet_NaN());
+  return timed(std::move(prefilled), Failure::InStatus, [&](Record& r) {
+    require_truth(truth);
     // The noise the cases add: level x RMS of the clean record (signal/noise.h).
     const double noise_sd = unit.noise * signal::rms(clean_record(truth, unit.samples));
     const fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements,
@@ -383,11 +389,7 @@ Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
     r.set("rcond", b.rcond);
     for (std::size_t i = 0; i < b.keys.size(); ++i)
       r.set("relative_sd." + b.keys[i], b.relative_sd(static_cast<Eigen::Index>(i)));
-  } catch (const std::exception& e) {
-    r.set("status", std::string("failed: ") + e.what());
-  }
-  r.set("wall_time_s", seconds_since(t0));
-  return r;
+  });
 }
 
 Record run_frequencies(const StudySpec& spec, int elements) {
