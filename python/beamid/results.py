@@ -13,10 +13,20 @@ import numpy as np
 def read_table(path, as_dict=False):
     """One CSV table: a structured array (one field per column), or with ``as_dict`` a dict of column arrays."""
     with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.reader(f))
+        try:
+            rows = list(csv.reader(f, strict=True))  # strict: an unclosed quote is an error, not a field to the end
+        except csv.Error as error:
+            raise ValueError(f"{path}: not a CSV table as beamid writes them: {error}") from None
     if not rows:
         raise ValueError(f"{path}: empty file: a results table starts with a header line")
     header, body = rows[0], rows[1:]
+    for j, name in enumerate(header, start=1):
+        if not name.strip() or any(c in name for c in "\r\n\"") or name != name.strip():
+            raise ValueError(f"{path}:1: column {j} is named {name!r}: a results table's header names each column "
+                             f"(no blank, quoted or multi-line names)")
+    repeated = sorted({name for name in header if header.count(name) > 1})
+    if repeated:
+        raise ValueError(f"{path}:1: column name(s) {', '.join(repeated)} given twice: each column has its own name")
     for line, row in enumerate(body, start=2):
         if len(row) != len(header):
             raise ValueError(f"{path}:{line}: {len(row)} fields: the header names {len(header)}")

@@ -1,6 +1,8 @@
 #include "api/cost_request.h"
 
 #include <algorithm>
+#include <string_view>
+#include <utility>
 
 #include "core/errors.h"
 
@@ -45,6 +47,18 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.name = request.name;
   o.spikes = spike_options(request.spikes, caller);
   o.window = window_options(request.window, caller);
+  // A weight the chosen cost has no term for would be ignored without a word: eps1 and eps2 weigh the spike costs'
+  // frequency and magnitude terms, eps3 spike-smooth's decay rates (costs/cost.h).
+  const std::pair<const char*, std::optional<double>> weights[] = {
+      {"eps1", request.eps1}, {"eps2", request.eps2}, {"eps3", request.eps3}};
+  for (const auto& [key, value] : weights) {
+    const bool smooth_only = std::string_view(key) == "eps3";
+    if (value && (smooth_only ? request.name != costs::kSpikeSmoothCost : !costs::is_spike_cost(request.name)))
+      refuse(caller, key, format_value(*value),
+             std::string("weighs a term of ") +
+                 (smooth_only ? "the spike-smooth cost" : "the spike costs (spike, spike-smooth)") + "; cost " +
+                 request.name + " has none");
+  }
   o.eps1 = request.eps1;
   o.eps2 = request.eps2;
   o.eps3 = request.eps3;

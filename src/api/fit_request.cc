@@ -108,9 +108,13 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     refuse(caller, "refine", *request.refine, "is the second cost of --strategy hybrid only");
   o.refine = request.refine.value_or(o.refine);
   o.scaling = request.scaling;
-  o.record_weights = request.record_weights;
+  o.record_weights = request.record_weights.value_or(fit::kRmsWeights);
   if (!fit::record_weight_names().contains(o.record_weights))
     refuse(caller, "record-weights", o.record_weights, "must be one of " + fit::record_weight_names().list());
+  // Weights between records mean nothing for one: said, not ignored.
+  if (request.record_weights && channels.size() == 1)
+    refuse(caller, "record-weights", o.record_weights,
+           "weighs the records of a joint fit against each other; this fit has one record (give several --channel)");
   o.starts = request.starts;
   if (request.seed < 0) refuse(caller, "seed", std::to_string(request.seed), "must be an integer >= 0");
   o.seed = static_cast<std::uint64_t>(request.seed);

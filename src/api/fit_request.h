@@ -45,10 +45,10 @@ struct FitRequest {
   int starts = 1;                        // --starts
   long long seed = 1;                    // --seed (>= 0)
   std::string integrator = "fast";       // --integrator
-  std::string record_weights = fit::kRmsWeights;  // --record-weights (several channels)
-  std::optional<std::string> detrend;             // --detrend (default linear for a free decay, none otherwise)
-  std::optional<int> welch;                       // --welch K: the spikes picked on Welch's average of K segments
-  std::optional<int> windows;                     // --windows K: also the spread of the estimates over K windows
+  std::optional<std::string> record_weights;  // --record-weights (several channels; unset: fit::kRmsWeights)
+  std::optional<std::string> detrend;         // --detrend (default linear for a free decay, none otherwise)
+  std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments
+  std::optional<int> windows;                 // --windows K: also the spread of the estimates over K windows
 };
 
 // What compute_fit returns: the options the request gave, the records (several for several channels, else none: one

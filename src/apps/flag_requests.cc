@@ -144,7 +144,7 @@ api::FitRequest fit_request_of(const Flags& a) {
   r.starts = a.optional_integer("starts").value_or(r.starts);
   r.seed = a.optional_integer("seed").value_or(1);
   r.integrator = a.text_or("integrator", r.integrator);
-  r.record_weights = a.text_or("record-weights", r.record_weights);
+  if (a.has("record-weights")) r.record_weights = a.text("record-weights");
   if (a.has("detrend")) r.detrend = a.text("detrend");
   r.welch = a.optional_integer("welch");
   r.windows = a.optional_integer("windows");

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <tuple>
 
 #include "config/document.h"
 #include "core/errors.h"
@@ -107,10 +108,18 @@ void parse_attachments(Table root, BeamParameters& beam) {
     a.x = t.number(
         "x", std::nullopt, [&](double v) { return v > 0 && v <= l; },
         "must be in (0, l] m, measured from the clamp" + of_length);
+    // A body and the beam it sits on (model::max_body_mass_kg, max_body_inertia_kg_m2): beyond, no rig, and the
+    // Galerkin matrices lose their digits.
+    const double most_m = model::max_body_mass_kg(beam);
     a.m = t.number(
-        "m", std::nullopt, [](double v) { return v >= 0 && v <= 1e20; }, "must be >= 0 (kg)");
+        "m", std::nullopt, [&](double v) { return v >= 0 && v <= most_m; },
+        "must be in [0, " + format_rounded(most_m) + "] kg (at most " + format_rounded(model::kMaxBodyMassRatio) +
+            " times the beam's mass rho l = " + format_rounded(beam.rho * l) + " kg)");
+    const double most_J = model::max_body_inertia_kg_m2(a.m, beam);
     a.J = t.number(
-        "J", 0.0, [](double v) { return v >= 0 && v <= 1e20; }, "must be >= 0 (kg m^2, about the body's centre)");
+        "J", 0.0, [&](double v) { return v >= 0 && v <= most_J; },
+        "must be in [0, (m + rho l) l^2 = " + format_rounded(most_J) +
+            "] kg m^2 (about the body's centre; a radius of gyration up to a beam length)");
     a.c = t.number(
         "c", 0.0, [&](double v) { return std::abs(v) <= l; },
         "must be in [-l, l] m: the body's centre lies within a beam length of its fixing point" + of_length);
@@ -120,16 +129,22 @@ void parse_attachments(Table root, BeamParameters& beam) {
 }
 
 // [support]: the clamp's springs (model/beam_parameters.h), k_theta in N m/rad and k_w in N/m, each optional (absent:
-// rigid in that direction). The range spans any real clamp: from a beam on a soft hinge to a weld, with room for
-// fits; beyond 1e20 the matrices lose their digits.
+// rigid in that direction). The range (model::spring_range) is relative to the beam's own stiffness: from a clamp
+// that is nearly a hinge to one that is rigid to 1e-10; beyond it the eigensolvers lose their digits.
 void parse_support(Table root, BeamParameters& beam) {
   std::optional<Table> t = root.table("support");
   if (!t) return;
-  const auto spring = [](double v) { return v > 0 && v <= 1e20; };
-  if (t->has("k_theta"))
-    beam.support.k_theta = t->number("k_theta", std::nullopt, spring, "must be in (0, 1e20] N m/rad (omit it: rigid)");
-  if (t->has("k_w"))
-    beam.support.k_w = t->number("k_w", std::nullopt, spring, "must be in (0, 1e20] N/m (omit it: rigid)");
+  for (const auto& [key, unit, slot] :
+       {std::tuple{"k_theta", "N m/rad", &beam.support.k_theta}, std::tuple{"k_w", "N/m", &beam.support.k_w}}) {
+    if (!t->has(key)) continue;
+    const model::SpringRange range = model::spring_range(key, beam);
+    *slot = t->number(
+        key, std::nullopt, [&](double v) { return v >= range.lower && v <= range.upper; },
+        "must be in [" + format_rounded(range.lower) + ", " + format_rounded(range.upper) + "] " + unit + " (" +
+            range.ratio + " in [" + format_rounded(model::kMinSpringRatio) + ", " +
+            format_rounded(model::kMaxSpringRatio) + "] with EI = " + format_value(beam.EI) +
+            ", l = " + format_value(beam.l) + "; softer is a hinge, stiffer is rigid: omit it)");
+  }
   t->finish({"k_theta", "k_w"});
 }
 

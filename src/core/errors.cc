@@ -14,6 +14,12 @@ std::string format_value(double value) {
   return ec == std::errc() ? std::string(buffer, end) : std::string("?");
 }
 
+std::string format_rounded(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
 std::string one_line(const std::string& message) {
   std::string out;
   out.reserve(message.size());

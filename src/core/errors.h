@@ -29,5 +29,8 @@ class NumericalError : public std::runtime_error {
 
 // Shortest round-trip text of a double, for error messages ("-1", "0.491", "1e-300", "nan").
 std::string format_value(double value);
+// A derived quantity (a bound computed from other values) to `digits` significant digits, as printf's %g: "425.3",
+// "1.074e+10". Values a user gave are quoted with format_value, exactly.
+std::string format_rounded(double value, int digits = 4);
 
 }  // namespace beamid

@@ -204,7 +204,28 @@ std::optional<std::string> implausibility(const BeamParameters& beam) {
            ", kAG r^2/EI (= kappa G/E, r = sqrt(rho_r2/rho) = " + format_value(r) + " m) is " +
            format_value(shear_ratio) +
            ": must lie in [1e-4, 10] (0.26-0.33 for metals, about 0.01 for fibre composites)";
+  if (!(beam.m <= max_body_mass_kg(beam)))
+    return "m = " + format_value(beam.m) + ": the tip body must be at most " + format_rounded(kMaxBodyMassRatio) +
+           " times the beam's mass (rho l = " + format_rounded(beam.rho * beam.l) + " kg): at most " +
+           format_rounded(max_body_mass_kg(beam)) + " kg";
+  if (!(beam.J_o <= max_body_inertia_kg_m2(beam.m, beam)))
+    return "J_o = " + format_value(beam.J_o) +
+           ": the tip body's inertia about its centre must be at most (m + rho l) l^2 = " +
+           format_rounded(max_body_inertia_kg_m2(beam.m, beam)) + " kg m^2 (a radius of gyration up to a beam length)";
   return std::nullopt;
+}
+
+double max_body_mass_kg(const BeamParameters& beam) { return kMaxBodyMassRatio * beam.rho * beam.l; }
+
+double max_body_inertia_kg_m2(double m_kg, const BeamParameters& beam) {
+  return (m_kg + beam.rho * beam.l) * beam.l * beam.l;
+}
+
+SpringRange spring_range(std::string_view spring, const BeamParameters& beam) {
+  // The spring's stiffness in units of the beam's: EI/l for a rotation, EI/l^3 for a deflection.
+  const bool rotation = spring == "k_theta";
+  const double unit = rotation ? beam.EI / beam.l : beam.EI / (beam.l * beam.l * beam.l);
+  return {kMinSpringRatio * unit, kMaxSpringRatio * unit, rotation ? "k_theta l/EI" : "k_w l^3/EI"};
 }
 
 namespace {

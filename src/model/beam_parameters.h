@@ -120,8 +120,32 @@ std::optional<std::string> attachment_violation(const Attachment& a, double l);
 
 // validation_error, then what no real beam has although the mathematics allows it (the exact determinant is tested
 // at l/r = 1e6): a section thinner than 1e-4 or thicker than 1 beam length (l/r outside [2 sqrt 3, 2 sqrt 3 1e4],
-// r = sqrt(rho_r2/rho)), or kAG r^2/EI = kappa G/E outside [1e-4, 10]. For parameters a user gives (beam files).
+// r = sqrt(rho_r2/rho)), kAG r^2/EI = kappa G/E outside [1e-4, 10], or a tip body beyond max_body_mass_kg and
+// max_body_inertia_kg_m2 (below). For parameters a user gives (beam files).
 std::optional<std::string> implausibility(const BeamParameters& beam);
+
+// Scales between a body or a clamp and the beam it sits on that no real rig has, and beyond which the Galerkin
+// matrices lose their digits (an adversarial pass found a 1e6 kg body, a 1e6 kg m^2 inertia on a 1 g body and 1e-10 or
+// 1e20 clamp springs ending in "K is not positive definite" with no key named). For parameters a user gives.
+// A body (tip or attachment) of mass m: at most 1e4 times the beam's own mass rho l.
+inline constexpr double kMaxBodyMassRatio = 1e4;
+double max_body_mass_kg(const BeamParameters& beam);
+// Its rotary inertia about its centre, J = m k^2: a radius of gyration k up to a beam length, counting the beam's mass
+// with the body's so that a small body may carry a flywheel: J <= (m + rho l) l^2.
+double max_body_inertia_kg_m2(double m_kg, const BeamParameters& beam);
+// A clamp spring against the beam's own stiffness, k_theta l/EI and k_w l^3/EI, in [1e-4, 1e10]. Softer, the clamp
+// is a hinge and the near-rigid mode's frequency (sqrt(k/inertia), 1e-2 of the first bending mode's at 1e-4) falls
+// below what the undamped eigensolver resolves (at 1e-6 the Galerkin frequency drops under the exact one, which
+// Rayleigh-Ritz forbids; at 1e-8 the eigensolver fails); stiffer, the clamp is rigid to 1e-10 and only spoils K's
+// conditioning (k = 1e15 on the thin beam moved mode 1 by 2e-4): omit the spring.
+inline constexpr double kMinSpringRatio = 1e-4, kMaxSpringRatio = 1e10;
+// The admissible range of support.k_theta ("k_theta", N m/rad) or support.k_w ("k_w", N/m) for this beam, and the
+// ratio's formula for messages ("k_theta l/EI").
+struct SpringRange {
+  double lower = 0, upper = 0;
+  std::string ratio;
+};
+SpringRange spring_range(std::string_view spring, const BeamParameters& beam);
 
 // Built-in parameter sets of model.md section 5: "banks-aluminium" and "thick-steel".
 std::vector<std::string> preset_names();

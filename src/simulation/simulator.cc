@@ -1,5 +1,7 @@
 #include "simulation/simulator.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/errors.h"
@@ -70,7 +72,15 @@ ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::S
 Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,
                const SimulatorOptions& options) {
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  return make_simulator(options)->run(system, make_problem(forms, system, experiment, beam.l));
+  Trace trace = make_simulator(options)->run(system, make_problem(forms, system, experiment, beam.l));
+  // A response beyond double's range (an absurd force amplitude on a soft beam) is a failure, never a record of inf
+  // and NaN samples handed on as if it were one.
+  const auto bad = std::find_if(trace.y.begin(), trace.y.end(), [](double v) { return !std::isfinite(v); });
+  if (trace.ok() && bad != trace.y.end())
+    trace.status =
+        "the output is not finite from t = " + format_value(experiment.dt_s * (bad - trace.y.begin())) +
+        " s on (the response overflows double: force_amplitude_N = " + format_value(experiment.force_amplitude_N) + ")";
+  return trace;
 }
 
 }  // namespace beamid::simulation

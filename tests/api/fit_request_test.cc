@@ -116,6 +116,23 @@ TEST(FitRequest, EveryConstraintIsRefusedInTheCommandLinesForm) {
   r.caller.label = "beamid.fit";  // another front end's label
   r.record_weights = "equal";
   EXPECT_EQ(refusal(r), "beamid.fit: --record-weights = 'equal': must be one of rms, noise");
+  // Choices the fit has no use for are said, not ignored (the adversarial pass's D029 and C019): record weights of a
+  // one-record fit, and a spike weight given to a cost without spikes.
+  r = request();
+  r.record_weights = "noise";
+  EXPECT_EQ(refusal(r),
+            "beamid fit: --record-weights = 'noise': weighs the records of a joint fit against each other; this fit "
+            "has one record (give several --channel)");
+  r = request();
+  r.cost.name = "time";
+  r.cost.eps1 = 2.0;
+  EXPECT_EQ(refusal(r),
+            "beamid fit: --eps1 = '2': weighs a term of the spike costs (spike, spike-smooth); cost time "
+            "has none");
+  r = request();
+  r.cost.name = "spike";
+  r.cost.eps3 = 1.0;
+  EXPECT_EQ(refusal(r), "beamid fit: --eps3 = '1': weighs a term of the spike-smooth cost; cost spike has none");
   EXPECT_EQ(refusal(request()), "");
 }
 

@@ -124,10 +124,18 @@ TEST(BeamToml, SupportSpringsAreReadAndAbsentMeansRigid) {
   const BeamParameters rotation = config::parse_beam_toml(kValid + "[support]\nk_theta = 350\n", "beam.toml");
   EXPECT_TRUE(rotation.support.rotation_free());
   EXPECT_FALSE(rotation.support.deflection_free());
+  // The springs' range is the beam's own stiffness times [1e-4, 1e10] (model::spring_range): EI/l = 1.0737 N m for
+  // k_theta, EI/l^3 = 5.134 N/m for k_w on this beam.
   EXPECT_EQ(error_of(kValid + "[support]\nk_theta = 0\n"),
-            "beam.toml:16: support.k_theta = 0: must be in (0, 1e20] N m/rad (omit it: rigid)");
+            "beam.toml:16: support.k_theta = 0: must be in [0.0001074, 1.074e+10] N m/rad (k_theta l/EI in "
+            "[0.0001, 1e+10] with EI = 0.491, l = 0.4573; softer is a hinge, stiffer is rigid: omit it)");
   EXPECT_EQ(error_of(kValid + "[support]\nk_w = -3\n"),
-            "beam.toml:16: support.k_w = -3: must be in (0, 1e20] N/m (omit it: rigid)");
+            "beam.toml:16: support.k_w = -3: must be in [0.0005134, 5.134e+10] N/m (k_w l^3/EI in [0.0001, "
+            "1e+10] with EI = 0.491, l = 0.4573; softer is a hinge, stiffer is rigid: omit it)");
+  // The adversarial pass's springs, which ended in "K is not positive definite" with no key named.
+  for (const char* spring : {"k_theta = 1e-10", "k_theta = 1e20", "k_w = 1e-12", "k_w = 1e15"})
+    EXPECT_NE(error_of(kValid + "[support]\n" + spring + "\n").find("beam.toml:16: support.k_"), std::string::npos)
+        << spring;
   EXPECT_EQ(error_of(kValid + "[support]\nk_x = 3\n"),
             "beam.toml:16: unknown key support.k_x: valid keys are k_theta, k_w");
   BeamParameters beam = preset("thick-steel");
@@ -135,11 +143,34 @@ TEST(BeamToml, SupportSpringsAreReadAndAbsentMeansRigid) {
   EXPECT_EQ(*validation_error(beam), "support.k_w = 0: must be > 0 (omit it for a rigid clamp)");
 }
 
+TEST(BeamToml, ATipBodyNoRigHasIsRefusedOnItsLine) {
+  // The adversarial pass's tip bodies: 1e6 kg (a failed eigenproblem with no key named) and J_o = 1e3 kg m^2 on a
+  // 50 g body (accepted; modes at 0.06 Hz). The bounds: 1e4 rho l, and (m + rho l) l^2.
+  EXPECT_EQ(error_of(replace(kValid, "m = 0.050", "m = 1e6")),
+            "beam.toml:12: beam.m = 1e+06: the tip body must be at most 1e+04 times the beam's mass (rho l = "
+            "0.04253 kg): at most 425.3 kg");
+  EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6", "J_o = 1e3")),
+            "beam.toml:14: beam.J_o = 1000: the tip body's inertia about its centre must be at most (m + rho l) l^2 = "
+            "0.01935 kg m^2 (a radius of gyration up to a beam length)");
+  // The largest admissible body is admissible.
+  EXPECT_NO_THROW(config::parse_beam_toml(replace(kValid, "m = 0.050", "m = 425"), "beam.toml"));
+}
+
 TEST(BeamToml, AttachmentErrorsNameLineKeyValueAndConstraint) {
   const std::string base = std::string(kValid) + "[[attachment]]\n";  // the table opens on line 15
   EXPECT_EQ(error_of(base + "x = 0.5\nm = 0.01\n"),
             "beam.toml:16: attachment1.x = 0.5: must be in (0, l] m, measured from the clamp (l = 0.4573 m)");
-  EXPECT_EQ(error_of(base + "x = 0.1\nm = -1\n"), "beam.toml:17: attachment1.m = -1: must be >= 0 (kg)");
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = -1\n"),
+            "beam.toml:17: attachment1.m = -1: must be in [0, 425.3] kg (at most 1e+04 times the beam's mass rho l "
+            "= 0.04253 kg)");
+  // A body 1e4 times the beam's mass, or whose radius of gyration exceeds a beam length, is no rig (and ended in a
+  // failed eigenproblem with no key named): refused with the line, the key and the bound.
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = 1e6\n"),
+            "beam.toml:17: attachment1.m = 1e+06: must be in [0, 425.3] kg (at most 1e+04 times the beam's mass rho "
+            "l = 0.04253 kg)");
+  EXPECT_EQ(error_of(base + "x = 0.1\nm = 0.001\nJ = 1e6\n"),
+            "beam.toml:18: attachment1.J = 1e+06: must be in [0, (m + rho l) l^2 = 0.009103] kg m^2 (about the "
+            "body's centre; a radius of gyration up to a beam length)");
   EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\nc = 0.5\n"),
             "beam.toml:18: attachment1.c = 0.5: must be in [-l, l] m: the body's centre lies within a beam length of "
             "its fixing point (l = 0.4573 m)");

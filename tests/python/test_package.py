@@ -6,6 +6,7 @@ Run by ctest (python.pytest) with PYTHONPATH=<build>/python, BEAMID=<build>/beam
 import dataclasses
 import io
 import os
+import re
 import subprocess
 import threading
 
@@ -293,6 +294,20 @@ def test_load_results_reads_a_study():
     assert np.array_equal(columns["elements"], cases["elements"])
     with pytest.raises(FileNotFoundError):
         beamid.load_results(os.path.join(SRC, "results", "no-such-study"))
+
+
+def test_a_table_beamid_did_not_write_is_refused(tmp_path):
+    # The adversarial pass's garbage tables came back as empty arrays with a column named 'unclosed\n1,2,3\n'.
+    cases = {"unclosed.csv": ('garbage,"unclosed\n1,2,3\n', "unexpected end of data"),
+             "twice.csv": ("a,a\n1,2\n", "given twice"),
+             "blank.csv": ("a,,c\n1,2,3\n", "column 2 is named ''"),
+             "ragged.csv": ("a,b\n1,2,3\n", ":2: 3 fields: the header names 2")}
+    for name, (text, message) in cases.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+        with pytest.raises(ValueError, match=re.escape(message)):
+            beamid.read_table(str(tmp_path / name))
+    with pytest.raises(ValueError, match=re.escape(str(tmp_path / "blank.csv"))):  # a folder of them: the first named
+        beamid.load_results(str(tmp_path))
 
 
 def test_the_example_script_runs(tmp_path):
