@@ -239,7 +239,7 @@ py::dict py_cost(const std::vector<std::string>& args, const py::object& data, c
       model.dt_s = record.dt_s;
       model.values.assign(predicted->data(), predicted->data() + predicted->size());
     } else {
-      model = io::read_time_series(a.text("prediction"));
+      model = apps::read_prediction(a);
     }
     e = api::compute_cost(apps::cost_evaluation_request_of(a), record, model);
   }

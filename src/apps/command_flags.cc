@@ -87,6 +87,16 @@ io::TimeSeries read_data(const Flags& a, const RecordReader& read) {
 
 io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); }
 
+io::TimeSeries read_prediction(const Flags& a) {
+  io::ImportOptions o;
+  o.channel_advice = "a prediction holds one, the model's output beside its time (--channel chooses among --data's)";
+  try {
+    return io::read_time_series(a.text("prediction"), o);
+  } catch (const InputError& e) {
+    throw InputError("beamid " + a.command() + ": --prediction: " + e.what());
+  }
+}
+
 namespace {
 
 // Whether writing `output` would replace the existing file `input`: the same inode when both exist, else the same

@@ -24,6 +24,9 @@ std::vector<io::TimeSeries> read_channels(const Flags& a);
 using RecordReader = std::function<io::TimeSeries(const io::ImportOptions&)>;
 io::TimeSeries read_data(const Flags& a, const RecordReader& read);
 std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& read);
+// --prediction (cost): one signal column beside its time, read as it is (no import flag applies to it: they are the
+// record's); a file of several columns is told so, not sent to --channel.
+io::TimeSeries read_prediction(const Flags& a);
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h), or TOML text given inline (Flags::set_inline);
 // its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);

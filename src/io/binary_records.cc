@@ -19,7 +19,7 @@ Samples array_samples(const std::string& path, const std::string& format, const 
   const std::size_t samples = by_row ? rows : columns, channels = by_row ? columns : rows;
   std::vector<std::string> names;
   for (std::size_t c = 0; c < channels; ++c) names.push_back(std::to_string(c + 1));
-  const std::size_t channel = choose_channel(names, o.channel, path, what + " channels");
+  const std::size_t channel = choose_channel(names, o, path, what + " channels");
   s.value_column = channels == 1 ? what : what + " channel " + names[channel];
   s.time_column = "time";
   for (std::size_t i = 0; i < samples; ++i) out.v.push_back(by_row ? at(i, channel) : at(channel, i));
@@ -70,7 +70,7 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
   if (names.empty())
     throw InputError(path + ": no real time record (dataset 58 of function type 1) among its " +
                      std::to_string(functions.size()) + " dataset(s) 58" + (other.empty() ? "" : " (" + other + ")"));
-  const UffFunction& f = functions[records[choose_channel(names, o.channel, path, "time records (datasets 58)")]];
+  const UffFunction& f = functions[records[choose_channel(names, o, path, "time records (datasets 58)")]];
   Samples out;
   out.series.path = path;
   out.series.format = "uff58";

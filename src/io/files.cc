@@ -105,7 +105,10 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
   }
 }
 
-std::string read_file(const std::filesystem::path& path, const std::string& cannot_read, std::uintmax_t max_bytes) {
+namespace {
+
+// The file opened for reading after the refusals read_file lists but the size's.
+std::ifstream open_user_file(const std::filesystem::path& path, const std::string& cannot_read) {
   namespace fs = std::filesystem;
   const std::string where = path.string() + ": ";
   std::error_code ec;
@@ -113,13 +116,30 @@ std::string read_file(const std::filesystem::path& path, const std::string& cann
   if (!ec && fs::is_directory(status)) throw InputError(where + cannot_read + " (is a folder)");
   if (!ec && fs::exists(status) && !fs::is_regular_file(status))
     throw InputError(where + cannot_read + " (not a regular file)");
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (!ec && size > max_bytes)
-    throw InputError(where + std::to_string(size) + " bytes: more than the " +
-                     bytes_text(static_cast<double>(max_bytes)) + " such a file may have here");
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(where + cannot_read);
+  if (!in) throw InputError(where + cannot_read + (errno ? " (" + std::string(std::strerror(errno)) + ")" : ""));
+  return in;
+}
+
+}  // namespace
+
+std::string read_file(const std::filesystem::path& path, const std::string& cannot_read, std::uintmax_t max_bytes) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    throw InputError(path.string() + ": " + std::to_string(size) + " bytes: more than the " +
+                     bytes_text(static_cast<double>(max_bytes)) + " such a file may have here");
+  std::ifstream in = open_user_file(path, cannot_read);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string read_file_head(const std::filesystem::path& path, const std::string& cannot_read, std::size_t bytes) {
+  std::ifstream in = open_user_file(path, cannot_read);
+  std::string head(bytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(bytes));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head;
 }
 
 }  // namespace beamid::io

@@ -37,10 +37,13 @@ bool is_existing_file(const std::filesystem::path& path);
 bool is_existing_folder(const std::filesystem::path& path);
 
 // The whole file, for every reader of user files (records, TOML files, study records). Refused before anything
-// is read, each an InputError: a missing or unreadable path ("path: <cannot_read>"), a folder or a device
-// ("path: <cannot_read> (is a folder)", "... (not a regular file)": /dev/zero is never read), and a file larger than
-// max_bytes.
+// is read, each an InputError: a missing or unreadable path ("path: <cannot_read> (No such file or directory)", the
+// system's reason), a folder or a device ("path: <cannot_read> (is a folder)", "... (not a regular file)": /dev/zero is
+// never read), and a file larger than max_bytes.
 std::string read_file(const std::filesystem::path& path, const std::string& cannot_read,
                       std::uintmax_t max_bytes = std::uintmax_t{1} << 30);
+// Its first `bytes` bytes (all of a shorter file), with the same refusals but the size's: for a look at a file's kind
+// before the whole of it is read.
+std::string read_file_head(const std::filesystem::path& path, const std::string& cannot_read, std::size_t bytes);
 
 }  // namespace beamid::io

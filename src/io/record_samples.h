@@ -4,7 +4,9 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "io/time_series.h"
@@ -24,9 +26,12 @@ struct Samples {
 // A field as an error message shows it: at most `limit` characters, bytes that are not printable ASCII as \xNN.
 std::string shown(const std::string& text, std::size_t limit = 40);
 // The channel a reader's names offer: by name, or by 1-based index; the only one when none is asked for.
-std::size_t choose_channel(const std::vector<std::string>& names, const std::string& channel, const std::string& path,
+std::size_t choose_channel(const std::vector<std::string>& names, const ImportOptions& o, const std::string& path,
                            const std::string& what);
 
+// The first byte of `text` that no text record holds (a control character other than tab, line feed, carriage return
+// and form feed), as the one-line refusal of a binary file of no format beamid reads; nothing for text.
+std::optional<std::string> binary_text_problem(std::string_view text, const std::string& path);
 // CSV or LabVIEW .lvm text (by the ending of `path`).
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o);
 // An array of samples x channels (either way round: the samples run along the longer dimension) with its time base

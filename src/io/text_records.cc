@@ -195,18 +195,22 @@ double parse(const std::string& path, int line, const std::string& column, const
 
 }  // namespace
 
-Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
+std::optional<std::string> binary_text_problem(std::string_view text, const std::string& path) {
   // Text holds no control characters but tab, line feed and carriage return (and form feed, harmlessly).
   const auto binary = std::find_if(text.begin(), text.end(), [](char c) {
     const auto u = static_cast<unsigned char>(c);
     return u < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f';
   });
-  if (binary != text.end())
-    throw InputError(path + ": byte " + std::to_string(binary - text.begin()) + " is 0x" +
-                     "0123456789abcdef"[(static_cast<unsigned char>(*binary) >> 4) & 15] +
-                     "0123456789abcdef"[static_cast<unsigned char>(*binary) & 15] +
-                     ": a binary file of no format beamid reads (it reads CSV and LabVIEW .lvm text, NumPy .npy, "
-                     "MATLAB .mat v5 and v7.3, and UFF dataset 58 ASCII or binary)");
+  if (binary == text.end()) return std::nullopt;
+  return path + ": byte " + std::to_string(binary - text.begin()) + " is 0x" +
+         "0123456789abcdef"[(static_cast<unsigned char>(*binary) >> 4) & 15] +
+         "0123456789abcdef"[static_cast<unsigned char>(*binary) & 15] +
+         ": a binary file of no format beamid reads (it reads CSV and LabVIEW .lvm text, NumPy .npy, MATLAB .mat v5 "
+         "and v7.3, and UFF dataset 58 ASCII or binary)";
+}
+
+Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
+  if (auto problem = binary_text_problem(text, path)) throw InputError(*problem);
   std::istringstream in(text);
   const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
   const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);
@@ -219,7 +223,7 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   std::vector<std::string> names;
   for (int c = 0; c < static_cast<int>(table.names.size()); ++c)
     if (c != table.time_column) signals.push_back(c), names.push_back(table.names[static_cast<std::size_t>(c)]);
-  const int column = signals[choose_channel(names, o.channel, path, "signal columns")];
+  const int column = signals[choose_channel(names, o, path, "signal columns")];
   s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
   s.value_column = table.names[static_cast<std::size_t>(column)];
   s.unit = table.units[static_cast<std::size_t>(column)];

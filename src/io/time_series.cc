@@ -40,15 +40,16 @@ std::string shown(const std::string& text, std::size_t limit) {
 }
 
 // The channel a reader's names offer: by name, or by 1-based index; the only one when none is asked for.
-std::size_t choose_channel(const std::vector<std::string>& names, const std::string& channel, const std::string& path,
+std::size_t choose_channel(const std::vector<std::string>& names, const ImportOptions& o, const std::string& path,
                            const std::string& what) {
+  const std::string& channel = o.channel;
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   list = shown(list, 160);  // room for the names of a multi-channel record, not for a binary file's bytes
   if (channel.empty()) {
     if (names.size() != 1)
       throw InputError(path + ": " + std::to_string(names.size()) + " " + what + " (" + list +
-                       "): choose one with --channel NAME or --channel INDEX");
+                       "): " + o.channel_advice);
     return 0;
   }
   // A name that several columns share (LVM and UFF channels may) does not choose one: the first was taken silently.
@@ -75,7 +76,13 @@ constexpr double kStandardGravity = 9.80665;  // m/s^2 per g
 // The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
 // about 50 million samples), checked against the memory that parsing it takes before it is parsed.
 std::string read_text(const std::string& path) {
-  std::string text = read_file(path, "cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF)");
+  const std::string cannot_read = "cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF)";
+  // Its first 64 KiB first: a binary file of no format beamid reads is refused before the whole of it is read (a
+  // 100 MB file of NUL bytes was read whole, 300 MB resident, before "byte 0 is 0x00").
+  const std::string head = read_file_head(path, cannot_read, 1 << 16);
+  if (!is_npy(head) && !is_mat(head) && !is_uff(head))
+    if (auto problem = binary_text_problem(head, path)) throw InputError(*problem);
+  std::string text = read_file(path, cannot_read);
   // Parsing holds the text, a table of fields and the numbers: about 5 bytes per byte of file (measured: 800 MB
   // for a 186 MB CSV of 4e6 samples).
   check_memory(path + ": reading " + bytes_text(static_cast<double>(text.size())),
@@ -264,6 +271,10 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
   // The format from the content: NumPy's magic, a MAT-file's header text, UFF's "-1" delimiter; else text by the
   // file's ending (.lvm, else CSV).
   const bool npy = is_npy(bytes), mat = !npy && is_mat(bytes), uff = !npy && !mat && is_uff(bytes);
+  // A binary file of none of these formats is said to be one before any option is weighed against it (a MAT v4 file
+  // with --sample-rate was told it "has a time base").
+  if (!npy && !mat && !uff)
+    if (auto problem = binary_text_problem(bytes, path)) throw InputError(*problem);
   if (!mat && (!o.variable.empty() || !o.time_variable.empty()))
     throw InputError(path + ": --variable and --time-variable name variables of a MAT-file; this is not one");
   if (!npy && !mat && o.sample_rate_hz)

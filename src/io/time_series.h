@@ -37,6 +37,8 @@ struct ImportOptions {
   std::optional<double> sample_rate_hz;    // the time base of a record that has none (.npy, .mat without a time)
   std::string variable, time_variable;     // .mat: the record's and its time vector's dotted paths
   std::optional<double> resample_rate_hz;  // band-limited resampling onto this rate after everything else
+  // What a file of several channels is told when none is chosen (a prediction has no --channel of its own).
+  std::string channel_advice = "choose one with --channel NAME or --channel INDEX";
 };
 
 struct TimeSeries {

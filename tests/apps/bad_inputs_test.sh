@@ -251,6 +251,38 @@ expect_error "bounds twice" "--bounds item 'EI=0.2:2': EI is bounded twice" fit 
 paste -d, "$tmp/z.csv" <(cut -d, -f2 "$tmp/z.csv") | sed '1s/.*/t_s,v,v/' >"$tmp/shared_name.csv"
 expect_error "ambiguous channel" "channel = 'v': 2 signal columns are named so (1, 2): choose one with --channel INDEX" \
   spikes --data "$tmp/shared_name.csv" --channel v
+# Scales no rig has, which ended in "K is not positive definite" or "(is M positive definite?)" with no key named
+# (the adversarial pass's A011, A082, A083, A087): refused on their line with the bound, in the beam's own units.
+B="$SRC/tests/data/banks-aluminium.toml"
+sed 's/^m = .*/m = 1e6/' "$B" >"$tmp/heavy_tip.toml"
+expect_error "1e6 kg tip" "heavy_tip.toml:12: beam.m = 1e+06: the tip body must be at most 1e+04 times the beam's mass" \
+  modes --beam "$tmp/heavy_tip.toml" --elements 4
+for k in 1e-10 1e+20; do
+  { cat "$B"; printf '[support]\nk_theta = %s\n' "$k"; } >"$tmp/spring.toml"
+  expect_error "k_theta $k" "support.k_theta = $k: must be in [0.0001074, 1.074e+10] N m/rad" \
+    simulate --beam "$tmp/spring.toml" --elements 4
+done
+{ cat "$B"; printf '[[attachment]]\nx = 0.2\nm = 0.001\nJ = 1e6\n'; } >"$tmp/flywheel.toml"
+expect_error "J 1e6 on 1 g" "attachment1.J = 1e+06: must be in [0, (m + rho l) l^2 = 0.009103] kg m^2" \
+  modes --beam "$tmp/flywheel.toml" --elements 4
+# A force whose response overflows double printed inf and NaN samples with exit 0 (A061, A062).
+expect_error "force 1e308" "force_amplitude_N = 1e+308: must be finite and at most 1e12 N in magnitude" \
+  simulate "${S[@]}" --force-amplitude 1e308 --output acceleration
+# Choices the computation has no use for are said, not ignored (C019, D029).
+expect_error "eps1 on time" "--eps1 = '2': weighs a term of the spike costs (spike, spike-smooth); cost time has none" \
+  cost --data "$tmp/z.csv" --prediction "$tmp/z.csv" --cost time --eps1 2
+expect_error "record weights of one record" "--record-weights = 'noise': weighs the records of a joint fit" \
+  fit --data "$tmp/z.csv" "${S[@]}" --estimate EI --cost time --record-weights noise
+# A missing file names the system's reason (Z023); a binary file of no known format (a MAT v4 file, NUL bytes) is
+# said to be one before any flag is weighed against it (N025) and from its first bytes, not after reading it whole.
+expect_error "missing record" "no-such.csv: cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF) (No such file or directory)" \
+  spikes --data "$tmp/no-such.csv"
+head -c 4096 /dev/zero >"$tmp/zeros.mat"
+expect_error "NUL file with --sample-rate" "zeros.mat: byte 0 is 0x00: a binary file of no format beamid reads" \
+  spikes --data "$tmp/zeros.mat" --sample-rate 1000
+# A prediction of several columns is told that it must hold one, not sent to --channel (C029).
+expect_error "two-column prediction" "--prediction: $tmp/two.csv: 2 signal columns (a, b): a prediction holds one" \
+  cost --data "$tmp/z.csv" --prediction "$tmp/two.csv" --cost time
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
