@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/limits.h"
+#include "io/units.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
@@ -57,6 +58,21 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
   experiment.samples = static_cast<int>(data.values.size());
 }
 
+// A record that states what it measures (its unit, io/units.h) is not fitted as another quantity: a velocity in m/s
+// fitted as a displacement "converged" with EI on its bound, without a word (the adversarial pass's V013-V016). A
+// free decay's mode amplitudes are solved for, so its quantity does not matter (simulation/free_decay.h).
+void check_quantity(const Caller& caller, const std::vector<io::TimeSeries>& channels,
+                    const simulation::Experiment& experiment) {
+  if (experiment.excitation == simulation::kFreeDecay) return;
+  for (const io::TimeSeries& record : channels) {
+    const std::string quantity = io::quantity_of(record.unit);
+    if (!quantity.empty() && quantity != experiment.output)
+      refuse(caller, "output", experiment.output,
+             "the record " + record.path + " (" + record.value_column + ") is in " + record.unit + ", a " + quantity +
+                 ": give --output " + quantity + " (or name the column for what it holds)");
+  }
+}
+
 // --welch K: the spikes picked on Welch's average of the (detrended) record, each refined on the whole record's DFT:
 // its largest local maximum within one Welch bin ((K + 1)/2 of the record's), which the cost's +-5 % window around
 // the frequency then finds however coarse the Welch bin was (signal/spikes.h).
@@ -99,6 +115,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),
                  core::kRecordBytesPerSample, warnings);
   match_record(request, data, o.experiment);
+  check_quantity(caller, channels, o.experiment);
   o.simulator.integrator = request.integrator;
   o.cost = cost_options(request.cost, caller);
   o.optimizer.method = request.optimizer.value_or(fit::default_optimizer(o.cost.name));

@@ -5,6 +5,7 @@
 #include <complex>
 
 #include "core/errors.h"
+#include "io/units.h"
 
 namespace beamid::api {
 
@@ -41,6 +42,12 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
     refuse(caller, "--prediction = '" + prediction.path + "': " + std::to_string(prediction.values.size()) +
                        " samples at dt = " + format_value(prediction.dt_s) + " s: must match the data's " +
                        std::to_string(data.values.size()) + " at " + format_value(data.dt_s) + " s");
+  // Two records that state what they measure must measure the same (C021: a velocity record costed against a
+  // displacement prediction without a word).
+  const std::string measured = io::quantity_of(data.unit), predicted = io::quantity_of(prediction.unit);
+  if (!measured.empty() && !predicted.empty() && measured != predicted)
+    refuse(caller, "--prediction = '" + prediction.path + "': in " + prediction.unit + ", a " + predicted +
+                       ": the data are in " + data.unit + ", a " + measured + " (compare like with like)");
   const costs::CostOptions options = cost_options(request.cost, caller);
   if (options.model_poles == costs::kEigenvaluePoles)
     refuse(caller, "--model-poles = 'eigenvalues': a prediction file carries no eigenvalues");

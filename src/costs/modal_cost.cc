@@ -50,7 +50,7 @@ class ModalCost final : public Cost {
     Evaluation e;
     e.pairs = pairs_;
     if (model.poles_rad_s.empty()) {
-      e.status = "cost modal: the model gave no eigenvalues (the fast integrator gives them)";
+      e.status = "cost modal: the model gave no eigenvalues (--integrator fast computes them; cvode does not)";
       return e;
     }
     e.residuals.resize(residual_count());

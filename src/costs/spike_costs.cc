@@ -30,17 +30,9 @@ class SpikeCostBase : public Cost {
       s.magnitude = data_.magnitude(s.bin);
       std::tie(s.n_left, s.n_right) = signal::support(data_, s.bin, options_.spikes.support_level);
     }
-    if (static_cast<int>(spikes.size()) < options_.spikes.count && !options_.spikes.frequencies_hz.empty()) {
-      std::string missing;
-      for (double f : options_.spikes.frequencies_hz)
-        if (std::none_of(spikes.begin(), spikes.end(), [&](const signal::Spike& s) {
-              return std::abs(s.frequency_hz - f) <= options_.spikes.frequency_window * f;
-            }))
-          missing += (missing.empty() ? "" : ", ") + format_value(f);
-      throw InputError("cost " + options_.name + ": chosen spike frequencies " + missing +
-                       " Hz: the data spectrum has no local maximum within +-" +
-                       format_value(100 * options_.spikes.frequency_window) + " % of them (or two share one)");
-    }
+    if (static_cast<int>(spikes.size()) < options_.spikes.count && !options_.spikes.frequencies_hz.empty())
+      throw InputError("cost " + options_.name +
+                       ": chosen spike frequencies: " + signal::unmatched_frequencies(spikes, options_.spikes, data_));
     if (static_cast<int>(spikes.size()) < options_.spikes.count)
       throw InputError("cost " + options_.name + ": spikes = " + std::to_string(options_.spikes.count) +
                        ": the data spectrum has only " + std::to_string(spikes.size()) +

@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "io/record_samples.h"
 #include "io/uff58.h"
+#include "io/units.h"
 
 namespace beamid::io {
 
@@ -76,7 +77,7 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
   out.series.format = "uff58";
   out.series.time_column = "time";
   out.series.value_column = f.name;
-  out.series.unit = f.unit == "g" || f.unit == "G" ? "g" : f.unit;
+  out.series.unit = normalized_unit(f.unit);
   out.v = f.y;
   if (f.even) {
     if (!(f.dx > 0))

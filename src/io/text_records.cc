@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "io/record_samples.h"
+#include "io/units.h"
 
 namespace beamid::io {
 namespace {
@@ -73,11 +74,8 @@ Table read_csv(std::istream& in, const std::string& path) {
         time.find("(" + unit + ")") != std::string::npos)
       throw InputError(path + ":1: time column '" + shown(trim(time)) + "' is in " + unit +
                        ": beamid reads the time in seconds (convert it, e.g. t_s)");
-  for (const auto& n : t.names) {
-    // A unit in the name, "accel_g" or "accel (g)", is taken as the column's unit.
-    const bool g = n.size() > 2 && (n.substr(n.size() - 2) == "_g" || n.find("(g)") != std::string::npos);
-    t.units.push_back(g ? "g" : "");
-  }
+  // A unit in the name, "accel_g", "v_mm_s" or "accel (g)", is taken as the column's unit (io/units.h).
+  for (const auto& n : t.names) t.units.push_back(unit_of_column_name(n));
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
@@ -168,7 +166,9 @@ Table read_lvm(std::istream& in, const std::string& path) {
   int y = 0;
   for (std::size_t i = 0; i < t.names.size(); ++i) {
     const bool time = t.time_column == 0 && i == 0;
-    t.units.push_back(time ? "s" : (y < static_cast<int>(y_units.size()) ? y_units[static_cast<std::size_t>(y)] : ""));
+    t.units.push_back(
+        time ? "s"
+             : (y < static_cast<int>(y_units.size()) ? normalized_unit(y_units[static_cast<std::size_t>(y)]) : ""));
     if (!time) ++y;
   }
   while (std::getline(in, line)) {

@@ -19,6 +19,7 @@
 #include "io/record_samples.h"
 #include "io/resources.h"
 #include "io/uff58.h"
+#include "io/units.h"
 
 namespace beamid::io {
 
@@ -70,8 +71,6 @@ std::size_t choose_channel(const std::vector<std::string>& names, const ImportOp
 }
 
 namespace {
-
-constexpr double kStandardGravity = 9.80665;  // m/s^2 per g
 
 // The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
 // about 50 million samples), checked against the memory that parsing it takes before it is parsed.
@@ -142,67 +141,99 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   s.dt_s = 1 / rate;
 }
 
-// The checks and cuts every format shares (time_series.h): uniform time base or resampling, clipping, the window,
-// the units and the rate.
-TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
-  TimeSeries s = std::move(in.series);
-  std::vector<double>& t = in.t;
-  std::vector<double>& v = in.v;
-  if (in.declared_samples > 0 && static_cast<long>(v.size()) < in.declared_samples)
-    throw InputError(path + ": " + std::to_string(v.size()) + " samples, but the header says Samples = " +
+// The record's step dt = (t_last - t_0)/(n - 1), after the checks of its time base: enough samples, strictly
+// increasing times (a repeated or backward time named on its line: a duplicated line was blamed on line 3, where the
+// mean step first missed the grid), at most 1e6 s long (11 days: a unit mistake, the bound of a simulated
+// experiment), and uniform to the printed resolution of the time column unless o.resample.
+double checked_step(const Samples& in, const std::string& path, const ImportOptions& o) {
+  const std::vector<double>& t = in.t;
+  const std::string& column = in.series.time_column;
+  if (in.declared_samples > 0 && static_cast<long>(in.v.size()) < in.declared_samples)
+    throw InputError(path + ": " + std::to_string(in.v.size()) + " samples, but the header says Samples = " +
                      std::to_string(in.declared_samples) + ": the file is cut short");
-  if (v.size() < 8) throw InputError(path + ": " + std::to_string(v.size()) + " samples: at least 8 are needed");
-  // Uniform time base, to the printed resolution of the time column.
+  if (in.v.size() < 8) throw InputError(path + ": " + std::to_string(in.v.size()) + " samples: at least 8 are needed");
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
-  if (!(dt > 0)) throw InputError(path + ": time column " + s.time_column + " does not increase");
+  if (!(dt > 0)) throw InputError(path + ": time column " + column + " does not increase");
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (!(t[i] > t[i - 1]))
+      throw InputError(
+          in.where(i) + ": " + column + " = " + format_value(t[i]) +
+          (t[i] == t[i - 1] ? ": repeats the previous sample's time" : ": goes back from the previous sample's ") +
+          (t[i] == t[i - 1] ? "" : format_value(t[i - 1]) + " s") + " (a duplicated or misordered line)");
+  if (dt * static_cast<double>(t.size() - 1) > 1e6)
+    throw InputError(path + ": the record lasts " + format_value(dt * static_cast<double>(t.size() - 1)) + " s (" +
+                     std::to_string(t.size()) + " samples at dt = " + format_value(dt) +
+                     " s): at most 1e6 s (is its time in seconds?)");
   const double tolerance = std::max(1e-6 * dt, in.time_resolution + 1e-9 * dt);
-  for (std::size_t i = 0; i < t.size(); ++i) {
+  for (std::size_t i = 0; i < t.size() && !o.resample; ++i) {
     const double expected = t0 + static_cast<double>(i) * dt;
-    if (std::abs(t[i] - expected) > tolerance) {
-      if (o.resample) break;
-      throw InputError(in.where(i) + ": " + s.time_column + " = " + format_value(t[i]) +
-                       ": non-uniform time base (expected " + format_value(expected) + " = t0 + " + std::to_string(i) +
-                       " dt with dt = " + format_value(dt) + " s, to within " + format_value(tolerance) +
-                       " s; --resample interpolates instead)");
-    }
+    if (std::abs(t[i] - expected) > tolerance)
+      throw InputError(in.where(i) + ": " + column + " = " + format_value(t[i]) + ": non-uniform time base (expected " +
+                       format_value(expected) + " = t0 + " + std::to_string(i) + " dt with dt = " + format_value(dt) +
+                       " s, to within " + format_value(tolerance) + " s; --resample interpolates instead)");
   }
-  if (o.resample) {
-    // Linear interpolation onto t0 + i dt (the time column must increase strictly).
-    for (std::size_t i = 1; i < t.size(); ++i)
-      if (!(t[i] > t[i - 1]))
-        throw InputError(in.where(i) + ": " + s.time_column + " = " + format_value(t[i]) +
-                         ": must increase to be resampled");
-    std::vector<double> u(v.size());
-    std::size_t j = 0;
-    for (std::size_t i = 0; i < u.size(); ++i) {
-      const double ti = t0 + static_cast<double>(i) * dt;
-      while (j + 2 < t.size() && t[j + 1] < ti) ++j;
-      const double w = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
-      u[i] = (1 - w) * v[j] + w * v[j + 1];
-    }
-    v = u;
-    s.notes += "resampled linearly onto a uniform " + format_value(dt) + " s grid; ";
+  return dt;
+}
+
+// --resample: linear interpolation onto t0 + i dt. Across a gap of many steps it would invent the signal (a 1 s gap in
+// a 1 ms record gave an aliased spike and NaN amplitudes): a step of more than 10 median steps (the median, which a
+// gap does not move) is refused.
+void resample_linearly(Samples& in, double dt) {
+  const std::vector<double>& t = in.t;
+  std::vector<double> steps(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  const double median_step = steps[steps.size() / 2];
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (t[i] - t[i - 1] > 10 * median_step)
+      throw InputError(in.where(i) + ": " + in.series.time_column + " = " + format_value(t[i]) + ": a gap of " +
+                       format_value(t[i] - t[i - 1]) + " s after the previous sample, " +
+                       format_rounded((t[i] - t[i - 1]) / median_step) +
+                       " times the median step: --resample interpolates within a record, not across a gap (split the "
+                       "file there: the whole record is resampled before --start and --duration apply)");
+  std::vector<double> u(in.v.size());
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const double ti = t.front() + static_cast<double>(i) * dt;
+    while (j + 2 < t.size() && t[j + 1] < ti) ++j;
+    const double w = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+    u[i] = (1 - w) * in.v[j] + w * in.v[j + 1];
   }
-  // Clipping: the largest |value| held by 3 or more consecutive samples.
+  in.v = std::move(u);
+  in.series.notes += "resampled linearly onto a uniform " + format_value(dt) + " s grid; ";
+}
+
+// The values hold a vibration beamid can analyse: not all zero or constant (a fit of a constant record "converged" to
+// an arbitrary stiffness with a standard error), within [1e-150, 1e150] at their peak (beyond, spectra overflow; below,
+// products underflow: the matrix pencil's QR of a 1e-200-scaled decay returned 14.7 and 85 Hz for modes at 2.46 and
+// 26.6 Hz), and not clipped (the peak held by 3 or more consecutive samples).
+void check_values(const Samples& in, const std::string& path) {
+  const std::vector<double>& v = in.v;
+  const std::string& column = in.series.value_column;
   double peak = 0;
   for (double x : v) peak = std::max(peak, std::abs(x));
-  if (peak == 0) throw InputError(path + ": " + s.value_column + " is 0 in every sample: there is nothing to analyse");
+  if (peak == 0) throw InputError(path + ": " + column + " is 0 in every sample: there is nothing to analyse");
   if (peak > 1e150)
-    throw InputError(path + ": " + s.value_column + " reaches " + format_value(peak) +
+    throw InputError(path + ": " + column + " reaches " + format_value(peak) +
                      ": beyond 1e150, its spectrum would overflow (rescale the record)");
-  // A constant record holds no vibration: a fit of it "converged" to an arbitrary stiffness with a standard error.
+  if (peak < 1e-150)
+    throw InputError(path + ": " + column + " reaches only " + format_value(peak) +
+                     ": below 1e-150, its products underflow (rescale the record)");
   if (std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); }))
-    throw InputError(path + ": " + s.value_column + " is " + format_value(v.front()) +
+    throw InputError(path + ": " + column + " is " + format_value(v.front()) +
                      " in every sample: a constant record holds no vibration to analyse");
-  for (std::size_t i = 0; i + 2 < v.size() && peak > 0; ++i)
+  for (std::size_t i = 0; i + 2 < v.size(); ++i)
     if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
-      throw InputError(in.where(i) + ": " + s.value_column + " = " + format_value(v[i]) +
+      throw InputError(in.where(i) + ": " + column + " = " + format_value(v[i]) +
                        " on 3 or more consecutive samples at the record's peak: the signal is "
                        "clipped (the DAQ range was exceeded), so its spectrum is distorted");
+}
 
-  // The window: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
-  // that rounded DAQ times and a start given to a few digits pick the intended sample).
+// The window into s: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
+// that rounded DAQ times and a start given to a few digits pick the intended sample).
+void cut_window(TimeSeries& s, const std::vector<double>& v, double t0, double dt, const std::string& path,
+                const ImportOptions& o) {
   const double start = o.start_s.value_or(t0);
   const double t_end = t0 + static_cast<double>(v.size() - 1) * dt;
   if (!(start >= t0 - 0.5 * dt && start <= t_end))
@@ -213,23 +244,42 @@ TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
   const double count_d = o.duration_s ? std::round(*o.duration_s / dt) : n_total - first_d;
   const std::size_t first = static_cast<std::size_t>(std::min(first_d, n_total));
   const std::size_t last = static_cast<std::size_t>(std::clamp(first_d + count_d, first_d, n_total));
-  if (last - first < 8 || (o.duration_s && first_d + count_d > n_total))
+  const std::string spans = "the record spans [" + format_value(t0) + ", " + format_value(t_end) + "] s";
+  if (o.duration_s && first_d + count_d > n_total)
+    throw InputError(path + ": duration = " + format_value(*o.duration_s) + " s from " + format_value(start) +
+                     " s runs past the record's end: " + spans + ", so at most " +
+                     format_rounded(t_end - start + dt, 6) + " s from there");
+  if (last - first < 8)
     throw InputError(path + ": the window of " + format_value(o.duration_s.value_or(n_total * dt)) + " s from " +
                      format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
-                     " of the requested samples: at least 8 are needed, all inside the record, which spans [" +
-                     format_value(t0) + ", " + format_value(t0 + (n_total - 1) * dt) + "] s");
+                     " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
   s.values.assign(v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last));
   s.t0_s = t0 + static_cast<double>(first) * dt;
   s.dt_s = dt;
   if (o.start_s || o.duration_s)
     s.notes += "window of " + std::to_string(s.values.size()) + " samples from t = " + format_value(s.t0_s) + " s; ";
+}
 
-  const bool in_g = o.units == "g" || (o.units == "auto" && s.unit == "g");
-  if (in_g) {
-    for (double& x : s.values) x *= kStandardGravity;
-    s.unit = "m/s^2";
-    s.notes += "converted from g to m/s^2 (x 9.80665); ";
+// To SI (io/units.h): the unit the file states ("auto"), or g when the user says so; "as-is" converts nothing.
+void convert_to_si(TimeSeries& s, const ImportOptions& o) {
+  if (o.units == "as-is") return;  // the numbers as they are, the file's unit kept as its label
+  if (o.units == "g") s.unit = "g";
+  if (const auto si = si_conversion(s.unit)) {
+    for (double& x : s.values) x *= si->factor;
+    s.notes += "converted from " + s.unit + " to " + si->unit + " (x " + format_value(si->factor) + "); ";
+    s.unit = si->unit;
   }
+}
+
+// The checks and cuts every format shares (time_series.h): the time base or its resampling, the values, the window,
+// the units and the rate.
+TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
+  const double dt = checked_step(in, path, o);
+  if (o.resample) resample_linearly(in, dt);
+  check_values(in, path);
+  TimeSeries s = std::move(in.series);
+  cut_window(s, in.v, in.t.front(), dt, path, o);
+  convert_to_si(s, o);
   if (o.resample_rate_hz) resample_to_rate(s, *o.resample_rate_hz, path);
   return s;
 }

@@ -29,9 +29,9 @@
 namespace beamid::io {
 
 struct ImportOptions {
-  std::string channel;                     // name or 1-based index among the signal columns; "": the only one
-  std::string units = "auto";              // "auto": convert when the file says g; "g": the values are in g; "as-is"
-  std::optional<double> start_s;           // first sample: the one nearest to this time (default: the first)
+  std::string channel;            // name or 1-based index among the signal columns; "": the only one
+  std::string units = "auto";     // "auto": convert to SI when the file states g or mm (io/units.h); "g": in g; "as-is"
+  std::optional<double> start_s;  // first sample: the one nearest to this time (default: the first)
   std::optional<double> duration_s;        // round(duration / dt) samples from there (default: to the last)
   bool resample = false;                   // interpolate a non-uniform time base instead of refusing it
   std::optional<double> sample_rate_hz;    // the time base of a record that has none (.npy, .mat without a time)

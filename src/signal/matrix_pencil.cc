@@ -27,9 +27,11 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   const int pencil = std::min(n / 3, o.max_columns - 1);  // L
   const int order = o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil);
   if (order > pencil || pencil < 2)
-    throw InputError("order M = " + std::to_string(order) +
-                     ": must be at most the pencil parameter L = " + std::to_string(pencil) + " (Nbar / 3 for " +
-                     std::to_string(n) + " samples): a longer record or " + "a lower order");
+    throw InputError(
+        "order M = " + std::to_string(order) + ": must be at most the pencil parameter L = " + std::to_string(pencil) +
+        " (the smaller of Nbar/3 = " + std::to_string(n / 3) + " for " + std::to_string(n) + " samples and " +
+        std::to_string(o.max_columns - 1) + ", the cap that bounds the SVD's cost): a lower order" +
+        (n / 3 < o.max_columns - 1 ? " or a longer record" : ""));
   if (order < 2 * o.modes)
     throw InputError("order M = " + std::to_string(order) + ": must be at least 2 K = " + std::to_string(2 * o.modes) +
                      " (each real mode is a conjugate pair of exponentials)");

@@ -276,4 +276,25 @@ double damped_mode_frequency_sd(double amplitude, double decay_rate_1_s, double 
   return std::sqrt(2 * noise_sd * noise_sd * s0 / (amplitude * amplitude * spread));
 }
 
+std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeOptions& options,
+                                  const Spectrum& spectrum) {
+  const double nyquist_hz = spectrum.last_bin() * spectrum.df_hz();
+  std::string missing, above;
+  for (double f : options.frequencies_hz) {
+    const bool near = std::any_of(picked.begin(), picked.end(), [&](const Spike& s) {
+      return std::abs(s.frequency_hz - f) <= options.frequency_window * f;
+    });
+    if (near) continue;
+    missing += (missing.empty() ? "" : ", ") + format_value(f);
+    if (f > nyquist_hz) above += (above.empty() ? "" : ", ") + format_value(f);
+  }
+  if (missing.empty())
+    return "two of them share one local maximum of the spectrum (df = " + format_rounded(spectrum.df_hz()) +
+           " Hz): choose frequencies further apart, or a longer record";
+  return missing + " Hz have no local maximum of the spectrum within +-" +
+         format_value(100 * options.frequency_window) + " %" +
+         (above.empty() ? std::string()
+                        : " (" + above + " Hz above the Nyquist frequency " + format_rounded(nyquist_hz) + " Hz)");
+}
+
 }  // namespace beamid::signal

@@ -52,6 +52,11 @@ std::vector<int> local_maxima(const Spectrum& spectrum);
 std::pair<int, int> support(const Spectrum& spectrum, int bin, double level);
 // The NM spikes by the rule, ascending in frequency, with their supports. Fewer when fewer maxima exist.
 std::vector<Spike> detect_spikes(const Spectrum& spectrum, const SpikeOptions& options);
+// For messages, when detect_spikes found fewer spikes than options.frequencies_hz: the chosen frequencies no picked
+// spike lies within frequency_window of, as "116.9, 5000 Hz (above the Nyquist frequency 826 Hz)"; when every one has
+// a spike nearby, that two of them share one maximum.
+std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeOptions& options,
+                                  const Spectrum& spectrum);
 
 // The candidates of the "largest" or "prominence" rule in the order of that rule, each with the reason it was skipped
 // ("" for a pick), down to the last pick (so that a user sees why a higher peak was passed over). With

@@ -266,6 +266,18 @@ double sensor_output(const ResponseProblem& p, const Rhs& rhs, double t_s, const
   return p.sensor.dot(Eigen::Map<const Eigen::VectorXd>(accel.data(), n));
 }
 
+// A failed CVODE call as a trace's status: the call, its flag and CVODE's own message, and what to do about the one
+// failure a valid beam meets, a model too stiff (or too lightly damped) for CVODE's step budget at this tolerance.
+std::string failure_status(const std::string& what, int flag, const std::string& cvode_message) {
+  std::string status =
+      "cvode: " + what + " returned " + flag_name(flag) + (cvode_message.empty() ? "" : " (" + cvode_message + ")");
+  if (flag == CV_TOO_MUCH_WORK)
+    status +=
+        ": CVODE needs more steps than it may take for this beam; --integrator fast gives the exact response "
+        "without time steps";
+  return status;
+}
+
 }  // namespace
 
 Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const ResponseProblem& p) const {
@@ -297,8 +309,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   Session s;
   std::string cvode_message;
   const auto failed = [&](const std::string& what, int flag) {
-    trace.status =
-        "cvode: " + what + " returned " + flag_name(flag) + (cvode_message.empty() ? "" : " (" + cvode_message + ")");
+    trace.status = failure_status(what, flag, cvode_message);
     return trace;
   };
   if (SUNContext_Create(BEAMID_SUN_COMM_NULL, &s.context) != 0) {

@@ -283,6 +283,12 @@ expect_error "NUL file with --sample-rate" "zeros.mat: byte 0 is 0x00: a binary 
 # A prediction of several columns is told that it must hold one, not sent to --channel (C029).
 expect_error "two-column prediction" "--prediction: $tmp/two.csv: 2 signal columns (a, b): a prediction holds one" \
   cost --data "$tmp/z.csv" --prediction "$tmp/two.csv" --cost time
+# A record that states its quantity is not fitted or costed as another (V013-V016, C021, C022).
+"$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --output velocity >"$tmp/v.csv"
+expect_error "velocity fitted as displacement" "--output = 'displacement': the record $tmp/v.csv (velocity_m_s) is in m/s, a velocity: give --output velocity" \
+  fit --data "$tmp/v.csv" "${S[@]}" --pulse-width 0.004 --estimate EI --cost time
+expect_error "velocity costed against displacement" "in m, a displacement: the data are in m/s, a velocity" \
+  cost --data "$tmp/v.csv" --prediction "$tmp/z.csv" --cost time
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -46,6 +46,38 @@ TEST(TimeSeries, MalformedFilesAreLocated) {
                 .find("2 signal columns (a, b): choose one with --channel"),
             std::string::npos);
   EXPECT_NE(error_of(testing::TempDir() + "absent.csv").find("cannot read the file"), std::string::npos);
+  EXPECT_NE(error_of(testing::TempDir() + "absent.csv").find("(No such file or directory)"), std::string::npos);
+}
+
+TEST(TimeSeries, ATimeBaseThatRepeatsJumpsOrRunsForDaysIsNamedWhereItIs) {
+  // A duplicated line is blamed on itself (line 7 repeats line 6's time), not on the first line the mean step misses.
+  std::string duplicated = rows(12, 0.001);
+  const std::size_t line7 = [&] {  // the start of line 7 (the header is line 1)
+    std::size_t at = 0;
+    for (int k = 0; k < 6; ++k) at = duplicated.find('\n', at) + 1;
+    return at;
+  }();
+  const std::size_t line8 = duplicated.find('\n', line7) + 1;
+  duplicated.insert(line8, duplicated.substr(line7, line8 - line7));
+  EXPECT_NE(error_of(write("dup.csv", duplicated)).find("dup.csv:8: t_s = 0.005: repeats the previous sample's time"),
+            std::string::npos)
+      << error_of(write("dup.csv", duplicated));
+  // --resample does not interpolate across a gap of 998 median steps.
+  std::string gap = "t_s,displacement_m\n";
+  for (int i = 0; i < 12; ++i)
+    gap += std::to_string(i * 0.001 + (i >= 6 ? 1.0 : 0.0)) + "," + std::to_string(i % 3) + "\n";
+  ImportOptions resample;
+  resample.resample = true;
+  EXPECT_NE(error_of(write("gap.csv", gap), resample).find("gap.csv:8: t_s = 1.006: a gap of"), std::string::npos)
+      << error_of(write("gap.csv", gap), resample);
+  // A record of more than 1e6 s (an LVM Delta_X of 1e300 made one of 4e303 s) is a unit mistake.
+  EXPECT_NE(error_of(write("days.csv", rows(10, 2e5))).find("the record lasts 1800000 s"), std::string::npos)
+      << error_of(write("days.csv", rows(10, 2e5)));
+  // Values below 1e-150 underflow (the pencil found 14.7 Hz in a 2.46 Hz decay scaled by 1e-200).
+  std::string tiny = "t_s,displacement_m\n";
+  for (int i = 0; i < 10; ++i) tiny += std::to_string(i * 0.001) + "," + std::to_string(i % 3) + "e-200\n";
+  EXPECT_NE(error_of(write("tiny.csv", tiny)).find("reaches only 2e-200: below 1e-150"), std::string::npos)
+      << error_of(write("tiny.csv", tiny));
 }
 
 // A LabVIEW export as NI writes it: tab-separated, two header blocks, times rounded to 6 decimals of a step that
@@ -128,7 +160,11 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   long_window.channel = "2";
   long_window.start_s = 0.5;
   long_window.duration_s = 10;
-  EXPECT_NE(error_of(write("two.csv", two), long_window).find("of the requested samples"), std::string::npos)
+  // It is told where the record ends and how long a window from its start can be (round(duration/dt) samples).
+  EXPECT_NE(error_of(write("two.csv", two), long_window)
+                .find("duration = 10 s from 0.5 s runs past the record's end: the record spans [0, 0.7] s, so at most "
+                      "0.3 s from there"),
+            std::string::npos)
       << error_of(write("two.csv", two), long_window);
 }
 

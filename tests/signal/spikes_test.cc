@@ -59,6 +59,35 @@ TEST(Spikes, ArtefactsOfStrongerPeaksAreLabelledAndSkipped) {
   ASSERT_EQ(detect_spikes(s, o).size(), 1u);
 }
 
+TEST(Spikes, ChosenFrequenciesWithoutAPeakAreNamed) {
+  // A decaying 50 Hz sinusoid sampled at 1 kHz (Nyquist 500 Hz, df = 1 Hz): of 50, 120 and 700 Hz, 120 has no peak
+  // within 5 % and 700 lies above Nyquist; the message names both, and says which is above (the adversarial pass's
+  // R008 named neither: "1 of the peaks have no local maximum").
+  std::vector<double> z(1000);
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double t = 1e-3 * static_cast<double>(i);
+    z[i] = std::exp(-2 * t) * std::sin(2 * std::numbers::pi * 50 * t);
+  }
+  Dft dft(static_cast<int>(z.size()), 1e-3);
+  const Spectrum s = dft.transform(z);
+  SpikeOptions o;
+  o.frequencies_hz = {50, 120, 700};
+  o.count = 3;
+  const std::vector<Spike> picked = detect_spikes(s, o);
+  ASSERT_EQ(picked.size(), 1u);
+  EXPECT_EQ(unmatched_frequencies(picked, o, s),
+            "120, 700 Hz have no local maximum of the spectrum within +-5 % (700 Hz above the Nyquist frequency 500 "
+            "Hz)");
+  // Two frequencies 1 % apart share the one peak: said so, with the bin width (D053 printed an empty list).
+  o.frequencies_hz = {50, 50.5};
+  o.count = 2;
+  const std::vector<Spike> shared = detect_spikes(s, o);
+  ASSERT_EQ(shared.size(), 1u);
+  EXPECT_EQ(unmatched_frequencies(shared, o, s),
+            "two of them share one local maximum of the spectrum (df = 1 Hz): choose frequencies further apart, or a "
+            "longer record");
+}
+
 TEST(Spikes, ACoarseSpectrumLabelsNothing) {
   // A cantilever's first two modes at bins 5 and 31 (f2/f1 = 6.2): within 1.5 bins of "harmonic 6" of mode 1, but
   // 1.5 bins are 5 % of f2 there, too coarse to tell a harmonic from a mode, so both are picked.

@@ -49,8 +49,7 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   }
   if (out.measured_hz.size() != r.peaks_hz.size())
     throw InputError(spec.path + ": record '" + r.name +
-                     "'.peaks_hz: " + std::to_string(r.peaks_hz.size() - out.measured_hz.size()) +
-                     " of the peaks have no local maximum of the record's spectrum within 5 %");
+                     "'.peaks_hz: " + signal::unmatched_frequencies(signal::detect_spikes(z, spikes), spikes, z));
   return out;
 }
 

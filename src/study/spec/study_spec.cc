@@ -222,13 +222,15 @@ void read_landscape(const config::Document& document, int finest_fit, StudySpec&
         "noise", [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
     if (l.noise.empty()) l.noise = {0.0};
     l.cost = r.strings("cost", true, cost_names());
+    // At most 100: a slice over [v/100, 100 v] already spans four decades of the parameter; 1e300 was accepted and
+    // gave inf and NaN slices.
     l.range_factor = r.number(
-        "range_factor", l.range_factor, [](double v) { return v > 1; }, "must be > 1");
+        "range_factor", l.range_factor, [](double v) { return v > 1 && v <= 100; }, "must be in (1, 100]");
     l.points = r.integer("points", l.points, 5, 4001);
     l.grid_points = r.integer("grid_points", l.grid_points, 3, 401);
     l.multistarts = r.integer("multistarts", l.multistarts, 0, 10000);
     l.zoom_range_factor = r.number(
-        "zoom_range_factor", 0.0, [](double v) { return v > 1; }, "must be > 1");
+        "zoom_range_factor", 0.0, [](double v) { return v > 1 && v <= 100; }, "must be in (1, 100]");
     l.zoom_points = r.integer("zoom_points", l.zoom_points, 3, 401);
     if (const auto pairs = r.array("pairs", false)) {
       for (const Node& item : *pairs) {

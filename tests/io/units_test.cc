@@ -1,0 +1,68 @@
+// The units a record states and their conversion to SI (io/units.h): a record in g or millimetres is read in SI, and
+// one that says what it measures is known to measure it.
+#include "io/units.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/errors.h"
+#include "io/time_series.h"
+
+namespace beamid::io {
+namespace {
+
+TEST(Units, ColumnNamesAndLabelsStateTheirUnit) {
+  // beamid's own column names, a lab's, and labels as LVM and UFF files write them.
+  EXPECT_EQ(unit_of_column_name("displacement_m"), "m");
+  EXPECT_EQ(unit_of_column_name("velocity_m_s"), "m/s");
+  EXPECT_EQ(unit_of_column_name("acceleration_m_s2"), "m/s^2");
+  EXPECT_EQ(unit_of_column_name("tip_mm_s"), "mm/s");
+  EXPECT_EQ(unit_of_column_name("accel_g"), "g");
+  EXPECT_EQ(unit_of_column_name("x (mm)"), "mm");
+  EXPECT_EQ(unit_of_column_name("v (m/s)"), "m/s");
+  EXPECT_EQ(unit_of_column_name("Accel (G)"), "g");
+  // Names that state no unit.
+  for (const char* name : {"y", "sensor", "ch1", "beam", "v (volts)", "t_s"})
+    EXPECT_EQ(unit_of_column_name(name), "") << name;
+  EXPECT_EQ(normalized_unit(" m/s2 "), "m/s^2");
+  EXPECT_EQ(normalized_unit("\xc2\xb5m"), "um");  // the micro sign
+  EXPECT_EQ(normalized_unit("V"), "V");           // an unknown label is kept as written
+}
+
+TEST(Units, ConversionsToSiAndQuantities) {
+  // g is standard gravity, 9.80665 m/s^2 (CGPM 1901); the metric prefixes are exact.
+  EXPECT_EQ(si_conversion("g")->factor, 9.80665);
+  EXPECT_EQ(si_conversion("mm/s")->unit, "m/s");
+  EXPECT_EQ(si_conversion("mm/s")->factor, 1e-3);
+  EXPECT_EQ(si_conversion("um")->factor, 1e-6);
+  EXPECT_FALSE(si_conversion("m/s^2"));
+  EXPECT_FALSE(si_conversion("V"));
+  EXPECT_EQ(quantity_of("m"), "displacement");
+  EXPECT_EQ(quantity_of("m/s"), "velocity");
+  EXPECT_EQ(quantity_of("m/s^2"), "acceleration");
+  EXPECT_EQ(quantity_of("g"), "");
+}
+
+TEST(Units, ARecordInMillimetresPerSecondIsReadInMetresPerSecond) {
+  // The adversarial pass's velocity_mm_s record was read as m/s, 1000 times too large, without a word.
+  const std::string path = testing::TempDir() + "mm_s.csv";
+  {
+    std::ofstream out(path);
+    out << "t_s,velocity_mm_s\n";
+    for (int i = 0; i < 16; ++i) out << 0.001 * i << "," << (i % 5) - 2 << "\n";
+  }
+  const TimeSeries s = read_time_series(path);
+  EXPECT_EQ(s.unit, "m/s");
+  EXPECT_EQ(s.values[0], -2e-3);  // -2 mm/s
+  EXPECT_NE(s.notes.find("converted from mm/s to m/s (x 0.001)"), std::string::npos) << s.notes;
+  // --units as-is takes the numbers as they are, the file's unit kept as their label.
+  ImportOptions as_is;
+  as_is.units = "as-is";
+  const TimeSeries raw = read_time_series(path, as_is);
+  EXPECT_EQ(raw.values[0], -2.0);
+  EXPECT_EQ(raw.unit, "mm/s");
+}
+
+}  // namespace
+}  // namespace beamid::io
