@@ -76,7 +76,7 @@ int run_merge(const Flags& a, std::ostream& out) {
   const study::Store store(output + "/store", io::commit_label());
   std::stringstream list(a.text("shards"));
   std::string dir;
-  int records = 0;
+  int records = 0, left_behind = 0;
   while (std::getline(list, dir, ',')) {
     if (dir.empty()) continue;
     if (!io::is_existing_folder(dir + "/store"))
@@ -84,9 +84,20 @@ int run_merge(const Flags& a, std::ostream& out) {
                        "' has no store/ folder: must be the --output of a shard run");
     std::error_code same_ec;
     if (std::filesystem::equivalent(dir + "/store", output + "/store", same_ec)) continue;
-    records += store.absorb(dir + "/store");
+    const study::Store::Absorbed absorbed = store.absorb(dir + "/store");
+    records += absorbed.copied;
+    for (const std::string& record : absorbed.left_behind)
+      std::cerr << "beamid merge: left behind, damaged: " << record << "\n";
+    left_behind += static_cast<int>(absorbed.left_behind.size());
   }
-  study::write_tables_from_store(spec, output);
+  try {
+    study::write_tables_from_store(spec, output);
+  } catch (const InputError& e) {
+    // The units the damaged shard records held are the missing ones: said beside the count.
+    if (left_behind == 0) throw;
+    throw InputError(std::string(e.what()) + " (" + std::to_string(left_behind) +
+                     " shard record(s) were damaged and left behind: listed above; rerun their shards)");
+  }
   out << "study,records_merged,output\n" << spec.name << "," << records << "," << output << "\n";
   return 0;
 }

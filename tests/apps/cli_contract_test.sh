@@ -162,6 +162,14 @@ check "study writes its tables" test -s "$tmp/one/cases.csv" -a -s "$tmp/one/rep
 check "a shard alone writes no tables" test ! -e "$tmp/s1/cases.csv"
 "$BEAMID" merge "$tmp/mini.toml" --shards "$tmp/s1,$tmp/s2" --output "$tmp/merged" >/dev/null 2>&1
 check "beamid merge gives the single run's tables" diff -r -x store -x timings.csv "$tmp/one" "$tmp/merged"
+# A damaged shard record is left behind and named, with the file and why, and the merge says the units it held are
+# missing (the adversarial pass's M008: "1 of 15 units ... missing" named no file).
+cp -r "$tmp/s1" "$tmp/s1d"
+damaged=$(ls "$tmp/s1d/store/"*.rec | head -1)
+sed -i 's/cost/kost/' "$damaged"
+"$BEAMID" merge "$tmp/mini.toml" --shards "$tmp/s1d,$tmp/s2" --output "$tmp/merged_damaged" >/dev/null 2>"$tmp/err"
+check "merge names a damaged shard record" grep -qF "beamid merge: left behind, damaged: $damaged: " "$tmp/err"
+check "merge says the damaged records are the missing units" grep -qF "shard record(s) were damaged and left behind" "$tmp/err"
 sed 's/^replicates = 2/replicates = 0/' "$tmp/mini.toml" >"$tmp/bad.toml"
 expect_error "study bad value" "bad.toml:31: sweep.replicates = 0: must be in 1..100000" study "$tmp/bad.toml"
 expect_error "merge without shards" "--shards" merge "$tmp/mini.toml"

@@ -66,8 +66,8 @@ TEST(Store, AbsorbCopiesAShardsRecords) {
   Store(a.string(), "v").save("u1", r1);
   Store(b.string(), "v").save("u2", r2);
   const Store m(merged.string(), "v");
-  EXPECT_EQ(m.absorb(a.string()), 1);
-  EXPECT_EQ(m.absorb(b.string()), 1);
+  EXPECT_EQ(m.absorb(a.string()).copied, 1);
+  EXPECT_EQ(m.absorb(b.string()).copied, 1);
   EXPECT_EQ(m.load("u1")->number("x"), 1.0);
   EXPECT_EQ(m.load("u2")->number("x"), 2.0);
   EXPECT_THROW(m.absorb((a / "nope").string()), InputError);
@@ -136,7 +136,11 @@ TEST(Store, RecordsUnderAnotherUnitsNameOrRefusedByTheCallerAreMovedAside) {
       << log.str();
   store.save("u3", r);
   fs::copy_file(dir / "u3.rec", dir / "u4.rec");
-  EXPECT_EQ(Store(merged.string(), "v").absorb(dir.string()), 1);  // u3 only
+  const Store::Absorbed absorbed = Store(merged.string(), "v").absorb(dir.string());
+  EXPECT_EQ(absorbed.copied, 1);  // u3 only; u4, u3's record under another name, is left behind and named
+  ASSERT_EQ(absorbed.left_behind.size(), 1u);
+  EXPECT_NE(absorbed.left_behind[0].find("u4.rec: it is the record of unit u3, not of u4"), std::string::npos)
+      << absorbed.left_behind[0];
   EXPECT_FALSE(fs::exists(merged / "u4.rec"));
   const auto refuse = [](const Record& record) { return record.has("y") ? "" : std::string("field 'y' is missing"); };
   EXPECT_FALSE(store.load("u3", refuse));

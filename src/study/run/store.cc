@@ -1,5 +1,6 @@
 #include "study/run/store.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -181,9 +182,9 @@ void Store::save(const std::string& id, Record record) const {
   io::write_file_atomic(fs::path(directory_) / (id + ".rec"), body + check_line(body));
 }
 
-int Store::absorb(const std::string& other) const {
+Store::Absorbed Store::absorb(const std::string& other) const {
   if (!io::is_existing_folder(other)) throw InputError(other + ": not a study store folder");
-  int count = 0;
+  Absorbed absorbed;
   std::error_code ec;
   fs::directory_iterator folder(other, ec);
   if (ec) throw InputError(other + ": cannot list the study store folder (" + ec.message() + ")");
@@ -192,19 +193,24 @@ int Store::absorb(const std::string& other) const {
     const fs::path target = fs::path(directory_) / entry.path().filename();
     const std::string text = io::read_file(entry.path(), "a study record");
     std::string why;
-    // A damaged shard record, or one under another unit's name, is left behind: the merge names it missing.
+    // A damaged shard record, or one under another unit's name, is left behind (and listed): the merge names it.
     const auto body = checked_body(text, why);
-    if (!body) continue;
-    try {
-      if (!binding_violation(Record::parse(*body, entry.path().string()), entry.path().stem().string()).empty())
-        continue;
-    } catch (const InputError&) {
+    if (body) {
+      try {
+        why = binding_violation(Record::parse(*body, entry.path().string()), entry.path().stem().string());
+      } catch (const InputError& e) {
+        why = e.what();
+      }
+    }
+    if (!body || !why.empty()) {
+      absorbed.left_behind.push_back(entry.path().string() + ": " + why);
       continue;
     }
     io::write_file_atomic(target, text);
-    ++count;
+    ++absorbed.copied;
   }
-  return count;
+  std::sort(absorbed.left_behind.begin(), absorbed.left_behind.end());  // directory order is the file system's
+  return absorbed;
 }
 
 }  // namespace beamid::study

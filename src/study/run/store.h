@@ -51,8 +51,14 @@ class Store {
   std::optional<Record> load(const std::string& id, const RecordCheck& check = {}) const;
   // Stamps the unit's id and the code version and writes atomically.
   void save(const std::string& id, Record record) const;
-  // Copies every record file of another store folder into this one (for merging shards); returns how many.
-  int absorb(const std::string& other_directory) const;
+  // Copies every sound record file of another store folder into this one (for merging shards). A damaged record, or
+  // one under another unit's name, is left behind and listed ("path: why"), so that a merge can say which shard
+  // record it could not use.
+  struct Absorbed {
+    int copied = 0;
+    std::vector<std::string> left_behind;
+  };
+  Absorbed absorb(const std::string& other_directory) const;
 
  private:
   std::string directory_;
