@@ -195,8 +195,22 @@ BeamParameters parse_beam_toml(const std::string& text, const std::string& sourc
   }
   // Constraints between parameters (each one alone was checked where it was read).
   // The message opens with the key it is about ("c = ...", "kAG = ..."): the error names that key's line.
-  if (auto e = model::implausibility(beam))
-    throw InputError(at(table.key_line(e->substr(0, e->find(' ')))) + ": beam." + *e);
+  // A ratio's other terms are named with their lines too: the term that is wrong may be any of them (a changed rho_r2
+  // was blamed on the kAG line alone).
+  if (auto e = model::implausibility(beam)) {
+    const std::string first = e->substr(0, e->find(' '));
+    std::string others;
+    for (const auto& info : model::parameter_table()) {
+      const std::string key(info.key);
+      // named as a term ("with EI = ", ", rho_r2 = ", "and rho = "), not inside a product ("rho l = ")
+      bool named = false;
+      for (const char* lead : {", ", "with ", "and "})
+        named = named || e->find(lead + key + " = ") != std::string::npos;
+      if (key != first && named)
+        others += (others.empty() ? "" : ", ") + key + " on line " + std::to_string(table.key_line(key));
+    }
+    throw InputError(at(table.key_line(first)) + ": beam." + *e + (others.empty() ? "" : " (" + others + ")"));
+  }
   parse_attachments(root, beam);
   parse_support(root, beam);
   return beam;

@@ -200,9 +200,10 @@ std::optional<std::string> implausibility(const BeamParameters& beam) {
   // 0.01 for fibre composites; [1e-4, 10] leaves room for fits that move kAG and EI to their bounds.
   const double shear_ratio = beam.kAG * r * r / beam.EI;
   if (!(shear_ratio >= 1e-4 && shear_ratio <= 10))
-    return "kAG = " + format_value(beam.kAG) + ": with EI = " + format_value(beam.EI) +
-           ", kAG r^2/EI (= kappa G/E, r = sqrt(rho_r2/rho) = " + format_value(r) + " m) is " +
-           format_value(shear_ratio) +
+    return "kAG = " + format_value(beam.kAG) + ": with EI = " + format_value(beam.EI) + ", rho_r2 = " +
+           format_value(beam.rho_r2) + " and rho = " + format_value(beam.rho) +
+           ", kAG r^2/EI (= kappa G/E, r = sqrt(rho_r2/rho) = " + format_rounded(r) + " m) is " +
+           format_rounded(shear_ratio) +
            ": must lie in [1e-4, 10] (0.26-0.33 for metals, about 0.01 for fibre composites)";
   if (!(beam.m <= max_body_mass_kg(beam)))
     return "m = " + format_value(beam.m) + ": the tip body must be at most " + format_rounded(kMaxBodyMassRatio) +

@@ -289,6 +289,9 @@ expect_error "velocity fitted as displacement" "--output = 'displacement': the r
   fit --data "$tmp/v.csv" "${S[@]}" --pulse-width 0.004 --estimate EI --cost time
 expect_error "velocity costed against displacement" "in m, a displacement: the data are in m/s, a velocity" \
   cost --data "$tmp/v.csv" --prediction "$tmp/z.csv" --cost time
+# A ratio's other terms are named with their lines: a changed rho_r2 was blamed on the kAG line alone (P015).
+sed 's/^rho_r2 = .*/rho_r2 = 1e-3/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/rotary.toml"
+expect_error "rho_r2 in a ratio" "(rho on line 5, rho_r2 on line 6, EI on line 8)" modes --beam "$tmp/rotary.toml" --elements 4
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
