@@ -1,6 +1,7 @@
 #include "apps/cli.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 
 #include "apps/commands.h"
 #include "core/errors.h"
@@ -31,7 +32,7 @@ std::vector<std::string> extras_of(const std::string& message) {
 }
 
 // CLI11's error as the project's one-line message (without the "beamid: " prefix).
-std::string message_of(const CLI::ParseError& e, const std::string& command) {
+std::string message_of(const CLI::ParseError& e, const std::string& command, bool has_separator) {
   const std::string what = e.what();
   const std::string where = command.empty() ? "" : command + ": ";
   const auto name_end = what.find(": ");
@@ -46,7 +47,12 @@ std::string message_of(const CLI::ParseError& e, const std::string& command) {
       return "unknown command '" + (extras.empty() ? std::string() : extras.front()) +
              "' (commands: " + command_list() + ")";
     for (const auto& x : extras)
-      if (x.rfind("-", 0) == 0) return where + "unknown flag " + x + " (" + command + " --help lists them)";
+      if (x.rfind("-", 0) == 0)
+        return where + (has_separator
+                            ? "'" + x +
+                                  "' follows '--', which ends the flags, so it is read as an argument, not a flag: "
+                                  "drop the '--'"
+                            : "unknown flag " + x + " (" + command + " --help lists them)");
     return where + "unexpected argument '" + (extras.empty() ? std::string() : extras.front()) + "'";
   }
   return where + what;
@@ -104,7 +110,8 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
     return 0;
   } catch (const CLI::ParseError& e) {
     const auto [c, sub] = active();
-    err << "beamid: " << one_line(message_of(e, c ? "beamid " + c->name : "")) << "\n";
+    const bool separator = std::find(args.begin(), args.end(), "--") != args.end();
+    err << "beamid: " << one_line(message_of(e, c ? "beamid " + c->name : "", separator)) << "\n";
     return 2;
   }
   if (version) {
@@ -159,7 +166,8 @@ Flags parse_flags(const std::string& name, const std::vector<std::string>& argum
   } catch (const CLI::CallForHelp&) {
     throw InputError("beamid " + name + ": --help: the flags are listed by `beamid " + name + " --help`");
   } catch (const CLI::ParseError& e) {
-    throw InputError(message_of(e, "beamid " + name));
+    throw InputError(
+        message_of(e, "beamid " + name, std::find(arguments.begin(), arguments.end(), "--") != arguments.end()));
   }
   return Flags(command->name, *sub, command->flags, arguments);
 }

@@ -292,6 +292,8 @@ expect_error "velocity costed against displacement" "in m, a displacement: the d
 # A ratio's other terms are named with their lines: a changed rho_r2 was blamed on the kAG line alone (P015).
 sed 's/^rho_r2 = .*/rho_r2 = 1e-3/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/rotary.toml"
 expect_error "rho_r2 in a ratio" "(rho on line 5, rho_r2 on line 6, EI on line 8)" modes --beam "$tmp/rotary.toml" --elements 4
+# A flag after '--' is said to be read as an argument (Z016 said "unknown flag --count").
+expect_error "flag after --" "'--count' follows '--', which ends the flags" modes "${S[@]}" -- --count 2
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
