@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "core/errors.h"
@@ -12,18 +13,17 @@
 
 namespace beamid::galerkin {
 
-UndampedModes undamped_modes(const SecondOrderSystem& s) {
-  // Solved as M phi = mu K phi, mu = 1/omega^2, through the Cholesky factor K = L L^T: the symmetric eigensolver's
-  // absolute error eps max(mu) is then relative to the low modes, which are the ones observed. The direct form
-  // (Cholesky of M) has absolute error eps omega_max^2 instead, and the shear modes near the cut-off (~1e7 rad/s for
-  // the thin beam) then cost the first mode ~1e-4 of relative accuracy and break Rayleigh-Ritz bounds.
-  const Eigen::LLT<Eigen::MatrixXd> stiffness(s.K);
-  if (stiffness.info() != Eigen::Success) throw NumericalError("stiffness matrix K is not positive definite");
+namespace {
+
+// M phi = mu (K + sigma M) phi, mu = 1/(omega^2 + sigma), through the Cholesky factor K + sigma M = L L^T; nothing
+// when the factorisation or the eigensolver fails, or a mu is not positive.
+std::optional<UndampedModes> shifted_undamped_modes(const SecondOrderSystem& s, double sigma) {
+  const Eigen::LLT<Eigen::MatrixXd> stiffness(sigma == 0 ? s.K : Eigen::MatrixXd(s.K + sigma * s.M));
+  if (stiffness.info() != Eigen::Success) return std::nullopt;
   const Eigen::MatrixXd l_inv_m = stiffness.matrixL().solve(s.M);
   const Eigen::MatrixXd reduced = stiffness.matrixL().solve(l_inv_m.transpose());  // L^-1 M L^-T
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (reduced + reduced.transpose()));
-  if (solver.info() != Eigen::Success || solver.eigenvalues().minCoeff() <= 0)
-    throw NumericalError("undamped eigenproblem M phi = mu K phi failed (is M positive definite?)");
+  if (solver.info() != Eigen::Success || solver.eigenvalues().minCoeff() <= 0) return std::nullopt;
   const Eigen::Index n = s.M.rows();
   UndampedModes modes;
   modes.omega_rad_s.resize(n);
@@ -32,10 +32,33 @@ UndampedModes undamped_modes(const SecondOrderSystem& s) {
   const Eigen::MatrixXd phi = stiffness.matrixU().solve(solver.eigenvectors());
   for (Eigen::Index k = 0; k < n; ++k) {
     const double mu = solver.eigenvalues()(n - 1 - k);
-    modes.omega_rad_s(k) = 1 / std::sqrt(mu);
+    const double omega2 = 1 / mu - sigma;
+    if (!(omega2 > 0)) return std::nullopt;
+    modes.omega_rad_s(k) = std::sqrt(omega2);
     modes.shapes.col(k) = phi.col(n - 1 - k) / std::sqrt(mu);
   }
   return modes;
+}
+
+}  // namespace
+
+UndampedModes undamped_modes(const SecondOrderSystem& s) {
+  // Solved as M phi = mu K phi, mu = 1/omega^2, through the Cholesky factor K = L L^T: the symmetric eigensolver's
+  // absolute error eps max(mu) is then relative to the low modes, which are the ones observed. The direct form
+  // (Cholesky of M) has absolute error eps omega_max^2 instead, and the shear modes near the cut-off (~1e7 rad/s for
+  // the thin beam) then cost the first mode ~1e-4 of relative accuracy and break Rayleigh-Ritz bounds.
+  if (auto modes = shifted_undamped_modes(s, 0)) return *modes;
+  // A near-rigid mode (a soft clamp spring: omega_min^2 below eps omega_max^2) makes max(mu) so large that the
+  // smallest mu drowns in its error. Shifted by sigma, mu = 1/(omega^2 + sigma) is at most 1/sigma: with sigma =
+  // 1e-10 max_i K_ii/M_ii (at most 1e-10 omega_max^2, a Rayleigh quotient), the smallest mu stays ~1e-10 of the
+  // largest, far above eps, while the near-rigid mode keeps a relative accuracy of eps sigma/omega_min^2 (3e-10 for the
+  // thin beam on a clamp spring of k_theta l/EI = 1e-4) and the elastic modes eps (1 + sigma/omega^2)^2.
+  const double ratio = (s.K.diagonal().array() / s.M.diagonal().array()).maxCoeff();
+  if (std::isfinite(ratio) && ratio > 0)
+    if (auto modes = shifted_undamped_modes(s, 1e-10 * ratio)) return *modes;
+  throw NumericalError(
+      "undamped eigenproblem M phi = mu (K + sigma M) phi failed: the mass or stiffness matrix is "
+      "not positive definite to double precision");
 }
 
 UndampedModes lowest_undamped_modes(const BeamForms& forms, const model::BeamParameters& beam, int modes) {
