@@ -90,6 +90,7 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   options.cvode.rtol = request.rtol.value_or(options.cvode.rtol);
   options.cvode.atol = request.atol.value_or(options.cvode.atol);
   options.cvode.max_order = request.max_order.value_or(options.cvode.max_order);
+  options.cvode.progress = &warnings;
   if (auto error = simulation::validation_error(options)) refuse(caller, *error);
   // A synthetic lab record: white noise of noise_level times the clean signal's RMS (signal/noise.h).
   const double noise = request.noise_level.value_or(0.0);

@@ -8,9 +8,11 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
+#include <ostream>
 #include <string>
 
 #include "core/errors.h"
@@ -278,6 +280,29 @@ std::string failure_status(const std::string& what, int flag, const std::string&
   return status;
 }
 
+// The one-time note of CvodeOptions::progress: after each output sample, the time the rest will take at the pace so
+// far; said once, when 2 s have passed and more than 5 s remain.
+class ProgressNote {
+ public:
+  ProgressNote(std::ostream* out, int samples) : out_(out), samples_(samples) {}
+  void after(int sample) {
+    if (!out_ || said_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double rest = elapsed * (samples_ - sample - 1) / (sample + 1);
+    if (elapsed < 2 || rest < 5) return;
+    *out_ << "beamid: cvode: about " << static_cast<long>(std::ceil(rest)) << " s more for this run (" << sample + 1
+          << " of " << samples_ << " samples in " << static_cast<long>(elapsed)
+          << " s: the beam's lightly damped modes force small steps); --integrator fast gives the exact response\n";
+    said_ = true;
+  }
+
+ private:
+  std::ostream* out_;
+  int samples_;
+  bool said_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace
 
 Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const ResponseProblem& p) const {
@@ -348,6 +373,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   if (pulse) CVodeSetStopTime(s.cvode, p.pulse_width_s);
   std::vector<double> accel(static_cast<std::size_t>(n));
   StepDiagnosis diagnosis(s, n, block);
+  ProgressNote note(options_.progress, p.samples);
   for (int i = 0; i < p.samples; ++i) {
     const double t_out = i * p.dt_s;
     if (i > 0) {
@@ -366,6 +392,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
       flag = CVode(s.cvode, t_out, s.y, &t_reached, CV_NORMAL);
       if (flag < 0) return failed("CVode at t = " + format_value(t_out) + " s", flag);
       diagnosis.record();
+      note.after(i);
     }
     trace.y[i] = sensor_output(p, rhs, t_out, N_VGetArrayPointer(s.y), accel);
   }

@@ -9,8 +9,8 @@
 //               (for acceleration with the retained part of the direct term, c^T Phi_L Phi_L^T f P);
 //   decoupled:  the retained block and every discarded mode as its own oscillator, M~_jj q_j'' + C~_jj q_j' +
 //               K~_jj q_j = phi_j^T f P (M~_jj = 1, K~_jj = omega_j^2 up to round-off): the exact response of the
-//               block-diagonal system [X_LL 0; 0 diag X_HH] for X = M~, C~, K~, so the discarded modes keep their static
-//               and dynamic response and only the damping's coupling through C~_LH and within H is dropped. This
+//               block-diagonal system [X_LL 0; 0 diag X_HH] for X = M~, C~, K~, so the discarded modes keep their
+//               static and dynamic response and only the damping's coupling through C~_LH and within H is dropped. This
 //               contains the static (mode-acceleration) correction and more.
 // The damped spectrum need not have the undamped one's gap: Kelvin-Voigt shear damping turns each stiff shear mode
 // into two real roots, a fast one near -kAcs omega_j^2 / kAG and a slow one near -kAG / kAcs whatever omega_j is,
