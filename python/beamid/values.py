@@ -41,6 +41,11 @@ class _Fields:
     def to_dict(self):
         return {name: getattr(self, name) for name in self.keys()}
 
+    @classmethod
+    def _from_core(cls, raw):
+        """The value from the core's dict of the same field names (a class whose fields differ overrides this)."""
+        return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
+
 
 _SPIKE_FIELDS = [("bin", "i8"), ("frequency_hz", "f8"), ("magnitude", "f8"), ("n_left", "i8"), ("n_right", "i8")]
 
@@ -88,10 +93,6 @@ class CostValue(_Fields):
     amplitude_scale: float
     a4: str
 
-    @classmethod
-    def _from_core(cls, raw):
-        return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
-
     def __repr__(self):
         return f"CostValue({self.value:.6g}, {len(self.residuals)} residuals, a4={self.a4!r})"
 
@@ -116,10 +117,6 @@ class CramerRao(_Fields):
     covariance: np.ndarray
     method: str
     rcond: float
-
-    @classmethod
-    def _from_core(cls, raw):
-        return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
 
     def to_pandas(self):
         """One row per parameter: value, crb_sd, crb_relative_sd."""
@@ -156,10 +153,6 @@ class System(_Fields):
     dt_s: float
     samples: int
 
-    @classmethod
-    def _from_core(cls, raw):
-        return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
-
     def __repr__(self):
         return f"System({self.beam}, N = {self.elements}, {self.M.shape[0]} unknowns)"
 
@@ -179,10 +172,6 @@ class Record(_Fields):
     channel: str
     path: str
     notes: str
-
-    @classmethod
-    def _from_core(cls, raw):
-        return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
 
     @property
     def time_s(self) -> np.ndarray:
