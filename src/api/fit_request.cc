@@ -65,6 +65,12 @@ void check_quantity(const Caller& caller, const std::vector<io::TimeSeries>& cha
                     const simulation::Experiment& experiment) {
   if (experiment.excitation == simulation::kFreeDecay) return;
   for (const io::TimeSeries& record : channels) {
+    if (io::is_non_motion_unit(record.unit))
+      refuse(caller, "data", record.path,
+             record.value_column + " is in " + record.unit +
+                 ", a raw sensor signal, not a motion: convert it to m, m/s "
+                 "or m/s^2 with the sensor's sensitivity (or fit it as --excitation free-decay, whose amplitudes are "
+                 "free)");
     const std::string quantity = io::quantity_of(record.unit);
     if (!quantity.empty() && quantity != experiment.output)
       refuse(caller, "output", experiment.output,

@@ -66,14 +66,27 @@ Table read_csv(std::istream& in, const std::string& path) {
     throw InputError(path + ":1: '" + shown(trim(line)) +
                      "': the first line holds numbers, not column names: a CSV record starts with a header such as "
                      "t_s,displacement_m");
-  // The time column is in seconds: one named in another unit ("t_ms", "time (ms)") would be read 1000x off.
+  // Names as pandas and spreadsheets write them, "t_s","accel_g": the quotes are no part of the name. A quoted name
+  // holding a comma was split at it: said, not read as two columns. A nameless column is not silently skipped.
+  for (std::size_t j = 0; j < t.names.size(); ++j) {
+    std::string name = trim(t.names[j]);
+    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = trim(name.substr(1, name.size() - 2));
+    if (name.find('"') != std::string::npos)
+      throw InputError(path + ":1: column " + std::to_string(j + 1) + " '" + shown(name) +
+                       "': a quoted name holding a comma is not read (beamid splits the header at every comma): "
+                       "rename the column without commas");
+    if (name.empty())
+      throw InputError(path + ":1: column " + std::to_string(j + 1) +
+                       " has no name: every column of a record is "
+                       "named (time in s first, then the signals)");
+    t.names[j] = name;
+  }
+  // The time column is in seconds: one named in another unit ("t_ms", "Time [ms]", "time_msec") would be read 1000x
+  // off (io/units.h).
   const std::string time = t.names.front();
-  for (const std::string unit : {"ms", "us", "ns", "min", "h"})
-    if ((time.size() > unit.size() + 1 &&
-         time.compare(time.size() - unit.size() - 1, std::string::npos, "_" + unit) == 0) ||
-        time.find("(" + unit + ")") != std::string::npos)
-      throw InputError(path + ":1: time column '" + shown(trim(time)) + "' is in " + unit +
-                       ": beamid reads the time in seconds (convert it, e.g. t_s)");
+  if (const std::string unit = time_unit_of_column_name(time); !unit.empty() && unit != "s")
+    throw InputError(path + ":1: time column '" + shown(time) + "' is in " + unit +
+                     ": beamid reads the time in seconds (convert it, e.g. t_s)");
   // A unit in the name, "accel_g", "v_mm_s" or "accel (g)", is taken as the column's unit (io/units.h).
   for (const auto& n : t.names) t.units.push_back(unit_of_column_name(n));
   int number = 1;

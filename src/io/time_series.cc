@@ -145,6 +145,56 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
 // increasing times (a repeated or backward time named on its line: a duplicated line was blamed on line 3, where the
 // mean step first missed the grid), at most 1e6 s long (11 days: a unit mistake, the bound of a simulated
 // experiment), and uniform to the printed resolution of the time column unless o.resample.
+double median_step(const std::vector<double>& t) {
+  std::vector<double> steps(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
+// A time column that counts samples (0, 1, 2, ... under a name such as "sample" or "index") is no time in seconds.
+void refuse_sample_counter(const Samples& in, const std::string& path) {
+  std::string name = in.series.time_column;
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  const bool counter_name = name == "sample" || name == "samples" || name == "index" || name == "idx" || name == "n" ||
+                            name == "i" || name == "k" || name == "sample_index";
+  if (counter_name && in.t[1] - in.t[0] == 1 && in.t.front() == std::floor(in.t.front()))
+    throw InputError(path + ": time column '" + name + "' counts samples (" + format_value(in.t[0]) + ", " +
+                     format_value(in.t[1]) + ", ...): beamid reads the time in seconds (write t_s = sample / rate)");
+}
+
+// Each step against the median step: a missing or an extra sample is named on its own line (one missing sample of a
+// 1 kHz record printed to the millisecond was read as uniform at dt = 1.00098 ms, every later sample a step off).
+// Where the column is printed as coarsely as half its step, every step must equal the median (rounding cannot hide a
+// doubled step there); elsewhere a step may differ from it by twice the grid check's tolerance.
+void check_steps(const Samples& in, double median, double tolerance) {
+  const std::vector<double>& t = in.t;
+  const bool coarse = in.time_resolution >= 0.5 * median;
+  const double allowed = coarse ? 1e-9 * median : 2 * tolerance + 1e-9 * median;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double step = t[i] - t[i - 1];
+    if (std::abs(step - median) <= allowed) continue;
+    // A missing sample leaves a step of k medians (k >= 2); an extra one splits a step in two. Any other deviation,
+    // a sample off its time, is the grid check's to name.
+    const double ratio = step / median;
+    const bool missing = std::round(ratio) >= 2 && std::abs(ratio - std::round(ratio)) <= 0.1;
+    const bool extra = ratio <= 0.6 && i + 1 < t.size() && std::abs((t[i + 1] - t[i - 1]) / median - 1) <= 0.1;
+    if (!missing && !extra) continue;
+    throw InputError(in.where(i) + ": " + in.series.time_column + " = " + format_value(t[i]) + ": a step of " +
+                     format_value(step) + " s from the previous sample, where the record's median step is " +
+                     format_value(median) + " s (a " + (missing ? "missing" : "extra") + " sample?" +
+                     (coarse ? "; the time column is printed to " + format_value(in.time_resolution) +
+                                   " s, too coarse to tell rounding from a gap: print it with more digits"
+                             : "") +
+                     "; --resample interpolates instead)");
+  }
+}
+
+// The record's step dt = (t_last - t_0)/(n - 1), after the checks of its time base: enough samples, strictly
+// increasing times (a repeated or backward time named on its line: a duplicated line was blamed on line 3, where the
+// mean step first missed the grid), a step of at least 1 ns and a record of at most 1e6 s (11 days; either way a unit
+// mistake: an LVM Delta_X of 1e-300 gave spikes at 3e297 Hz), and uniform to the printed resolution of the time
+// column, step by step and against the grid, unless o.resample.
 double checked_step(const Samples& in, const std::string& path, const ImportOptions& o) {
   const std::vector<double>& t = in.t;
   const std::string& column = in.series.time_column;
@@ -155,18 +205,30 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
   if (!(dt > 0)) throw InputError(path + ": time column " + column + " does not increase");
+  const double median = median_step(t);
+  const bool coarse = in.time_resolution >= 0.5 * median;
   for (std::size_t i = 1; i < t.size(); ++i)
     if (!(t[i] > t[i - 1]))
       throw InputError(
           in.where(i) + ": " + column + " = " + format_value(t[i]) +
           (t[i] == t[i - 1] ? ": repeats the previous sample's time" : ": goes back from the previous sample's ") +
-          (t[i] == t[i - 1] ? "" : format_value(t[i - 1]) + " s") + " (a duplicated or misordered line)");
+          (t[i] == t[i - 1] ? "" : format_value(t[i - 1]) + " s") +
+          (coarse && t[i] == t[i - 1] ? " (the time column is printed to " + format_value(in.time_resolution) +
+                                            " s, too coarse for its step: print it with more digits)"
+                                      : " (a duplicated or misordered line)"));
+  refuse_sample_counter(in, path);
+  if (dt < 1e-9)
+    throw InputError(path + ": a step of " + format_value(dt) +
+                     " s (a rate above 1 GHz): at least 1e-9 s (is its "
+                     "time in seconds?)");
   if (dt * static_cast<double>(t.size() - 1) > 1e6)
     throw InputError(path + ": the record lasts " + format_value(dt * static_cast<double>(t.size() - 1)) + " s (" +
                      std::to_string(t.size()) + " samples at dt = " + format_value(dt) +
                      " s): at most 1e6 s (is its time in seconds?)");
+  if (o.resample) return dt;
   const double tolerance = std::max(1e-6 * dt, in.time_resolution + 1e-9 * dt);
-  for (std::size_t i = 0; i < t.size() && !o.resample; ++i) {
+  check_steps(in, median, tolerance);
+  for (std::size_t i = 0; i < t.size(); ++i) {
     const double expected = t0 + static_cast<double>(i) * dt;
     if (std::abs(t[i] - expected) > tolerance)
       throw InputError(in.where(i) + ": " + column + " = " + format_value(t[i]) + ": non-uniform time base (expected " +
@@ -181,15 +243,12 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
 // gap does not move) is refused.
 void resample_linearly(Samples& in, double dt) {
   const std::vector<double>& t = in.t;
-  std::vector<double> steps(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
-  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
-  const double median_step = steps[steps.size() / 2];
+  const double median = median_step(t);
   for (std::size_t i = 1; i < t.size(); ++i)
-    if (t[i] - t[i - 1] > 10 * median_step)
+    if (t[i] - t[i - 1] > 10 * median)
       throw InputError(in.where(i) + ": " + in.series.time_column + " = " + format_value(t[i]) + ": a gap of " +
                        format_value(t[i] - t[i - 1]) + " s after the previous sample, " +
-                       format_rounded((t[i] - t[i - 1]) / median_step) +
+                       format_rounded((t[i] - t[i - 1]) / median) +
                        " times the median step: --resample interpolates within a record, not across a gap (split the "
                        "file there: the whole record is resampled before --start and --duration apply)");
   std::vector<double> u(in.v.size());
@@ -204,36 +263,42 @@ void resample_linearly(Samples& in, double dt) {
   in.series.notes += "resampled linearly onto a uniform " + format_value(dt) + " s grid; ";
 }
 
-// The values hold a vibration beamid can analyse: not all zero or constant (a fit of a constant record "converged" to
-// an arbitrary stiffness with a standard error), within [1e-150, 1e150] at their peak (beyond, spectra overflow; below,
-// products underflow: the matrix pencil's QR of a 1e-200-scaled decay returned 14.7 and 85 Hz for modes at 2.46 and
-// 26.6 Hz), and not clipped (the peak held by 3 or more consecutive samples).
-void check_values(const Samples& in, const std::string& path) {
-  const std::vector<double>& v = in.v;
-  const std::string& column = in.series.value_column;
+// The window's values (in the units they end in) hold a vibration beamid can analyse: not all zero or constant (a fit
+// of a constant record "converged" to an arbitrary stiffness with a standard error), within [1e-150, 1e150] at their
+// peak (beyond, spectra overflow; below, products underflow: the matrix pencil's QR of a 1e-200-scaled decay returned
+// 14.7 and 85 Hz for modes at 2.46 and 26.6 Hz), and not clipped (the peak held by 3 or more consecutive samples).
+// Checked after the window and the conversion to SI, which is what the analysis sees (a tail scaled by 1e-190, or a
+// record of 1e-149 um, passed a check of the whole record in its own unit). `first`: the window's first sample in
+// the file, for `where`.
+void check_values(const Samples& in, const TimeSeries& s, std::size_t first, const std::string& path) {
+  const std::vector<double>& v = s.values;
+  const std::string& column = s.value_column;
+  const std::string window = first > 0 || v.size() < in.v.size() ? " in the window" : "";
   double peak = 0;
   for (double x : v) peak = std::max(peak, std::abs(x));
-  if (peak == 0) throw InputError(path + ": " + column + " is 0 in every sample: there is nothing to analyse");
+  if (peak == 0)
+    throw InputError(path + ": " + column + " is 0 in every sample" + window + ": there is nothing to analyse");
   if (peak > 1e150)
-    throw InputError(path + ": " + column + " reaches " + format_value(peak) +
+    throw InputError(path + ": " + column + " reaches " + format_value(peak) + window +
                      ": beyond 1e150, its spectrum would overflow (rescale the record)");
   if (peak < 1e-150)
     throw InputError(path + ": " + column + " reaches only " + format_value(peak) +
+                     (s.unit.empty() ? "" : " " + s.unit) + window +
                      ": below 1e-150, its products underflow (rescale the record)");
   if (std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); }))
-    throw InputError(path + ": " + column + " is " + format_value(v.front()) +
-                     " in every sample: a constant record holds no vibration to analyse");
+    throw InputError(path + ": " + column + " is " + format_value(v.front()) + " in every sample" + window +
+                     ": a constant record holds no vibration to analyse");
   for (std::size_t i = 0; i + 2 < v.size(); ++i)
     if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i])
-      throw InputError(in.where(i) + ": " + column + " = " + format_value(v[i]) +
+      throw InputError(in.where(first + i) + ": " + column + " = " + format_value(in.v[first + i]) +
                        " on 3 or more consecutive samples at the record's peak: the signal is "
                        "clipped (the DAQ range was exceeded), so its spectrum is distorted");
 }
 
 // The window into s: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
 // that rounded DAQ times and a start given to a few digits pick the intended sample).
-void cut_window(TimeSeries& s, const std::vector<double>& v, double t0, double dt, const std::string& path,
-                const ImportOptions& o) {
+std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, double dt, const std::string& path,
+                       const ImportOptions& o) {
   const double start = o.start_s.value_or(t0);
   const double t_end = t0 + static_cast<double>(v.size() - 1) * dt;
   if (!(start >= t0 - 0.5 * dt && start <= t_end))
@@ -258,11 +323,17 @@ void cut_window(TimeSeries& s, const std::vector<double>& v, double t0, double d
   s.dt_s = dt;
   if (o.start_s || o.duration_s)
     s.notes += "window of " + std::to_string(s.values.size()) + " samples from t = " + format_value(s.t0_s) + " s; ";
+  return first;
 }
 
 // To SI (io/units.h): the unit the file states ("auto"), or g when the user says so; "as-is" converts nothing.
-void convert_to_si(TimeSeries& s, const ImportOptions& o) {
+void convert_to_si(TimeSeries& s, const ImportOptions& o, const std::string& path) {
   if (o.units == "as-is") return;  // the numbers as they are, the file's unit kept as its label
+  // --units g says the values are in g: a file that states another unit contradicts it (a column 'x (mm)' was
+  // multiplied by 9.81 and called an acceleration).
+  if (o.units == "g" && !s.unit.empty() && s.unit != "g")
+    throw InputError(path + ": --units g: the file states that " + s.value_column + " is in " + s.unit +
+                     " (leave --units at auto to read it so)");
   if (o.units == "g") s.unit = "g";
   if (const auto si = si_conversion(s.unit)) {
     for (double& x : s.values) x *= si->factor;
@@ -276,10 +347,10 @@ void convert_to_si(TimeSeries& s, const ImportOptions& o) {
 TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
   const double dt = checked_step(in, path, o);
   if (o.resample) resample_linearly(in, dt);
-  check_values(in, path);
-  TimeSeries s = std::move(in.series);
-  cut_window(s, in.v, in.t.front(), dt, path, o);
-  convert_to_si(s, o);
+  TimeSeries s = in.series;
+  const std::size_t first = cut_window(s, in.v, in.t.front(), dt, path, o);
+  convert_to_si(s, o, path);
+  check_values(in, s, first, path);
   if (o.resample_rate_hz) resample_to_rate(s, *o.resample_rate_hz, path);
   return s;
 }

@@ -9,83 +9,131 @@ namespace beamid::io {
 
 namespace {
 
-constexpr double kStandardGravity = 9.80665;  // m/s^2 per g
+constexpr double kStandardGravity = 9.80665;  // m/s^2 per g (CGPM 1901)
+constexpr double kInch = 0.0254;              // m per inch (exact since 1959)
 
-std::string lower_trimmed(std::string_view text) {
-  const auto first = text.find_first_not_of(" \t");
+std::string trimmed(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\"'");
   if (first == std::string_view::npos) return "";
-  const auto last = text.find_last_not_of(" \t");
-  std::string out(text.substr(first, last - first + 1));
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
-  return out;
+  return std::string(text.substr(first, text.find_last_not_of(" \t\"'") - first + 1));
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+// The unit a label spells, in beamid's spelling, or "" (case-insensitive). A bare "v", "n" or "in" is volts, newtons
+// or inches only in a label ("(V)", an LVM unit): as a name's suffix it is as likely a velocity ("tip_v"), an index
+// ("x_n") or an input ("force_in").
+std::string known_unit(std::string u, bool label) {
+  u = lower(trimmed(u));
+  // The micro sign (UTF-8 C2 B5) and Greek mu (CE BC) as u; the superscript two (C2 B2) as ^2.
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\xc2\xb5", "u"},
+                                 {"\xce\xbc", "u"},
+                                 {"\xc2\xb2", "^2"},
+                                 {"**", "^"},
+                                 {" ", ""}}) {
+    for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
+      u.replace(at, from.size(), to);
+  }
+  static const std::array<std::pair<const char*, const char*>, 30> spellings{{
+      {"g", "g"},          {"g's", "g"},       {"gs", "g"},          {"mg", "mg"},        {"m", "m"},
+      {"cm", "cm"},        {"mm", "mm"},       {"um", "um"},         {"in", "in"},        {"m/s", "m/s"},
+      {"ms^-1", "m/s"},    {"mm/s", "mm/s"},   {"in/s", "in/s"},     {"ips", "in/s"},     {"m/s^2", "m/s^2"},
+      {"m/s2", "m/s^2"},   {"ms^-2", "m/s^2"}, {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"}, {"in/s^2", "in/s^2"},
+      {"in/s2", "in/s^2"}, {"v", "V"},         {"volt", "V"},        {"volts", "V"},      {"mv", "mV"},
+      {"n", "N"},          {"newton", "N"},    {"newtons", "N"},     {"lbf", "lbf"},      {"pa", "Pa"},
+  }};
+  if (!label && (u == "v" || u == "n" || u == "in")) return "";
+  for (const auto& [spelling, unit] : spellings)
+    if (u == spelling) return unit;
+  return "";
+}
+
+// A bracketed label at the end of a name: "(g)", "[m/s^2]"; nothing when the name has none.
+std::optional<std::string> bracketed(const std::string& name) {
+  for (const auto& [open, close] : {std::pair{'(', ')'}, std::pair{'[', ']'}}) {
+    const auto o = name.rfind(open), c = name.rfind(close);
+    if (o != std::string::npos && c != std::string::npos && c > o) return name.substr(o + 1, c - o - 1);
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
 std::string normalized_unit(std::string_view label) {
-  std::string u = lower_trimmed(label);
-  // "µm" (UTF-8 micro sign) and "μm" (Greek mu) as um.
-  for (const std::string micro : {"\xc2\xb5", "\xce\xbc"})
-    if (u.rfind(micro, 0) == 0) u = "u" + u.substr(micro.size());
-  static const std::array<std::pair<const char*, const char*>, 14> spellings{{{"g", "g"},
-                                                                              {"m", "m"},
-                                                                              {"mm", "mm"},
-                                                                              {"um", "um"},
-                                                                              {"m/s", "m/s"},
-                                                                              {"mm/s", "mm/s"},
-                                                                              {"m/s^2", "m/s^2"},
-                                                                              {"m/s2", "m/s^2"},
-                                                                              {"m/s**2", "m/s^2"},
-                                                                              {"m s^-2", "m/s^2"},
-                                                                              {"mm/s^2", "mm/s^2"},
-                                                                              {"mm/s2", "mm/s^2"},
-                                                                              {"m s^-1", "m/s"},
-                                                                              {"mm/s**2", "mm/s^2"}}};
-  for (const auto& [spelling, unit] : spellings)
-    if (u == spelling) return unit;
-  const auto first = label.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return "";
-  return std::string(label.substr(first, label.find_last_not_of(" \t") - first + 1));
+  const std::string unit = known_unit(std::string(label), true);
+  return unit.empty() ? trimmed(label) : unit;
 }
 
-std::string unit_of_column_name(std::string_view name) {
-  const std::string n = lower_trimmed(name);
-  // "accel (g)", "v (m/s)": the label inside the last parentheses.
-  const auto open = n.rfind('('), close = n.rfind(')');
-  if (open != std::string::npos && close != std::string::npos && close > open) {
-    const std::string unit = normalized_unit(n.substr(open + 1, close - open - 1));
-    return si_conversion(unit) || !quantity_of(unit).empty() ? unit : "";
+std::string unit_of_column_name(std::string_view column) {
+  const std::string name = trimmed(column);
+  if (const auto label = bracketed(name)) return known_unit(*label, true);
+  // A suffix after a separator, the longest that spells a unit: "acc_m_s2" is m/s^2 before s2 or m, "v_mm_s" mm/s.
+  const std::string n = lower(name);
+  for (std::size_t at = 0; (at = n.find('_', at)) != std::string::npos; ++at) {
+    std::string suffix = n.substr(at + 1);
+    std::replace(suffix.begin(), suffix.end(), '_', '/');  // m_s2 -> m/s2, mm_s -> mm/s, in_s -> in/s
+    if (const std::string unit = known_unit(suffix, false); !unit.empty()) return unit;
   }
-  // Suffixes, the longest first ("_mm_s2" before "_m_s2" before "_s2" ...).
-  static const std::array<std::pair<const char*, const char*>, 8> suffixes{{{"_mm_s2", "mm/s^2"},
-                                                                            {"_m_s2", "m/s^2"},
-                                                                            {"_mm_s", "mm/s"},
-                                                                            {"_m_s", "m/s"},
-                                                                            {"_mm", "mm"},
-                                                                            {"_um", "um"},
-                                                                            {"_m", "m"},
-                                                                            {"_g", "g"}}};
-  for (const auto& [suffix, unit] : suffixes) {
-    const std::string_view s(suffix);
-    if (n.size() > s.size() && n.compare(n.size() - s.size(), s.size(), s) == 0) return unit;
+  return "";
+}
+
+std::string time_unit_of_column_name(std::string_view column) {
+  const std::string name = trimmed(column);
+  std::string label;
+  if (const auto inside = bracketed(name)) {
+    label = *inside;
+  } else if (const auto at = name.rfind('_'); at != std::string::npos) {
+    label = name.substr(at + 1);
+  } else {
+    return "";
   }
+  label = lower(trimmed(label));
+  for (const auto& [spelling, unit] : std::array<std::pair<const char*, const char*>, 14>{{{"s", "s"},
+                                                                                           {"sec", "s"},
+                                                                                           {"seconds", "s"},
+                                                                                           {"ms", "ms"},
+                                                                                           {"msec", "ms"},
+                                                                                           {"us", "us"},
+                                                                                           {"usec", "us"},
+                                                                                           {"\xc2\xb5s", "us"},
+                                                                                           {"ns", "ns"},
+                                                                                           {"min", "min"},
+                                                                                           {"mins", "min"},
+                                                                                           {"minutes", "min"},
+                                                                                           {"h", "h"},
+                                                                                           {"hours", "h"}}})
+    if (label == spelling) return unit;
   return "";
 }
 
 std::optional<SiConversion> si_conversion(const std::string& unit) {
   if (unit == "g") return SiConversion{"m/s^2", kStandardGravity};
+  if (unit == "mg") return SiConversion{"m/s^2", 1e-3 * kStandardGravity};
+  if (unit == "cm") return SiConversion{"m", 1e-2};
   if (unit == "mm") return SiConversion{"m", 1e-3};
   if (unit == "um") return SiConversion{"m", 1e-6};
+  if (unit == "in") return SiConversion{"m", kInch};
   if (unit == "mm/s") return SiConversion{"m/s", 1e-3};
+  if (unit == "in/s") return SiConversion{"m/s", kInch};
   if (unit == "mm/s^2") return SiConversion{"m/s^2", 1e-3};
+  if (unit == "in/s^2") return SiConversion{"m/s^2", kInch};
   return std::nullopt;
 }
 
-std::string quantity_of(const std::string& si_unit) {
-  if (si_unit == "m") return "displacement";
-  if (si_unit == "m/s") return "velocity";
-  if (si_unit == "m/s^2") return "acceleration";
+std::string quantity_of(const std::string& unit) {
+  const auto si = si_conversion(unit);
+  const std::string base = si ? si->unit : unit;
+  if (base == "m") return "displacement";
+  if (base == "m/s") return "velocity";
+  if (base == "m/s^2") return "acceleration";
   return "";
+}
+
+bool is_non_motion_unit(const std::string& unit) {
+  return unit == "V" || unit == "mV" || unit == "N" || unit == "lbf" || unit == "Pa";
 }
 
 }  // namespace beamid::io

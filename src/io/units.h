@@ -1,7 +1,8 @@
-// The unit a record states for its values (an LVM Y_Unit_Label, a UFF ordinate label, a CSV column name's suffix),
-// its conversion to SI, and the quantity it measures. beamid models displacement in m, velocity in m/s and
-// acceleration in m/s^2: a record in g or in millimetres is converted on reading (ImportOptions::units "auto"), and
-// one that says it is a velocity is not fitted as a displacement (api/fit_request.cc).
+// The unit a record states for its values (an LVM Y_Unit_Label, a UFF ordinate label, a CSV column name's suffix or
+// bracketed label), its conversion to SI, and the quantity it measures; and the unit a time column states. beamid
+// models displacement in m, velocity in m/s and acceleration in m/s^2: a record in g, milli-g, millimetres or inches
+// is converted on reading (ImportOptions::units "auto"), one that says it is a velocity is not fitted as a
+// displacement, and one in volts or newtons is not fitted as a motion at all (api/fit_request.cc).
 #pragma once
 
 #include <optional>
@@ -10,20 +11,29 @@
 
 namespace beamid::io {
 
-// A unit label as a file writes it ("g", "G", "m/s^2", "m/s2", "mm/s", "m", "um", "µm", ...) in beamid's spelling: one
-// of g, m, mm, um, m/s, mm/s, m/s^2, mm/s^2; the label itself (trimmed) when it is none of them.
+// A unit label as a file writes it ("g", "G", "g's", "mg", "m/s^2", "m/s2", "m/s²", "mm/s", "in/s", "ips", "cm", "µm",
+// "V", "Volts", "N" ...) in beamid's spelling: g, mg, m, cm, mm, um, in, m/s, mm/s, in/s, m/s^2, mm/s^2, in/s^2, V, mV,
+// N, lbf, Pa; the label itself (trimmed) when it is none of them.
 std::string normalized_unit(std::string_view label);
-// The unit a CSV column name states: a suffix "_g", "_m", "_mm", "_um", "_m_s", "_mm_s", "_m_s2", "_mm_s2" or a
-// parenthesised label "accel (g)", "x (mm)", "v (m/s)"; "" when it states none.
+// The unit a CSV column name states: a bracketed label ("accel (g)", "Acceleration [g]", "v (m/s²)") or a suffix after
+// the last separator ("accel_g", "v_mm_s", "acc_m_s2", "acc_m_s^2", "x_cm", "vel_ips", "ch0_V"); "" when it states
+// none.
 std::string unit_of_column_name(std::string_view name);
+// The unit a time column's name states in the same ways ("t_s", "t_ms", "Time [ms]", "time_msec", "T (mS)"): s, ms,
+// us, ns, min or h; "" when it states none.
+std::string time_unit_of_column_name(std::string_view name);
 
 struct SiConversion {
   std::string unit;  // the SI unit: m, m/s or m/s^2
   double factor;     // SI value = factor x the record's value
 };
-// The conversion of a unit to SI (g: 9.80665, mm: 1e-3, um: 1e-6 ...); nothing for an SI or unknown unit.
+// The conversion of a motion unit to SI (g: 9.80665, mg: 9.80665e-3, mm: 1e-3, in: 0.0254 ...); nothing for an SI
+// unit, a unit that is no motion, or an unknown one.
 std::optional<SiConversion> si_conversion(const std::string& unit);
-// "displacement", "velocity" or "acceleration" for m, m/s, m/s^2; "" for any other unit.
-std::string quantity_of(const std::string& si_unit);
+// "displacement", "velocity" or "acceleration" for a motion unit in any of the spellings above (m/s and in/s alike);
+// "" for any other unit.
+std::string quantity_of(const std::string& unit);
+// Whether a known unit measures no motion (V, mV, N, lbf, Pa): a record in it is a raw sensor signal.
+bool is_non_motion_unit(const std::string& unit);
 
 }  // namespace beamid::io

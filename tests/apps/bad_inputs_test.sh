@@ -300,6 +300,10 @@ sed 's/^gamma = .*/gamma = 0/; s/^cDI = .*/cDI = 0/; s/^kAcs = .*/kAcs = 0/' "$S
 timeout 4 "$BEAMID" simulate --beam "$tmp/undamped.toml" --elements 8 --samples 512 --integrator cvode >/dev/null 2>"$tmp/err"
 if grep -qF "s more for this run" "$tmp/err" && grep -qF -- "--integrator fast gives the exact response" "$tmp/err"; then ok; else
   bad "cvode progress note: $(head -c 300 "$tmp/err")"; fi
+# A record in volts is a raw sensor signal, not a motion (the second adversarial pass's N017, N070).
+sed '1s/.*/t_s,ch0 (V)/' "$tmp/z.csv" >"$tmp/volts.csv"
+expect_error "volts fitted as a motion" "ch0 (V) is in V, a raw sensor signal, not a motion" \
+  fit --data "$tmp/volts.csv" "${S[@]}" --pulse-width 0.004 --estimate EI --cost time
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

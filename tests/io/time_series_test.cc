@@ -49,6 +49,43 @@ TEST(TimeSeries, MalformedFilesAreLocated) {
   EXPECT_NE(error_of(testing::TempDir() + "absent.csv").find("(No such file or directory)"), std::string::npos);
 }
 
+TEST(TimeSeries, AMissingSampleACounterAndACoarseColumnAreNamed) {
+  // A 1 kHz record printed to the millisecond, one sample (line 502) missing: it was read as uniform at dt = 1.00098
+  // ms, every later sample a step off. The doubled step is named on its line.
+  std::string missing = "t_s,displacement_m\n";
+  for (int i = 0; i < 1024; ++i)
+    if (i != 500)
+      missing += std::to_string(i / 1000) + "." + std::string(i % 1000 < 100 ? (i % 1000 < 10 ? "00" : "0") : "") +
+                 std::to_string(i % 1000) + "," + std::to_string(i % 7) + "\n";
+  EXPECT_NE(error_of(write("missing.csv", missing)).find("missing.csv:502: t_s = 0.501: a step of 0.002"),
+            std::string::npos)
+      << error_of(write("missing.csv", missing));
+  EXPECT_NE(error_of(write("missing.csv", missing)).find("(a missing sample?"), std::string::npos);
+  // A column of sample indices is no time in seconds.
+  std::string counter = "sample,displacement_m\n";
+  for (int i = 0; i < 16; ++i) counter += std::to_string(i) + "," + std::to_string(i % 5) + "\n";
+  EXPECT_NE(error_of(write("counter.csv", counter)).find("time column 'sample' counts samples (0, 1, ...)"),
+            std::string::npos)
+      << error_of(write("counter.csv", counter));
+  // A step below 1 ns is a unit mistake (an LVM Delta_X of 1e-300 gave spikes at 3e297 Hz).
+  std::string fast = "t_s,displacement_m\n";
+  for (int i = 0; i < 10; ++i) fast += std::to_string(i) + "e-12," + std::to_string(i % 3) + "\n";
+  EXPECT_NE(error_of(write("fast.csv", fast)).find("(a rate above 1 GHz)"), std::string::npos)
+      << error_of(write("fast.csv", fast));
+  // Quoted names as pandas writes them are names; a time column in ms under any spelling is refused.
+  EXPECT_EQ(read_time_series(write("quoted.csv", "\"t_s\",\"accel_g\"\n" + rows(10, 0.001).substr(19))).unit, "m/s^2");
+  for (const char* header : {"Time [ms]", "T_MS", "time_msec", "\"t_ms\""})
+    EXPECT_NE(error_of(write("ms.csv", std::string(header) + ",x_m\n" + rows(10, 1.0).substr(19))).find("is in ms"),
+              std::string::npos)
+        << header;
+  // --units g against a file that states millimetres.
+  ImportOptions g;
+  g.units = "g";
+  EXPECT_NE(error_of(write("mm.csv", "t_s,x (mm)\n" + rows(10, 0.001).substr(19)), g)
+                .find("--units g: the file states that x (mm) is in mm"),
+            std::string::npos);
+}
+
 TEST(TimeSeries, ATimeBaseThatRepeatsJumpsOrRunsForDaysIsNamedWhereItIs) {
   // A duplicated line is blamed on itself (line 7 repeats line 6's time), not on the first line the mean step misses.
   std::string duplicated = rows(12, 0.001);
@@ -76,7 +113,7 @@ TEST(TimeSeries, ATimeBaseThatRepeatsJumpsOrRunsForDaysIsNamedWhereItIs) {
   // Values below 1e-150 underflow (the pencil found 14.7 Hz in a 2.46 Hz decay scaled by 1e-200).
   std::string tiny = "t_s,displacement_m\n";
   for (int i = 0; i < 10; ++i) tiny += std::to_string(i * 0.001) + "," + std::to_string(i % 3) + "e-200\n";
-  EXPECT_NE(error_of(write("tiny.csv", tiny)).find("reaches only 2e-200: below 1e-150"), std::string::npos)
+  EXPECT_NE(error_of(write("tiny.csv", tiny)).find("reaches only 2e-200 m: below 1e-150"), std::string::npos)
       << error_of(write("tiny.csv", tiny));
 }
 

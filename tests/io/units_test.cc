@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <utility>
 
 #include "core/errors.h"
 #include "io/time_series.h"
@@ -23,11 +24,28 @@ TEST(Units, ColumnNamesAndLabelsStateTheirUnit) {
   EXPECT_EQ(unit_of_column_name("v (m/s)"), "m/s");
   EXPECT_EQ(unit_of_column_name("Accel (G)"), "g");
   // Names that state no unit.
-  for (const char* name : {"y", "sensor", "ch1", "beam", "v (volts)", "t_s"})
+  for (const char* name : {"y", "sensor", "ch1", "beam", "tip_v", "x_n", "force_in", "t_s"})
     EXPECT_EQ(unit_of_column_name(name), "") << name;
+  // Labels as DAQ exports and spreadsheets write them (the adversarial pass's N003-N016).
+  EXPECT_EQ(unit_of_column_name("accel_mg"), "mg");
+  EXPECT_EQ(unit_of_column_name("Acceleration [g]"), "g");
+  EXPECT_EQ(unit_of_column_name("a (m/s\xc2\xb2)"), "m/s^2");
+  EXPECT_EQ(unit_of_column_name("acc_m_s^2"), "m/s^2");
+  EXPECT_EQ(unit_of_column_name("x (cm)"), "cm");
+  EXPECT_EQ(unit_of_column_name("v (in/s)"), "in/s");
+  EXPECT_EQ(unit_of_column_name("vel_ips"), "in/s");
+  EXPECT_EQ(unit_of_column_name("ch0 (V)"), "V");
+  EXPECT_EQ(unit_of_column_name("\"accel_g\""), "g");
+  EXPECT_EQ(normalized_unit("g's"), "g");
+  EXPECT_EQ(normalized_unit("Volts"), "V");
+  // Time columns.
+  for (const auto& [name, unit] :
+       {std::pair{"t_s", "s"}, std::pair{"t_ms", "ms"}, std::pair{"Time [ms]", "ms"}, std::pair{"T_MS", "ms"},
+        std::pair{"time_msec", "ms"}, std::pair{"Time (mS)", "ms"}, std::pair{"time", ""}})
+    EXPECT_EQ(time_unit_of_column_name(name), unit) << name;
   EXPECT_EQ(normalized_unit(" m/s2 "), "m/s^2");
   EXPECT_EQ(normalized_unit("\xc2\xb5m"), "um");  // the micro sign
-  EXPECT_EQ(normalized_unit("V"), "V");           // an unknown label is kept as written
+  EXPECT_EQ(normalized_unit("kg"), "kg");         // an unknown label is kept as written
 }
 
 TEST(Units, ConversionsToSiAndQuantities) {
@@ -41,7 +59,12 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_EQ(quantity_of("m"), "displacement");
   EXPECT_EQ(quantity_of("m/s"), "velocity");
   EXPECT_EQ(quantity_of("m/s^2"), "acceleration");
-  EXPECT_EQ(quantity_of("g"), "");
+  EXPECT_EQ(quantity_of("g"), "acceleration");  // the quantity of any motion unit, converted or not
+  EXPECT_EQ(quantity_of("in/s"), "velocity");
+  EXPECT_EQ(quantity_of("V"), "");
+  EXPECT_TRUE(is_non_motion_unit("V"));
+  EXPECT_EQ(si_conversion("mg")->factor, 9.80665e-3);
+  EXPECT_EQ(si_conversion("in/s")->factor, 0.0254);  // the inch is 25.4 mm exactly
 }
 
 TEST(Units, ARecordInMillimetresPerSecondIsReadInMetresPerSecond) {
