@@ -1,5 +1,6 @@
 #include "apps/commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -102,7 +103,27 @@ int run_system(const Flags& a, std::ostream& out) {
 }
 
 int run_verify(const Flags& a, std::ostream& out) {
-  write_verification(a.text("output"), out);
+  // The same rule as study, real and merge: an output folder is new, empty or beamid's own (a manifest.json or a
+  // store/ in it), never a folder of the user's files (verify overwrote a user's frequencies.csv).
+  const std::string output = a.text("output");
+  a.require(!output.empty(), "output", "must name a folder");
+  std::error_code ec;
+  if (std::filesystem::exists(output, ec) && !std::filesystem::is_directory(output, ec))
+    a.require(false, "output", "is not a folder");
+  if (std::filesystem::is_directory(output, ec))
+    for (const auto& entry : std::filesystem::directory_iterator(output, ec)) {
+      const std::string name = entry.path().filename().string();
+      const auto& ours = verification_files();
+      const auto own = std::find_if(ours.begin(), ours.end(), [&](const auto& f) { return f.first == name; });
+      const bool written_by_verify = own != ours.end() && entry.is_regular_file() &&
+                                     io::read_file_head(entry.path(), "cannot read", own->second.size()) == own->second;
+      if (!written_by_verify)
+        a.require(false, "output",
+                  "holds " + name +
+                      ", which verify did not write: its folder holds only its own "
+                      "tables (choose a new or an empty folder)");
+    }
+  write_verification(output, out);
   return 0;
 }
 
@@ -111,10 +132,9 @@ int run_report(const Flags& a, std::ostream& out) {
   const std::filesystem::path results = a.text_or("results", "results");
   if (!std::filesystem::is_directory(results))
     a.require(false, "results", "must be an existing folder of study results (results/)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("beamid report: --update = '" + path + "': cannot read the file");
+  // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file).
   std::ostringstream text;
-  text << in.rdbuf();
+  text << io::read_file(path, "beamid report: --update: cannot read the report");
   std::map<std::string, std::string> contents;
   for (const auto& name : io::block_names(text.str(), path)) {
     // A block's text comes from results/<name>.md and nowhere else (io::block_source), and never from the report
@@ -124,14 +144,11 @@ int run_report(const Flags& a, std::ostream& out) {
     if (std::filesystem::equivalent(file, path, ec) && !ec)
       throw InputError("beamid report: " + path + ": block '" + name + "' would read the report itself (" +
                        file.string() + ")");
-    std::ifstream block(file, std::ios::binary);
-    if (!block) {
+    if (!std::filesystem::exists(file, ec)) {
       out << "report: block '" << name << "' kept: " << file.string() << " does not exist\n";
       continue;
     }
-    std::ostringstream body;
-    body << block.rdbuf();
-    contents[name] = body.str();
+    contents[name] = io::read_file(file, "beamid report: block '" + name + "': cannot read its source");
   }
   const std::string updated = io::replace_blocks(text.str(), contents, path);
   io::write_file_atomic(path, updated);  // a reader sees the old or the new report, never half

@@ -77,13 +77,23 @@ int run_merge(const Flags& a, std::ostream& out) {
   std::stringstream list(a.text("shards"));
   std::string dir;
   int records = 0, left_behind = 0;
+  std::vector<std::string> seen;
   while (std::getline(list, dir, ',')) {
     if (dir.empty()) continue;
     if (!io::is_existing_folder(dir + "/store"))
       throw InputError("beamid merge: --shards: '" + dir +
                        "' has no store/ folder: must be the --output of a shard run");
+    // A shard is an input: the merged output is a folder of its own (a merge into a shard's folder filled that
+    // shard's store with the others' records and wrote tables into it), and a shard is named once.
     std::error_code same_ec;
-    if (std::filesystem::equivalent(dir + "/store", output + "/store", same_ec)) continue;
+    if (std::filesystem::equivalent(dir, output, same_ec))
+      a.require(false, "output", "is the shard folder '" + dir + "', an input of the merge: choose another folder");
+    for (const std::string& earlier : seen)
+      if (std::filesystem::equivalent(dir, earlier, same_ec))
+        a.require(
+            false, "shards",
+            "names the folder '" + dir + "' twice" + (earlier == dir ? std::string() : " (as '" + earlier + "')"));
+    seen.push_back(dir);
     const study::Store::Absorbed absorbed = store.absorb(dir + "/store");
     records += absorbed.copied;
     for (const std::string& record : absorbed.left_behind)

@@ -163,6 +163,17 @@ void write_model_reduction(const std::string& folder, const std::vector<Reductio
 
 }  // namespace
 
+const std::vector<std::pair<std::string, std::string>>& verification_files() {
+  static const std::vector<std::pair<std::string, std::string>> files{
+      {"frequencies.csv", "preset,elements,mode,galerkin_hz,exact_hz,relative_error"},
+      {"frequencies.md", "Undamped Galerkin frequencies against the exact Timoshenko determinant"},
+      {"fast_vs_cvode.csv", "preset,elements,output,cvode_rtol,"},
+      {"fast_vs_cvode.md", "The exact modal propagator (`fast`) against CVODE BDF"},
+      {"model_reduction.csv", "preset,variant,elements,retained,"},
+      {"model_reduction.md", "Modal truncation at N = 16 against the exact response"}};
+  return files;
+}
+
 void write_verification(const std::string& folder, std::ostream& log) {
   io::make_folder(folder);
   const std::vector<std::string> presets = model::preset_names();

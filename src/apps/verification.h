@@ -10,9 +10,14 @@
 
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace beamid::apps {
 
 void write_verification(const std::string& folder, std::ostream& log);
+// The files write_verification writes, each with the text it starts with: its folder may hold these, as verify wrote
+// them, and nothing else (a user's own frequencies.csv is not replaced).
+const std::vector<std::pair<std::string, std::string>>& verification_files();
 
 }  // namespace beamid::apps

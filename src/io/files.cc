@@ -78,9 +78,14 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
   // replaced by a plain file (as root, /dev/null itself).
   if (const std::string problem = replaceable_output_problem(path); !problem.empty())
     throw InputError(path.string() + ": " + problem + ": an output replaces only a regular file; choose another path");
+  std::error_code ec;
+  // A file its owner made read-only is not replaced behind their back (a rename would, whatever its mode).
+  const std::filesystem::file_status existing = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::is_regular_file(existing) &&
+      (existing.permissions() & std::filesystem::perms::owner_write) == std::filesystem::perms::none)
+    throw InputError(path.string() + ": is read-only: make it writable to replace it, or choose another path");
   if (path.has_parent_path()) make_folder(path.parent_path());
   const std::filesystem::path temporary = path.string() + ".tmp";
-  std::error_code ec;
   // A failed or short write (a full disk, a read-only folder, a quota) names the OS's reason and leaves neither the
   // temporary nor a partial file under the final name.
   const auto fail = [&](int error) {
@@ -96,6 +101,12 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
     if (!out) fail(errno);
     out.close();
     if (!out) fail(errno);
+  }
+  // The file it replaces keeps its permissions: a private (0600) or read-only report was rewritten as 0644, i.e.
+  // made world-readable (the second adversarial pass's N528-N530).
+  if (std::filesystem::is_regular_file(existing)) {
+    std::filesystem::permissions(temporary, existing.permissions(), std::filesystem::perm_options::replace, ec);
+    if (ec) fail(ec.value());
   }
   std::filesystem::rename(temporary, path, ec);
   if (ec) {

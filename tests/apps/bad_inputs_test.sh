@@ -304,6 +304,11 @@ if grep -qF "s more for this run" "$tmp/err" && grep -qF -- "--integrator fast g
 sed '1s/.*/t_s,ch0 (V)/' "$tmp/z.csv" >"$tmp/volts.csv"
 expect_error "volts fitted as a motion" "ch0 (V) is in V, a raw sensor signal, not a motion" \
   fit --data "$tmp/volts.csv" "${S[@]}" --pulse-width 0.004 --estimate EI --cost time
+# verify writes into a new folder or its own, never over a user's file (N595); report --update reads no pipe (N602).
+mkdir -p "$tmp/verify_mine" && echo "my data" >"$tmp/verify_mine/frequencies.csv" && echo "notes" >"$tmp/verify_mine/notes.txt"
+expect_error "verify into a user's folder" "which verify did not write" verify --output "$tmp/verify_mine"
+mkfifo "$tmp/report.fifo"
+expect_error "report from a pipe" "not a regular file" report --update "$tmp/report.fifo" --results "$tmp"
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -170,6 +170,11 @@ sed -i 's/cost/kost/' "$damaged"
 "$BEAMID" merge "$tmp/mini.toml" --shards "$tmp/s1d,$tmp/s2" --output "$tmp/merged_damaged" >/dev/null 2>"$tmp/err"
 check "merge names a damaged shard record" grep -qF "beamid merge: left behind, damaged: $damaged: " "$tmp/err"
 check "merge says the damaged records are the missing units" grep -qF "shard record(s) were damaged and left behind" "$tmp/err"
+# A merge into a shard's folder, or of one shard twice, is refused (the second pass's N502, N496).
+expect_error "merge into a shard" "--output = '$tmp/s1': is the shard folder" merge "$tmp/mini.toml" \
+  --shards "$tmp/s1,$tmp/s2" --output "$tmp/s1"
+expect_error "merge of a shard twice" "names the folder '$tmp/s1' twice" merge "$tmp/mini.toml" \
+  --shards "$tmp/s1,$tmp/s1" --output "$tmp/merged_twice"
 sed 's/^replicates = 2/replicates = 0/' "$tmp/mini.toml" >"$tmp/bad.toml"
 expect_error "study bad value" "bad.toml:31: sweep.replicates = 0: must be in 1..100000" study "$tmp/bad.toml"
 expect_error "merge without shards" "--shards" merge "$tmp/mini.toml"

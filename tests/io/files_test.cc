@@ -43,6 +43,23 @@ TEST(WriteFileAtomic, AFailedWriteNamesTheReasonAndLeavesNothingBehind) {
   fs::remove_all(dir);
 }
 
+TEST(WriteFileAtomic, AReplacedFileKeepsItsPermissionsAndAReadOnlyOneIsKept) {
+  // A private report stays private (it was rewritten as 0644, world-readable); a read-only one is not replaced.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "beamid_perms";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_file_atomic(dir / "private.md", "one\n");
+  fs::permissions(dir / "private.md", fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::replace);
+  write_file_atomic(dir / "private.md", "two\n");
+  EXPECT_EQ(fs::status(dir / "private.md").permissions(), fs::perms::owner_read | fs::perms::owner_write);
+  fs::permissions(dir / "private.md", fs::perms::owner_read, fs::perm_options::replace);
+  const std::string m = message_of([&] { write_file_atomic(dir / "private.md", "three\n"); });
+  EXPECT_NE(m.find("private.md: is read-only"), std::string::npos) << m;
+  fs::permissions(dir / "private.md", fs::perms::owner_all, fs::perm_options::replace);
+  fs::remove_all(dir);
+}
+
 TEST(WriteFileAtomic, NeverReplacesAPipeALinkOrAFolder) {
   const fs::path dir = scratch("special");
   ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0600), 0);

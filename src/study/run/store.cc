@@ -189,7 +189,14 @@ Store::Absorbed Store::absorb(const std::string& other) const {
   fs::directory_iterator folder(other, ec);
   if (ec) throw InputError(other + ": cannot list the study store folder (" + ec.message() + ")");
   for (const auto& entry : folder) {
-    if (entry.path().extension() != ".rec" || !entry.is_regular_file()) continue;
+    if (entry.path().extension() != ".rec") continue;
+    // A record that is a folder, a link or a pipe is no record: left behind and named (a pipe would be waited on).
+    if (entry.is_symlink() || !entry.is_regular_file()) {
+      absorbed.left_behind.push_back(entry.path().string() +
+                                     (entry.is_symlink() ? ": a symbolic link, not a record file"
+                                                         : ": not a regular file (a folder, a pipe or a device)"));
+      continue;
+    }
     const fs::path target = fs::path(directory_) / entry.path().filename();
     const std::string text = io::read_file(entry.path(), "a study record");
     std::string why;
