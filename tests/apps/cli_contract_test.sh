@@ -175,6 +175,13 @@ expect_error "merge into a shard" "--output = '$tmp/s1': is the shard folder" me
   --shards "$tmp/s1,$tmp/s2" --output "$tmp/s1"
 expect_error "merge of a shard twice" "names the folder '$tmp/s1' twice" merge "$tmp/mini.toml" \
   --shards "$tmp/s1,$tmp/s1" --output "$tmp/merged_twice"
+# A truth that holds no vibration (the force at the clamp) fails, and its cases with it, saying why; nothing
+# "converges" at cost 0 on a zero record (the second pass's N446-N449, N469, N470).
+sed 's/^force_x_m = 0.32/force_x_m = 0/' "$tmp/mini.toml" >"$tmp/zero.toml"
+"$BEAMID" study "$tmp/zero.toml" --jobs 2 --output "$tmp/zero" >/dev/null 2>&1
+check "a zero truth fails its cases with the reason" grep -qF "truth simulation failed: the truth record's peak is 0" \
+  "$tmp/zero/cases.csv"
+check "no case of a zero truth converges" bash -c "! grep -q ',converged,' '$tmp/zero/cases.csv'"
 sed 's/^replicates = 2/replicates = 0/' "$tmp/mini.toml" >"$tmp/bad.toml"
 expect_error "study bad value" "bad.toml:31: sweep.replicates = 0: must be in 1..100000" study "$tmp/bad.toml"
 expect_error "merge without shards" "--shards" merge "$tmp/mini.toml"

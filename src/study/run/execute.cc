@@ -119,7 +119,9 @@ Record timed(Record r, Failure failure, Body body) {
 
 // A unit that works on the truth's record cannot run when the truth failed; it fails with the truth's reason.
 void require_truth(const Record& truth) {
-  if (truth.text("status") != "ok") throw NumericalError("truth simulation failed: " + truth.text("status"));
+  const std::string status = truth.text("status");
+  if (status != "ok")
+    throw NumericalError("truth simulation failed: " + (status.rfind("failed: ", 0) == 0 ? status.substr(8) : status));
 }
 
 // A fit's outcome in a record (cases and start-distance fits alike).
@@ -191,7 +193,16 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
       f.push_back(m.frequency_hz);
       zeta.push_back(m.damping_ratio);
     }
-    r.set("status", trace.status);
+    // A truth that holds no vibration (sensor or force at the clamp, a pulse of 1e300 s, a step of 1e-300 s) would
+    // let every time fit "converge" at cost 0 on nothing; it fails, and its cases with it, saying why.
+    double peak = 0;
+    for (const double y : trace.y) peak = std::max(peak, std::abs(y));
+    r.set("status", !trace.ok() ? trace.status
+                    : !(peak >= 1e-150 && peak <= 1e150)
+                        ? "failed: the truth record's peak is " + format_value(peak) +
+                              ", outside [1e-150, 1e150]: no vibration to fit (sensor or force at the clamp, or a "
+                              "pulse far longer or shorter than the record's step?)"
+                        : trace.status);
     r.set("y", trace.y);
     r.set("mode_frequency_hz", f);
     r.set("mode_damping_ratio", zeta);
