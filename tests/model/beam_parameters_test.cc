@@ -124,13 +124,13 @@ TEST(BeamToml, SupportSpringsAreReadAndAbsentMeansRigid) {
   const BeamParameters rotation = config::parse_beam_toml(kValid + "[support]\nk_theta = 350\n", "beam.toml");
   EXPECT_TRUE(rotation.support.rotation_free());
   EXPECT_FALSE(rotation.support.deflection_free());
-  // The springs' range is the beam's own stiffness times [1e-4, 1e10] (model::spring_range): EI/l = 1.0737 N m for
+  // The springs' range is the beam's own stiffness times [1e-2, 1e10] (model::spring_range): EI/l = 1.0737 N m for
   // k_theta, EI/l^3 = 5.134 N/m for k_w on this beam.
   EXPECT_EQ(error_of(kValid + "[support]\nk_theta = 0\n"),
-            "beam.toml:16: support.k_theta = 0: must be in [0.0001074, 1.074e+10] N m/rad (k_theta l/EI in "
-            "[0.0001, 1e+10] with EI = 0.491, l = 0.4573; softer is a hinge, stiffer is rigid: omit it)");
+            "beam.toml:16: support.k_theta = 0: must be in [0.01074, 1.074e+10] N m/rad (k_theta l/EI in "
+            "[0.01, 1e+10] with EI = 0.491, l = 0.4573; softer is a hinge, stiffer is rigid: omit it)");
   EXPECT_EQ(error_of(kValid + "[support]\nk_w = -3\n"),
-            "beam.toml:16: support.k_w = -3: must be in [0.0005134, 5.134e+10] N/m (k_w l^3/EI in [0.0001, "
+            "beam.toml:16: support.k_w = -3: must be in [0.05134, 5.134e+10] N/m (k_w l^3/EI in [0.01, "
             "1e+10] with EI = 0.491, l = 0.4573; softer is a hinge, stiffer is rigid: omit it)");
   // The adversarial pass's springs, which ended in "K is not positive definite" with no key named.
   for (const char* spring : {"k_theta = 1e-10", "k_theta = 1e20", "k_w = 1e-12", "k_w = 1e15"})
