@@ -193,15 +193,15 @@ std::optional<std::string> implausibility(const BeamParameters& beam) {
   const double least = 2 * std::sqrt(3.0), most = least * 1e4;
   if (!(slenderness >= least && slenderness <= most))
     return "rho_r2 = " + format_value(beam.rho_r2) + ": with rho = " + format_value(beam.rho) +
-           ", the radius of gyration sqrt(rho_r2/rho) = " + format_value(r) + " m is l/" + format_value(slenderness) +
-           ": must lie between l/" + format_value(most) + " and l/" + format_value(least) +
-           " (a section between 1e-4 and 1 beam length thick)";
+           ", the radius of gyration sqrt(rho_r2/rho) = " + format_rounded(r) + " m is l/" +
+           format_rounded(slenderness) + ": must lie between l/" + format_rounded(most) + " and l/" +
+           format_rounded(least) + " (a section between 1e-4 and 1 beam length thick)";
   // shear against bending, kAG r^2 / EI = kappa G / E: 0.26-0.33 for metals (kappa ~ 5/6, G/E = 1/(2(1 + nu))), about
   // 0.01 for fibre composites; [1e-4, 10] leaves room for fits that move kAG and EI to their bounds.
   const double shear_ratio = beam.kAG * r * r / beam.EI;
   if (!(shear_ratio >= 1e-4 && shear_ratio <= 10))
-    return "kAG = " + format_value(beam.kAG) + ": with EI = " + format_value(beam.EI) + ", rho_r2 = " +
-           format_value(beam.rho_r2) + " and rho = " + format_value(beam.rho) +
+    return "kAG = " + format_value(beam.kAG) + ": with EI = " + format_value(beam.EI) +
+           ", rho_r2 = " + format_value(beam.rho_r2) + " and rho = " + format_value(beam.rho) +
            ", kAG r^2/EI (= kappa G/E, r = sqrt(rho_r2/rho) = " + format_rounded(r) + " m) is " +
            format_rounded(shear_ratio) +
            ": must lie in [1e-4, 10] (0.26-0.33 for metals, about 0.01 for fibre composites)";

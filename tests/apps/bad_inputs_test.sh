@@ -309,6 +309,14 @@ mkdir -p "$tmp/verify_mine" && echo "my data" >"$tmp/verify_mine/frequencies.csv
 expect_error "verify into a user's folder" "which verify did not write" verify --output "$tmp/verify_mine"
 mkfifo "$tmp/report.fifo"
 expect_error "report from a pipe" "not a regular file" report --update "$tmp/report.fifo" --results "$tmp"
+# All bodies together meet the bound each meets alone (N202-N206), and a [geometry] file's derived parameters meet the
+# [beam] table's bounds (N248-N257).
+{ cat "$SRC/tests/data/banks-aluminium.toml"; for i in 1 2 3; do printf '[[attachment]]\nx = 0.4573\nm = 300\n'; done; } \
+  >"$tmp/stacked.toml"
+expect_error "stacked bodies" "the bodies on the beam weigh 900 kg together (tip and 3 attachment(s)): at most 425.3 kg" \
+  modes --beam "$tmp/stacked.toml" --elements 4
+sed 's/^thickness_m = .*/thickness_m = 1e-9/' "$G" >"$tmp/nanometre.toml"
+expect_error "1 nm geometry" "[geometry] gives beam.rho_r2" modes --beam "$tmp/nanometre.toml" --elements 4
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
