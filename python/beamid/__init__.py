@@ -138,11 +138,15 @@ def beam_toml(parameters):
         head, _, field = key.partition(".")
         if head.startswith("attachment") and field:
             index = head[len("attachment"):]
-            if not index.isdigit() or int(index) < 1:
+            # "attachment01" and "attachment1" would both be body 1, one silently replacing the other: refused.
+            if not index.isdigit() or int(index) < 1 or index != str(int(index)):
                 raise InputError(f"beam dict: key '{key}': an attachment's keys read attachmentK.x, .m, .J, .c with "
                                  f"K = 1, 2, ...")
             attachments.setdefault(int(index), {})[field] = value
         elif head == "support" and field:
+            # +inf is the rigid clamp (the key left out); NaN or -inf is no spring, and was silently made rigid.
+            if np.isnan(value) or value == -np.inf:
+                raise InputError(f"beam dict: {key} = {value!r}: must be a stiffness > 0, or inf for a rigid clamp")
             if np.isfinite(value):
                 support[field] = value
         else:
@@ -254,7 +258,14 @@ def cost(data, prediction, time=None, **flags) -> "CostValue":
     if isinstance(prediction, (str, os.PathLike)):
         f["prediction"], predicted = os.fspath(prediction), None
     else:
-        f["prediction"], predicted = "<array>", np.asarray(prediction, dtype=float)
+        # Checked as a record is: a complex prediction was silently cast to its real part, and one of 1e200 gave an
+        # infinite cost instead of an error.
+        if np.iscomplexobj(prediction):
+            raise InputError("prediction: complex values: a prediction is the model's real output")
+        predicted = np.asarray(prediction, dtype=float)
+        if predicted.size and not np.all(np.abs(predicted) <= 1e150):
+            raise InputError("prediction: values beyond 1e150 or not finite: its spectrum would overflow (rescale it)")
+        f["prediction"] = "<array>"
     return CostValue._from_core(_call(_core.cost, _arguments(f), array, time, predicted))
 
 

@@ -12,14 +12,21 @@ import numpy as np
 
 def read_table(path, as_dict=False):
     """One CSV table: a structured array (one field per column), or with ``as_dict`` a dict of column arrays."""
-    with open(path, newline="", encoding="utf-8") as f:
+    # utf-8-sig: a byte-order mark (as spreadsheets write one) is no part of the first column's name.
+    with open(path, newline="", encoding="utf-8-sig") as f:
         try:
             rows = list(csv.reader(f, strict=True))  # strict: an unclosed quote is an error, not a field to the end
         except csv.Error as error:
             raise ValueError(f"{path}: not a CSV table as beamid writes them: {error}") from None
+        except UnicodeDecodeError as error:
+            raise ValueError(f"{path}: not a text table (byte {error.start} is not UTF-8): beamid writes its tables "
+                             f"as UTF-8 CSV") from None
     if not rows:
         raise ValueError(f"{path}: empty file: a results table starts with a header line")
     header, body = rows[0], rows[1:]
+    if len(header) == 1 and ";" in header[0]:
+        raise ValueError(f"{path}:1: one column named {header[0]!r}: a table separated by ';' is not one beamid writes "
+                         f"(its tables are comma-separated)")
     for j, name in enumerate(header, start=1):
         if not name.strip() or any(c in name for c in "\r\n\"") or name != name.strip():
             raise ValueError(f"{path}:1: column {j} is named {name!r}: a results table's header names each column "

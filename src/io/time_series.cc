@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/limits.h"
 #include "io/files.h"
 #include "io/mat_file.h"
 #include "io/npy.h"
@@ -379,6 +380,14 @@ TimeSeries array_time_series(const std::string& name, const double* values, std:
   if (!o.variable.empty() || !o.time_variable.empty())
     throw InputError(name + ": --variable and --time-variable name variables of a MAT-file; this is an array");
   if (time != nullptr && o.sample_rate_hz) throw InputError(name + ": give a time vector or a sample rate, not both");
+  // The size a command takes (core::kMaxSamples), and the memory reading it takes (its samples, their times and the
+  // window, about 32 bytes a sample), before anything is copied: a 2^28 + 1-sample array ran to 13.8 GB resident.
+  const std::size_t samples = std::max(rows, columns);
+  if (samples > static_cast<std::size_t>(core::kMaxSamples))
+    throw InputError(name + ": " + std::to_string(samples) + " samples: at most 2^28 = " +
+                     std::to_string(core::kMaxSamples) + " (cut the record, or lower its rate)");
+  check_memory(name + ": reading " + std::to_string(samples) + " samples", 32.0 * static_cast<double>(samples),
+               std::cerr);
   // A time vector of doubles: uniform to their precision (as a MAT-file's double time vector).
   return finish(array_samples(
                     name, "array", "array", rows, columns,

@@ -301,13 +301,39 @@ def test_a_table_beamid_did_not_write_is_refused(tmp_path):
     cases = {"unclosed.csv": ('garbage,"unclosed\n1,2,3\n', "unexpected end of data"),
              "twice.csv": ("a,a\n1,2\n", "given twice"),
              "blank.csv": ("a,,c\n1,2,3\n", "column 2 is named ''"),
-             "ragged.csv": ("a,b\n1,2,3\n", ":2: 3 fields: the header names 2")}
+             "ragged.csv": ("a,b\n1,2,3\n", ":2: 3 fields: the header names 2"),
+             "semicolons.csv": ("a;b\n1;2\n", "separated by ';'"),
+             "binary.csv": (b"a,b\n\xb3\xff\x00\n", "not a text table")}
     for name, (text, message) in cases.items():
-        (tmp_path / name).write_text(text, encoding="utf-8")
+        if isinstance(text, bytes):
+            (tmp_path / name).write_bytes(text)
+        else:
+            (tmp_path / name).write_text(text, encoding="utf-8")
         with pytest.raises(ValueError, match=re.escape(message)):
             beamid.read_table(str(tmp_path / name))
-    with pytest.raises(ValueError, match=re.escape(str(tmp_path / "blank.csv"))):  # a folder of them: the first named
+    with pytest.raises(ValueError, match=re.escape(str(tmp_path / "binary.csv"))):  # a folder of them: the first named
         beamid.load_results(str(tmp_path))
+    # A byte-order mark is no part of the first column's name.
+    (tmp_path / "bom" ).mkdir()
+    (tmp_path / "bom" / "t.csv").write_bytes("\ufeffa,b\n1,2\n".encode("utf-8"))
+    assert beamid.read_table(str(tmp_path / "bom" / "t.csv")).dtype.names == ("a", "b")
+
+
+def test_dict_beams_and_prediction_arrays_are_checked():
+    # A NaN or -inf spring was silently a rigid clamp; attachment01 and attachment1 were merged into one body; a complex
+    # prediction lost its imaginary part and one of 1e200 gave an infinite cost (the second pass's N394-N396, N575,
+    # N577).
+    steel = beamid.beam("thick-steel")
+    for value in (float("nan"), float("-inf")):
+        with pytest.raises(beamid.InputError, match="support.k_theta"):
+            beamid.beam_toml(dict(steel, **{"support.k_theta": value}))
+    with pytest.raises(beamid.InputError, match="attachment01"):
+        beamid.beam_toml(dict(steel, **{"attachment01.x": 0.1, "attachment01.m": 0.5}))
+    y = beamid.simulate(beam="thick-steel", elements=4, samples=256)
+    with pytest.raises(beamid.InputError, match="complex"):
+        beamid.cost(data=y, prediction=y + 1j, sample_rate=1e4, cost="time")
+    with pytest.raises(beamid.InputError, match="1e150"):
+        beamid.cost(data=y, prediction=1e200 * y, sample_rate=1e4, cost="time")
 
 
 def test_the_example_script_runs(tmp_path):
