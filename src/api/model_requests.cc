@@ -1,6 +1,7 @@
 #include "api/model_requests.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <ostream>
 
@@ -123,7 +124,9 @@ namespace {
 double crb_noise_sd(const CrbRequest& request, const ModelRun& run) {
   const Caller& caller = request.run.caller;
   if (request.noise_sd) {
-    if (!(*request.noise_sd > 0)) refuse(caller, "noise-sd", format_value(*request.noise_sd), "must be > 0");
+    // Within [1e-150, 1e150], as a record's values are: beyond, the bound underflowed to 0 or overflowed to inf.
+    if (!(*request.noise_sd >= 1e-150 && *request.noise_sd <= 1e150))
+      refuse(caller, "noise-sd", format_value(*request.noise_sd), "must lie in [1e-150, 1e150] (in the output's unit)");
     return *request.noise_sd;
   }
   const double level = *request.noise_level;
@@ -157,8 +160,10 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   if (!request.noise_sd && !request.noise_level)
     refuse(caller, "give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
   r.options.log_step = request.log_step.value_or(r.options.log_step);
-  if (!(r.options.log_step > 0 && r.options.log_step <= 0.1))
-    refuse(caller, "log-step", format_value(r.options.log_step), "must lie in (0, 0.1]");
+  // At least 1e-8: a central difference in ln q of h has a rounding error of eps/h, which drowns the sensitivity below
+  // that (a step of 1e-300 was reported as an unidentifiable parameter).
+  if (!(r.options.log_step >= 1e-8 && r.options.log_step <= 0.1))
+    refuse(caller, "log-step", format_value(r.options.log_step), "must lie in [1e-8, 0.1]");
   r.noise_sd = crb_noise_sd(request, r.run);
   try {
     r.bound = fit::beam_cramer_rao_bound(beam, r.run.elements, r.run.experiment, r.keys, r.noise_sd, {}, r.options);
@@ -166,6 +171,12 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
     refuse(caller, "estimate", listed, error.what());
   }
   if (r.bound.status != "ok") throw NumericalError(caller.label + ": " + r.bound.status);
+  // A bound that is 0 or infinite is no bound (a force of 1e-300 N against a noise of 0.01 printed inf): said.
+  for (Eigen::Index i = 0; i < r.bound.sd.size(); ++i)
+    if (!(r.bound.sd(i) > 0 && std::isfinite(r.bound.sd(i))))
+      throw NumericalError(caller.label + ": the bound on " + r.keys[static_cast<std::size_t>(i)] + " is " +
+                           format_value(r.bound.sd(i)) + ": the signal and the noise sd differ by more than double " +
+                           "can hold (check --noise-sd against the output's size and the force amplitude)");
   for (const std::string& key : r.keys) r.values.push_back(model::parameter_value(beam, key));
   return r;
 }

@@ -317,6 +317,11 @@ expect_error "stacked bodies" "the bodies on the beam weigh 900 kg together (tip
   modes --beam "$tmp/stacked.toml" --elements 4
 sed 's/^thickness_m = .*/thickness_m = 1e-9/' "$G" >"$tmp/nanometre.toml"
 expect_error "1 nm geometry" "[geometry] gives beam.rho_r2" modes --beam "$tmp/nanometre.toml" --elements 4
+# A Cramer-Rao bound that would be 0 or inf is refused or said (N344, N345, N349, N352).
+expect_error "crb noise sd 1e300" "--noise-sd = '1e+300': must lie in [1e-150, 1e150]" crb "${S[@]}" --estimate EI \
+  --noise-sd 1e300
+expect_error "crb log step 1e-300" "--log-step = '1e-300': must lie in [1e-8, 0.1]" crb "${S[@]}" --estimate EI \
+  --noise-sd 0.01 --log-step 1e-300
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
