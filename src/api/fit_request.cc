@@ -197,8 +197,19 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
   return c;
 }
 
-FitNotes fit_notes(const fit::FitResult& result) {
+FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record, const std::string& cost) {
   FitNotes notes;
+  if (record && cost == costs::kTimeCost && result.records.size() <= 1 && result.status != "failed") {
+    double energy = 0;
+    for (const double y : *record) energy += y * y;
+    if (result.cost >= energy) {
+      std::ostringstream line;
+      line << "the fitted model explains none of the record: its residual sum of squares " << result.cost
+           << " is at least the record's own " << energy
+           << ", which a zero model attains (is the record noise, another beam's, or another quantity?)";
+      notes.explains_nothing = line.str();
+    }
+  }
   std::string at_bound;
   for (const fit::ParameterEstimate& p : result.parameters)
     if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)

@@ -79,7 +79,12 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
 // estimates on a bound, a failure, weak identifiability.
 struct FitNotes {
   std::string on_bound, failed, identifiability;
+  std::string explains_nothing;  // a least-squares fit no better than a zero model (given the record and the cost)
 };
-FitNotes fit_notes(const fit::FitResult& result);
+// With the record and the cost's name, a one-record least-squares fit whose residual is at least the record's own
+// sum of squares is said to explain none of it (a fit of white noise, or of another beam's record, reported precise
+// "free" estimates with exit 0).
+FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record = nullptr,
+                   const std::string& cost = "");
 
 }  // namespace beamid::api

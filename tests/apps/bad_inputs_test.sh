@@ -322,6 +322,11 @@ expect_error "crb noise sd 1e300" "--noise-sd = '1e+300': must lie in [1e-150, 1
   --noise-sd 1e300
 expect_error "crb log step 1e-300" "--log-step = '1e-300': must lie in [1e-8, 0.1]" crb "${S[@]}" --estimate EI \
   --noise-sd 0.01 --log-step 1e-300
+# A least-squares fit of white noise says that it explains none of the record (N322, N325).
+awk -F, 'BEGIN { srand(1) } NR == 1 { print "t_s,displacement_m"; next } { printf "%s,%.6e\n", $1, (rand() - 0.5) * 1e-3 }' \
+  "$tmp/z.csv" >"$tmp/noise.csv"
+expect_notice "white noise fitted" "the fitted model explains none of the record" \
+  fit --data "$tmp/noise.csv" "${S[@]}" --pulse-width 0.004 --estimate EI,rho --cost time
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
