@@ -173,7 +173,7 @@ int run_fit(const Flags& a, std::ostream& out) {
 std::vector<FlagSpec> fit_flags() {
   std::vector<FlagSpec> flags = {
       text_flag("data",
-                "record to fit, CSV or LabVIEW .lvm; its time step and length fix dt and Nbar; with a --channel "
+                "record to fit, CSV, LabVIEW .lvm, .npy, .mat or UFF 58; its time step and length fix dt and Nbar; with a --channel "
                 "list, every channel is a record of one joint fit (one --sensor-x each)",
                 true),
       text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),

@@ -58,17 +58,29 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
   const Eigen::VectorXcd z = eig.eigenvalues();
 
-  // Amplitudes of all M exponentials by least squares on the whole record (complex Vandermonde system).
+  // Amplitudes of all M exponentials by least squares on the whole record (complex Vandermonde system). A growing
+  // pole (|z| > 1, noise or an unmodelled transient at a high order) is anchored at the record's end, column
+  // z^(i - n + 1), so that no entry exceeds 1 in modulus: anchored at the start, 1.5^307 overflowed to inf and the
+  // QR returned zeros for every amplitude. Only decaying poles' amplitudes are reported, and those keep the start.
   Eigen::MatrixXcd vandermonde(n, order);
   for (int k = 0; k < order; ++k) {
+    const bool growing = std::abs(z(k)) > 1;
+    const std::complex<double> ratio = growing ? 1.0 / z(k) : z(k);
     std::complex<double> power = 1.0;
-    for (int i = 0; i < n; ++i) {
-      vandermonde(i, k) = power;
-      power *= z(k);
+    for (int j = 0; j < n; ++j) {
+      vandermonde(growing ? n - 1 - j : j, k) = power;
+      power *= ratio;
     }
   }
   const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(
       Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
+  if (!c.allFinite())
+    throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
+                         std::to_string(order) + "): try a lower --order");
+  // A pole is a mode of the sampled record only if its natural frequency |lambda| / 2 pi is below the Nyquist
+  // frequency: a heavily damped pole beyond it (at a high order, fitting the pulse) is not resolvable from samples
+  // at this rate, and was listed as the strongest "mode" at 505-989 Hz of a 1 kHz record.
+  const double nyquist_hz = 0.5 / dt_s;
 
   std::vector<IdentifiedMode> modes;
   for (int k = 0; k < order; ++k) {
@@ -77,7 +89,8 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     m.lambda = std::log(z(k)) / dt_s;
     const double magnitude = std::abs(m.lambda);
     m.frequency_hz = magnitude / (2 * std::numbers::pi);
-    if (m.frequency_hz < o.min_frequency_hz || m.frequency_hz > o.max_frequency_hz) continue;
+    if (m.frequency_hz < o.min_frequency_hz || m.frequency_hz > o.max_frequency_hz || m.frequency_hz >= nyquist_hz)
+      continue;
     m.damping_ratio = -m.lambda.real() / magnitude;
     m.amplitude = 2 * std::abs(c(k));
     m.phase_rad = std::arg(c(k));
