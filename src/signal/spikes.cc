@@ -33,7 +33,7 @@ std::optional<std::string> validation_error(const SpikeOptions& o) {
 
 std::vector<int> local_maxima(const Spectrum& s) {
   std::vector<int> peaks;
-  for (int k = 1; k <= s.last_bin(); ++k) {
+  for (int k = 1; k < s.last_bin(); ++k) {
     const double m = s.magnitude(k);
     if (m > s.magnitude(k - 1) && m >= s.magnitude(k + 1)) peaks.push_back(k);
   }

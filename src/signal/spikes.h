@@ -46,7 +46,9 @@ struct Spike {
   int n_right = 0;          // N_l
 };
 
-// All local maxima of |Z| in 1..Nbar/2 (ascending bins).
+// All local maxima of |Z| in 1..Nbar/2 - 1 (ascending bins). The last bin Nbar/2 (Nyquist for an even Nbar) is a band
+// edge: a maximum there cannot be told from a peak above Nyquist folded back, and was reported as a spike with
+// N_l = 0 (the second adversarial pass's N359).
 std::vector<int> local_maxima(const Spectrum& spectrum);
 // The support (n_l, N_l) of the peak at bin k at `level` times its height.
 std::pair<int, int> support(const Spectrum& spectrum, int bin, double level);

@@ -109,6 +109,14 @@ TEST(Spikes, LocalMaximaRuleOnAHandMadeSpectrum) {
   EXPECT_EQ(band[0].bin, 2);
   o.count = 0;
   EXPECT_THROW(detect_spikes(s, o), InputError);
+  // The Nyquist bin is a band edge, never a maximum: with |Z(8)| = 6 above |Z(7)| = 4 (and its mirror), bin 8 is not
+  // listed and a band holding only bin 8 has no spike (it was listed with N_l = 0: the second pass's N359).
+  s.half.back() = 6.0;
+  EXPECT_EQ(local_maxima(s), (std::vector<int>{2, 5}));
+  o.count = 1;
+  o.min_frequency_hz = 7.9;
+  o.max_frequency_hz = 8.0;
+  EXPECT_TRUE(detect_spikes(s, o).empty());
 }
 
 TEST(Spikes, DetectsDampedSinusoidsWithTheirTwentyPercentWidths) {
