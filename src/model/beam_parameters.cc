@@ -216,6 +216,37 @@ std::optional<std::string> implausibility(const BeamParameters& beam) {
   return std::nullopt;
 }
 
+std::optional<std::string> rig_implausibility(const BeamParameters& beam) {
+  if (auto e = implausibility(beam)) return e;
+  double total_kg = beam.m;
+  for (std::size_t k = 0; k < beam.attachments.size(); ++k) {
+    const Attachment& a = beam.attachments[k];
+    if (!(a.m <= max_body_mass_kg(beam)))
+      return attachment_key(k) + ".m = " + format_value(a.m) + ": must be at most " +
+             format_rounded(max_body_mass_kg(beam)) + " kg (" + format_rounded(kMaxBodyMassRatio) +
+             " times the beam's mass rho l = " + format_rounded(beam.rho * beam.l) + " kg)";
+    if (!(a.J <= max_body_inertia_kg_m2(a.m, beam)))
+      return attachment_key(k) + ".J = " + format_value(a.J) + ": must be at most (m + rho l) l^2 = " +
+             format_rounded(max_body_inertia_kg_m2(a.m, beam)) + " kg m^2 (a radius of gyration up to a beam length)";
+    total_kg += a.m;
+  }
+  if (!(total_kg <= max_body_mass_kg(beam)))
+    return "m = " + format_value(beam.m) + ": the bodies on the beam weigh " + format_rounded(total_kg) +
+           " kg together (tip and " + std::to_string(beam.attachments.size()) + " attachment(s)): at most " +
+           format_rounded(max_body_mass_kg(beam)) + " kg, " + format_rounded(kMaxBodyMassRatio) +
+           " times the beam's mass rho l = " + format_rounded(beam.rho * beam.l) + " kg";
+  for (const auto& [spring, value] : {std::pair{"k_theta", beam.support.k_theta}, std::pair{"k_w", beam.support.k_w}}) {
+    if (std::isinf(value)) continue;  // rigid
+    const SpringRange range = spring_range(spring, beam);
+    if (!(value >= range.lower && value <= range.upper))
+      return std::string("support.") + spring + " = " + format_value(value) + ": must be in [" +
+             format_rounded(range.lower) + ", " + format_rounded(range.upper) + "] (" + range.ratio + " in [" +
+             format_rounded(kMinSpringRatio) + ", " + format_rounded(kMaxSpringRatio) +
+             "]; softer is a hinge, stiffer is rigid: omit it)";
+  }
+  return std::nullopt;
+}
+
 double max_body_mass_kg(const BeamParameters& beam) { return kMaxBodyMassRatio * beam.rho * beam.l; }
 
 double max_body_inertia_kg_m2(double m_kg, const BeamParameters& beam) {

@@ -148,6 +148,12 @@ struct SpringRange {
 };
 SpringRange spring_range(std::string_view spring, const BeamParameters& beam);
 
+// implausibility, then every bound a beam file's [[attachment]] and [support] tables meet (each attachment's m and J,
+// the clamp springs' spring_range, all bodies together at most kMaxBodyMassRatio rho l), as "support.k_theta = 1e-12:
+// must be in [...]". For a beam whose values were set after its file was read (a real study's candidate `values`,
+// which bypassed them: the second adversarial pass's N506-N509).
+std::optional<std::string> rig_implausibility(const BeamParameters& beam);
+
 // Built-in parameter sets of model.md section 5: "banks-aluminium" and "thick-steel".
 std::vector<std::string> preset_names();
 bool is_preset(std::string_view name);

@@ -141,6 +141,17 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
                                   "\n[[candidate]]\nname = \"two boards\"\nvalues = { \"attachment2.m\" = 0.01 }\n";
   EXPECT_NE(load_error("values", set_missing).find("candidate 'two boards', record 'short'"), std::string::npos)
       << load_error("values", set_missing);
+  // A candidate's values meet the bounds the beam file's own met: a 1e9 kg tip and a 1e-12 N m/rad clamp spring were
+  // accepted and their fits failed with no reason (the second adversarial pass's N506-N509).
+  for (const auto& [name, values, key] : {std::tuple{"heavy", "m = 1e9", "m = 1e+09"},
+                                           std::tuple{"soft", "\"support.k_theta\" = 1e-12", "support.k_theta"},
+                                           std::tuple{"flywheel", "J_o = 1e6", "J_o = 1e+06"}}) {
+    const std::string text = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"" + name +
+                             "\"\nvalues = { " + values + " }\n";
+    const std::string error = load_error(name, text);
+    EXPECT_NE(error.find(std::string("candidate '") + name + "'"), std::string::npos) << error;
+    EXPECT_NE(error.find(std::string("values: ") + key), std::string::npos) << error;
+  }
   const std::string unknown_record =
       std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"alone\"\nrecords = [\"medium\"]\n";
   EXPECT_NE(load_error("records", unknown_record).find("candidate1.records"), std::string::npos)

@@ -157,6 +157,8 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
       try {
         r = fit::fit(o, records);
         f.status = r.status;
+        // a failed fit carries its reason into the tables (the status column held a bare "failed")
+        if (r.status == "failed") f.status = "failed: " + (r.termination.empty() ? "no reason given" : r.termination);
       } catch (const std::exception& e) {
         f.status = std::string("failed: ") + e.what();
       }
