@@ -27,7 +27,7 @@ std::vector<FlagSpec> spike_flags() {
   return {
       integer_flag("spikes", "number of spikes NM (default 4)", 1, core::kMaxSpikes),
       text_flag("window", "rectangular | hann | exponential (default rectangular)"),
-      number_flag("exponential-end", "exponential window's last weight, in (0, 1) (default 0.01)"),
+      number_flag("exponential-end", "exponential window's last weight, in [1e-6, 1) (default 0.01)"),
       text_flag("spike-rule", "largest | prominence (default largest: the NM highest local maxima)"),
       number_flag("min-frequency", "lowest spike frequency considered (freq-band: the band's low end), Hz (default 0)"),
       number_flag("max-frequency",

@@ -68,10 +68,12 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = frequency_weight_names().violation("frequency_weight", o.frequency_weight)) return error;
   if (auto error = signal::detrend_names().violation("detrend", o.pick_detrend)) return error;
   const std::pair<const char*, std::optional<double>> eps[] = {{"eps1", o.eps1}, {"eps2", o.eps2}, {"eps3", o.eps3}};
-  // At most 1e100: a weight of 1e308 overflowed the cost to inf, which the fit then reported as a result.
+  // At most 1e100: a weight of 1e308 overflowed the cost to inf, which the fit then reported as a result. At least
+  // 1e-100 unless 0: eps3 = 1e-300 with the other weights 0 bypassed the all-zero refusal below, and its term,
+  // weighed by sqrt(eps3) = 1e-150, is zero in double precision all the same.
   for (const auto& [key, value] : eps)
-    if (value && !(std::isfinite(*value) && *value >= 0 && *value <= 1e100))
-      return std::string(key) + " = " + format_value(*value) + ": must be in [0, 1e100]";
+    if (value && !(std::isfinite(*value) && (*value == 0 || (*value >= 1e-100 && *value <= 1e100))))
+      return std::string(key) + " = " + format_value(*value) + ": must be 0 or in [1e-100, 1e100]";
   // Every term weighted 0 makes the spike cost 0 everywhere, and a fit of it "converges" at its start.
   const auto zero = [](const std::optional<double>& w) { return w && *w == 0; };
   if (is_spike_cost(o.name) && zero(o.eps1) && zero(o.eps2) && (o.name != "spike-smooth" || zero(o.eps3)))

@@ -21,7 +21,7 @@ namespace beamid::signal {
 
 struct WindowOptions {
   std::string name = "rectangular";  // "rectangular" | "hann" | "exponential"
-  double exponential_end = 0.01;     // w at i = Nbar (exponential only), in (0, 1)
+  double exponential_end = 0.01;     // w at i = Nbar (exponential only), in [1e-6, 1)
 };
 // First violated constraint ("window = 'x': must be one of rectangular, hann, exponential"), or nothing.
 std::optional<std::string> validation_error(const WindowOptions& options);

@@ -259,12 +259,12 @@ TEST(CostOptions, InvalidChoicesAreNamed) {
   EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band, modal");
   o.name = "spike";
   o.eps1 = -1.0;
-  EXPECT_EQ(*validation_error(o), "eps1 = -1: must be in [0, 1e100]");
+  EXPECT_EQ(*validation_error(o), "eps1 = -1: must be 0 or in [1e-100, 1e100]");
   EXPECT_THROW(make_cost(o, tones({{1, 20, 0}}), kDt), InputError);
   // Issue 30: a weight of 1e308 overflowed the cost to inf, and all weights 0 made the cost 0 everywhere (the fit
   // "converged" at its start).
   o.eps1 = 1e308;
-  EXPECT_EQ(*validation_error(o), "eps1 = 1e+308: must be in [0, 1e100]");
+  EXPECT_EQ(*validation_error(o), "eps1 = 1e+308: must be 0 or in [1e-100, 1e100]");
   o.eps1 = 0.0;
   o.eps2 = 0.0;
   EXPECT_EQ(*validation_error(o), "eps1 = eps2 = 0: every term of the spike cost would weigh nothing; at least one "
@@ -273,6 +273,11 @@ TEST(CostOptions, InvalidChoicesAreNamed) {
   EXPECT_FALSE(validation_error(o)) << "eps3 (default) still weighs the decay rates";
   o.eps3 = 0.0;
   EXPECT_NE(validation_error(o)->find("eps1 = eps2 = eps3 = 0"), std::string::npos);
+  // A weight that is zero in double precision is refused too: eps3 = 1e-300 (sqrt 1e-150 on its residuals) bypassed
+  // the all-zero refusal and the fit "converged" 35 % off (the second pass's N372).
+  o.eps3 = 1e-300;
+  EXPECT_EQ(*validation_error(o), "eps3 = 1e-300: must be 0 or in [1e-100, 1e100]");
+  o.eps3 = 0.0;
   o.name = "time";
   EXPECT_FALSE(validation_error(o)) << "the time cost has no such weights";
   CostOptions short_record;

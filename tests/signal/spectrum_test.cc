@@ -76,6 +76,9 @@ TEST(Dft, WindowsAreTheDocumentedWeights) {
   EXPECT_NEAR(expo[50], 0.1, 1e-14);  // exp(-ln(100) / 2)
   EXPECT_TRUE(validation_error(WindowOptions{"blackman", 0.01}).has_value());
   EXPECT_TRUE(validation_error(WindowOptions{"exponential", 1.5}).has_value());
+  // An end value that leaves nothing of the record (1e-300: the modes were gone from the spectrum; second pass N358).
+  EXPECT_TRUE(validation_error(WindowOptions{"exponential", 1e-300}).has_value());
+  EXPECT_FALSE(validation_error(WindowOptions{"exponential", 1e-6}).has_value());
   EXPECT_THROW(Dft(1, 1e-3), InputError);
   EXPECT_THROW(Dft(16, 0.0), InputError);
   Dft dft(16, 1e-3);
