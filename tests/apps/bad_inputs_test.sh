@@ -232,6 +232,11 @@ timeout 60 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6
   --bound-factor 1e6 >"$tmp/out" 2>"$tmp/err"
 if grep -q "^EI,.*,free," "$tmp/out" && ! grep -q "^EI,[^,]*,nan" "$tmp/out"; then ok; else
   bad "wide bounds: $(head -c 300 "$tmp/out")"; fi
+# A derivative-free search in such bounds steps 2 % of the range, 2e4 times the start: bobyqa "converged" 80 standard
+# errors off (the second pass's N320); refused with the way out.
+expect_error "derivative-free first step" "bobyqa's first step in linear coordinates (0.02 of the range) is 2e+04 times" \
+  fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --bound-factor 1e6 \
+  --optimizer bobyqa
 
 # A CSV without a header lost its first sample as "names", and a time column in ms was read as seconds (issue 30).
 tail -n +2 "$tmp/z.csv" >"$tmp/headerless.csv"
