@@ -72,6 +72,16 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
     throw InputError(path + ": no real time record (dataset 58 of function type 1) among its " +
                      std::to_string(functions.size()) + " dataset(s) 58" + (other.empty() ? "" : " (" + other + ")"));
   const UffFunction& f = functions[records[choose_channel(names, o, path, "time records (datasets 58)")]];
+  // The abscissa is time in seconds: a frequency (18) or other axis, or a time in ms, was read as seconds (spikes
+  // 1000x off: the second pass's N139, N143). Types 0 (unknown) and 1 (general) are taken as time, as writers use them.
+  const std::string at = path + ":" + std::to_string(f.abscissa_line) + ": ";
+  if (f.abscissa_type != 0 && f.abscissa_type != 1 && f.abscissa_type != 17)
+    throw InputError(at + "abscissa data type " + std::to_string(f.abscissa_type) +
+                     ": must be 17 (time), or 0 or 1 (unknown, general) for a time record" +
+                     (f.abscissa_type == 18 ? " (18 is frequency: a spectrum, not a record)" : ""));
+  if (const std::string unit = time_unit_of_label(f.abscissa_unit); !unit.empty() && unit != "s")
+    throw InputError(at + "abscissa units '" + f.abscissa_unit + "' are " + unit +
+                     ": beamid reads the time in seconds (rewrite the abscissa in s)");
   Samples out;
   out.series.path = path;
   out.series.format = "uff58";

@@ -62,11 +62,18 @@ std::size_t choose_channel(const std::vector<std::string>& names, const ImportOp
     throw InputError(path + ": channel = '" + shown(channel) + "': " + std::to_string(named.size()) + " " + what +
                      " are named so (" + std::to_string(named[0] + 1) + ", " + std::to_string(named[1] + 1) +
                      (named.size() > 2 ? ", ..." : "") + "): choose one with --channel INDEX");
-  if (named.size() == 1) return named.front();
   char* end = nullptr;
   const long index = std::strtol(channel.c_str(), &end, 10);
-  if (end == channel.c_str() + channel.size() && index >= 1 && index <= static_cast<long>(names.size()))
-    return static_cast<std::size_t>(index - 1);
+  const bool is_index = !channel.empty() && end == channel.c_str() + channel.size() && index >= 1 &&
+                        index <= static_cast<long>(names.size());
+  // A column named like another column's index ("t_s,2,1" with --channel 2) chose by name without a word.
+  if (named.size() == 1 && is_index && named.front() != static_cast<std::size_t>(index - 1))
+    throw InputError(path + ": channel = '" + shown(channel) + "': ambiguous, the name of no. " +
+                     std::to_string(named.front() + 1) + " of the " + what + " and the index of no. " +
+                     std::to_string(index) + " ('" + shown(names[static_cast<std::size_t>(index - 1)]) +
+                     "'): rename the columns so that no name is a number");
+  if (named.size() == 1) return named.front();
+  if (is_index) return static_cast<std::size_t>(index - 1);
   throw InputError(path + ": channel = '" + channel + "': must be one of " + list + " (or 1.." +
                    std::to_string(names.size()) + ")");
 }

@@ -148,6 +148,15 @@ std::pair<long, long> read_header(Cursor& c, const std::string& path, int delimi
   f.dx = number_field(path, form_line, field(header[6], 43, 13), "abscissa increment");
   f.unit = field(header[8], 46, 21);
   if (f.unit == "NONE") f.unit.clear();
+  // Record 8, the abscissa: I10 specific data type, 3I5 unit exponents, then the axis label and units label as
+  // record 9's (pyuff and the UFF specification: '%10i%5i%5i%5i %-20s %-20s').
+  f.abscissa_line = header_line[7];
+  const std::string abscissa_type = field(header[7], 0, 10);
+  f.abscissa_type = abscissa_type.empty()
+                        ? 0
+                        : static_cast<int>(integer_field(path, header_line[7], abscissa_type, "abscissa data type"));
+  f.abscissa_unit = field(header[7], 46, 21);
+  if (f.abscissa_unit == "NONE") f.abscissa_unit.clear();
   return {data_type, count};
 }
 

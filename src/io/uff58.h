@@ -30,6 +30,9 @@ struct UffFunction {
   int function_type = 0;  // 1: time response
   bool complex = false;
   std::string unit;          // the ordinate's units label, trimmed
+  int abscissa_type = 0;     // record 8's specific data type: 0 unknown, 1 general, 17 time, 18 frequency, ...
+  std::string abscissa_unit; // record 8's units label, trimmed ("" for NONE)
+  int abscissa_line = 0;     // the line of record 8
   bool even = true;          // abscissa spacing
   double x0 = 0, dx = 0;     // abscissa minimum and increment (even spacing)
   std::vector<double> x, y;  // x only with uneven spacing

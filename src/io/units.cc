@@ -82,15 +82,13 @@ std::string unit_of_column_name(std::string_view column) {
 
 std::string time_unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
-  std::string label;
-  if (const auto inside = bracketed(name)) {
-    label = *inside;
-  } else if (const auto at = name.rfind('_'); at != std::string::npos) {
-    label = name.substr(at + 1);
-  } else {
-    return "";
-  }
-  label = lower(trimmed(label));
+  if (const auto inside = bracketed(name)) return time_unit_of_label(*inside);
+  if (const auto at = name.rfind('_'); at != std::string::npos) return time_unit_of_label(name.substr(at + 1));
+  return "";
+}
+
+std::string time_unit_of_label(std::string_view text) {
+  const std::string label = lower(trimmed(text));
   for (const auto& [spelling, unit] : std::array<std::pair<const char*, const char*>, 14>{{{"s", "s"},
                                                                                            {"sec", "s"},
                                                                                            {"seconds", "s"},

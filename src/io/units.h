@@ -22,6 +22,8 @@ std::string unit_of_column_name(std::string_view name);
 // The unit a time column's name states in the same ways ("t_s", "t_ms", "Time [ms]", "time_msec", "T (mS)"): s, ms,
 // us, ns, min or h; "" when it states none.
 std::string time_unit_of_column_name(std::string_view name);
+// The same for a label alone ("s", "sec", "ms", "mS", "msec", "usec", "minutes", ...; a UFF abscissa's units label).
+std::string time_unit_of_label(std::string_view label);
 
 struct SiConversion {
   std::string unit;  // the SI unit: m, m/s or m/s^2

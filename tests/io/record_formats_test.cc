@@ -362,6 +362,18 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   const std::string frf =
       "    -1\n    58\n" + uff_header("FRF", 4, 2, 1.0, "g/N") + "  1.00000000000E+00  2.00000000000E+00\n    -1\n";
   EXPECT_NE(error_of(write("frf.uff", frf)).find("no real time record"), std::string::npos);
+  // The abscissa (record 8, line 10 of the first dataset 58 here) is time in seconds: one in ms, or a frequency axis,
+  // was read as seconds (spikes 1000x off: the second pass's N139, N143).
+  const std::size_t abscissa = good.find("        17    0    0    0 Time                 s");
+  ASSERT_NE(abscissa, std::string::npos);
+  std::string in_ms = good;
+  in_ms.replace(abscissa, 48, "        17    0    0    0 Time                 ms");
+  EXPECT_NE(error_of(write("ms.uff", in_ms), o).find("ms.uff:17: abscissa units 'ms' are ms"), std::string::npos)
+      << error_of(write("ms.uff", in_ms), o);
+  std::string in_hz = good;
+  in_hz.replace(abscissa, 48, "        18    0    0    0 Frequency            Hz");
+  EXPECT_NE(error_of(write("hz.uff", in_hz), o).find("hz.uff:17: abscissa data type 18"), std::string::npos)
+      << error_of(write("hz.uff", in_hz), o);
   // A binary file of no known kind says which formats are read.
   EXPECT_NE(error_of(write("mystery.bin", std::string("\x01\x02\x03\x04", 4) + std::string(100, 'a'))).find(".npy"),
             std::string::npos);

@@ -185,6 +185,16 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   o.channel = "az";
   EXPECT_NE(error_of(write("two.csv", two), o).find("channel = 'az': must be one of ax_g, ay_g (or 1..2)"),
             std::string::npos);
+  // A column named like another's index is ambiguous (the name won without a word: the second pass's N044); a
+  // column named like its own index is not.
+  std::string numbered = two;
+  numbered.replace(0, numbered.find('\n'), "t_s,2,1");
+  o.channel = "2";
+  EXPECT_NE(error_of(write("numbered.csv", numbered), o).find("channel = '2': ambiguous, the name of no. 1"),
+            std::string::npos)
+      << error_of(write("numbered.csv", numbered), o);
+  numbered.replace(0, numbered.find('\n'), "t_s,1,2");
+  EXPECT_EQ(read_time_series(write("numbered.csv", numbered), o).value_column, "2");
   // A window outside the record.
   ImportOptions late;
   late.channel = "2";  // (ax_g is constant, itself refused)
