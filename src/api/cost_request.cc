@@ -13,9 +13,9 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
   o.count = request.count.value_or(o.count);
   o.rule = request.rule.value_or(o.rule);
   o.min_frequency_hz = request.min_frequency_hz.value_or(o.min_frequency_hz);
-  if (request.artefacts != "reject" && request.artefacts != "keep")
-    refuse(caller, "artefacts", request.artefacts, "must be one of reject, keep");
-  o.reject_artefacts = request.artefacts == "reject";
+  const std::string artefacts = request.artefacts.value_or("reject");
+  if (artefacts != "reject" && artefacts != "keep") refuse(caller, "artefacts", artefacts, "must be one of reject, keep");
+  o.reject_artefacts = artefacts == "reject";
   o.max_frequency_hz = request.max_frequency_hz.value_or(o.max_frequency_hz);
   if (!request.frequencies_hz.empty()) {
     o.frequencies_hz = request.frequencies_hz;
@@ -42,9 +42,51 @@ signal::WindowOptions window_options(const WindowRequest& request, const Caller&
   return w;
 }
 
-costs::CostOptions cost_options(const CostRequest& request, const Caller& caller) {
+namespace {
+
+// An option that none of the request's costs reads is refused, naming the costs that do read it.
+void refuse_unused(const CostRequest& request, const Caller& caller, const std::vector<std::string>& also) {
+  std::vector<std::string> names = also;
+  names.insert(names.begin(), request.name);
+  std::string named;
+  for (const std::string& n : names) named += (named.empty() ? "" : " and ") + n;
+  const auto uses = [&](bool costs::CostUses::*field) {
+    return std::any_of(names.begin(), names.end(), [&](const std::string& n) { return costs::cost_uses(n).*field; });
+  };
+  const auto refuse_if = [&](bool given, bool costs::CostUses::*field, const std::string& flag,
+                             const std::string& value, const std::string& readers) {
+    if (given && !uses(field))
+      refuse(caller, flag, value, "is read by " + readers + "; cost " + named + " does not read it");
+  };
+  const std::string dft_costs = "the DFT costs (spike, spike-smooth, freq-band)";
+  const std::string spike_costs = "the spike costs (spike, spike-smooth)";
+  refuse_if(request.window.name.has_value(), &costs::CostUses::window, "window", request.window.name.value_or(""),
+            dft_costs);
+  refuse_if(request.window.exponential_end.has_value(), &costs::CostUses::window, "exponential-end",
+            format_value(request.window.exponential_end.value_or(0)), dft_costs);
+  if (request.window.exponential_end && uses(&costs::CostUses::window) &&
+      request.window.name.value_or("rectangular") != "exponential")
+    refuse(caller, "exponential-end", format_value(*request.window.exponential_end),
+           "is the exponential window's; --window is " + request.window.name.value_or("rectangular (the default)"));
+  refuse_if(request.spikes.rule.has_value(), &costs::CostUses::spike_rule, "spike-rule",
+            request.spikes.rule.value_or(""), spike_costs);
+  refuse_if(request.spikes.artefacts.has_value(), &costs::CostUses::spike_rule, "artefacts",
+            request.spikes.artefacts.value_or(""), spike_costs);
+  refuse_if(request.frequency_weight.has_value(), &costs::CostUses::frequency_weight, "frequency-weight",
+            request.frequency_weight.value_or(""), spike_costs);
+  refuse_if(request.model_poles.has_value(), &costs::CostUses::model_poles, "model-poles",
+            request.model_poles.value_or(""), "the spike-smooth cost");
+  if (request.unknown_amplitude && !uses(&costs::CostUses::unknown_amplitude))
+    refuse(caller, "--unknown-amplitude frees the amplitude of a cost that compares amplitudes; cost " + named +
+                       " compares frequencies and decay rates only");
+}
+
+}  // namespace
+
+costs::CostOptions cost_options(const CostRequest& request, const Caller& caller, const std::vector<std::string>& also) {
   costs::CostOptions o;
   o.name = request.name;
+  if (costs::cost_names().contains(o.name)) refuse_unused(request, caller, also);
   o.spikes = spike_options(request.spikes, caller);
   o.window = window_options(request.window, caller);
   // A weight the chosen cost has no term for would be ignored without a word: eps1 and eps2 weigh the spike costs'
@@ -64,7 +106,7 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.eps3 = request.eps3;
   o.unknown_amplitude = request.unknown_amplitude;
   o.model_poles = request.model_poles.value_or(o.model_poles);
-  o.frequency_weight = request.frequency_weight;
+  o.frequency_weight = request.frequency_weight.value_or(costs::kRelativeWeight);
   if (auto error = costs::validation_error(o)) refuse(caller, *error);
   return o;
 }

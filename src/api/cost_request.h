@@ -20,7 +20,8 @@ struct SpikeRequest {
   std::optional<double> min_frequency_hz;  // --min-frequency
   std::optional<double> max_frequency_hz;  // --max-frequency
   std::vector<double> frequencies_hz;      // --spike-frequencies (then count, if given, must equal their number)
-  std::string artefacts = "reject";        // --artefacts: reject | keep (a record read from a file is a measured one)
+  // --artefacts: reject | keep (default reject: a record read from a file is a measured one)
+  std::optional<std::string> artefacts;
 };
 
 struct WindowRequest {
@@ -38,12 +39,16 @@ struct CostRequest {
   // --frequency-weight. A record read from a file is a measured record as far as beamid knows: errors relative to
   // each mode's frequency, so that the highest fitted mode does not dominate (costs/cost.h); the studies' synthetic
   // records keep the paper's Hz.
-  std::string frequency_weight = costs::kRelativeWeight;
+  // (unset: relative).
+  std::optional<std::string> frequency_weight;
 };
 
 // The options a request gives, validated (InputError naming the field, value and constraint).
 signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& caller);
 signal::WindowOptions window_options(const WindowRequest& request, const Caller& caller);
-costs::CostOptions cost_options(const CostRequest& request, const Caller& caller);
+// `also`: the other costs the same request configures (a hybrid fit's refinement), so that an option either cost
+// reads is not refused as unused.
+costs::CostOptions cost_options(const CostRequest& request, const Caller& caller,
+                                const std::vector<std::string>& also = {});
 
 }  // namespace beamid::api

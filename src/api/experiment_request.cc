@@ -21,6 +21,16 @@ simulation::Experiment experiment_of(const ExperimentRequest& request, double le
   e.pulse_width_s = request.pulse_width_s.value_or(e.pulse_width_s);
   if (e.excitation == simulation::kPluck && request.pulse_width_s)
     refuse(caller, "--pulse-width applies to --excitation pulse only");
+  // A free decay has no force: its initial state is solved from the record (simulation/experiment.h), and a force
+  // position, amplitude or pulse width given with it was ignored without a word.
+  if (e.excitation == simulation::kFreeDecay)
+    for (const auto& [flag, given] : {std::pair{"force-x", request.force_x_m.has_value()},
+                                      std::pair{"force-amplitude", request.force_amplitude_N.has_value()},
+                                      std::pair{"pulse-width", request.pulse_width_s.has_value()}})
+      if (given)
+        refuse(caller, std::string("--") + flag +
+                           " describes the force of --excitation pulse or pluck; a free decay has none (its initial "
+                           "state is solved from the record)");
   if (auto error = simulation::validation_error(e, length_m)) refuse(caller, *error);
   return e;
 }

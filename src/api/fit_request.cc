@@ -122,8 +122,16 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
                  core::kRecordBytesPerSample, warnings);
   match_record(request, data, o.experiment);
   check_quantity(caller, channels, o.experiment);
-  o.simulator.integrator = request.integrator;
-  o.cost = cost_options(request.cost, caller);
+  o.simulator.integrator = request.integrator.value_or(simulation::kFast);
+  // A free decay is computed from the model's modes with its initial state solved in closed form (simulation/
+  // experiment.h), whatever the integrator: --integrator cvode was ignored without a word.
+  if (request.integrator && o.experiment.excitation == simulation::kFreeDecay)
+    refuse(caller, "integrator", *request.integrator,
+           "applies to --excitation pulse or pluck; a free decay is computed from the model's modes in closed form");
+  // A hybrid fit's refinement reads the same request's options (its window, its spikes).
+  o.cost = cost_options(request.cost, caller,
+                        request.strategy == fit::kHybrid ? std::vector<std::string>{request.refine.value_or(o.refine)}
+                                                         : std::vector<std::string>{});
   o.optimizer.method = request.optimizer.value_or(fit::default_optimizer(o.cost.name));
   o.optimizer.max_evaluations = request.max_evaluations.value_or(o.optimizer.max_evaluations);
   o.strategy = request.strategy;
@@ -139,8 +147,14 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     refuse(caller, "record-weights", o.record_weights,
            "weighs the records of a joint fit against each other; this fit has one record (give several --channel)");
   o.starts = request.starts;
-  if (request.seed < 0) refuse(caller, "seed", std::to_string(request.seed), "must be an integer >= 0");
-  o.seed = static_cast<std::uint64_t>(request.seed);
+  const long long seed = request.seed.value_or(1);
+  if (seed < 0) refuse(caller, "seed", std::to_string(seed), "must be an integer >= 0");
+  o.seed = static_cast<std::uint64_t>(seed);
+  // The seed draws the multistart's space-filling starts and crs2-lm's population; a fit with neither draws nothing.
+  if (request.seed && o.starts == 1 && o.optimizer.method != "crs2-lm")
+    refuse(caller, "seed", std::to_string(seed),
+           "seeds the multistart (--starts > 1) and crs2-lm's population; this fit has one start and optimizer " +
+               o.optimizer.method + ", with nothing random");
   if (!(request.start_scale > 0)) refuse(caller, "start-scale", format_value(request.start_scale), "must be > 0");
   if (!(request.bound_factor > 1)) refuse(caller, "bound-factor", format_value(request.bound_factor), "must be > 1");
   o.estimate = estimated_parameters(request);

@@ -43,8 +43,8 @@ struct FitRequest {
   std::optional<std::string> refine;     // --refine: hybrid's second cost (default time)
   std::string scaling = "linear";        // --scaling
   int starts = 1;                        // --starts
-  long long seed = 1;                    // --seed (>= 0)
-  std::string integrator = "fast";       // --integrator
+  std::optional<long long> seed;         // --seed (>= 0; default 1): the multistart's and crs2-lm's draws
+  std::optional<std::string> integrator; // --integrator (default fast)
   std::optional<std::string> record_weights;  // --record-weights (several channels; unset: fit::kRmsWeights)
   std::optional<std::string> detrend;         // --detrend (default linear for a free decay, none otherwise)
   std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments

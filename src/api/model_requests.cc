@@ -10,6 +10,7 @@
 #include "galerkin/modes.h"
 #include "model/exact_frequencies.h"
 #include "signal/noise.h"
+#include "simulation/sensitivities.h"
 
 namespace beamid::api {
 
@@ -88,6 +89,14 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}};
   simulation::SimulatorOptions options;
   options.integrator = request.integrator;
+  // CVODE's tolerances and order do nothing to the exact propagator: said, not ignored.
+  if (options.integrator != simulation::kCvode)
+    for (const auto& [flag, given] : {std::pair{"rtol", request.rtol.has_value()},
+                                      std::pair{"atol", request.atol.has_value()},
+                                      std::pair{"max-order", request.max_order.has_value()}})
+      if (given)
+        refuse(caller, std::string("--") + flag + " is CVODE's (--integrator cvode); --integrator " +
+                           options.integrator + " is exact and has no tolerance or order");
   options.cvode.rtol = request.rtol.value_or(options.cvode.rtol);
   options.cvode.atol = request.atol.value_or(options.cvode.atol);
   options.cvode.max_order = request.max_order.value_or(options.cvode.max_order);
@@ -164,6 +173,12 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   // that (a step of 1e-300 was reported as an unidentifiable parameter).
   if (!(r.options.log_step >= 1e-8 && r.options.log_step <= 0.1))
     refuse(caller, "log-step", format_value(r.options.log_step), "must lie in [1e-8, 0.1]");
+  // The pulse's sensitivities are exact (the tangent equations, fit/cramer_rao.cc): no step is taken, and a given
+  // --log-step was ignored without a word.
+  if (request.log_step && simulation::has_exact_sensitivities(r.run.experiment, r.keys))
+    refuse(caller, "log-step", format_value(*request.log_step),
+           "sets the finite-difference step; these sensitivities are exact (the tangent equations of the pulse "
+           "response), with no step");
   r.noise_sd = crb_noise_sd(request, r.run);
   try {
     r.bound = fit::beam_cramer_rao_bound(beam, r.run.elements, r.run.experiment, r.keys, r.noise_sd, {}, r.options);

@@ -166,7 +166,8 @@ void spread_section(Markdown& md, const FitReportInput& in) {
       for (const double v : in.spread->estimates[w]) md << " " << g(v, 8) << " |";
       md << "\n";
     }
-    md << "\n";
+    md << "\nThe window sd counts only the " << in.spread->used
+       << " window(s) whose fit converged: one stopped by the evaluation budget sits where the budget left it.\n\n";
   }
 }
 

@@ -35,7 +35,7 @@ api::SpikeRequest spike_request_of(const Flags& a) {
   r.min_frequency_hz = a.optional_number("min-frequency");
   r.max_frequency_hz = a.optional_number("max-frequency");
   r.frequencies_hz = a.numbers("spike-frequencies");
-  r.artefacts = a.text_or("artefacts", r.artefacts);
+  if (a.has("artefacts")) r.artefacts = a.text("artefacts");
   return r;
 }
 
@@ -56,7 +56,7 @@ api::CostRequest cost_request_of(const Flags& a) {
   r.eps3 = a.optional_number("eps3");
   r.unknown_amplitude = a.has("unknown-amplitude");
   if (a.has("model-poles")) r.model_poles = a.text("model-poles");
-  r.frequency_weight = a.text_or("frequency-weight", r.frequency_weight);
+  if (a.has("frequency-weight")) r.frequency_weight = a.text("frequency-weight");
   return r;
 }
 
@@ -142,8 +142,8 @@ api::FitRequest fit_request_of(const Flags& a) {
   if (a.has("refine")) r.refine = a.text("refine");
   r.scaling = a.text_or("scaling", r.scaling);
   r.starts = a.optional_integer("starts").value_or(r.starts);
-  r.seed = a.optional_integer("seed").value_or(1);
-  r.integrator = a.text_or("integrator", r.integrator);
+  r.seed = a.optional_integer("seed");
+  if (a.has("integrator")) r.integrator = a.text("integrator");
   if (a.has("record-weights")) r.record_weights = a.text("record-weights");
   if (a.has("detrend")) r.detrend = a.text("detrend");
   r.welch = a.optional_integer("welch");

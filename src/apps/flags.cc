@@ -26,7 +26,9 @@ std::optional<long long> parse_integer(const std::string& value) {
 }
 
 std::string range_text(long long min, long long max) {
-  if (max == std::numeric_limits<int>::max()) return "must be an integer >= " + std::to_string(min);
+  // The int limit stated as such: "an integer >= 0" was given for --seed 2147483648, which is one.
+  if (max == std::numeric_limits<int>::max())
+    return "must be an integer in " + std::to_string(min) + "..2147483647 (2^31 - 1)";
   return "must be an integer in " + std::to_string(min) + ".." + std::to_string(max);
 }
 

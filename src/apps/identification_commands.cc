@@ -109,6 +109,36 @@ int run_cost(const Flags& a, std::ostream& out) {
   return 0;
 }
 
+namespace {
+
+// "3 of 4 windows converged (window 2: max-evaluations); sd over them: EI 0.1 (formal ..., sandwich ...)", or why
+// there is no spread. Each window that does not count is named with its status (reasons cut to 120 characters), so
+// that a spread of the budget or of failed windows is not read as the data's.
+std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitResult& result) {
+  std::ostringstream line;
+  line << spread.used << " of " << spread.windows << " windows converged";
+  std::string others;
+  for (std::size_t k = 0; k < spread.statuses.size(); ++k) {
+    const std::string& status = spread.statuses[k];
+    if (status.rfind("converged", 0) == 0 && !std::isnan(spread.estimates[k].empty() ? 0.0 : spread.estimates[k][0]))
+      continue;
+    others += (others.empty() ? "" : "; ") + std::string("window ") + std::to_string(k + 1) + ": " +
+              (status.size() > 120 ? status.substr(0, 117) + "..." : status);
+  }
+  if (!others.empty()) line << " (" << others << ")";
+  if (spread.used < 2) {
+    line << "; no spread: it needs at least 2 converged windows";
+    return line.str();
+  }
+  line << "; sd over them:";
+  for (std::size_t i = 0; i < spread.keys.size(); ++i)
+    line << (i ? "," : "") << " " << spread.keys[i] << " " << spread.sd[i] << " (formal "
+         << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error << ")";
+  return line.str();
+}
+
+}  // namespace
+
 int run_fit(const Flags& a, std::ostream& out) {
   check_output_file(a, "report");
   refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
@@ -156,14 +186,7 @@ int run_fit(const Flags& a, std::ostream& out) {
                                              : std::string())
                 << (part.evaluation.a4 != "ok" ? ", " + part.evaluation.a4 : std::string()) << "\n";
     }
-  if (spread) {
-    std::cerr << "beamid fit: " << spread->used << " of " << spread->windows << " windows fitted; sd over them:";
-    for (std::size_t i = 0; i < spread->keys.size(); ++i)
-      std::cerr << (i ? "," : "") << " " << spread->keys[i] << " " << spread->sd[i] << " (formal "
-                << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error
-                << ")";
-    std::cerr << "\n";
-  }
+  if (spread) std::cerr << "beamid fit: " << window_spread_line(*spread, result) << "\n";
   const FitReportInput input{o, result, data, beam_name, a.arguments(), channels, spread ? &*spread : nullptr};
   std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
   if (a.has("report")) write_fit_report(a.text("report"), input);

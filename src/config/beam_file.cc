@@ -18,7 +18,6 @@ using model::BeamParameters;
 
 // [geometry]: see model/geometry.h. Every key is checked where it is read, so an error names its line.
 BeamParameters parse_geometry_table(Table r) {
-  const auto positive = [](double v) { return v > 0; };
   const auto non_negative = [](double v) { return v >= 0; };
   model::Geometry g;
   // Ranges of real beams and materials: a beam is at least twice as long as it is thick (below that no beam theory
@@ -42,8 +41,16 @@ BeamParameters parse_geometry_table(Table r) {
   if (r.has("poisson_ratio"))
     g.poisson_ratio = r.number(
         "poisson_ratio", std::nullopt, [](double v) { return v > -1 && v < 0.5; }, "must be in (-1, 0.5)");
-  if (r.has("shear_modulus_Pa"))
-    g.shear_modulus_Pa = r.number("shear_modulus_Pa", std::nullopt, positive, "must be > 0");
+  // G against E: 2.6 for metals (E/G = 2(1 + nu)), up to about 50 for fibre composites; beyond [E/1e4, 10 E] the
+  // derived Poisson ratio overflows Cowper's shear coefficient (G = 1e-300 or 1e300 was reported as
+  // "geometry.shear_coefficient = nan", a key the file did not hold).
+  if (r.has("shear_modulus_Pa")) {
+    const double E = g.youngs_modulus_Pa;
+    g.shear_modulus_Pa = r.number(
+        "shear_modulus_Pa", std::nullopt, [&](double v) { return v >= E / 1e4 && v <= 10 * E; },
+        "must be in [E/1e4, 10 E] = [" + format_rounded(E / 1e4) + ", " + format_rounded(10 * E) +
+            "] Pa with E = youngs_modulus_Pa (E/G is 2.6 for metals, up to about 50 for fibre composites)");
+  }
   if (g.poisson_ratio.has_value() == g.shear_modulus_Pa.has_value())
     throw InputError(r.where() + ": [geometry] needs exactly one of poisson_ratio and shear_modulus_Pa");
   if (const auto k = r.get("shear_coefficient")) {

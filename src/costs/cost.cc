@@ -61,6 +61,16 @@ const core::NameSet& model_pole_names() {
 
 bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
 
+CostUses cost_uses(const std::string& name) {
+  CostUses u;
+  u.window = is_spike_cost(name) || name == kBandCost;
+  u.spike_rule = is_spike_cost(name);
+  u.frequency_weight = is_spike_cost(name);
+  u.model_poles = name == kSpikeSmoothCost;
+  u.unknown_amplitude = name != kModalCost;
+  return u;
+}
+
 std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = cost_names().violation("cost", o.name)) return error;
   if (auto error = signal::validation_error(o.spikes)) return error;

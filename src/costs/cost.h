@@ -89,6 +89,14 @@ struct CostOptions {
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);
 bool is_spike_cost(const std::string& name);
+// Which of the options a cost reads, so that one it does not read is refused rather than ignored (a --window hann on
+// the time cost gave the same fit as without it). The DFT costs (spike, spike-smooth, freq-band) read the window; the
+// spike costs pick peaks by a rule with artefacts skipped and weigh frequencies; spike-smooth alone may take its model
+// poles from the eigenvalues; every cost but modal (frequencies and decay rates only) may leave the amplitude free.
+struct CostUses {
+  bool window = false, spike_rule = false, frequency_weight = false, model_poles = false, unknown_amplitude = false;
+};
+CostUses cost_uses(const std::string& name);
 
 // What the model produced: the sampled output and, when known, its underdamped eigenvalues (rad/s).
 struct ModelResponse {

@@ -48,15 +48,23 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
   }
   spread.mean.assign(n, std::numeric_limits<double>::quiet_NaN());
   spread.sd = spread.standard_error = spread.mean;
-  for (const auto& e : spread.estimates) spread.used += std::isnan(e.empty() ? 0.0 : e.front()) ? 0 : 1;
+  // Only windows whose fit converged count: one stopped by the evaluation budget sits wherever the budget left it
+  // (near its start, the full estimate), and eight such windows gave an sd of EI 300 times below its formal error,
+  // a measure of the budget rather than the data (the second adversarial pass's N540).
+  std::vector<bool> counted;
+  for (std::size_t k = 0; k < spread.estimates.size(); ++k) {
+    counted.push_back(spread.statuses[k].rfind("converged", 0) == 0 && !spread.estimates[k].empty() &&
+                      !std::isnan(spread.estimates[k].front()));
+    spread.used += counted.back() ? 1 : 0;
+  }
   if (spread.used < 2) return spread;
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0, squares = 0;
-    for (const auto& e : spread.estimates)
-      if (!std::isnan(e.front())) sum += e[i];
+    for (std::size_t k = 0; k < spread.estimates.size(); ++k)
+      if (counted[k]) sum += spread.estimates[k][i];
     const double mean = sum / spread.used;
-    for (const auto& e : spread.estimates)
-      if (!std::isnan(e.front())) squares += (e[i] - mean) * (e[i] - mean);
+    for (std::size_t k = 0; k < spread.estimates.size(); ++k)
+      if (counted[k]) squares += (spread.estimates[k][i] - mean) * (spread.estimates[k][i] - mean);
     spread.mean[i] = mean;
     spread.sd[i] = std::sqrt(squares / (spread.used - 1));
     spread.standard_error[i] = spread.sd[i] / std::sqrt(static_cast<double>(spread.used));

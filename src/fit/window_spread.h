@@ -12,8 +12,9 @@
 // Each window after the first starts from an unknown state, so it is fitted as a free decay (simulation/
 // experiment.h: mode amplitudes solved in closed form), from the full record's estimate, by the direct strategy with
 // the fit's cost and optimizer. A pulse record's first window keeps its pulse; its later windows cannot separate EI
-// from rho (the force is not in them), which the spread then shows. A window whose fit fails is listed with its
-// status and left out of the statistics.
+// from rho (the force is not in them), which the spread then shows. A window whose fit fails or stops at the
+// evaluation budget is listed with its status and estimate and left out of the statistics: only converged windows
+// count.
 #pragma once
 
 #include <string>
@@ -28,8 +29,8 @@ struct WindowSpread {
   std::vector<std::string> keys;                 // the estimated parameters, in the fit's order
   std::vector<std::vector<double>> estimates;    // [window][parameter] (NaN for a failed window)
   std::vector<std::string> statuses;             // per window: the fit's status
-  std::vector<double> mean, sd, standard_error;  // per parameter, over the windows that did not fail
-  int used = 0;                                  // windows that did not fail
+  std::vector<double> mean, sd, standard_error;  // per parameter, over the converged windows
+  int used = 0;                                  // windows whose fit converged (status converged...)
 };
 
 // The smallest window, in samples: shorter windows resolve no mode below a few hundred bins.

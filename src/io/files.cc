@@ -30,7 +30,9 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
     if (ec) continue;
     const auto [end, at] = std::mismatch(root.begin(), root.end(), file.begin(), file.end());
     if (end == root.end())
-      return "holds the input " + input + ", which an output of the same name would replace; write elsewhere";
+      return "holds the input " + input +
+             " (an output folder holds what beamid writes, and an output there could replace an input of the same "
+             "name): write into a new or empty folder";
   }
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "

@@ -32,6 +32,8 @@ using File = std::unique_ptr<mat_t, Closer>;
 using Variable = std::unique_ptr<matvar_t, Freer>;
 
 bool numeric(const matvar_t* v) {
+  // A logical array (true/false flags, stored as uint8) is no signal: it was read as 0/1 and refused as "clipped".
+  if (v->isLogical) return false;
   switch (v->class_type) {
     case MAT_C_DOUBLE:
     case MAT_C_SINGLE:
@@ -50,6 +52,7 @@ bool numeric(const matvar_t* v) {
 }
 
 std::string class_name(const matvar_t* v) {
+  if (v->isLogical) return "a logical array";
   switch (v->class_type) {
     case MAT_C_STRUCT:
       return "a struct";

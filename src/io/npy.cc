@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "io/record_samples.h"
 
 namespace beamid::io {
 namespace {
@@ -73,8 +74,11 @@ std::vector<std::size_t> dimensions(const std::string& shape, const std::string&
     field.erase(0, field.find_first_not_of(" "));
     field.erase(field.find_last_not_of(" ") + 1);
     if (!field.empty()) {
-      if (field.size() > 12 || field.find_first_not_of("0123456789") != std::string::npos)
+      if (field.find_first_not_of("0123456789") != std::string::npos)
         fail(path, offset, "shape = " + shape + ": must hold non-negative integers");
+      // 12 digits bound the parse (the sample limit, 2^28, has 9); a longer one is a size, said as such.
+      if (field.size() > 12)
+        fail(path, offset, "shape = " + shape + ": dimension " + field + " is beyond any record (at most 2^28 samples)");
       out.push_back(std::stoull(field));
     }
     begin = comma + 1;
@@ -125,6 +129,12 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
 
   NpyArray array;
   const std::string descr = dict_value(header, "descr", path, header_offset);
+  // A structured array (named fields, descr a list of (name, type) pairs) was refused in the parser's words.
+  if (!descr.empty() && descr.front() == '[')
+    fail(path, header_offset,
+         "descr = " + shown(descr, 80) +
+             ": a structured array (named fields) is not read: save a plain array, e.g. np.column_stack of the "
+             "fields, time first if it is one");
   if (descr.size() < 5 || (descr.front() != '\'' && descr.front() != '"') || descr.back() != descr.front())
     fail(path, header_offset, "descr = " + descr + ": must be a quoted type string such as '<f8'");
   array.descr = descr.substr(1, descr.size() - 2);

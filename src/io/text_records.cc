@@ -187,6 +187,11 @@ Table read_lvm(std::istream& in, const std::string& path) {
   while (std::getline(in, line)) {
     ++number;
     if (trim(line).empty()) continue;
+    // A second segment (its own header, ending in ***End_of_Header***) was reported as a non-number in X_Value.
+    if (line.rfind("***End_of_Header***", 0) == 0 || line.rfind("Channels", 0) == 0)
+      throw InputError(path + ":" + std::to_string(number) +
+                       ": a second segment begins here: beamid reads LVM files of one segment (save each segment, or "
+                       "each run, to its own file)");
     const auto fields = split(line, separator);
     std::vector<std::string> row;
     for (int c : keep) row.push_back(c < static_cast<int>(fields.size()) ? fields[static_cast<std::size_t>(c)] : "");

@@ -110,6 +110,8 @@ namespace {
 // anti-alias low-pass first), spanning +-32 periods of the lower rate: the Blackman window's transition band is then
 // about 3/32 of the rate wide, 0.40-0.50 of the new rate when decimating. Dividing by the weights' sum keeps a constant
 // constant, also at the record's ends.
+constexpr double kMaxUpsampling = 16;
+
 void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   const double fs = 1 / s.dt_s;
   const auto n = static_cast<double>(s.values.size());
@@ -121,6 +123,12 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   if (count > 1 << 28)
     throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz would make " + format_value(count) +
                      " samples: at most 2^28");
+  // Up-sampling adds no information, only samples for every fit to simulate: 1e7 Hz from 1652 Hz ran silently for
+  // minutes (the second pass's N514). A factor of 16 is more than any interpolation for plotting needs.
+  if (rate > kMaxUpsampling * fs)
+    throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz is " + format_rounded(rate / fs) +
+                     " times the record's " + format_rounded(fs) + " Hz: at most " + format_rounded(kMaxUpsampling) +
+                     " times (resampling up adds no information, only samples to simulate)");
   check_memory(path + ": resampling to " + format_value(count) + " samples", 8 * count, std::cerr);
   const double cutoff = rate < fs ? 0.45 * rate : 0.5 * fs;
   const double half = 32 / std::min(fs, rate);  // s
@@ -323,8 +331,10 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
                      " s runs past the record's end: " + spans + ", so at most " +
                      format_rounded(t_end - start + dt, 6) + " s from there");
   if (last - first < 8)
-    throw InputError(path + ": the window of " + format_value(o.duration_s.value_or(n_total * dt)) + " s from " +
-                     format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
+    // Without --duration the window runs to the end: said so, not as a length the user never gave.
+    throw InputError(path + ": the window " +
+                     (o.duration_s ? "of " + format_value(*o.duration_s) + " s " : std::string("to the record's end ")) +
+                     "from " + format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
                      " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
   s.values.assign(v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last));
   s.t0_s = t0 + static_cast<double>(first) * dt;
@@ -430,6 +440,9 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     double time_precision = 0;
     if (!o.time_variable.empty()) {
       if (o.sample_rate_hz) throw InputError(path + ": give --time-variable or --sample-rate, not both");
+      if (o.time_variable == o.variable)
+        throw InputError(path + ": --time-variable = --variable = '" + o.variable +
+                         "': the time vector and the record must be different variables");
       const MatArray t = read_mat_variable(path, bytes, o.time_variable);
       if (t.rows != 1 && t.columns != 1)
         throw InputError(path + ": time variable '" + t.path + "' is " + std::to_string(t.rows) + " x " +

@@ -238,6 +238,22 @@ expect_error "derivative-free first step" "bobyqa's first step in linear coordin
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --bound-factor 1e6 \
   --optimizer bobyqa
 
+# Flags nothing in the run reads are refused, naming who reads them (the second pass's N280-N299, N459, N460).
+Z=(--data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI)
+expect_error "window with the time cost" "--window = 'hann': is read by the DFT costs" fit "${Z[@]}" --cost time \
+  --window hann
+expect_error "exponential end without its window" "is the exponential window's; --window is hann" fit "${Z[@]}" \
+  --cost spike-smooth --window hann --exponential-end 0.001
+expect_error "model poles with spike" "--model-poles = 'eigenvalues': is read by the spike-smooth cost" fit "${Z[@]}" \
+  --cost spike --model-poles eigenvalues
+expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
+expect_error "force with a free decay" "--force-x describes the force of --excitation pulse or pluck" fit "${Z[@]}" \
+  --cost time --excitation free-decay --force-x 0.3
+expect_error "rtol with the exact propagator" "--rtol is CVODE's" simulate --beam banks-aluminium --elements 6 \
+  --rtol 1e-8
+expect_error "log step with exact sensitivities" "these sensitivities are exact" crb --beam banks-aluminium \
+  --elements 6 --estimate EI --noise-sd 0.01 --log-step 0.01
+
 # A CSV without a header lost its first sample as "names", and a time column in ms was read as seconds (issue 30).
 tail -n +2 "$tmp/z.csv" >"$tmp/headerless.csv"
 expect_error "headerless csv" "headerless.csv:1: '0.0000000000000000e+00,0.000000000000000... (45 characters)': the first line holds numbers" \
@@ -322,6 +338,24 @@ expect_error "stacked bodies" "the bodies on the beam weigh 900 kg together (tip
   modes --beam "$tmp/stacked.toml" --elements 4
 sed 's/^thickness_m = .*/thickness_m = 1e-9/' "$G" >"$tmp/nanometre.toml"
 expect_error "1 nm geometry" "[geometry] gives beam.rho_r2" modes --beam "$tmp/nanometre.toml" --elements 4
+sed 's/^poisson_ratio = .*/shear_modulus_Pa = 1e-300/' "$G" >"$tmp/shear.toml"
+expect_error "geometry shear modulus" "geometry.shear_modulus_Pa = 1e-300: must be in [E/1e4, 10 E]" modes \
+  --beam "$tmp/shear.toml" --elements 4
+# Readers that misdiagnosed (the second pass's N046-N154): a second LVM segment, a structured .npy, a window asked
+# to the end, an up-sampling that only adds samples.
+{ head -n 1000 "$L"; sed -n 13,23p "$L"; sed -n 24,900p "$L"; } >"$tmp/two_segments.lvm"
+expect_error "LVM second segment" "two_segments.lvm:1002: a second segment begins here" spikes \
+  --data "$tmp/two_segments.lvm"
+header='{"descr": [("t", "<f8"), ("a", "<f8")], "fortran_order": False, "shape": (4,), }'
+while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
+{ printf '\x93NUMPY\x01\x00'; printf "\\x$(printf %02x $(( (${#header} + 1) % 256 )))\\x00"; printf '%s\n' "$header"; \
+  head -c 64 /dev/zero; } >"$tmp/structured.npy"
+expect_error "structured npy" "a structured array (named fields) is not read" spikes --data "$tmp/structured.npy" \
+  --sample-rate 1000
+expect_error "window to the end" "the window to the record's end from 4.092 s holds 4 samples" spikes \
+  --data "$tmp/z.csv" --start 4.092
+expect_error "up-sampling" "is 1000 times the record's 1000 Hz: at most 16 times" spikes --data "$tmp/z.csv" \
+  --resample-rate 1e6
 # A Cramer-Rao bound that would be 0 or inf is refused or said (N344, N345, N349, N352).
 expect_error "crb noise sd 1e300" "--noise-sd = '1e+300': must lie in [1e-150, 1e150]" crb "${S[@]}" --estimate EI \
   --noise-sd 1e300

@@ -1,18 +1,22 @@
 // The computing half of a real-data study (real_study.h): import the records, measure their peaks, fit them jointly
 // with each candidate model and cost, and evaluate the identified model; every fit that fails is a result with its
 // status.
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string_view>
 #include <tuple>
 
 #include "config/beam_file.h"
 #include "core/errors.h"
+#include "core/limits.h"
 #include "fit/window_spread.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
 #include "io/provenance.h"
+#include "io/resources.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 #include "study/real/real_study.h"
@@ -20,6 +24,29 @@
 
 namespace beamid::study {
 namespace {
+
+// The readers name the command line's flags (--sample-rate); a real study's user wrote its keys
+// (record.sample_rate_hz): an error names those, with the study file and the record (the second pass's N519).
+std::string in_study_keys(std::string message, const RealStudySpec& spec, const RealRecordSpec& r) {
+  // Longer flags first, so that --resample-rate is not read as --resample.
+  const std::pair<const char*, const char*> keys[] = {
+      {"--resample-rate", "resample_rate_hz"}, {"--time-variable", "time_variable"}, {"--sample-rate", "sample_rate_hz"},
+      {"--resample", "resample"},             {"--variable", "variable"},           {"--channel", "channel"},
+      {"--start", "start_s"},                 {"--duration", "duration_s"},         {"--units", "units"}};
+  for (const auto& [flag, key] : keys) {
+    const std::string replacement = "record '" + r.name + "'." + key;
+    for (std::size_t at = message.find(flag); at != std::string::npos;
+         at = message.find(flag, at + replacement.size())) {
+      const std::size_t end = at + std::string_view(flag).size();
+      if (end < message.size() && (std::isalnum(static_cast<unsigned char>(message[end])) || message[end] == '-')) {
+        at += 1;  // a longer flag's prefix
+        continue;
+      }
+      message.replace(at, end - at, replacement);
+    }
+  }
+  return spec.path + ": " + message;
+}
 
 RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r) {
   RealRecordData out;
@@ -33,7 +60,11 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   import.resample_rate_hz = r.resample_rate_hz;
   import.variable = r.variable;
   import.time_variable = r.time_variable;
-  out.series = io::read_time_series(r.file, import);
+  try {
+    out.series = io::read_time_series(r.file, import);
+  } catch (const InputError& error) {
+    throw InputError(in_study_keys(error.what(), spec, r));
+  }
   out.nominal = config::load_beam_toml(r.beam_file.empty() ? spec.beam_file : r.beam_file);
   // The data's sub-bin peak frequencies near peaks_hz, and damping ratios sigma / |lambda| from the 3-bin rates.
   signal::SpikeOptions spikes;
@@ -132,6 +163,12 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
         << g4(1 / out.records[k].series.dt_s) << " Hz from " << spec.records[k].file;
   log << "), " << spec.candidates.size() << " candidate(s) x " << spec.costs.size()
       << " cost(s) at N = " << spec.elements << "\n";
+  // The command line's N^3 warning (api/experiment_request.cc), here too: at N = 400 the study was silent for minutes.
+  const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(spec.elements / 200.0, 3);
+  if (seconds > 1)
+    log << "beamid real: fit.elements = " << spec.elements << ": one model evaluation takes about "
+        << io::seconds_text(seconds) << " here (it grows as N^3), and a fit takes hundreds\n";
+  log << std::flush;
 
   for (const CandidateSpec& candidate : spec.candidates) {
     const std::vector<fit::Record> records = candidate_records(spec, candidate, out.records);
@@ -180,7 +217,7 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
           const fit::WindowSpread w = fit::window_spread(o, records, r, spec.windows);
           f.window_sd = w.sd;
           f.windows_used = w.used;
-          log << ", " << w.used << "/" << w.windows << " windows";
+          log << ", " << w.used << "/" << w.windows << " windows converged";
         } catch (const InputError& e) {
           log << ", no window spread: " << e.what();
         }

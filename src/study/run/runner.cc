@@ -154,6 +154,13 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
       missing_truths.push_back(static_cast<int>(i));
   }
   if (!missing_truths.empty()) {
+    // The first truth's CVODE cross-check grows steeply below rtol 1e-10 (measured on the thin beam at N = 48: 2 s at
+    // 1e-10, 75 s at 1e-13), and nothing else is printed until it ends: said before it starts.
+    if (spec.truth.rtol < 1e-11)
+      log << "beamid study: truth.rtol = " << spec.truth.rtol
+          << ": the first truth record's CVODE cross-check takes up to a minute or more (2 s at 1e-10, 75 s at 1e-13 "
+             "measured at N = 48)\n"
+          << std::flush;
     Progress progress(log, terminal,
                       "truth records (exact modal closed form, N = " + std::to_string(spec.truth.elements) + ")",
                       static_cast<int>(missing_truths.size()));

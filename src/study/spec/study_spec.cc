@@ -318,6 +318,37 @@ void read_outputs(const config::Document& document, StudySpec& spec) {
 
 }  // namespace
 
+// A method's window, frequency weight or eps factors apply only to the costs that read them (costs::cost_uses): in a
+// study whose methods run only the time cost they were ignored without a word (the second adversarial pass's N459,
+// N460). The costs a method runs: the sweep's (when the sweep lists it), its start-distance runs', a hybrid's refine.
+void check_method_overrides(const config::Document& document, const StudySpec& spec) {
+  std::optional<Table> methods = document.table("methods", false);
+  if (!methods) return;
+  for (const MethodSpec& m : spec.methods) {
+    std::vector<std::string> runs;
+    if (std::find(spec.sweep.method.begin(), spec.sweep.method.end(), m.name) != spec.sweep.method.end())
+      runs = spec.sweep.cost;
+    for (const auto& [cost, method] : spec.start_distance.runs)
+      if (method == m.name) runs.push_back(cost);
+    if (m.strategy == fit::kHybrid) runs.push_back(m.refine);
+    if (runs.empty()) continue;
+    std::string listed;
+    for (const std::string& c : runs) listed += (listed.empty() ? "" : ", ") + c;
+    const auto read_by = [&](bool costs::CostUses::*field) {
+      return std::any_of(runs.begin(), runs.end(), [&](const std::string& c) { return costs::cost_uses(c).*field; });
+    };
+    const Table r = methods->table(m.name).value();
+    for (const auto& [key, field, readers] :
+         {std::tuple{"window", &costs::CostUses::window, "the DFT costs (spike, spike-smooth, freq-band)"},
+          std::tuple{"frequency_weight", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"eps1_factor", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"eps2_factor", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"}})
+      if (r.has(key) && !read_by(field))
+        throw InputError(r.where(key) + ": methods." + m.name + "." + key + " is read by " + readers +
+                         "; this method runs only " + listed);
+  }
+}
+
 StudySpec parse_study(const std::string& text, const std::string& source, const std::string& directory) {
   const config::Document document = config::Document::parse(text, source);
   const Table root = document.root();
@@ -334,6 +365,7 @@ StudySpec parse_study(const std::string& text, const std::string& source, const 
   read_sweep(document, source, finest_fit, spec);
   read_landscape(document, finest_fit, spec);
   read_start_distance(document, finest_fit, spec);
+  check_method_overrides(document, spec);
   read_outputs(document, spec);
   return spec;
 }
