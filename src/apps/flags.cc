@@ -92,6 +92,9 @@ Flags::Flags(std::string command, const CLI::App& parsed, const std::vector<Flag
     const CLI::Option* o = parsed.get_option(f.kind == FlagKind::Positional ? f.name : "--" + f.name);
     if (o->count() == 0) continue;
     values_[f.name] = f.kind == FlagKind::Switch ? std::string() : o->results().back();
+    // An empty value names nothing (--output '' ended in "beamid: : cannot create folder (Invalid argument)").
+    if ((f.kind == FlagKind::Text || f.kind == FlagKind::Positional) && values_[f.name].empty())
+      fail((f.kind == FlagKind::Positional ? f.name : "--" + f.name) + " = '': must not be empty");
   }
 }
 

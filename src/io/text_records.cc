@@ -201,6 +201,35 @@ Table read_lvm(std::istream& in, const std::string& path) {
   return t;
 }
 
+// An LVM with an X column and a header Delta_X: the two must agree to 1 % (a Delta_X of 0.002 beside a column stepping
+// 0.001 was settled silently in the column's favour: the second pass's N080). Delta_X itself is printed to a few
+// digits (the steel record's 0.000605 is 0.075 % below its column's step, 0.00060545), so the column's mean step,
+// (t_last - t_0)/(n - 1), is the record's. Where the column is printed too coarsely to resolve single steps (3
+// decimals at 0.6 ms: "repeats the previous sample's time", N079) the time base is t_0 + i (that mean step), once
+// every printed time agrees with it to its printed resolution; the notes say so.
+void use_mean_step_when_coarse(Samples& out, const Table& table, const std::string& path, int time_decimals) {
+  const double delta = table.delta, t0 = out.t.front(), resolution = out.time_resolution;
+  const double n = static_cast<double>(out.t.size());
+  const double step = (out.t.back() - t0) / (n - 1);
+  if (!(std::abs(step - delta) <= 1e-2 * delta))
+    throw InputError(path + ":" + std::to_string(table.line_of.back()) + ": the X column steps " +
+                     format_value(step) + " s on average but the header's Delta_X is " + format_value(delta) +
+                     " s: the header and the data disagree (which one is the record's?)");
+  if (resolution <= 0.5 * step) return;  // the column resolves its steps: they are checked as any column's
+  for (std::size_t i = 0; i < out.t.size(); ++i)
+    if (std::abs(out.t[i] - (t0 + static_cast<double>(i) * step)) > resolution * (1 + 1e-9))
+      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": X = " + format_value(out.t[i]) +
+                       " s is more than its printed resolution " + format_value(resolution) +
+                       " s from a uniform time base of step " + format_value(step) +
+                       " s: the record is not uniformly sampled, or a sample is missing");
+  for (std::size_t i = 0; i < out.t.size(); ++i) out.t[i] = t0 + static_cast<double>(i) * step;
+  out.time_in_file = false;
+  out.time_resolution = 0;
+  out.series.notes += "uniform time base of step " + format_value(step) + " s from the X column's ends (printed to " +
+                      std::to_string(time_decimals) + " decimals, it does not resolve single steps; Delta_X = " +
+                      format_value(delta) + " s agrees to 1 %); ";
+}
+
 double parse(const std::string& path, int line, const std::string& column, const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -265,6 +294,8 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   }
   out.time_in_file = table.time_column >= 0;
   out.time_resolution = out.time_in_file ? std::pow(10.0, -time_decimals) : 0;
+  if (table.format == "lvm" && out.time_in_file && table.delta > 0 && out.t.size() >= 2)
+    use_mean_step_when_coarse(out, table, path, time_decimals);
   const std::vector<int> line_of = table.line_of;
   out.where = [path, line_of](std::size_t i) { return path + ":" + std::to_string(line_of.at(i)); };
   out.declared_samples = table.declared_samples;

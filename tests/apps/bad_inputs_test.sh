@@ -205,7 +205,7 @@ expect_error "report in a missing folder" "its folder '$tmp/no/such' does not ex
 [ ! -e "$tmp/no" ] && ok || bad "report in a missing folder: the folder was created"
 expect_error "report named as a folder" "names a folder; give a file name" "${F[@]}" --report "$tmp/rdir/"
 expect_error "report under a file" "'$tmp/record.csv' is a file, not a folder" "${F[@]}" --report "$tmp/record.csv/r.md"
-expect_error "empty report" "--report = '': must name a file" "${F[@]}" --report ""
+expect_error "empty report" "--report = '': must not be empty" "${F[@]}" --report ""
 mkdir "$tmp/mine" && echo "my notes" >"$tmp/mine/cases.csv"
 expect_error "study into a user's folder" "holds files but no manifest.json or store/" study \
   "$SRC/studies/smoke.toml" --output "$tmp/mine"
@@ -350,6 +350,15 @@ header='{"descr": [("t", "<f8"), ("a", "<f8")], "fortran_order": False, "shape":
 while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
 { printf '\x93NUMPY\x01\x00'; printf "\\x$(printf %02x $(( (${#header} + 1) % 256 )))\\x00"; printf '%s\n' "$header"; \
   head -c 64 /dev/zero; } >"$tmp/structured.npy"
+# An LVM whose X column and Delta_X disagree is refused (the column won silently: N080); one whose X column is printed
+# too coarsely to resolve its steps takes the uniform base of its mean step when every time agrees with it (it was
+# refused as a repeated time: N079).
+sed 's/^Delta_X\t.*/Delta_X\t0.00121\t/' "$L" | head -n 3000 >"$tmp/mismatch.lvm"
+expect_error "LVM Delta_X against its X column" "but the header's Delta_X is 0.00121 s: the header and the data disagree" \
+  spikes --data "$tmp/mismatch.lvm"
+awk -F'\t' 'NR > 23 && $2 != "" { printf "%.3f\t%s\n", $1, $2; next } { print }' "$L" >"$tmp/coarse_time.lvm"
+if timeout 60 "$BEAMID" spikes --data "$tmp/coarse_time.lvm" --spikes 2 >"$tmp/out" 2>"$tmp/err" &&
+   [ "$(wc -l <"$tmp/out")" -eq 3 ]; then ok; else bad "LVM coarse X column: $(head -c 300 "$tmp/err")"; fi
 expect_error "structured npy" "a structured array (named fields) is not read" spikes --data "$tmp/structured.npy" \
   --sample-rate 1000
 expect_error "window to the end" "the window to the record's end from 4.092 s holds 4 samples" spikes \
