@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "apps/command_flags.h"
@@ -12,8 +13,10 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/resources.h"
+#include "study/plan/plan.h"
 #include "study/real/real_study.h"
 #include "study/run/runner.h"
+#include "study/run/record_schema.h"
 #include "study/run/store.h"
 
 namespace beamid::apps {
@@ -74,6 +77,21 @@ int run_merge(const Flags& a, std::ostream& out) {
       !problem.empty())
     a.require(false, "output", problem);
   const study::Store store(output + "/store", io::commit_label());
+  // The unit ids of this study file: a shard's record of any other unit is left behind and named (shards run from
+  // another study file of the same name said only "N units are missing").
+  const study::Plan plan = study::make_plan(spec);
+  std::map<std::string, const study::Unit*> units_by_id;
+  for (const auto* units : {&plan.truths, &plan.units})
+    for (const study::Unit& u : *units) units_by_id[u.id] = &u;
+  int shard_units = 0;  // of the shard being absorbed: its accepted records other than truths
+  const study::Store::Belongs belongs = [&](const std::string& id, const study::Record& record) -> std::string {
+    const auto unit = units_by_id.find(id);
+    if (unit == units_by_id.end())
+      return "no unit of this study file (a shard of another study file, or of another version of this one)";
+    const std::string why = study::schema_violation(record, *unit->second, spec.fit.estimate);
+    if (why.empty() && unit->second->kind != study::UnitKind::Truth) ++shard_units;
+    return why.empty() ? why : "not this study's unit: " + why;
+  };
   std::stringstream list(a.text("shards"));
   std::string dir;
   int records = 0, left_behind = 0;
@@ -94,10 +112,17 @@ int run_merge(const Flags& a, std::ostream& out) {
             false, "shards",
             "names the folder '" + dir + "' twice" + (earlier == dir ? std::string() : " (as '" + earlier + "')"));
     seen.push_back(dir);
-    const study::Store::Absorbed absorbed = store.absorb(dir + "/store");
+    shard_units = 0;
+    const study::Store::Absorbed absorbed = store.absorb(dir + "/store", belongs);
     records += absorbed.copied;
+    // Only truths (which do not depend on the sweep or the seed) and foreign records: the shard ran another study.
+    if (shard_units == 0 && absorbed.foreign > 0)
+      a.require(false, "shards",
+                "'" + dir + "' holds " + std::to_string(absorbed.foreign) +
+                    " record(s) of no unit of " + spec.path +
+                    " (and no case of it): it is a shard of another study file, or of another version of this one");
     for (const std::string& record : absorbed.left_behind)
-      std::cerr << "beamid merge: left behind, damaged: " << record << "\n";
+      std::cerr << "beamid merge: left behind: " << record << "\n";
     left_behind += static_cast<int>(absorbed.left_behind.size());
   }
   try {
@@ -106,7 +131,8 @@ int run_merge(const Flags& a, std::ostream& out) {
     // The units the damaged shard records held are the missing ones: said beside the count.
     if (left_behind == 0) throw;
     throw InputError(std::string(e.what()) + " (" + std::to_string(left_behind) +
-                     " shard record(s) were damaged and left behind: listed above; rerun their shards)");
+                     " shard record(s) were left behind, damaged or of no unit of this study: listed above; rerun "
+                     "their shards)");
   }
   out << "study,records_merged,output\n" << spec.name << "," << records << "," << output << "\n";
   return 0;

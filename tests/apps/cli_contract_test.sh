@@ -168,13 +168,19 @@ cp -r "$tmp/s1" "$tmp/s1d"
 damaged=$(ls "$tmp/s1d/store/"*.rec | head -1)
 sed -i 's/cost/kost/' "$damaged"
 "$BEAMID" merge "$tmp/mini.toml" --shards "$tmp/s1d,$tmp/s2" --output "$tmp/merged_damaged" >/dev/null 2>"$tmp/err"
-check "merge names a damaged shard record" grep -qF "beamid merge: left behind, damaged: $damaged: " "$tmp/err"
-check "merge says the damaged records are the missing units" grep -qF "shard record(s) were damaged and left behind" "$tmp/err"
+check "merge names a damaged shard record" grep -qF "beamid merge: left behind: $damaged: " "$tmp/err"
+check "merge says the damaged records are the missing units" grep -qF "shard record(s) were left behind, damaged" "$tmp/err"
 # A merge into a shard's folder, or of one shard twice, is refused (the second pass's N502, N496).
 expect_error "merge into a shard" "--output = '$tmp/s1': is the shard folder" merge "$tmp/mini.toml" \
   --shards "$tmp/s1,$tmp/s2" --output "$tmp/s1"
 expect_error "merge of a shard twice" "names the folder '$tmp/s1' twice" merge "$tmp/mini.toml" \
   --shards "$tmp/s1,$tmp/s1" --output "$tmp/merged_twice"
+# A shard run from another study file of the same name holds no unit of this one: named as such (it was "N units
+# are missing": the second pass's N499).
+sed 's/^seed = .*/seed = 777/' "$tmp/mini.toml" >"$tmp/mini_other.toml"
+"$BEAMID" study "$tmp/mini_other.toml" --jobs 1 --shard 2/2 --output "$tmp/s2_other" >/dev/null 2>&1
+expect_error "merge of another study's shard" "record(s) of no unit of $tmp/mini.toml (and no case of it): it is a shard of another study file" merge \
+  "$tmp/mini.toml" --shards "$tmp/s1,$tmp/s2_other" --output "$tmp/merged_other"
 # A truth that holds no vibration (the force at the clamp) fails, and its cases with it, saying why; nothing
 # "converges" at cost 0 on a zero record (the second pass's N446-N449, N469, N470).
 sed 's/^force_x_m = 0.32/force_x_m = 0/' "$tmp/mini.toml" >"$tmp/zero.toml"

@@ -182,7 +182,7 @@ void Store::save(const std::string& id, Record record) const {
   io::write_file_atomic(fs::path(directory_) / (id + ".rec"), body + check_line(body));
 }
 
-Store::Absorbed Store::absorb(const std::string& other) const {
+Store::Absorbed Store::absorb(const std::string& other, const Belongs& belongs) const {
   if (!io::is_existing_folder(other)) throw InputError(other + ": not a study store folder");
   Absorbed absorbed;
   std::error_code ec;
@@ -212,6 +212,14 @@ Store::Absorbed Store::absorb(const std::string& other) const {
     if (!body || !why.empty()) {
       absorbed.left_behind.push_back(entry.path().string() + ": " + why);
       continue;
+    }
+    if (belongs) {
+      why = belongs(entry.path().stem().string(), Record::parse(*body, entry.path().string()));
+      if (!why.empty()) {
+        absorbed.left_behind.push_back(entry.path().string() + ": " + why);
+        ++absorbed.foreign;
+        continue;
+      }
     }
     io::write_file_atomic(target, text);
     ++absorbed.copied;

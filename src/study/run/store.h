@@ -51,14 +51,17 @@ class Store {
   std::optional<Record> load(const std::string& id, const RecordCheck& check = {}) const;
   // Stamps the unit's id and the code version and writes atomically.
   void save(const std::string& id, Record record) const;
-  // Copies every sound record file of another store folder into this one (for merging shards). A damaged record, or
-  // one under another unit's name, is left behind and listed ("path: why"), so that a merge can say which shard
+  // Copies every sound record file of another store folder into this one (for merging shards). A damaged record, one
+  // under another unit's name, or one that `belongs` refuses (it returns why: a record of no unit of the study being
+  // merged, or made from other inputs) is left behind and listed ("path: why"), so that a merge can say which shard
   // record it could not use.
   struct Absorbed {
     int copied = 0;
+    int foreign = 0;  // left behind by `belongs`
     std::vector<std::string> left_behind;
   };
-  Absorbed absorb(const std::string& other_directory) const;
+  using Belongs = std::function<std::string(const std::string& id, const Record& record)>;
+  Absorbed absorb(const std::string& other_directory, const Belongs& belongs = {}) const;
 
  private:
   std::string directory_;
