@@ -59,10 +59,14 @@ def _column(fields):
 
 def load_results(folder, as_dict=False):
     """Every CSV table of a study's results folder, by name without ``.csv`` (``cases``, ``summary``, ...): structured
-    arrays, or with ``as_dict`` dicts of column arrays. The folder's manifest.json, when present, is under
-    ``"manifest"`` as a dict."""
+    arrays, or with ``as_dict`` dicts of column arrays. The folder's manifest.json is under ``"manifest"`` as a dict.
+    A folder without manifest.json is refused: it is not one that beamid study or beamid real wrote (whatever CSV
+    files it held were returned as if they were a study's tables)."""
     if not os.path.isdir(folder):
         raise FileNotFoundError(f"{folder}: not a results folder (beamid study writes results/<study>/)")
+    if not os.path.isfile(os.path.join(folder, "manifest.json")):
+        raise ValueError(f"{folder}: no manifest.json: not a results folder that beamid study or beamid real wrote "
+                         "(a shard's folder gets its tables from beamid merge)")
     tables = {}
     for name in sorted(os.listdir(folder)):
         path = os.path.join(folder, name)

@@ -311,6 +311,11 @@ def test_a_table_beamid_did_not_write_is_refused(tmp_path):
             (tmp_path / name).write_text(text, encoding="utf-8")
         with pytest.raises(ValueError, match=re.escape(message)):
             beamid.read_table(str(tmp_path / name))
+    # A folder without manifest.json is no results folder: refused (its CSV files were returned as a study's tables:
+    # the second pass's N426); with one, a bad table in it is named.
+    with pytest.raises(ValueError, match="no manifest.json"):
+        beamid.load_results(str(tmp_path))
+    (tmp_path / "manifest.json").write_text("{}", encoding="utf-8")
     with pytest.raises(ValueError, match=re.escape(str(tmp_path / "binary.csv"))):  # a folder of them: the first named
         beamid.load_results(str(tmp_path))
     # A byte-order mark is no part of the first column's name.
