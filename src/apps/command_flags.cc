@@ -39,6 +39,7 @@ io::ImportOptions read_import_options(const Flags& a) {
   o.sample_rate_hz = a.optional_number("sample-rate");
   o.variable = a.text_or("variable", "");
   o.time_variable = a.text_or("time-variable", "");
+  if (a.has("time-channel")) o.time_channel = std::to_string(a.integer("time-channel"));
   o.resample_rate_hz = a.optional_number("resample-rate");
   return o;
 }

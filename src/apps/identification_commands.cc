@@ -55,6 +55,10 @@ std::vector<FlagSpec> import_flags() {
           number_flag("sample-rate", "the sampling rate of a record without a time base (.npy, .mat), Hz"),
           text_flag("variable", ".mat: the record's variable, a dotted path into structs (default: the only one)"),
           text_flag("time-variable", ".mat: a time vector of the record's length, instead of --sample-rate"),
+          integer_flag("time-channel",
+                       ".npy, .mat: the channel (1-based, as --channel counts) that holds the time in s, instead of "
+                       "--sample-rate",
+                       1, 1 << 20),
           number_flag("resample-rate",
                       "resample the record onto this rate, Hz (windowed sinc; a low-pass first when it falls)")};
 }

@@ -1,6 +1,8 @@
 // The array and modal-test formats of the record readers (io/record_samples.h): .npy and .mat arrays, UFF 58.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <optional>
 
 #include "core/errors.h"
 #include "io/record_samples.h"
@@ -18,12 +20,37 @@ Samples array_samples(const std::string& path, const std::string& format, const 
   s.format = format;
   const bool by_row = rows >= columns;  // samples along the rows: a channel is a column
   const std::size_t samples = by_row ? rows : columns, channels = by_row ? columns : rows;
+  const auto value = [&](std::size_t i, std::size_t c) { return by_row ? at(i, c) : at(c, i); };
+  // The time channel, when one is named: a row or column of the array itself (a .npy saved as np.vstack((t, y))
+  // could not use its time, and --sample-rate on an irregular record gave smeared spectra without a word).
+  std::optional<std::size_t> time_channel;
+  std::vector<double> channel_time;
+  if (!o.time_channel.empty()) {
+    if (time) throw InputError(path + ": --time-channel names a time channel; a time vector is given too: one of them");
+    if (o.sample_rate_hz) throw InputError(path + ": give --time-channel or --sample-rate, not both");
+    char* end = nullptr;
+    const long k = std::strtol(o.time_channel.c_str(), &end, 10);
+    if (end != o.time_channel.c_str() + o.time_channel.size() || k < 1 || static_cast<std::size_t>(k) > channels ||
+        channels < 2)
+      throw InputError(path + ": --time-channel = '" + shown(o.time_channel) + "': must be a channel index in 1.." +
+                       std::to_string(channels) + " of the " + std::to_string(channels) + " " + what +
+                       " channels, leaving at least one signal" +
+                       (channels < 2 ? " (this array has one channel: give --sample-rate)" : ""));
+    time_channel = static_cast<std::size_t>(k - 1);
+    for (std::size_t i = 0; i < samples; ++i) channel_time.push_back(value(i, *time_channel));
+    time = &channel_time;
+  }
   std::vector<std::string> names;
-  for (std::size_t c = 0; c < channels; ++c) names.push_back(std::to_string(c + 1));
-  const std::size_t channel = choose_channel(names, o, path, what + " channels");
-  s.value_column = channels == 1 ? what : what + " channel " + names[channel];
-  s.time_column = "time";
-  for (std::size_t i = 0; i < samples; ++i) out.v.push_back(by_row ? at(i, channel) : at(channel, i));
+  std::vector<std::size_t> indices;
+  for (std::size_t c = 0; c < channels; ++c)
+    if (c != time_channel) names.push_back(std::to_string(c + 1)), indices.push_back(c);
+  if (!o.channel.empty() && time_channel && o.channel == std::to_string(*time_channel + 1))
+    throw InputError(path + ": --channel = --time-channel = " + o.channel + ": the signal and its time are different "
+                     "channels");
+  const std::size_t channel = indices[choose_channel(names, o, path, what + " channels")];
+  s.value_column = channels == 1 ? what : what + " channel " + std::to_string(channel + 1);
+  s.time_column = time_channel ? what + " channel " + std::to_string(*time_channel + 1) : "time";
+  for (std::size_t i = 0; i < samples; ++i) out.v.push_back(value(i, channel));
   if (time) {
     if (time->size() != samples)
       throw InputError(path + ": the time vector has " + std::to_string(time->size()) + " values: must have " +
@@ -43,7 +70,13 @@ Samples array_samples(const std::string& path, const std::string& format, const 
   } else {
     if (!o.sample_rate_hz)
       throw InputError(path + ": " + format + " holds no time base: give --sample-rate HZ" +
-                       (format == "mat" ? " or --time-variable NAME" : ""));
+                       (format == "mat" ? ", --time-variable NAME" : "") +
+                       (channels >= 2 ? " or --time-channel K (the channel that holds the time)" : ""));
+    // A rate makes the time base uniform by construction: there is nothing for --resample to interpolate (it was
+    // accepted and did nothing).
+    if (o.resample)
+      throw InputError(path + ": --resample interpolates a non-uniform time base; one made from --sample-rate is "
+                       "uniform (give the record's own time instead: --time-channel or --time-variable)");
     for (std::size_t i = 0; i < samples; ++i) out.t.push_back(static_cast<double>(i) / *o.sample_rate_hz);
   }
   out.where = [path](std::size_t i) { return path + ": sample " + std::to_string(i + 1); };

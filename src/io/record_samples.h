@@ -35,7 +35,8 @@ std::optional<std::string> binary_text_problem(std::string_view text, const std:
 // CSV or LabVIEW .lvm text (by the ending of `path`).
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o);
 // An array of samples x channels (either way round: the samples run along the longer dimension) with its time base
-// from --sample-rate, or from a time vector of the same length stored to `time_relative_precision`.
+// from --sample-rate, or from a time vector of the same length, or from its channel o.time_channel, either stored to
+// `time_relative_precision`.
 Samples array_samples(const std::string& path, const std::string& format, const std::string& what, std::size_t rows,
                       std::size_t columns, const std::function<double(std::size_t, std::size_t)>& at,
                       const std::vector<double>* time, double time_relative_precision, const ImportOptions& o);

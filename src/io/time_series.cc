@@ -426,12 +426,18 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     throw InputError(path + ": --variable and --time-variable name variables of a MAT-file; this is not one");
   if (!npy && !mat && o.sample_rate_hz)
     throw InputError(path + ": --sample-rate is for records without a time base (.npy, .mat); this file has one");
+  if (!npy && !mat && !o.time_channel.empty())
+    throw InputError(path + ": --time-channel is for arrays (.npy, .mat); this file has its own time column");
   if (npy) {
     const NpyArray a = parse_npy(bytes, path);
     const std::size_t rows = a.shape[0], columns = a.shape.size() == 2 ? a.shape[1] : 1;
+    // A time channel is as precise as the array's type: float32 to 1.2e-7 of its largest value, float64 (and the
+    // integer types, exact) to 4.4e-16.
+    const double precision = a.descr.substr(1) == "f4" ? 2 * std::numeric_limits<float>::epsilon()
+                                                       : 2 * std::numeric_limits<double>::epsilon();
     return finish(array_samples(
                       path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
-                      nullptr, 0, o),
+                      nullptr, precision, o),
                   path, o);
   }
   if (mat) {
@@ -452,7 +458,8 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     }
     Samples samples = array_samples(
         path, "mat", a.path, a.rows, a.columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
-        o.time_variable.empty() ? nullptr : &time, time_precision, o);
+        o.time_variable.empty() ? nullptr : &time, o.time_variable.empty() ? a.relative_precision : time_precision,
+        o);
     samples.series.format = "mat v" + a.version;
     return finish(std::move(samples), path, o);
   }

@@ -36,6 +36,9 @@ struct ImportOptions {
   bool resample = false;                   // interpolate a non-uniform time base instead of refusing it
   std::optional<double> sample_rate_hz;    // the time base of a record that has none (.npy, .mat without a time)
   std::string variable, time_variable;     // .mat: the record's and its time vector's dotted paths
+  // .npy, .mat, arrays: the channel (1-based, as --channel counts them) that holds the time in s, instead of a
+  // --sample-rate; --channel then chooses among the others. "": none.
+  std::string time_channel;
   std::optional<double> resample_rate_hz;  // band-limited resampling onto this rate after everything else
   // What a file of several channels is told when none is chosen (a prediction has no --channel of its own).
   std::string channel_advice = "choose one with --channel NAME or --channel INDEX";

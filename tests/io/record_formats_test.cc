@@ -99,6 +99,52 @@ TEST(RecordFormats, NpyArraysOfEveryVersionOrderAndByteOrder) {
   EXPECT_EQ(read_time_series(write("counts.npy", npy(counts, n, 0, 1, "<i2")), o).values, counts);
 }
 
+TEST(RecordFormats, AnArraysTimeChannelIsItsTimeBase) {
+  // np.vstack((t, y)) saved as .npy: row 1 the time, row 2 the signal. With --time-channel 1 it is read as a CSV of
+  // the same columns would be: the step from the time itself, the signal exact. An irregular time channel is refused
+  // with the CSV's message (a --sample-rate on it gave smeared spectra without a word) unless --resample is given;
+  // --resample with a --sample-rate, which is uniform by construction, is refused (it did nothing).
+  const std::size_t n = 600;
+  std::vector<double> rows(2 * n), y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    rows[i] = 0.5 + 2.5e-4 * static_cast<double>(i);  // 4 kHz from t = 0.5 s
+    y[i] = signal_at(rows[i]);
+    rows[n + i] = y[i];
+  }
+  ImportOptions o;
+  o.time_channel = "1";
+  const TimeSeries a = read_time_series(write("timed.npy", npy(rows, 2, n, 1)), o);
+  EXPECT_EQ(a.values, y);
+  EXPECT_NEAR(a.dt_s, 2.5e-4, 1e-16);  // (t_last - t_0)/(n - 1) of doubles: round-off only
+  EXPECT_NEAR(a.t0_s, 0.5, 1e-15);
+  EXPECT_EQ(a.time_column, "array channel 1");
+  // The time and the signal are different channels; a rate and a time channel are not both taken.
+  o.channel = "1";
+  EXPECT_NE(error_of(write("timed.npy", npy(rows, 2, n, 1)), o).find("--channel = --time-channel = 1"),
+            std::string::npos);
+  o.channel.clear();
+  o.sample_rate_hz = 4000;
+  EXPECT_NE(error_of(write("timed.npy", npy(rows, 2, n, 1)), o).find("--time-channel or --sample-rate, not both"),
+            std::string::npos);
+  o.sample_rate_hz.reset();
+  o.time_channel = "3";
+  EXPECT_NE(error_of(write("timed.npy", npy(rows, 2, n, 1)), o).find("must be a channel index in 1..2"),
+            std::string::npos);
+  // Irregular: sample 300 late by a third of a step.
+  std::vector<double> jittered = rows;
+  jittered[300] += 2.5e-4 / 3;
+  o.time_channel = "1";
+  EXPECT_NE(error_of(write("jittered.npy", npy(jittered, 2, n, 1)), o).find("--resample"), std::string::npos)
+      << error_of(write("jittered.npy", npy(jittered, 2, n, 1)), o);
+  o.resample = true;
+  EXPECT_EQ(read_time_series(write("jittered.npy", npy(jittered, 2, n, 1)), o).values.size(), n);
+  o.time_channel.clear();
+  o.sample_rate_hz = 4000;
+  o.channel = "2";
+  EXPECT_NE(error_of(write("timed.npy", npy(rows, 2, n, 1)), o).find("one made from --sample-rate is uniform"),
+            std::string::npos);
+}
+
 TEST(RecordFormats, MalformedNpyFilesNameTheByte) {
   std::vector<double> v(64, 1.0);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.3 * static_cast<double>(i));

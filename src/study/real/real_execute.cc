@@ -30,7 +30,7 @@ namespace {
 std::string in_study_keys(std::string message, const RealStudySpec& spec, const RealRecordSpec& r) {
   // Longer flags first, so that --resample-rate is not read as --resample.
   const std::pair<const char*, const char*> keys[] = {
-      {"--resample-rate", "resample_rate_hz"}, {"--time-variable", "time_variable"}, {"--sample-rate", "sample_rate_hz"},
+      {"--resample-rate", "resample_rate_hz"}, {"--time-variable", "time_variable"}, {"--time-channel", "time_channel"}, {"--sample-rate", "sample_rate_hz"},
       {"--resample", "resample"},             {"--variable", "variable"},           {"--channel", "channel"},
       {"--start", "start_s"},                 {"--duration", "duration_s"},         {"--units", "units"}};
   for (const auto& [flag, key] : keys) {
@@ -60,6 +60,7 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   import.resample_rate_hz = r.resample_rate_hz;
   import.variable = r.variable;
   import.time_variable = r.time_variable;
+  import.time_channel = r.time_channel;
   try {
     out.series = io::read_time_series(r.file, import);
   } catch (const InputError& error) {

@@ -94,8 +94,9 @@ RealRecordSpec read_record(Table r, const std::string& default_name,
     s.resample_rate_hz = r.number("resample_rate_hz", std::nullopt, positive, "must be > 0 (Hz)");
   s.variable = r.string("variable", "");
   s.time_variable = r.string("time_variable", "");
+  if (r.has("time_channel")) s.time_channel = std::to_string(r.integer("time_channel", std::nullopt, 1, 1 << 20));
   r.finish({"name", "file", "channel", "units", "start_s", "duration_s", "resample", "peaks_hz", "beam",
-            "sample_rate_hz", "resample_rate_hz", "variable", "time_variable"});
+            "sample_rate_hz", "resample_rate_hz", "variable", "time_variable", "time_channel"});
   return s;
 }
 

@@ -9,7 +9,8 @@
 //                  peaks_hz: the measured peak frequencies of the modes the model has (the spikes are chosen near
 //                  them, and data and model are paired by frequency, so torsion modes and mains lines are left out),
 //                  name, beam (a beam file of this record's own: its length, attachments; default [beam].file),
-//                  sample_rate_hz, variable, time_variable, resample_rate_hz (.npy, .mat, UFF: io/time_series.h).
+//                  sample_rate_hz, variable, time_variable, time_channel, resample_rate_hz (.npy, .mat, UFF:
+//                  io/time_series.h).
 //                  [[record]] instead: several records fitted jointly (fit/identification.h), e.g. one strip at
 //                  several lengths, sharing the parameters in fit.estimate.
 //   [beam]         file: a beam TOML ([beam] or [geometry]) giving the nominal values and the starts
@@ -53,9 +54,10 @@ struct RealRecordSpec {
   std::vector<double> peaks_hz;
   std::string beam_file;  // empty: the study's [beam] file
   // The formats without a time base, and a rate (io/time_series.h): .npy and .mat arrays need sample_rate_hz (or a
-  // .mat time_variable); variable names a .mat file's record; resample_rate_hz resamples any record.
+  // .mat time_variable, or an array's time_channel); variable names a .mat file's record; resample_rate_hz resamples
+  // any record.
   std::optional<double> sample_rate_hz, resample_rate_hz;
-  std::string variable, time_variable;
+  std::string variable, time_variable, time_channel;
 };
 
 struct CandidateSpec {
