@@ -303,8 +303,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   // What the command says on stderr beside its summary line (api::fit_notes), and (A4) when violated.
   py::list messages;
   const api::FitNotes notes = api::fit_notes(r, &channels.front().values, c->options.cost.name);
-  for (const std::string* note : {&notes.on_bound, &notes.failed, &notes.explains_nothing, &notes.identifiability})
-    if (!note->empty()) messages.append(*note);
+  for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok") messages.append(r.final_evaluation.a4);
   d["messages"] = messages;
   d["cost"] = r.cost;

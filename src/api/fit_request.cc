@@ -211,6 +211,13 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
   return c;
 }
 
+std::vector<std::string> FitNotes::lines() const {
+  std::vector<std::string> out;
+  for (const std::string* note : {&on_bound, &explains_nothing, &no_errors, &failed, &identifiability})
+    if (!note->empty()) out.push_back(*note);
+  return out;
+}
+
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record, const std::string& cost) {
   FitNotes notes;
   if (record && cost == costs::kTimeCost && result.records.size() <= 1 && result.status != "failed") {
@@ -233,6 +240,11 @@ FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* reco
         "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
   if (result.status == "failed")
     notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
+  // Exactly determined or underdetermined: NaN standard errors were printed with nothing said (only --report did).
+  if (result.status != "failed" && result.covariance_status.rfind("no degrees of freedom", 0) == 0)
+    notes.no_errors = result.covariance_status +
+                      ": the fit is exactly determined or underdetermined, so its standard errors are not defined "
+                      "(NaN); fit more spikes or records, or fewer parameters";
   const fit::Identifiability& i = result.identifiability;
   if (i.status == "ok" && i.verdict != "identifiable") {
     std::ostringstream line;  // numbers as the stream prints them (6 significant digits)

@@ -80,6 +80,9 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
 struct FitNotes {
   std::string on_bound, failed, identifiability;
   std::string explains_nothing;  // a least-squares fit no better than a zero model (given the record and the cost)
+  std::string no_errors;         // no degrees of freedom: the standard errors are not defined
+  // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
+  std::vector<std::string> lines() const;
 };
 // With the record and the cost's name, a one-record least-squares fit whose residual is at least the record's own
 // sum of squares is said to explain none of it (a fit of white noise, or of another beam's record, reported precise

@@ -238,6 +238,10 @@ expect_error "derivative-free first step" "bobyqa's first step in linear coordin
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --bound-factor 1e6 \
   --optimizer bobyqa
 
+# An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
+expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
+  fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
+  --excitation free-decay
 # Flags nothing in the run reads are refused, naming who reads them (the second pass's N280-N299, N459, N460).
 Z=(--data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI)
 expect_error "window with the time cost" "--window = 'hann': is read by the DFT costs" fit "${Z[@]}" --cost time \
