@@ -1,4 +1,5 @@
 #include "apps/fit_report.h"
+#include "costs/cost.h"
 
 #include <cmath>
 #include <fstream>
@@ -249,7 +250,19 @@ std::string spectra_section(Markdown& md, const FitReportInput& in, const costs:
   const bool have_model = r.model_output.size() == in.data.values.size();
   const signal::Spectrum u = have_model ? dft.transform(r.model_output) : z;
   const auto& pairs = first.pairs;
-  if (!pairs.empty()) {
+  // The modal cost pairs the data's matrix-pencil poles with the model's eigenvalues: no bins, supports or (A4), so
+  // its table is of frequencies and decay rates (a spike table at bin 0 was printed: issue 31).
+  if (!pairs.empty() && o.cost.name == costs::kModalCost) {
+    md << "\n## Modes: the data's (matrix pencil) and the model's eigenvalues\n\n"
+          "| mode | data f (Hz) | data sigma (1/s) | model f (Hz) | model sigma (1/s) | f error (%) |\n"
+          "|---|---|---|---|---|---|\n";
+    for (std::size_t l = 0; l < pairs.size(); ++l) {
+      const auto& p = pairs[l];
+      md << "| " << l + 1 << " | " << g(p.data_frequency_hz, 8) << " | " << g(p.data_decay_rate_1_s, 5) << " | "
+         << g(p.model_frequency_hz, 8) << " | " << g(p.model_decay_rate_1_s, 5) << " | "
+         << g(100 * (p.model_frequency_hz / p.data_frequency_hz - 1), 3) << " |\n";
+    }
+  } else if (!pairs.empty()) {
     md << "\n## Spikes and (A4)\n\n(A4) check at the estimate: " << first.a4 << ".\n\n";
     md << "| spike | data bin | data f (Hz) | data sigma (1/s) | n_l | N_l | model bin | model f (Hz) | model sigma "
           "(1/s) | data abs Z | model abs U | jumps |\n"
