@@ -62,12 +62,19 @@ std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeO
 
 // The candidates of the "largest" or "prominence" rule in the order of that rule, each with the reason it was skipped
 // ("" for a pick), down to the last pick (so that a user sees why a higher peak was passed over). With
-// reject_artefacts, a candidate is skipped when, within max(0.5 %, 1.5 bins) of its frequency (and only where that is
-// at most 1 % of it: a coarser spectrum cannot tell a harmonic from a mode), there is
-//   "harmonic n of F Hz":      n F for n = 2..8 and a stronger peak at F that is not itself skipped (a nonlinearity, a
-//                              clipped or rattling sensor; a beam's own modes are not integer multiples);
-//   "sideband F1 +- F2 Hz":    F1 + F2 or F1 - F2 for stronger peaks F1 > F2 (modulation, beating);
+// reject_artefacts, a candidate is skipped when (frequencies and decay rates sigma the three-bin estimates; within
+// max(0.2 %, 0.75 bins) of its frequency, and only where that is at most 1 % of it: a coarser spectrum cannot tell a
+// harmonic from a mode) it is
+//   "side lobe of F Hz":       2-10 bins from a stronger peak F and below 1.5 |Z(F)| / (pi |k - k_F|), the
+//                              rectangular window's leakage envelope;
+//   "harmonic n of F Hz":      at n F for any n >= 2 below Nyquist, F a stronger peak not itself skipped, decaying at
+//                              n sigma_F within a factor 2 (a nonlinearity, a clipped or rattling sensor; a beam's own
+//                              modes are not integer multiples, and a mode near one decays at its own rate), and only
+//                              where a chance coincidence is unlikely (2 x the tolerance below 5 % of F);
+//   "sideband F1 +- F2 Hz":    at F1 + F2 or F1 - F2 for stronger peaks F1 > F2, decaying at sigma_1 + sigma_2 within a
+//                              factor 2 (modulation, beating);
 //   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).
+// A rate that cannot be estimated (a flat top) leaves the frequency test alone.
 // The picks are the first `count` candidates not skipped. Chosen frequencies (frequencies_hz) are never skipped.
 struct LabelledPeak {
   Spike spike;

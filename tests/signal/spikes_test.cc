@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "core/errors.h"
@@ -15,15 +17,19 @@
 namespace beamid::signal {
 namespace {
 
-// 8 s at 500 Hz (df = 0.125 Hz): lightly damped "modes" at 7, 40 and 123 Hz; a second harmonic of the 40 Hz one (as
-// a rattling sensor makes) and the two sidebands of 40 Hz modulated by 7 Hz (beating), each weaker than what makes
-// it but stronger than the 123 Hz mode.
+// 8 s at 500 Hz (df = 0.125 Hz): lightly damped "modes" at 7, 40 and 123 Hz (decay rate 0.05 1/s); a second
+// harmonic of the 40 Hz one (as a rattling sensor makes: the square of a decaying tone decays twice as fast) and the
+// two sidebands of 40 Hz modulated by 7 Hz (beating: a product, decaying at the sum of the rates), each weaker than
+// what makes it but stronger than the 123 Hz mode.
 std::vector<double> record_with_artefacts() {
   std::vector<double> z(4000);
   for (std::size_t i = 0; i < z.size(); ++i) {
-    const double t = static_cast<double>(i) * 2e-3, d = std::exp(-0.05 * t);
-    const auto tone = [&](double f, double a) { return a * d * std::sin(2 * std::numbers::pi * f * t); };
-    z[i] = tone(7, 1.0) + tone(40, 0.8) + tone(80, 0.3) + tone(47, 0.2) + tone(33, 0.2) + tone(123, 0.1);
+    const double t = static_cast<double>(i) * 2e-3;
+    const auto tone = [&](double f, double a, double sigma) {
+      return a * std::exp(-sigma * t) * std::sin(2 * std::numbers::pi * f * t);
+    };
+    z[i] = tone(7, 1.0, 0.05) + tone(40, 0.8, 0.05) + tone(80, 0.3, 0.1) + tone(47, 0.2, 0.1) + tone(33, 0.2, 0.1) +
+           tone(123, 0.1, 0.05);
   }
   return z;
 }
@@ -57,6 +63,60 @@ TEST(Spikes, ArtefactsOfStrongerPeaksAreLabelledAndSkipped) {
   o.frequencies_hz = {80};
   o.count = 1;
   ASSERT_EQ(detect_spikes(s, o).size(), 1u);
+}
+
+TEST(Spikes, AModeNearAnIntegerMultipleIsKeptAndHarmonicsOfAnyOrderAreNot) {
+  // 8 s at 2 kHz (df = 0.125 Hz). A mode at 46.8 Hz (sigma 0.05) and one at 141.06 Hz = 3.014 x 46.8 with its own
+  // Kelvin-Voigt-like rate (9 x 0.05, as sigma grows with omega^2): a tip-mass bar's third mode, rejected as
+  // "harmonic 3" by frequency alone within 0.5 % (issue 31). A true third harmonic of a 10 Hz tone (at 30 Hz, decaying
+  // at 3 x its rate) and an eleventh one (110 Hz, beyond the old n <= 8) are labelled.
+  std::vector<double> z(16000);
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double t = static_cast<double>(i) * 5e-4;
+    const auto tone = [&](double f, double a, double sigma) {
+      return a * std::exp(-sigma * t) * std::sin(2 * std::numbers::pi * f * t);
+    };
+    z[i] = tone(10, 1.0, 0.04) + tone(46.8, 0.8, 0.05) + tone(141.06, 0.3, 0.45) + tone(30, 0.1, 0.12) +
+           tone(110, 0.05, 0.44);
+  }
+  Dft dft(static_cast<int>(z.size()), 5e-4);
+  const Spectrum s = dft.transform(z);
+  SpikeOptions o;
+  o.count = 5;  // asks for more than there are: every candidate is listed, with its reason
+  o.reject_artefacts = true;
+  const std::vector<Spike> picked = detect_spikes(s, o);
+  ASSERT_EQ(picked.size(), 3u);
+  EXPECT_NEAR(picked[0].frequency_hz, 10, 0.2);
+  EXPECT_NEAR(picked[1].frequency_hz, 46.8, 0.2);
+  EXPECT_NEAR(picked[2].frequency_hz, 141.06, 0.2);
+  std::vector<std::string> reasons;
+  for (const auto& p : label_peaks(s, o))
+    if (!p.skipped.empty()) reasons.push_back(p.skipped);
+  EXPECT_NE(std::find(reasons.begin(), reasons.end(), "harmonic 3 of 10 Hz"), reasons.end());
+  EXPECT_NE(std::find(reasons.begin(), reasons.end(), "harmonic 11 of 10 Hz"), reasons.end());
+  for (const std::string& r : reasons) EXPECT_EQ(r.find("of 46.8"), std::string::npos) << r;
+}
+
+TEST(Spikes, SideLobesOfAStrongModeAreLeakageNotHarmonics) {
+  // A hand-made spectrum (df = 1 Hz) of a strong mode at 100 Hz, a weak peak at 15 Hz and a local maximum on the
+  // mode's skirt at 105 Hz = 7 x 15 Hz, below the rectangular window's leakage envelope 1.5 |Z(100)| / (5 pi) = 0.095:
+  // such skirt maxima of a measured 77.9 Hz mode were called "harmonic 7 of 11.06 Hz" (issue 31). It is a side lobe.
+  Spectrum s;
+  s.samples = 1000;
+  s.dt_s = 1e-3;
+  s.half.assign(501, 0.01);
+  s.half[15] = 0.1;
+  s.half[99] = s.half[101] = 0.5;
+  s.half[100] = 1.0;
+  s.half[105] = 0.08;
+  SpikeOptions o;
+  o.count = 3;
+  o.reject_artefacts = true;
+  std::map<int, std::string> reasons;
+  for (const auto& p : label_peaks(s, o)) reasons[p.spike.bin] = p.skipped;
+  EXPECT_EQ(reasons[100], "");
+  EXPECT_EQ(reasons[15], "");
+  EXPECT_EQ(reasons[105], "side lobe of 100 Hz");
 }
 
 TEST(Spikes, ChosenFrequenciesWithoutAPeakAreNamed) {
