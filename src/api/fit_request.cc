@@ -218,16 +218,30 @@ std::vector<std::string> FitNotes::lines() const {
   return out;
 }
 
+namespace {
+constexpr double kLeastExplainedFraction = 0.01;
+}
+
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record, const std::string& cost) {
   FitNotes notes;
   if (record && cost == costs::kTimeCost && result.records.size() <= 1 && result.status != "failed") {
     double energy = 0;
     for (const double y : *record) energy += y * y;
+    // Below 1 % explained, as good as none: a record of integer counts 1e6 times the model's scale left 99.99999 % of
+    // its sum of squares unexplained, with an EI standard error 1600 times the value and no word (the third pass's
+    // P055, P095, P116).
+    const double explained = 1 - result.cost / energy;
     if (result.cost >= energy) {
       std::ostringstream line;
       line << "the fitted model explains none of the record: its residual sum of squares " << result.cost
            << " is at least the record's own " << energy
            << ", which a zero model attains (is the record noise, another beam's, or another quantity?)";
+      notes.explains_nothing = line.str();
+    } else if (explained < kLeastExplainedFraction) {
+      std::ostringstream line;
+      line << "the fitted model explains only " << 100 * explained << " % of the record's sum of squares (residual "
+           << result.cost << " of " << energy
+           << "): is the record noise, another beam's, another quantity, or in other units or scale?";
       notes.explains_nothing = line.str();
     }
   }

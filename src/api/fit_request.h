@@ -84,9 +84,9 @@ struct FitNotes {
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };
-// With the record and the cost's name, a one-record least-squares fit whose residual is at least the record's own
-// sum of squares is said to explain none of it (a fit of white noise, or of another beam's record, reported precise
-// "free" estimates with exit 0).
+// With the record and the cost's name, a one-record least-squares fit that explains less than 1 % of the record's
+// sum of squares (or none of it) is said to (a fit of white noise, of another beam's record, or of a record in counts
+// reported precise "free" estimates with exit 0).
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record = nullptr,
                    const std::string& cost = "");
 

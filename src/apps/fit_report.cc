@@ -289,7 +289,7 @@ std::string spectra_section(Markdown& md, const FitReportInput& in, const costs:
   md << "\nFull spectra: `" << spectra_path << "` (bin, frequency_hz, data_magnitude, model_magnitude).\n";
 
   std::ostringstream csv;
-  csv << "bin,frequency_hz,data_magnitude,model_magnitude\n";
+  csv << kSpectraHeader << "\n";
   for (int k = 0; k <= z.last_bin(); ++k) {
     csv << k << ",";
     io::write_row(csv, {z.frequency_hz(k), z.magnitude(k), have_model ? u.magnitude(k) : std::nan("")});

@@ -45,6 +45,8 @@ struct FitReport {
   std::string spectra_csv;
 };
 FitReport render_fit_report(const std::string& path, const FitReportInput& input);
+// The first line of the report's side file, REPORT.spectra.csv (by which a rerun knows the file as its own).
+inline constexpr const char* kSpectraHeader = "bin,frequency_hz,data_magnitude,model_magnitude";
 // render_fit_report, then both files written by atomic rename (InputError naming --report when a write fails).
 void write_fit_report(const std::string& path, const FitReportInput& input);
 

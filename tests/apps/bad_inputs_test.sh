@@ -206,6 +206,11 @@ expect_error "report in a missing folder" "its folder '$tmp/no/such' does not ex
 expect_error "report named as a folder" "names a folder; give a file name" "${F[@]}" --report "$tmp/rdir/"
 expect_error "report under a file" "'$tmp/record.csv' is a file, not a folder" "${F[@]}" --report "$tmp/record.csv/r.md"
 expect_error "empty report" "--report = '': must not be empty" "${F[@]}" --report ""
+# The report's side file: a user's file of that name is refused before the fit, not replaced (the third pass's P509).
+echo "keep me" >"$tmp/mine.md.spectra.csv"
+expect_error "report side file" "its side file '$tmp/mine.md.spectra.csv' exists and is not a spectra table beamid wrote" \
+  "${F[@]}" --report "$tmp/mine.md"
+grep -qx "keep me" "$tmp/mine.md.spectra.csv" && ok || bad "report side file: replaced"
 mkdir "$tmp/mine" && echo "my notes" >"$tmp/mine/cases.csv"
 expect_error "study into a user's folder" "holds files but no manifest.json or store/" study \
   "$SRC/studies/smoke.toml" --output "$tmp/mine"
@@ -238,6 +243,11 @@ expect_error "derivative-free first step" "bobyqa's first step in linear coordin
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --bound-factor 1e6 \
   --optimizer bobyqa
 
+# A record whose sum of squares is almost all offset (counts on a DAQ's DC level) is fitted to 0.0x % and said so
+# (the third pass's P055: 99.99999 % unexplained, exit 0, no word).
+awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, $2 + 1 }' "$tmp/z.csv" >"$tmp/offset.csv"
+expect_notice "a fit that explains almost nothing" "the fitted model explains only" fit --data "$tmp/offset.csv" \
+  --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 --max-evaluations 30
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
