@@ -347,6 +347,11 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
 // To SI (io/units.h): the unit the file states ("auto"), or g when the user says so; "as-is" converts nothing.
 void convert_to_si(TimeSeries& s, const ImportOptions& o, const std::string& path) {
   if (o.units == "as-is") return;  // the numbers as they are, the file's unit kept as its label
+  // A unit the file states that beamid does not know is not taken as SI (nm, ft, degF, furlong/fortnight were read
+  // as m or m/s, and fits "converged" 1e9 times off: the third pass's P003-P016).
+  if (o.units == "auto" && !s.unit.empty() && !is_known_unit(s.unit))
+    throw InputError(path + ": " + s.value_column + " is in '" + s.unit + "', a unit beamid does not know (" +
+                     known_units_list() + "): convert the record, or give --units as-is to take its values as SI");
   // --units g says the values are in g: a file that states another unit contradicts it (a column 'x (mm)' was
   // multiplied by 9.81 and called an acceleration).
   if (o.units == "g" && !s.unit.empty() && s.unit != "g")

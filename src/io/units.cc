@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kStandardGravity = 9.80665;  // m/s^2 per g (CGPM 1901)
 constexpr double kInch = 0.0254;              // m per inch (exact since 1959)
+constexpr double kFoot = 0.3048;              // m per foot (exact since 1959)
 
 std::string trimmed(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\"'");
@@ -37,13 +38,15 @@ std::string known_unit(std::string u, bool label) {
     for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
       u.replace(at, from.size(), to);
   }
-  static const std::array<std::pair<const char*, const char*>, 30> spellings{{
-      {"g", "g"},          {"g's", "g"},       {"gs", "g"},          {"mg", "mg"},        {"m", "m"},
-      {"cm", "cm"},        {"mm", "mm"},       {"um", "um"},         {"in", "in"},        {"m/s", "m/s"},
-      {"ms^-1", "m/s"},    {"mm/s", "mm/s"},   {"in/s", "in/s"},     {"ips", "in/s"},     {"m/s^2", "m/s^2"},
-      {"m/s2", "m/s^2"},   {"ms^-2", "m/s^2"}, {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"}, {"in/s^2", "in/s^2"},
-      {"in/s2", "in/s^2"}, {"v", "V"},         {"volt", "V"},        {"volts", "V"},      {"mv", "mV"},
-      {"n", "N"},          {"newton", "N"},    {"newtons", "N"},     {"lbf", "lbf"},      {"pa", "Pa"},
+  static const std::array<std::pair<const char*, const char*>, 40> spellings{{
+      {"g", "g"},          {"g's", "g"},       {"gs", "g"},          {"gn", "g"},         {"mg", "mg"},
+      {"m", "m"},          {"cm", "cm"},       {"mm", "mm"},         {"um", "um"},        {"nm", "nm"},
+      {"in", "in"},        {"ft", "ft"},       {"m/s", "m/s"},       {"ms^-1", "m/s"},    {"mm/s", "mm/s"},
+      {"in/s", "in/s"},    {"ips", "in/s"},    {"ft/s", "ft/s"},     {"km/h", "km/h"},    {"m/s^2", "m/s^2"},
+      {"m/s2", "m/s^2"},   {"ms^-2", "m/s^2"}, {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
+      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"}, {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"}, {"v", "V"},
+      {"volt", "V"},       {"volts", "V"},     {"mv", "mV"},         {"n", "N"},          {"newton", "N"},
+      {"newtons", "N"},    {"lbf", "lbf"},     {"pa", "Pa"},         {"kn", "kN"},        {"um/s", "um/s"},
   }};
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
   for (const auto& [spelling, unit] : spellings)
@@ -69,7 +72,13 @@ std::string normalized_unit(std::string_view label) {
 
 std::string unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
-  if (const auto label = bracketed(name)) return known_unit(*label, true);
+  if (const auto label = bracketed(name)) {
+    // A bracket may hold a unit or a remark ("accel (tip)"); one that is written as a unit expression ('/' or '^')
+    // is kept as stated even when beamid does not know it, so that it is refused rather than read as SI.
+    const std::string unit = known_unit(*label, true);
+    if (unit.empty() && label->find_first_of("/^") != std::string::npos) return trimmed(*label);
+    return unit;
+  }
   // A suffix after a separator, the longest that spells a unit: "acc_m_s2" is m/s^2 before s2 or m, "v_mm_s" mm/s.
   const std::string n = lower(name);
   for (std::size_t at = 0; (at = n.find('_', at)) != std::string::npos; ++at) {
@@ -118,6 +127,12 @@ std::optional<SiConversion> si_conversion(const std::string& unit) {
   if (unit == "in/s") return SiConversion{"m/s", kInch};
   if (unit == "mm/s^2") return SiConversion{"m/s^2", 1e-3};
   if (unit == "in/s^2") return SiConversion{"m/s^2", kInch};
+  if (unit == "nm") return SiConversion{"m", 1e-9};
+  if (unit == "ft") return SiConversion{"m", kFoot};
+  if (unit == "ft/s") return SiConversion{"m/s", kFoot};
+  if (unit == "ft/s^2") return SiConversion{"m/s^2", kFoot};
+  if (unit == "km/h") return SiConversion{"m/s", 1 / 3.6};
+  if (unit == "um/s") return SiConversion{"m/s", 1e-6};
   return std::nullopt;
 }
 
@@ -131,7 +146,16 @@ std::string quantity_of(const std::string& unit) {
 }
 
 bool is_non_motion_unit(const std::string& unit) {
-  return unit == "V" || unit == "mV" || unit == "N" || unit == "lbf" || unit == "Pa";
+  return unit == "V" || unit == "mV" || unit == "N" || unit == "kN" || unit == "lbf" || unit == "Pa";
+}
+
+bool is_known_unit(const std::string& unit) {
+  return unit == "m" || unit == "m/s" || unit == "m/s^2" || si_conversion(unit) || is_non_motion_unit(unit);
+}
+
+std::string known_units_list() {
+  return "m, cm, mm, um, nm, in, ft; m/s, mm/s, um/s, in/s, ft/s, km/h; m/s^2, mm/s^2, in/s^2, ft/s^2, g, mg; V, mV, "
+         "N, kN, lbf, Pa";
 }
 
 }  // namespace beamid::io

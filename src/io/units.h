@@ -35,7 +35,12 @@ std::optional<SiConversion> si_conversion(const std::string& unit);
 // "displacement", "velocity" or "acceleration" for a motion unit in any of the spellings above (m/s and in/s alike);
 // "" for any other unit.
 std::string quantity_of(const std::string& unit);
-// Whether a known unit measures no motion (V, mV, N, lbf, Pa): a record in it is a raw sensor signal.
+// Whether a known unit measures no motion (V, mV, N, kN, lbf, Pa): a record in it is a raw sensor signal.
 bool is_non_motion_unit(const std::string& unit);
+// Whether a unit (in beamid's spelling) is one beamid knows: SI, converted to SI, or no motion. A label a file states
+// that is none of these is refused rather than taken as SI (nm, ft, degF, furlong/fortnight were read as m or m/s).
+bool is_known_unit(const std::string& unit);
+// The known units, for messages.
+std::string known_units_list();
 
 }  // namespace beamid::io

@@ -65,6 +65,18 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_TRUE(is_non_motion_unit("V"));
   EXPECT_EQ(si_conversion("mg")->factor, 9.80665e-3);
   EXPECT_EQ(si_conversion("in/s")->factor, 0.0254);  // the inch is 25.4 mm exactly
+  // The third pass's labels that were read as SI (P003-P016): nm, ft (0.3048 m exactly), km/h, g_n; a unit beamid
+  // does not know is not "known", so a file stating it is refused (time_series.cc), and a bracketed unit expression
+  // is kept as stated while a bracketed remark is no unit.
+  EXPECT_EQ(si_conversion(unit_of_column_name("x_nm"))->factor, 1e-9);
+  EXPECT_EQ(si_conversion(unit_of_column_name("x (ft)"))->factor, 0.3048);
+  EXPECT_EQ(si_conversion(unit_of_column_name("v_km_h"))->unit, "m/s");
+  EXPECT_EQ(unit_of_column_name("a (gn)"), "g");
+  EXPECT_EQ(unit_of_column_name("v (furlong/fortnight)"), "furlong/fortnight");
+  EXPECT_FALSE(is_known_unit("furlong/fortnight"));
+  EXPECT_FALSE(is_known_unit(normalized_unit("degF")));
+  EXPECT_EQ(unit_of_column_name("accel (tip)"), "");
+  EXPECT_TRUE(is_known_unit("m/s^2") && is_known_unit("mm") && is_known_unit("V"));
 }
 
 TEST(Units, ARecordInMillimetresPerSecondIsReadInMetresPerSecond) {
