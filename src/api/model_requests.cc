@@ -114,6 +114,11 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
   r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);
   if (!r.trace.ok()) throw NumericalError(caller.label + ": " + r.trace.status);
+  // A response that is zero everywhere is no record (every reader refuses a constant one, and a study refuses such a
+  // truth): the sensor or the force at a rigid clamp, or no force (the third pass's P216, P218, P219).
+  if (std::all_of(r.trace.y.begin(), r.trace.y.end(), [](double v) { return v == 0; }))
+    refuse(caller, "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, "
+                   "--force-x 0) or the force is 0 (--force-amplitude); nothing is written");
   r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
   return r;
 }

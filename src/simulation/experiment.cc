@@ -36,6 +36,9 @@ std::optional<std::string> validation_error(const Experiment& e, double length_m
   if (e.excitation == kPulse && !(e.pulse_width_s > 0 && std::isfinite(e.pulse_width_s)))
     return bad("pulse_width_s", e.pulse_width_s, "must be finite and > 0");
   if (!(e.dt_s > 0 && std::isfinite(e.dt_s))) return bad("dt_s", e.dt_s, "must be finite and > 0");
+  // The records' own floor (io/time_series.cc): a rate above 1 GHz is a unit mistake, and simulate wrote records at
+  // dt = 1e-300 s that no reader takes (the third pass's P209).
+  if (e.dt_s < 1e-9) return bad("dt_s", e.dt_s, "must be at least 1e-9 s (a rate of at most 1 GHz; is dt in seconds?)");
   if (e.samples < 2) return "samples = " + std::to_string(e.samples) + ": must be >= 2";
   // A beam's free vibration dies out in minutes; a record of more than 1e6 s (11 days) is a unit mistake.
   if (e.dt_s * e.samples > 1e6)

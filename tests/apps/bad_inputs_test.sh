@@ -22,9 +22,9 @@ expect_notice() {
 }
 S=(--beam banks-aluminium --elements 8)
 
-# Crash: a pulse of 2^31 and more samples at dt = 1e-12 (the pulse's sample count overflowed an int).
-if timeout 60 "$BEAMID" simulate "${S[@]}" --dt 1e-12 --samples 16 >"$tmp/out" 2>"$tmp/err" &&
-   [ "$(wc -l <"$tmp/out")" -eq 17 ]; then ok; else bad "dt 1e-12: $(cat "$tmp/err")"; fi
+# Crash: a pulse of 2^31 and more samples (3 s at dt = 1e-9, the smallest step) overflowed an int.
+if timeout 60 "$BEAMID" simulate "${S[@]}" --dt 1e-9 --pulse-width 3 --samples 16 >"$tmp/out" 2>"$tmp/err" &&
+   [ "$(wc -l <"$tmp/out")" -eq 17 ]; then ok; else bad "pulse of 3e9 samples: $(cat "$tmp/err")"; fi
 
 # Sizes: N beyond what finishes, samples beyond the memory or the range, starts beyond the range.
 expect_error "elements 1000" "--elements = '1000': must be an integer in 1..400" simulate --beam banks-aluminium --elements 1000
@@ -248,6 +248,12 @@ expect_error "derivative-free first step" "bobyqa's first step in linear coordin
 awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, $2 + 1 }' "$tmp/z.csv" >"$tmp/offset.csv"
 expect_notice "a fit that explains almost nothing" "the fitted model explains only" fit --data "$tmp/offset.csv" \
   --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 --max-evaluations 30
+# simulate writes no record that is all zeros, none at dt below 1e-9 s, and no CVODE run at a useless tolerance (the
+# third pass's P209, P216-P219, P229, P230).
+expect_error "simulate a zero record" "the response is zero at every sample" simulate "${S[@]}" --samples 64 --force-x 0
+expect_error "simulate at dt 1e-300" "dt_s = 1e-300: must be at least 1e-9 s" simulate "${S[@]}" --samples 64 --dt 1e-300
+expect_error "cvode rtol 0.5" "cvode.rtol = 0.5: must be in [1e-14, 1e-3]" simulate "${S[@]}" --samples 64 \
+  --integrator cvode --rtol 0.5
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
