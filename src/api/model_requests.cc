@@ -77,6 +77,22 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
   r.available = static_cast<int>(modes.size());
   const int shown = std::min(r.requested.value_or(r.available), r.available);
   r.note = fewer_modes_note(r, n, "underdamped modes");
+  // Overdamped modes (real pole pairs) have no frequency and are not listed. The Galerkin model's highest modes
+  // always are (Kelvin-Voigt damping grows as omega^2); said when one lies among the listed ones, i.e. when more
+  // undamped modes lie below the highest listed frequency than underdamped ones are listed, since the rows'
+  // numbers then skip it (with cDI = 0.05 "mode 2" was at 4564 Hz, bending modes 2-8 overdamped: the third pass's
+  // P178, P179).
+  if (shown > 0) {
+    const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
+    const double highest_rad_s = 2 * std::numbers::pi * modes[static_cast<std::size_t>(shown - 1)].frequency_hz;
+    const auto below = static_cast<int>(std::count_if(omega.data(), omega.data() + omega.size(),
+                                                      [&](double w) { return w < highest_rad_s; }));
+    if (below > shown)
+      r.note += std::string(r.note.empty() ? "" : "; ") + std::to_string(below - shown) +
+                " mode(s) of the undamped beam below " + format_rounded(highest_rad_s / (2 * std::numbers::pi)) +
+                " Hz are overdamped here (real poles, no oscillation) and not listed: 'mode' numbers the underdamped "
+                "modes only (--undamped lists the undamped beam's)";
+  }
   for (int k = 0; k < shown; ++k) {
     r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);
     r.damping_ratio.push_back(modes[static_cast<std::size_t>(k)].damping_ratio);
