@@ -151,6 +151,12 @@ def beam_toml(parameters):
                 support[field] = value
         else:
             lines.append(f"{key} = {_toml_number(value)}")
+    # Attachments are numbered 1, 2, ... in the file's order: a gap (attachment1 and attachment3) silently made the
+    # user's attachment3 the beam's attachment2 (the third pass's P466, P478).
+    missing = [k for k in range(1, max(attachments, default=0) + 1) if k not in attachments]
+    if missing:
+        raise InputError(f"beam dict: attachment{missing[0]} is missing while attachment{max(attachments)} is given: "
+                         "attachments are numbered 1, 2, ... without gaps")
     for index in sorted(attachments):
         lines.append("")
         lines.append("[[attachment]]")
@@ -209,6 +215,15 @@ def _record_flags(data, flags):
     array = np.asarray(data)
     if np.iscomplexobj(array):
         raise InputError("data: complex values: a record is the real sensor signal")
+    # A bool array is flags, not a signal (it was refused as "clipped"); a structured one has named fields, which
+    # NumPy's cast refused without naming the argument; an object array holds no numbers beamid can trust.
+    if array.dtype.kind == "b":
+        raise InputError("data: a bool array: a record is the sensor's numeric signal, not flags")
+    if array.dtype.names is not None:
+        raise InputError(f"data: a structured array (fields {', '.join(array.dtype.names)}): pass one field, "
+                         "data=array['name'], and its time as time=")
+    if array.dtype.kind not in "biuf":
+        raise InputError(f"data: an array of dtype {array.dtype}: a record is an array of numbers")
     if array.size == 0:
         raise InputError("data: an empty array: a record needs at least 8 samples")
     return np.asarray(array, dtype=float), dict(flags, data="<array>")
@@ -360,8 +375,11 @@ def _is(type_, value):
 def _check_type(command, name, kind, value):
     """TypeError unless the value has the flag's type (a list only where the flag takes one)."""
     item = _list_item(command, name)
+    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) == 1 and len(value) == 0:
+        # An empty list names nothing (it was told "must be a string or a list of them", which it is).
+        raise InputError(f"{command}(): {name} = {value!r}: must not be empty")
     if item is not None and isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) == 1:
-        ok = len(value) > 0 and all(_is(item, v) for v in value)
+        ok = all(_is(item, v) for v in value)
     elif item is not None:
         ok = _is(str, value) or _is(item, value)
     elif name == "beam":

@@ -339,6 +339,18 @@ def test_dict_beams_and_prediction_arrays_are_checked():
         beamid.cost(data=y, prediction=y + 1j, sample_rate=1e4, cost="time")
     with pytest.raises(beamid.InputError, match="1e150"):
         beamid.cost(data=y, prediction=1e200 * y, sample_rate=1e4, cost="time")
+    # The third pass: a gap in attachment numbers renumbered the user's attachment3 (P466); a bool array was called
+    # clipped, a structured one failed in NumPy's words (P442, P447); an empty estimate list was told it must be a list
+    # (P475).
+    with pytest.raises(beamid.InputError, match="attachment2 is missing"):
+        beamid.beam_toml(dict(steel, **{"attachment1.x": 0.1, "attachment1.m": 0.5, "attachment3.x": 0.2,
+                                        "attachment3.m": 0.5}))
+    with pytest.raises(beamid.InputError, match="a bool array"):
+        beamid.spikes(data=y > 0, sample_rate=1e4)
+    with pytest.raises(beamid.InputError, match=r"structured array \(fields t, a\)"):
+        beamid.spikes(data=np.zeros(256, dtype=[("t", "f8"), ("a", "f8")]), sample_rate=1e4)
+    with pytest.raises(beamid.InputError, match="estimate = \[\]: must not be empty"):
+        beamid.fit(data=y, sample_rate=1e4, beam="thick-steel", elements=4, cost="time", estimate=[])
 
 
 def test_the_example_script_runs(tmp_path):
