@@ -96,6 +96,17 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
       if (sub->parsed()) return {c, sub};
     return {nullptr, nullptr};
   };
+  // A flag before the command belongs to no command: "beamid --beam b.toml simulate" was told "--beam is required".
+  if (args.size() > 2 && args[1].rfind("-", 0) == 0 && args[1] != "-h" && args[1] != "--help" &&
+      args[1] != "--version")
+    for (std::size_t k = 2; k < args.size(); ++k)
+      for (const Command& c : commands())
+        if (args[k] == c.name) {
+          err << "beamid: " << one_line("'" + args[1] + "' comes before the command '" + c.name +
+                                        "': flags follow the command (beamid " + c.name + " " + args[1] + " ...)")
+              << "\n";
+          return 2;
+        }
   std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes the arguments reversed
   try {
     app.parse(reversed);

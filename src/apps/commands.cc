@@ -18,6 +18,7 @@
 #include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"
+#include "io/record_samples.h"
 #include "io/report_blocks.h"
 #include "io/text.h"
 #include "model/exact_frequencies.h"
@@ -135,6 +136,12 @@ int run_report(const Flags& a, std::ostream& out) {
   // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file).
   std::ostringstream text;
   text << io::read_file(path, "beamid report: --update: cannot read the report");
+  // A binary file is no Markdown report (random bytes were "0 generated block(s) refreshed", exit 0: the third pass's
+  // P431).
+  if (auto problem = io::binary_text_problem(text.str(), path)) {
+    const std::string where = problem->substr(path.size() + 2);  // "byte N is 0xXX: ..."
+    a.require(false, "update", where.substr(0, where.find(':')) + ": a binary file, not a Markdown report");
+  }
   std::map<std::string, std::string> contents;
   for (const auto& name : io::block_names(text.str(), path)) {
     // A block's text comes from results/<name>.md and nowhere else (io::block_source), and never from the report

@@ -97,7 +97,9 @@ int run_merge(const Flags& a, std::ostream& out) {
   int records = 0, left_behind = 0;
   std::vector<std::string> seen;
   while (std::getline(list, dir, ',')) {
-    if (dir.empty()) continue;
+    // An empty name between two commas is a typo, not a shard to skip (the third pass's P397).
+    if (dir.empty())
+      a.require(false, "shards", "names an empty folder (two commas together, or a comma at an end)");
     if (!io::is_existing_folder(dir + "/store"))
       throw InputError("beamid merge: --shards: '" + dir +
                        "' has no store/ folder: must be the --output of a shard run");

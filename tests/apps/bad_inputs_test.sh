@@ -259,6 +259,11 @@ expect_error "cvode rtol 0.5" "cvode.rtol = 0.5: must be in [1e-14, 1e-3]" simul
 sed 's/^cDI = .*/cDI = 0.05/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/overdamped.toml"
 expect_notice "overdamped modes" "mode(s) of the undamped beam below" modes --beam "$tmp/overdamped.toml" \
   --elements 16 --count 2
+# A flag before the command (the third pass's P251) and a binary file as the report to update (P431).
+expect_error "flag before the command" "'--beam' comes before the command 'simulate': flags follow the command" \
+  --beam banks-aluminium simulate
+head -c 3000 /dev/urandom | tr '\n' '\0' >"$tmp/binary.md"
+expect_error "binary report" "a binary file, not a Markdown report" report --update "$tmp/binary.md" --results "$tmp"
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \

@@ -175,6 +175,9 @@ expect_error "merge into a shard" "--output = '$tmp/s1': is the shard folder" me
   --shards "$tmp/s1,$tmp/s2" --output "$tmp/s1"
 expect_error "merge of a shard twice" "names the folder '$tmp/s1' twice" merge "$tmp/mini.toml" \
   --shards "$tmp/s1,$tmp/s1" --output "$tmp/merged_twice"
+# An empty shard name is a typo, not a shard to skip (the third pass's P397).
+expect_error "merge with an empty shard name" "--shards" merge "$tmp/mini.toml" --shards "$tmp/s1,,$tmp/s2" \
+  --output "$tmp/merged_empty"
 # A shard run from another study file of the same name holds no unit of this one: named as such (it was "N units
 # are missing": the second pass's N499).
 sed 's/^seed = .*/seed = 777/' "$tmp/mini.toml" >"$tmp/mini_other.toml"

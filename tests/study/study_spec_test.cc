@@ -100,6 +100,8 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
             "pulse_width_s, samples");
   EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = -5")),
             "s.toml:4: study.seed = -5: must be an integer in 0..2^53");
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 9007199254740993")),  // 2^53 + 1, no double: P361
+            "s.toml:4: study.seed = 9007199254740993: an integer beyond 2^53: must be an integer in 0..2^53");
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
             "s.toml:10: truth.pulse_width_s = -0.004: must be > 0");
   EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
