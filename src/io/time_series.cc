@@ -183,9 +183,9 @@ void refuse_sample_counter(const Samples& in, const std::string& path) {
 // 1 kHz record printed to the millisecond was read as uniform at dt = 1.00098 ms, every later sample a step off).
 // Where the column is printed as coarsely as half its step, every step must equal the median (rounding cannot hide a
 // doubled step there); elsewhere a step may differ from it by twice the grid check's tolerance.
-void check_steps(const Samples& in, double median, double tolerance) {
+void check_steps(const Samples& in, double median, double tolerance, double resolution) {
   const std::vector<double>& t = in.t;
-  const bool coarse = in.time_resolution >= 0.5 * median;
+  const bool coarse = resolution >= 0.5 * median;
   const double allowed = coarse ? 1e-9 * median : 2 * tolerance + 1e-9 * median;
   for (std::size_t i = 1; i < t.size(); ++i) {
     const double step = t[i] - t[i - 1];
@@ -199,7 +199,7 @@ void check_steps(const Samples& in, double median, double tolerance) {
     throw InputError(in.where(i) + ": " + in.series.time_column + " = " + format_value(t[i]) + ": a step of " +
                      format_value(step) + " s from the previous sample, where the record's median step is " +
                      format_value(median) + " s (a " + (missing ? "missing" : "extra") + " sample?" +
-                     (coarse ? "; the time column is printed to " + format_value(in.time_resolution) +
+                     (coarse ? "; the time column is printed to " + format_value(resolution) +
                                    " s, too coarse to tell rounding from a gap: print it with more digits"
                              : "") +
                      "; --resample interpolates instead)");
@@ -222,14 +222,19 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
   if (!(dt > 0)) throw InputError(path + ": time column " + column + " does not increase");
   const double median = median_step(t);
-  const bool coarse = in.time_resolution >= 0.5 * median;
+  // The times as doubles hold no better than a few units in the last place of the largest: epoch seconds (1.7e9 s,
+  // ulp 2.4e-7 s) printed to 17 digits were refused as non-uniform at a tolerance of 1e-7 s (the third pass's P050).
+  const double resolution =
+      std::max(in.time_resolution,
+               4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t.front()), std::abs(t.back())));
+  const bool coarse = resolution >= 0.5 * median;
   for (std::size_t i = 1; i < t.size(); ++i)
     if (!(t[i] > t[i - 1]))
       throw InputError(
           in.where(i) + ": " + column + " = " + format_value(t[i]) +
           (t[i] == t[i - 1] ? ": repeats the previous sample's time" : ": goes back from the previous sample's ") +
           (t[i] == t[i - 1] ? "" : format_value(t[i - 1]) + " s") +
-          (coarse && t[i] == t[i - 1] ? " (the time column is printed to " + format_value(in.time_resolution) +
+          (coarse && t[i] == t[i - 1] ? " (the time column is printed to " + format_value(resolution) +
                                             " s, too coarse for its step: print it with more digits)"
                                       : " (a duplicated or misordered line)"));
   refuse_sample_counter(in, path);
@@ -242,8 +247,8 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
                      std::to_string(t.size()) + " samples at dt = " + format_value(dt) +
                      " s): at most 1e6 s (is its time in seconds?)");
   if (o.resample) return dt;
-  const double tolerance = std::max(1e-6 * dt, in.time_resolution + 1e-9 * dt);
-  check_steps(in, median, tolerance);
+  const double tolerance = std::max(1e-6 * dt, resolution + 1e-9 * dt);
+  check_steps(in, median, tolerance, resolution);
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double expected = t0 + static_cast<double>(i) * dt;
     if (std::abs(t[i] - expected) > tolerance)
