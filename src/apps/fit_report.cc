@@ -1,7 +1,9 @@
 #include "apps/fit_report.h"
 #include "costs/cost.h"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -55,13 +57,26 @@ ModeComparison compare_modes(const FitReportInput& in) {
     const std::vector<signal::IdentifiedMode> identified =
         wanted.empty() ? signal::matrix_pencil(decay, in.data.dt_s, p)
                        : signal::modes_near(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
-    for (const auto& m : identified) {
-      ModePair pair{m.frequency_hz, m.damping_ratio, std::nan(""), std::nan("")};
-      double distance = std::numeric_limits<double>::infinity();
-      for (const auto& u : model)
-        if (std::abs(u.frequency_hz - m.frequency_hz) < distance)
-          distance = std::abs(u.frequency_hz - m.frequency_hz), pair.model_hz = u.frequency_hz,
-          pair.model_damping_ratio = u.damping_ratio;
+    // One model mode to one data mode, the closest pairs (relative frequency) first: a data pole of zeta 73 % was
+    // paired with model mode 2 already paired (the third pass's P290); such heavily damped poles are left out.
+    std::vector<signal::IdentifiedMode> kept;
+    for (const auto& m : identified)
+      if (m.damping_ratio <= signal::kHeavilyDampedRatio) kept.push_back(m);
+    std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;  // (|f_u / f_m - 1|, data, model)
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      for (std::size_t j = 0; j < model.size(); ++j)
+        candidates.emplace_back(std::abs(model[j].frequency_hz / kept[i].frequency_hz - 1), i, j);
+    std::sort(candidates.begin(), candidates.end());
+    std::vector<int> partner(kept.size(), -1);
+    std::vector<bool> taken(model.size(), false);
+    for (const auto& [distance, i, j] : candidates)
+      if (partner[i] < 0 && !taken[j]) partner[i] = static_cast<int>(j), taken[j] = true;
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      ModePair pair{kept[i].frequency_hz, kept[i].damping_ratio, std::nan(""), std::nan("")};
+      if (partner[i] >= 0) {
+        pair.model_hz = model[static_cast<std::size_t>(partner[i])].frequency_hz;
+        pair.model_damping_ratio = model[static_cast<std::size_t>(partner[i])].damping_ratio;
+      }
       c.pairs.push_back(pair);
     }
   } catch (const std::exception& e) {

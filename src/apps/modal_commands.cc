@@ -29,10 +29,6 @@ std::vector<FlagSpec> modal_id_flags() {
   return flags;
 }
 
-namespace {
-constexpr double kHeavyDampingRatio = 0.2;
-}
-
 int run_modal_id(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   const api::ModalIdResult r = api::compute_modal_id(modal_id_request_of(a), data);
@@ -48,13 +44,12 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   if (static_cast<int>(modes.size()) < o.modes)
     std::cerr << "beamid modal-id: --modes " << o.modes << ": the record shows only " << modes.size()
               << " decaying oscillation(s) in the band: " << modes.size() << " printed\n";
-  // A lightly damped beam's modes have damping ratios of a few percent; a pole far above that fits the excitation
-  // or noise (a record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for).
-  // Said, not dropped: a heavily damped structure exists, and the user decides.
+  // A record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for. Said, not
+  // dropped: a heavily damped structure exists, and the user decides.
   for (const signal::IdentifiedMode& m : modes)
-    if (m.damping_ratio > kHeavyDampingRatio)
+    if (m.damping_ratio > signal::kHeavilyDampedRatio)
       std::cerr << "beamid modal-id: the pole at " << format_value(m.frequency_hz) << " Hz has damping ratio "
-                << format_value(m.damping_ratio) << " (> " << kHeavyDampingRatio
+                << format_value(m.damping_ratio) << " (> " << signal::kHeavilyDampedRatio
                 << "): more likely the excitation or noise than a mode of the beam; cut the record after the excitation "
                    "(--start) or lower --order\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()

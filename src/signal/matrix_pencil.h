@@ -20,6 +20,10 @@
 
 namespace beamid::signal {
 
+// A lightly damped beam's modes have damping ratios of a few percent; an identified pole far above that (0.2) fits
+// the excitation or noise more likely than a mode: modal-id says so, and a fit's mode comparison leaves it out.
+inline constexpr double kHeavilyDampedRatio = 0.2;
+
 struct PencilOptions {
   int modes = 3;          // K: the K strongest underdamped modes in the band are reported
   int order = 0;          // M, the number of exponentials kept (0: 2 K + 8, at most L)
