@@ -49,7 +49,11 @@ Samples array_samples(const std::string& path, const std::string& format, const 
                      "channels");
   const std::size_t channel = indices[choose_channel(names, o, path, what + " channels")];
   s.value_column = channels == 1 ? what : what + " channel " + std::to_string(channel + 1);
-  s.time_column = time_channel ? what + " channel " + std::to_string(*time_channel + 1) : "time";
+  // The time's own name in messages: its channel, or the MAT variable --time-variable named (a swapped pair was told
+  // "time column time does not increase": the third pass's P134).
+  s.time_column = time_channel              ? what + " channel " + std::to_string(*time_channel + 1)
+                  : !o.time_variable.empty() ? "time variable '" + o.time_variable + "'"
+                                             : "time";
   for (std::size_t i = 0; i < samples; ++i) out.v.push_back(value(i, channel));
   if (time) {
     if (time->size() != samples)

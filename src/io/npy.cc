@@ -135,6 +135,11 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
          "descr = " + shown(descr, 80) +
              ": a structured array (named fields) is not read: save a plain array, e.g. np.column_stack of the "
              "fields, time first if it is one");
+  // An object array (descr '|O') holds Python objects, not numbers: it was told to be a quoted type string, which
+  // it is (the third pass's P097).
+  if (descr.size() >= 3 && descr[descr.size() - 2] == 'O')
+    fail(path, header_offset, "descr = " + descr + ": an object array (Python objects) is not a signal: save it as "
+                              "floats, e.g. np.asarray(a, dtype=float)");
   if (descr.size() < 5 || (descr.front() != '\'' && descr.front() != '"') || descr.back() != descr.front())
     fail(path, header_offset, "descr = " + descr + ": must be a quoted type string such as '<f8'");
   array.descr = descr.substr(1, descr.size() - 2);

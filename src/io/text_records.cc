@@ -258,6 +258,12 @@ std::optional<std::string> binary_text_problem(std::string_view text, const std:
 
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
   if (auto problem = binary_text_problem(text, path)) throw InputError(*problem);
+  // Lines ended by a bare carriage return (classic Mac OS) read as one line of a thousand columns (the third pass's
+  // P064): said as such.
+  if (const auto cr = text.find('\r'); cr != std::string::npos && (cr + 1 == text.size() || text[cr + 1] != '\n') &&
+                                         text.find('\n') == std::string::npos)
+    throw InputError(path + ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
+                            "line feeds (LF) or CR LF");
   std::istringstream in(text);
   const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
   const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);

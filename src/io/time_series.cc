@@ -220,7 +220,7 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
   if (in.v.size() < 8) throw InputError(path + ": " + std::to_string(in.v.size()) + " samples: at least 8 are needed");
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);
-  if (!(dt > 0)) throw InputError(path + ": time column " + column + " does not increase");
+  if (!(dt > 0)) throw InputError(path + ": " + column + " (the time) does not increase");
   const double median = median_step(t);
   // The times as doubles hold no better than a few units in the last place of the largest: epoch seconds (1.7e9 s,
   // ulp 2.4e-7 s) printed to 17 digits were refused as non-uniform at a tolerance of 1e-7 s (the third pass's P050).

@@ -269,6 +269,15 @@ expect_error "binary report" "a binary file, not a Markdown report" report --upd
 awk -F, 'NR == 1 { print; next } { printf "%.17g,%s\n", 1.7e9 + $1, $2 }' "$tmp/z.csv" >"$tmp/epoch.csv"
 if timeout 60 "$BEAMID" spikes --data "$tmp/epoch.csv" --spikes 2 >"$tmp/out" 2>"$tmp/err"; then ok; else
   bad "epoch seconds: $(head -c 300 "$tmp/err")"; fi
+# Readers that misdiagnosed (the third pass's P064, P097): bare-CR line endings, an object .npy.
+awk 'BEGIN { ORS = "\r" } { print }' "$tmp/z.csv" >"$tmp/cr.csv"
+expect_error "bare CR line endings" "its lines end in a bare carriage return" spikes --data "$tmp/cr.csv"
+header="{'descr': '|O', 'fortran_order': False, 'shape': (4,), }"
+while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
+{ printf '\x93NUMPY\x01\x00'; printf "\\x$(printf %02x $(( ${#header} + 1 )))\\x00"; printf '%s\n' "$header"; } \
+  >"$tmp/object.npy"
+expect_error "object npy" "an object array (Python objects) is not a signal" spikes --data "$tmp/object.npy" \
+  --sample-rate 1000
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
