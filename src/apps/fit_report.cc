@@ -162,9 +162,11 @@ void result_section(Markdown& md, const FitReportInput& in) {
         "The sandwich admits residuals of unequal variance and, for the time cost, correlated over "
      << fit::robust_lags(o.cost.name, static_cast<int>(r.final_evaluation.residuals.size()))
      << " samples. The window sd is the scatter of the estimates over disjoint windows of the record (`--windows K`), "
-        "which contains what the model gets wrong along the record. When the three agree, quote the formal one; "
-        "when the sandwich or the window sd is several times larger, the residuals are model error, not noise: "
-        "quote the window sd (the conservative one). Covariance: "
+        "which contains what the model gets wrong along the record and the windows' own noise (each window carries "
+        "less information than the whole record). When the three agree, quote the formal one; when the sandwich is "
+        "several times larger, or the window sd several times the windows' own formal error (the table of the "
+        "windows below), the residuals are model error, not noise: quote the window sd (the conservative one). "
+        "Covariance: "
      << r.covariance_status << ".\n\n";
 }
 
@@ -183,7 +185,15 @@ void spread_section(Markdown& md, const FitReportInput& in) {
       md << "\n";
     }
     md << "\nThe window sd counts only the " << in.spread->used
-       << " window(s) whose fit converged: one stopped by the evaluation budget sits where the budget left it.\n\n";
+       << " window(s) whose fit converged: one stopped by the evaluation budget sits where the budget left it. Its "
+          "yardstick is the windows' own formal error (each window carries less information than the record, the "
+          "later ones being free decays): a window sd within twice it is the windows' noise; several times it is "
+          "model error or drift along the record.\n\n| parameter | window sd | the windows' own formal error | ratio "
+          "|\n|---|---|---|---|\n";
+    for (std::size_t i = 0; i < in.spread->keys.size(); ++i)
+      md << "| " << in.spread->keys[i] << " | " << g(in.spread->sd[i], 3) << " | " << g(in.spread->window_formal[i], 3)
+         << " | " << g(in.spread->sd[i] / in.spread->window_formal[i], 3) << " |\n";
+    md << "\n";
   }
 }
 

@@ -136,9 +136,18 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
     return line.str();
   }
   line << "; sd over them:";
-  for (std::size_t i = 0; i < spread.keys.size(); ++i)
+  for (std::size_t i = 0; i < spread.keys.size(); ++i) {
     line << (i ? "," : "") << " " << spread.keys[i] << " " << spread.sd[i] << " (formal "
-         << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error << ")";
+         << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error
+         << "; the windows' own formal " << spread.window_formal[i];
+    // Model error shows as a spread beyond what each window's own noise gives; the full fit's formal error is the
+    // wrong yardstick, the later windows being free decays that carry less information.
+    const double ratio = spread.sd[i] / spread.window_formal[i];
+    if (std::isfinite(ratio))
+      line << (ratio <= 2 ? ": within the windows' noise" : ", " + format_rounded(ratio) + " times it: model error or "
+                                                                                        "drift along the record");
+    line << ")";
+  }
   return line.str();
 }
 

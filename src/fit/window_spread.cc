@@ -23,6 +23,7 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
   FitOptions o = options;
   o.strategy = o.strategy == kHybrid ? kHybrid : kDirect;  // the hybrid's refinement is part of its estimate
   o.starts = 1;
+  std::vector<std::vector<double>> formal_errors;  // [window][parameter]
   for (int k = 0; k < windows; ++k) {
     std::vector<Record> cut = records;
     for (std::size_t r = 0; r < cut.size(); ++r) {
@@ -33,21 +34,22 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
       if (k > 0) cut[r].experiment.excitation = simulation::kFreeDecay;  // the state at the window's start is unknown
       cut[r].start = full.records[r].beam;                               // inside the bounds, always
     }
-    std::vector<double> estimate(n, std::numeric_limits<double>::quiet_NaN());
+    std::vector<double> estimate(n, std::numeric_limits<double>::quiet_NaN()), formal = estimate;
     std::string status;
     try {
       const FitResult r = fit(o, cut);
       status = r.status;
       if (status != "failed")
-        for (std::size_t i = 0; i < n; ++i) estimate[i] = r.parameters[i].estimate;
+        for (std::size_t i = 0; i < n; ++i) estimate[i] = r.parameters[i].estimate, formal[i] = r.parameters[i].standard_error;
     } catch (const std::exception& error) {  // a window the cost cannot use (too few spikes in it, for example)
       status = std::string("failed: ") + error.what();
     }
     spread.estimates.push_back(estimate);
+    formal_errors.push_back(formal);
     spread.statuses.push_back(status);
   }
   spread.mean.assign(n, std::numeric_limits<double>::quiet_NaN());
-  spread.sd = spread.standard_error = spread.mean;
+  spread.sd = spread.standard_error = spread.window_formal = spread.mean;
   // Only windows whose fit converged count: one stopped by the evaluation budget sits wherever the budget left it
   // (near its start, the full estimate), and eight such windows gave an sd of EI 300 times below its formal error,
   // a measure of the budget rather than the data (the second adversarial pass's N540).
@@ -67,6 +69,10 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
       if (counted[k]) squares += (spread.estimates[k][i] - mean) * (spread.estimates[k][i] - mean);
     spread.mean[i] = mean;
     spread.sd[i] = std::sqrt(squares / (spread.used - 1));
+    double formal_squares = 0;  // NaN (an estimate on a bound) propagates: no comparison then
+    for (std::size_t k = 0; k < spread.estimates.size(); ++k)
+      if (counted[k]) formal_squares += formal_errors[k][i] * formal_errors[k][i];
+    spread.window_formal[i] = std::sqrt(formal_squares / spread.used);
     spread.standard_error[i] = spread.sd[i] / std::sqrt(static_cast<double>(spread.used));
   }
   return spread;

@@ -30,7 +30,12 @@ struct WindowSpread {
   std::vector<std::vector<double>> estimates;    // [window][parameter] (NaN for a failed window)
   std::vector<std::string> statuses;             // per window: the fit's status
   std::vector<double> mean, sd, standard_error;  // per parameter, over the converged windows
-  int used = 0;                                  // windows whose fit converged (status converged...)
+  // Per parameter, the RMS over the converged windows of each window's own formal standard error: the spread that
+  // noise alone would give. Later windows are free decays that carry less information than the full record, so sd
+  // is compared with this, not with the full fit's formal error (on a model-exact noisy record the sd was 37 times
+  // the full fit's formal error and the report said to quote it as model error: the third pass's P317).
+  std::vector<double> window_formal;
+  int used = 0;  // windows whose fit converged (status converged...)
 };
 
 // The smallest window, in samples: shorter windows resolve no mode below a few hundred bins.

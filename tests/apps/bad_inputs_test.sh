@@ -278,6 +278,11 @@ while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
   >"$tmp/object.npy"
 expect_error "object npy" "an object array (Python objects) is not a signal" spikes --data "$tmp/object.npy" \
   --sample-rate 1000
+# On a model-exact record with white noise the window spread is the windows' own noise, and said so, not offered as
+# model error (the third pass's P317: 37 times the full fit's formal error).
+"$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --noise-level 0.01 >"$tmp/noisy.csv"
+expect_notice "window spread within noise" "within the windows' noise" fit --data "$tmp/noisy.csv" "${S[@]}" \
+  --pulse-width 0.004 --estimate EI --cost time --windows 2
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
