@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/resources.h"
 #include "core/limits.h"
 #include "io/units.h"
 #include "signal/spectrum.h"
@@ -109,6 +110,30 @@ std::vector<double> welch_picks(const FitRequest& request, const io::TimeSeries&
 
 }  // namespace
 
+namespace {
+
+// The longest a fit may take, said before it starts when over a minute: its evaluation budget over all starts times
+// one evaluation, which grows with the samples and N (measured: 0.034 s for 1e6 samples at N = 8, time cost, about
+// 4.3e-9 s per sample and element) plus the N^3 decomposition. A 6e6-sample free decay and --starts 1000 ran
+// silently past 30 s (the third pass's P302, P491).
+void warn_long_fit(const fit::FitOptions& o, double samples, const Caller& caller, std::ostream& warnings) {
+  constexpr double kSecondsPerSampleAndElement = 4.3e-9;
+  const double n = o.elements;
+  const double per_evaluation =
+      kSecondsPerSampleAndElement * samples * n + core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  const double evaluations = static_cast<double>(o.optimizer.max_evaluations) * std::max(1, o.starts) *
+                             (o.strategy == fit::kHybrid ? 2 : 1);
+  const double worst = per_evaluation * evaluations;
+  if (worst > 60)
+    warnings << caller.label << ": one model evaluation takes about " << format_rounded(per_evaluation) << " s"
+             << " here (" << static_cast<long long>(samples) << " samples at N = " << o.elements << "), and the fit may "
+             << "take up to " << evaluations << " of them, " << io::seconds_text(worst)
+             << ": cut the record (--start, --duration), lower its rate (--resample-rate) or the budget "
+                "(--max-evaluations, --starts)\n";
+}
+
+}  // namespace
+
 fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
                             std::ostream& warnings, bool* welch_picked) {
   const Caller& caller = request.caller;
@@ -171,6 +196,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   o.start = request.beam;
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * request.start_scale);
+  warn_long_fit(o, static_cast<double>(data.values.size() * channels.size()), caller, warnings);
   return o;
 }
 

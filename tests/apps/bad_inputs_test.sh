@@ -283,6 +283,10 @@ expect_error "object npy" "an object array (Python objects) is not a signal" spi
 "$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --noise-level 0.01 >"$tmp/noisy.csv"
 expect_notice "window spread within noise" "within the windows' noise" fit --data "$tmp/noisy.csv" "${S[@]}" \
   --pulse-width 0.004 --estimate EI --cost time --windows 2
+# A fit whose budget could run for minutes says so before it starts (the third pass's P302, P491); stopped at 5 s.
+timeout 5 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time \
+  --pulse-width 0.004 --starts 1000 --max-evaluations 100000 >"$tmp/out" 2>"$tmp/err"
+grep -q "and the fit may take up to" "$tmp/err" && ok || bad "long fit: no warning: $(head -c 300 "$tmp/err")"
 # An exactly determined fit (2 residuals of one mode, 2 parameters) says why its standard errors are NaN (issue 31).
 expect_notice "no degrees of freedom" "no degrees of freedom (2 residuals, 2 parameters): the fit is exactly determined" \
   fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI,cDI --cost modal --spikes 1 --start 0.01 \
