@@ -175,6 +175,10 @@ expect_error "merge into a shard" "--output = '$tmp/s1': is the shard folder" me
   --shards "$tmp/s1,$tmp/s2" --output "$tmp/s1"
 expect_error "merge of a shard twice" "names the folder '$tmp/s1' twice" merge "$tmp/mini.toml" \
   --shards "$tmp/s1,$tmp/s1" --output "$tmp/merged_twice"
+# A merge without one shard names the first missing unit and its position, which tells the shard (the third
+# pass's P391: "6 of 20 units ... missing" named none).
+"$BEAMID" merge "$tmp/mini.toml" --shards "$tmp/s1" --output "$tmp/merged_half" >/dev/null 2>"$tmp/err"
+check "merge names the first missing unit" grep -qE "units of study 'mini' are missing .*, the first case [0-9a-f]{16} \(unit 2 of the plan\)" "$tmp/err"
 # An empty shard name is a typo, not a shard to skip (the third pass's P397).
 expect_error "merge with an empty shard name" "--shards" merge "$tmp/mini.toml" --shards "$tmp/s1,,$tmp/s2" \
   --output "$tmp/merged_empty"

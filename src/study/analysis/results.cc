@@ -38,17 +38,20 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
   StudyResults results;
   results.spec = &spec;
   results.plan = &plan;
-  int missing = 0;
+  int missing = 0, missing_truths = 0;
+  const Unit* first_missing = nullptr;  // named in the message: the shard that holds it is the one to rerun
   for (const Unit& t : plan.truths) {
     if (auto r = load_unit(store, t, spec.fit.estimate))
       results.truths.push_back(std::move(*r));
     else
-      ++missing;
+      ++missing, ++missing_truths, first_missing = first_missing ? first_missing : &t;
   }
-  for (const Unit& u : plan.units) {
+  for (std::size_t k = 0; k < plan.units.size(); ++k) {
+    const Unit& u = plan.units[k];
     auto r = load_unit(store, u, spec.fit.estimate);
     if (!r) {
       ++missing;
+      first_missing = first_missing ? first_missing : &u;
       continue;
     }
     if (u.kind == UnitKind::Case) {
@@ -64,10 +67,20 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
       results.landscape.push_back({&u, std::move(*r)});
     }
   }
-  if (missing > 0)
-    throw InputError(store.directory() + ": " + std::to_string(missing) + " of " +
-                     std::to_string(plan.units.size() + plan.truths.size()) + " units of study '" + spec.name +
-                     "' are missing (or were made by another build): run the missing shards");
+  if (missing > 0) {
+    // Which unit: its kind, id and position in the plan, so that the shard K/N that holds it (position mod N + 1)
+    // can be told (the third pass's P391: "6 of 20 units ... missing" named none, and counted the truth as a unit).
+    std::string first = unit_kind_name(first_missing->kind) + " " + first_missing->id;
+    for (std::size_t k = 0; k < plan.units.size(); ++k)
+      if (&plan.units[k] == first_missing) first += " (unit " + std::to_string(k + 1) + " of the plan)";
+    throw InputError(store.directory() + ": " + std::to_string(missing - missing_truths) + " of " +
+                     std::to_string(plan.units.size()) + " units" +
+                     (missing_truths ? " and " + std::to_string(missing_truths) + " of " +
+                                           std::to_string(plan.truths.size()) + " truth record(s)"
+                                     : std::string()) +
+                     " of study '" + spec.name + "' are missing (or were made by another build), the first " + first +
+                     ": run the missing shards (unit k is shard ((k - 1) mod N) + 1 of N)");
+  }
   return results;
 }
 
