@@ -47,14 +47,16 @@ class _Fields:
         return cls(**{f.name: raw[f.name] for f in dataclasses.fields(cls)})
 
 
-_SPIKE_FIELDS = [("bin", "i8"), ("frequency_hz", "f8"), ("magnitude", "f8"), ("n_left", "i8"), ("n_right", "i8")]
+_SPIKE_FIELDS = [("bin", "i8"), ("frequency_hz", "f8"), ("magnitude", "f8"), ("n_left", "i8"), ("n_right", "i8"),
+                 ("subbin_frequency_hz", "f8"), ("decay_rate_1_s", "f8")]
 
 
 @dataclasses.dataclass(repr=False)
 class Spikes(_Fields):
     """``beamid spikes``: the picked spikes and the peaks passed over.
 
-    picks      structured array, ascending in frequency: bin, frequency_hz (the bin's), magnitude, n_left, n_right
+    picks      structured array, ascending in frequency: bin, frequency_hz (the bin's), magnitude, n_left, n_right,
+               subbin_frequency_hz and decay_rate_1_s (the three-bin estimate of the peak; NaN on Welch's average)
     skipped    the same columns and ``reason``: peaks dropped as artefacts (harmonics, leakage), with why
     requested  how many spikes were asked for
     df_hz      the spectrum's bin width

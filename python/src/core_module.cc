@@ -197,13 +197,16 @@ py::dict py_spikes(const std::vector<std::string>& args, const py::object& data,
   });
   py::dict d;
   py::list picks, skipped;
-  const auto row = [](const signal::Spike& s) {
+  const auto row = [&r](const signal::Spike& s) {
     py::dict p;
     p["bin"] = s.bin;
     p["frequency_hz"] = s.frequency_hz;
     p["magnitude"] = s.magnitude;
     p["n_left"] = s.n_left;
     p["n_right"] = s.n_right;
+    const signal::PoleEstimate e = r.subbin(s.bin);
+    p["subbin_frequency_hz"] = e.frequency_hz;
+    p["decay_rate_1_s"] = e.decay_rate_1_s;
     return p;
   };
   for (const auto& s : r.picks) picks.append(row(s));

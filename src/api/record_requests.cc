@@ -9,6 +9,14 @@
 
 namespace beamid::api {
 
+signal::PoleEstimate SpikesResult::subbin(int bin) const {
+  signal::PoleEstimate e;
+  if (!welch) e = signal::three_bin_estimate(spectrum, bin);
+  if (!e.ok || std::abs(e.frequency_hz - spectrum.frequency_hz(bin)) > spectrum.df_hz())
+    e = {std::nan(""), std::nan(""), false};
+  return e;
+}
+
 SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& data) {
   const Caller& caller = request.caller;
   // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
@@ -22,6 +30,7 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   SpikesResult r;
   const signal::SpikeOptions options = spike_options(request.spikes, caller);
   if (request.welch) {
+    r.welch = true;
     r.spectrum = signal::welch_spectrum(values, data.dt_s, *request.welch);
   } else {
     signal::Dft dft(static_cast<int>(values.size()), data.dt_s, window_options(request.window, caller));

@@ -90,10 +90,13 @@ int run_spikes(const Flags& a, std::ostream& out) {
     std::cerr << "beamid spikes: --spikes " << r.requested << ": the record shows only " << picks.size()
               << " spike(s) (local maxima of |Z| in the band, artefacts skipped): " << picks.size() << " printed\n";
   // The picks in order of frequency, then the peaks passed over on the way, with the reason.
-  out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped\n";
+  // The bin's frequency, then the sub-bin (three-bin) estimate of the peak's frequency and decay rate.
+  out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped,subbin_frequency_hz,decay_rate_1_s\n";
   const auto row = [&](const std::string& label, const signal::Spike& p, const std::string& skipped) {
+    const signal::PoleEstimate e = r.subbin(p.bin);
     out << label << "," << p.bin << "," << io::full_precision(p.frequency_hz) << "," << io::full_precision(p.magnitude)
-        << "," << p.n_left << "," << p.n_right << "," << skipped << "\n";
+        << "," << p.n_left << "," << p.n_right << "," << skipped << "," << io::full_precision(e.frequency_hz) << ","
+        << io::full_precision(e.decay_rate_1_s) << "\n";
   };
   for (std::size_t l = 0; l < picks.size(); ++l) row(std::to_string(l + 1), picks[l], "");
   for (const auto& p : peaks)
