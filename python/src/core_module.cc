@@ -279,7 +279,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   {
     py::gil_scoped_release unlocked;
     const apps::Flags a = flags_of("fit", args, beam_toml);
-    apps::refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
+    apps::check_report_outputs(a);
     channels = records_of(a, array);
     c = api::compute_fit(apps::fit_request_of(a), channels, std::cerr);
     beam_name = a.text("beam");

@@ -1,14 +1,16 @@
 #include "apps/fit_report.h"
-#include "costs/cost.h"
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <tuple>
 
+#include "apps/command_flags.h"
 #include "core/errors.h"
+#include "costs/cost.h"
+#include "io/files.h"
 #include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"
@@ -102,7 +104,7 @@ using Markdown = std::ostringstream;
 void header_section(Markdown& md, const FitReportInput& in, const costs::Evaluation& first) {
   const auto& o = in.options;
   const auto& r = in.result;
-  md << "# beamid fit report\n\n";
+  md << kReportHeading << "\n\n";
   md << "beamid " << io::version() << " (commit " << io::commit_label() << "): `beamid fit";
   for (const auto& arg : in.arguments) md << " " << arg;
   md << "`\n\n";
@@ -342,6 +344,30 @@ FitReport render_fit_report(const std::string& path, const FitReportInput& in) {
   report.spectra_csv = spectra_section(md, in, first, report.spectra_path);
   report.markdown = md.str();
   return report;
+}
+
+// The report and its side file, REPORT.spectra.csv, are checked before the fit: a regular file there that beamid did
+// not write (its first line is not the report's heading, or the spectra header) is refused, not replaced (a user's
+// mine.md.spectra.csv, mine.md and even a data file named as the report were overwritten without a word: the third
+// pass's P509, the fourth's Q320, Q476).
+void check_report_outputs(const Flags& a) {
+  if (!a.has("report")) return;
+  check_output_file(a, "report");
+  refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
+  const std::string report = a.text("report");
+  if (io::is_existing_file(report)) {
+    const std::string head = io::read_file_head(report, "cannot read the existing report", 256);
+    a.require(head.rfind(kReportHeading, 0) == 0, "report",
+              "exists and is not a fit report beamid wrote: move it, or choose another report name");
+  }
+  const std::string side = report + ".spectra.csv";
+  const std::string problem = io::replaceable_output_problem(side);
+  a.require(problem.empty(), "report", "its side file '" + side + "' " + problem);
+  if (!io::is_existing_file(side)) return;
+  const std::string head = io::read_file_head(side, "cannot read the report's side file", 256);
+  a.require(head.rfind(kSpectraHeader, 0) == 0, "report",
+            "its side file '" + side +
+                "' exists and is not a spectra table beamid wrote: move it, or choose another report name");
 }
 
 void write_fit_report(const std::string& path, const FitReportInput& in) {

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "apps/flags.h"
 #include "fit/identification.h"
 #include "fit/window_spread.h"
 #include "io/time_series.h"
@@ -45,8 +46,13 @@ struct FitReport {
   std::string spectra_csv;
 };
 FitReport render_fit_report(const std::string& path, const FitReportInput& input);
+// The first line of a fit report (by which a rerun knows the file as its own).
+inline constexpr const char* kReportHeading = "# beamid fit report";
 // The first line of the report's side file, REPORT.spectra.csv (by which a rerun knows the file as its own).
 inline constexpr const char* kSpectraHeader = "bin,frequency_hz,data_magnitude,model_magnitude";
+// Before a fit: --report names a file that may be written (check_output_file), is no input, and neither it nor its
+// side file is a file beamid did not write (InputError naming --report).
+void check_report_outputs(const Flags& a);
 // render_fit_report, then both files written by atomic rename (InputError naming --report when a write fails).
 void write_fit_report(const std::string& path, const FitReportInput& input);
 

@@ -156,25 +156,8 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
 
 }  // namespace
 
-// The report's side file, REPORT.spectra.csv, is checked before the fit as the report is: a regular file there that
-// beamid did not write (its first line is not the spectra header) is refused, not replaced (a user's
-// mine.md.spectra.csv was overwritten without a word: the third pass's P509).
-void check_spectra_side_file(const Flags& a) {
-  if (!a.has("report")) return;
-  const std::string side = a.text("report") + ".spectra.csv";
-  const std::string problem = io::replaceable_output_problem(side);
-  a.require(problem.empty(), "report", "its side file '" + side + "' " + problem);
-  if (!io::is_existing_file(side)) return;
-  const std::string head = io::read_file_head(side, "cannot read the report's side file", 256);
-  a.require(head.rfind(kSpectraHeader, 0) == 0, "report",
-            "its side file '" + side +
-                "' exists and is not a spectra table beamid wrote: move it, or choose another report name");
-}
-
 int run_fit(const Flags& a, std::ostream& out) {
-  check_output_file(a, "report");
-  check_spectra_side_file(a);
-  refuse_overwriting_inputs(a, {"report"}, {"", ".tmp", ".spectra.csv", ".spectra.csv.tmp"}, {"data", "beam"});
+  check_report_outputs(a);
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");

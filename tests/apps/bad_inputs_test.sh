@@ -211,6 +211,12 @@ echo "keep me" >"$tmp/mine.md.spectra.csv"
 expect_error "report side file" "its side file '$tmp/mine.md.spectra.csv' exists and is not a spectra table beamid wrote" \
   "${F[@]}" --report "$tmp/mine.md"
 grep -qx "keep me" "$tmp/mine.md.spectra.csv" && ok || bad "report side file: replaced"
+# The report itself likewise: a user's file of that name is refused, not replaced (the fourth pass's Q320, Q476).
+rm "$tmp/mine.md.spectra.csv"
+echo "keep me" >"$tmp/mine.md"
+expect_error "report over a user's file" "--report = '$tmp/mine.md': exists and is not a fit report beamid wrote" \
+  "${F[@]}" --report "$tmp/mine.md"
+grep -qx "keep me" "$tmp/mine.md" && ok || bad "report: a user's file replaced"
 mkdir "$tmp/mine" && echo "my notes" >"$tmp/mine/cases.csv"
 expect_error "study into a user's folder" "holds files but no manifest.json or store/" study \
   "$SRC/studies/smoke.toml" --output "$tmp/mine"
