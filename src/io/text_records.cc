@@ -99,6 +99,19 @@ Table read_csv(std::istream& in, const std::string& path) {
   return t;
 }
 
+// An LVM header's X0 or Delta_X on its line: a finite number, and a step that advances (Delta_X = 0 or -0.001 was
+// accepted beside an X column: the fourth pass's Q218, Q219).
+double time_base_number(const std::string& key, const std::string& value, const std::string& path, int number) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v))
+    throw InputError(path + ":" + std::to_string(number) + ": " + key + " = '" + shown(value) +
+                     "': must be a finite number");
+  if (key == "Delta_X" && !(v > 0))
+    throw InputError(path + ":" + std::to_string(number) + ": Delta_X = " + format_value(v) + ": must be > 0 s");
+  return v;
+}
+
 // LabVIEW measurement text: a file header and one segment header, each ending in ***End_of_Header***, then a line
 // of column names and the data. Keys read: Separator, Decimal_Separator, X_Columns, Y_Unit_Label, X0, Delta_X.
 Table read_lvm(std::istream& in, const std::string& path) {
@@ -139,12 +152,7 @@ Table read_lvm(std::istream& in, const std::string& path) {
     } else if (key == "Y_Unit_Label") {
       y_units.assign(fields.begin() + 1, fields.end());
     } else if (key == "X0" || key == "Delta_X") {
-      char* end = nullptr;
-      const double v = std::strtod(value.c_str(), &end);
-      if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v))
-        throw InputError(path + ":" + std::to_string(number) + ": " + key + " = '" + shown(value) +
-                         "': must be a finite number");
-      (key == "X0" ? t.x0 : t.delta) = v;
+      (key == "X0" ? t.x0 : t.delta) = time_base_number(key, value, path, number);
     } else if (key == "Samples" && !value.empty()) {
       char* end = nullptr;
       const long n = std::strtol(value.c_str(), &end, 10);

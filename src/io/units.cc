@@ -38,7 +38,9 @@ std::string known_unit(std::string u, bool label) {
     for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
       u.replace(at, from.size(), to);
   }
-  static const std::array<std::pair<const char*, const char*>, 40> spellings{{
+  static const std::array<std::pair<const char*, const char*>, 50> spellings{{
+      {"km", "km"},        {"yd", "yd"},       {"mil", "mil"},       {"mph", "mph"},      {"pm", "pm"},
+      {"inch", "in"},      {"inches", "in"},   {"feet", "ft"},       {"foot", "ft"},      {"gal", "Gal"},
       {"g", "g"},          {"g's", "g"},       {"gs", "g"},          {"gn", "g"},         {"mg", "mg"},
       {"m", "m"},          {"cm", "cm"},       {"mm", "mm"},         {"um", "um"},        {"nm", "nm"},
       {"in", "in"},        {"ft", "ft"},       {"m/s", "m/s"},       {"ms^-1", "m/s"},    {"mm/s", "mm/s"},
@@ -128,6 +130,12 @@ std::optional<SiConversion> si_conversion(const std::string& unit) {
   if (unit == "mm/s^2") return SiConversion{"m/s^2", 1e-3};
   if (unit == "in/s^2") return SiConversion{"m/s^2", kInch};
   if (unit == "nm") return SiConversion{"m", 1e-9};
+  if (unit == "pm") return SiConversion{"m", 1e-12};
+  if (unit == "km") return SiConversion{"m", 1e3};
+  if (unit == "yd") return SiConversion{"m", 3 * kFoot};
+  if (unit == "mil") return SiConversion{"m", 1e-3 * kInch};
+  if (unit == "mph") return SiConversion{"m/s", 1609.344 / 3600};  // the international mile, 1760 yd
+  if (unit == "Gal") return SiConversion{"m/s^2", 1e-2};            // the gal, 1 cm/s^2
   if (unit == "ft") return SiConversion{"m", kFoot};
   if (unit == "ft/s") return SiConversion{"m/s", kFoot};
   if (unit == "ft/s^2") return SiConversion{"m/s^2", kFoot};
@@ -154,8 +162,8 @@ bool is_known_unit(const std::string& unit) {
 }
 
 std::string known_units_list() {
-  return "m, cm, mm, um, nm, in, ft; m/s, mm/s, um/s, in/s, ft/s, km/h; m/s^2, mm/s^2, in/s^2, ft/s^2, g, mg; V, mV, "
-         "N, kN, lbf, Pa";
+  return "m, km, cm, mm, um, nm, pm, in, mil, ft, yd; m/s, mm/s, um/s, in/s, ft/s, km/h, mph; m/s^2, mm/s^2, in/s^2, "
+         "ft/s^2, Gal, g, mg; V, mV, N, kN, lbf, Pa";
 }
 
 }  // namespace beamid::io

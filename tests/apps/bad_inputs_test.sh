@@ -413,6 +413,8 @@ while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
 # too coarsely to resolve its steps takes the uniform base of its mean step when every time agrees with it (it was
 # refused as a repeated time: N079).
 sed 's/^Delta_X\t.*/Delta_X\t0.00121\t/' "$L" | head -n 3000 >"$tmp/mismatch.lvm"
+sed 's/^Delta_X\t.*/Delta_X\t-0.001\t/' "$L" | head -n 3000 >"$tmp/negative_dx.lvm"
+expect_error "LVM negative Delta_X" "Delta_X = -0.001: must be > 0 s" spikes --data "$tmp/negative_dx.lvm"
 expect_error "LVM Delta_X against its X column" "but the header's Delta_X is 0.00121 s: the header and the data disagree" \
   spikes --data "$tmp/mismatch.lvm"
 awk -F'\t' 'NR > 23 && $2 != "" { printf "%.3f\t%s\n", $1, $2; next } { print }' "$L" >"$tmp/coarse_time.lvm"

@@ -76,6 +76,10 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_FALSE(is_known_unit("furlong/fortnight"));
   EXPECT_FALSE(is_known_unit(normalized_unit("degF")));
   EXPECT_EQ(unit_of_column_name("accel (tip)"), "");
+  // The fourth pass's (Q017-Q053): the international mile (1609.344 m), the yard (0.9144 m), the gal (1 cm/s^2).
+  EXPECT_DOUBLE_EQ(si_conversion(unit_of_column_name("ux_mph"))->factor, 0.44704);
+  EXPECT_DOUBLE_EQ(si_conversion(unit_of_column_name("x (yd)"))->factor, 0.9144);
+  EXPECT_EQ(si_conversion(unit_of_column_name("a (Gal)"))->unit, "m/s^2");
   EXPECT_TRUE(is_known_unit("m/s^2") && is_known_unit("mm") && is_known_unit("V"));
 }
 

@@ -152,6 +152,14 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
     EXPECT_NE(error.find(std::string("candidate '") + name + "'"), std::string::npos) << error;
     EXPECT_NE(error.find(std::string("values: ") + key), std::string::npos) << error;
   }
+  // An empty candidate name, and a start value outside the candidate's bounds (the fourth pass's Q429, Q440).
+  const std::string unnamed = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"\"\n";
+  EXPECT_NE(load_error("unnamed", unnamed).find("must be a non-empty name"), std::string::npos)
+      << load_error("unnamed", unnamed);
+  const std::string outside = std::string(kTwoRecords) + fit +
+                              "\n[[candidate]]\nname = \"stiff\"\nvalues = { EI = 1000.0 }\nbounds = { EI = [1.0, 10.0] }\n";
+  EXPECT_NE(load_error("outside", outside).find("must lie in its bounds [1, 10]"), std::string::npos)
+      << load_error("outside", outside);
   const std::string unknown_record =
       std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"alone\"\nrecords = [\"medium\"]\n";
   EXPECT_NE(load_error("records", unknown_record).find("candidate1.records"), std::string::npos)

@@ -129,6 +129,9 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
   Table r = item.table(prefix, "candidate");
   CandidateSpec c = given;
   c.name = r.string("name", std::nullopt);
+  // It names the candidate's rows in every table (an empty one was accepted: the fourth pass's Q440).
+  if (c.name.find_first_not_of(" \t") == std::string::npos)
+    r.fail("name", "'" + c.name + "'", "must be a non-empty name (it labels the candidate's rows)");
   for (const CandidateSpec& other : s.candidates)
     if (other.name == c.name) r.fail("name", "'" + c.name + "'", "must differ from every other candidate's");
   if (r.has("beam")) {
@@ -158,6 +161,15 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
   for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
     it = std::find(all.begin(), all.end(), it->first) == all.end() ? c.bounds.erase(it) : std::next(it);
   for (const auto& [key, b] : read_bounds(r, path, prefix, all)) c.bounds[key] = b;
+  // A value set for an estimated key is its start, which must lie inside its bounds (one outside ran, and every fit
+  // of the candidate failed: the fourth pass's Q429, Q435, Q437).
+  for (const auto& [key, value] : c.values) {
+    const auto b = c.bounds.find(key);
+    if (b != c.bounds.end() && !(value >= b->second.first && value <= b->second.second))
+      r.fail("values", key + " = " + format_value(value),
+             "is the start of an estimated key: must lie in its bounds [" + format_value(b->second.first) + ", " +
+                 format_value(b->second.second) + "]");
+  }
   r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records"});
   return c;
 }
