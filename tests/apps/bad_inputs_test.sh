@@ -303,6 +303,8 @@ expect_error "window with the time cost" "--window = 'hann': is read by the DFT 
   --window hann
 expect_error "exponential end without its window" "is the exponential window's; --window is hann" fit "${Z[@]}" \
   --cost spike-smooth --window hann --exponential-end 0.001
+expect_error "spikes exponential end without its window" "is the exponential window's; --window is rectangular" \
+  spikes --data "$tmp/z.csv" --exponential-end 0.01
 expect_error "model poles with spike" "--model-poles = 'eigenvalues': is read by the spike-smooth cost" fit "${Z[@]}" \
   --cost spike --model-poles eigenvalues
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
