@@ -325,6 +325,8 @@ def read_record(path, **flags) -> "Record":
     """A record file as beamid reads it (CSV, .lvm, .npy, .mat, UFF 58, with the import flags: channel, units, start,
     duration, sample_rate, variable, time_variable, resample, resample_rate): a :class:`Record` with values (array),
     dt_s, t0_s, unit, format, channel and notes."""
+    if not isinstance(path, (str, os.PathLike)):  # read_record(123) reached the core untyped (the fourth pass's Q490)
+        raise TypeError(f"read_record(): path = {path!r}: must be a file path (str or os.PathLike)")
     try:
         return Record._from_core(_call(_core.read_record, _arguments(dict(flags, data=path))))
     except InputError as error:  # the core reads it with modal-id's import flags

@@ -456,6 +456,8 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     double time_precision = 0;
     if (!o.time_variable.empty()) {
       if (o.sample_rate_hz) throw InputError(path + ": give --time-variable or --sample-rate, not both");
+      // Both time sources named: the conflict, not the variable's shape, is the answer (the fourth pass's Q197).
+      if (!o.time_channel.empty()) throw InputError(path + ": give --time-variable or --time-channel, not both");
       if (o.time_variable == o.variable)
         throw InputError(path + ": --time-variable = --variable = '" + o.variable +
                          "': the time vector and the record must be different variables");

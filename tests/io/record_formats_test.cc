@@ -225,6 +225,11 @@ TEST(RecordFormats, MatFilesOfVersions5And73WithStructsAndTimeVectors) {
     EXPECT_EQ(s.values, expected) << label;
     EXPECT_NEAR(s.dt_s, 1e-3, 1e-15) << label;
     EXPECT_NEAR(s.t0_s, 0.5, 1e-15) << label;
+    // Two time sources are one too many, said as such (the fourth pass's Q197 blamed the variable's shape).
+    ImportOptions both = o;
+    both.time_channel = "1";
+    EXPECT_NE(error_of(path, both).find("give --time-variable or --time-channel, not both"), std::string::npos)
+        << error_of(path, both);
     o.variable = "record";
     o.time_variable.clear();
     o.sample_rate_hz = 1000;

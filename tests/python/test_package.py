@@ -345,6 +345,8 @@ def test_dict_beams_and_prediction_arrays_are_checked():
     with pytest.raises(beamid.InputError, match="attachment2 is missing"):
         beamid.beam_toml(dict(steel, **{"attachment1.x": 0.1, "attachment1.m": 0.5, "attachment3.x": 0.2,
                                         "attachment3.m": 0.5}))
+    with pytest.raises(TypeError, match="must be a file path"):  # the fourth pass's Q490
+        beamid.read_record(123)
     with pytest.raises(beamid.InputError, match="a bool array"):
         beamid.spikes(data=y > 0, sample_rate=1e4)
     with pytest.raises(beamid.InputError, match=r"structured array \(fields t, a\)"):
