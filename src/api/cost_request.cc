@@ -14,7 +14,8 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
   o.rule = request.rule.value_or(o.rule);
   o.min_frequency_hz = request.min_frequency_hz.value_or(o.min_frequency_hz);
   const std::string artefacts = request.artefacts.value_or("reject");
-  if (artefacts != "reject" && artefacts != "keep") refuse(caller, "artefacts", artefacts, "must be one of reject, keep");
+  if (artefacts != "reject" && artefacts != "keep")
+    refuse(caller, "artefacts", artefacts, "must be one of reject, keep");
   o.reject_artefacts = artefacts == "reject";
   o.max_frequency_hz = request.max_frequency_hz.value_or(o.max_frequency_hz);
   if (!request.frequencies_hz.empty()) {
@@ -84,7 +85,8 @@ void refuse_unused(const CostRequest& request, const Caller& caller, const std::
 
 }  // namespace
 
-costs::CostOptions cost_options(const CostRequest& request, const Caller& caller, const std::vector<std::string>& also) {
+costs::CostOptions cost_options(const CostRequest& request, const Caller& caller,
+                                const std::vector<std::string>& also) {
   costs::CostOptions o;
   o.name = request.name;
   if (costs::cost_names().contains(o.name)) refuse_unused(request, caller, also);

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "io/resources.h"
 #include "core/limits.h"
+#include "io/resources.h"
 #include "io/units.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
@@ -121,12 +121,13 @@ void warn_long_fit(const fit::FitOptions& o, double samples, const Caller& calle
   const double n = o.elements;
   const double per_evaluation =
       kSecondsPerSampleAndElement * samples * n + core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
-  const double evaluations = static_cast<double>(o.optimizer.max_evaluations) * std::max(1, o.starts) *
-                             (o.strategy == fit::kHybrid ? 2 : 1);
+  const double evaluations =
+      static_cast<double>(o.optimizer.max_evaluations) * std::max(1, o.starts) * (o.strategy == fit::kHybrid ? 2 : 1);
   const double worst = per_evaluation * evaluations;
   if (worst > 60)
     warnings << caller.label << ": one model evaluation takes about " << format_rounded(per_evaluation) << " s"
-             << " here (" << static_cast<long long>(samples) << " samples at N = " << o.elements << "), and the fit may "
+             << " here (" << static_cast<long long>(samples) << " samples at N = " << o.elements
+             << "), and the fit may "
              << "take up to " << evaluations << " of them, " << io::seconds_text(worst)
              << ": cut the record (--start, --duration), lower its rate (--resample-rate) or the budget "
                 "(--max-evaluations, --starts)\n";

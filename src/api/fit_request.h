@@ -34,17 +34,17 @@ struct FitRequest {
   ExperimentRequest experiment;       // dt and samples, if given, must match the data's
   std::vector<std::string> estimate;  // --estimate: the keys to estimate (required)
   std::map<std::string, std::pair<double, double>> bounds;  // --bounds KEY=LO:HI: explicit bounds of some keys
-  double bound_factor = 2.0;             // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
-  double start_scale = 1.0;              // --start-scale S: every estimated parameter starts at S x its --beam value
-  CostRequest cost;                      // --cost (required) and the spectrum choices
-  std::optional<std::string> optimizer;  // --optimizer (default: the cost's, fit::default_optimizer)
-  std::optional<int> max_evaluations;    // --max-evaluations per optimizer run
-  std::string strategy = fit::kDirect;   // --strategy
-  std::optional<std::string> refine;     // --refine: hybrid's second cost (default time)
-  std::string scaling = "linear";        // --scaling
-  int starts = 1;                        // --starts
-  std::optional<long long> seed;         // --seed (>= 0; default 1): the multistart's and crs2-lm's draws
-  std::optional<std::string> integrator; // --integrator (default fast)
+  double bound_factor = 2.0;              // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
+  double start_scale = 1.0;               // --start-scale S: every estimated parameter starts at S x its --beam value
+  CostRequest cost;                       // --cost (required) and the spectrum choices
+  std::optional<std::string> optimizer;   // --optimizer (default: the cost's, fit::default_optimizer)
+  std::optional<int> max_evaluations;     // --max-evaluations per optimizer run
+  std::string strategy = fit::kDirect;    // --strategy
+  std::optional<std::string> refine;      // --refine: hybrid's second cost (default time)
+  std::string scaling = "linear";         // --scaling
+  int starts = 1;                         // --starts
+  std::optional<long long> seed;          // --seed (>= 0; default 1): the multistart's and crs2-lm's draws
+  std::optional<std::string> integrator;  // --integrator (default fast)
   std::optional<std::string> record_weights;  // --record-weights (several channels; unset: fit::kRmsWeights)
   std::optional<std::string> detrend;         // --detrend (default linear for a free decay, none otherwise)
   std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments

@@ -85,8 +85,8 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
   if (shown > 0) {
     const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
     const double highest_rad_s = 2 * std::numbers::pi * modes[static_cast<std::size_t>(shown - 1)].frequency_hz;
-    const auto below = static_cast<int>(std::count_if(omega.data(), omega.data() + omega.size(),
-                                                      [&](double w) { return w < highest_rad_s; }));
+    const auto below = static_cast<int>(
+        std::count_if(omega.data(), omega.data() + omega.size(), [&](double w) { return w < highest_rad_s; }));
     if (below > shown)
       r.note += std::string(r.note.empty() ? "" : "; ") + std::to_string(below - shown) +
                 " mode(s) of the undamped beam below " + format_rounded(highest_rad_s / (2 * std::numbers::pi)) +
@@ -107,9 +107,9 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   options.integrator = request.integrator;
   // CVODE's tolerances and order do nothing to the exact propagator: said, not ignored.
   if (options.integrator != simulation::kCvode)
-    for (const auto& [flag, given] : {std::pair{"rtol", request.rtol.has_value()},
-                                      std::pair{"atol", request.atol.has_value()},
-                                      std::pair{"max-order", request.max_order.has_value()}})
+    for (const auto& [flag, given] :
+         {std::pair{"rtol", request.rtol.has_value()}, std::pair{"atol", request.atol.has_value()},
+          std::pair{"max-order", request.max_order.has_value()}})
       if (given)
         refuse(caller, std::string("--") + flag + " is CVODE's (--integrator cvode); --integrator " +
                            options.integrator + " is exact and has no tolerance or order");
@@ -133,8 +133,9 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   // A response that is zero everywhere is no record (every reader refuses a constant one, and a study refuses such a
   // truth): the sensor or the force at a rigid clamp, or no force (the third pass's P216, P218, P219).
   if (std::all_of(r.trace.y.begin(), r.trace.y.end(), [](double v) { return v == 0; }))
-    refuse(caller, "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, "
-                   "--force-x 0) or the force is 0 (--force-amplitude); nothing is written");
+    refuse(caller,
+           "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, "
+           "--force-x 0) or the force is 0 (--force-amplitude); nothing is written");
   r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
   return r;
 }

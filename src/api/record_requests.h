@@ -29,7 +29,7 @@ struct SpikesResult {
   signal::Spectrum spectrum;
   std::vector<signal::LabelledPeak> peaks;
   std::vector<signal::Spike> picks;
-  int requested = 0;  // spikes.count
+  int requested = 0;   // spikes.count
   bool welch = false;  // the spectrum is Welch's average (magnitudes only)
   // The sub-bin frequency and decay rate of the peak at `bin` (the three-bin estimate, signal/spikes.h): a bin's
   // frequency is up to half a bin off (4.293 against 4.268 Hz). NaN on Welch's average (it has no phases) or where

@@ -97,13 +97,13 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
     return {nullptr, nullptr};
   };
   // A flag before the command belongs to no command: "beamid --beam b.toml simulate" was told "--beam is required".
-  if (args.size() > 2 && args[1].rfind("-", 0) == 0 && args[1] != "-h" && args[1] != "--help" &&
-      args[1] != "--version")
+  if (args.size() > 2 && args[1].rfind("-", 0) == 0 && args[1] != "-h" && args[1] != "--help" && args[1] != "--version")
     for (std::size_t k = 2; k < args.size(); ++k)
       for (const Command& c : commands())
         if (args[k] == c.name) {
-          err << "beamid: " << one_line("'" + args[1] + "' comes before the command '" + c.name +
-                                        "': flags follow the command (beamid " + c.name + " " + args[1] + " ...)")
+          err << "beamid: "
+              << one_line("'" + args[1] + "' comes before the command '" + c.name +
+                          "': flags follow the command (beamid " + c.name + " " + args[1] + " ...)")
               << "\n";
           return 2;
         }

@@ -10,7 +10,6 @@
 #include "apps/command_flags.h"
 #include "core/errors.h"
 #include "costs/cost.h"
-#include "io/files.h"
 #include "galerkin/modes.h"
 #include "io/files.h"
 #include "io/provenance.h"

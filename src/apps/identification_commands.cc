@@ -127,9 +127,8 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
   line << spread.used << " of " << spread.windows << " windows converged";
   std::string others;
   for (std::size_t k = 0; k < spread.statuses.size(); ++k) {
+    if (spread.counted[k]) continue;
     const std::string& status = spread.statuses[k];
-    if (status.rfind("converged", 0) == 0 && !std::isnan(spread.estimates[k].empty() ? 0.0 : spread.estimates[k][0]))
-      continue;
     others += (others.empty() ? "" : "; ") + std::string("window ") + std::to_string(k + 1) + ": " +
               (status.size() > 120 ? status.substr(0, 117) + "..." : status);
   }
@@ -147,8 +146,10 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
     // wrong yardstick, the later windows being free decays that carry less information.
     const double ratio = spread.sd[i] / spread.window_formal[i];
     if (std::isfinite(ratio))
-      line << (ratio <= 2 ? ": within the windows' noise" : ", " + format_rounded(ratio) + " times it: model error or "
-                                                                                        "drift along the record");
+      line << (ratio <= 2 ? ": within the windows' noise"
+                          : ", " + format_rounded(ratio) +
+                                " times it: model error or "
+                                "drift along the record");
     line << ")";
   }
   return line.str();
@@ -217,7 +218,8 @@ int run_fit(const Flags& a, std::ostream& out) {
 std::vector<FlagSpec> fit_flags() {
   std::vector<FlagSpec> flags = {
       text_flag("data",
-                "record to fit, CSV, LabVIEW .lvm, .npy, .mat or UFF 58; its time step and length fix dt and Nbar; with a --channel "
+                "record to fit, CSV, LabVIEW .lvm, .npy, .mat or UFF 58; its time step and length fix dt and Nbar; "
+                "with a --channel "
                 "list, every channel is a record of one joint fit (one --sensor-x each)",
                 true),
       text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),

@@ -48,10 +48,11 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   // dropped: a heavily damped structure exists, and the user decides.
   for (const signal::IdentifiedMode& m : modes)
     if (m.damping_ratio > signal::kHeavilyDampedRatio)
-      std::cerr << "beamid modal-id: the pole at " << format_value(m.frequency_hz) << " Hz has damping ratio "
-                << format_value(m.damping_ratio) << " (> " << signal::kHeavilyDampedRatio
-                << "): more likely the excitation or noise than a mode of the beam; cut the record after the excitation "
-                   "(--start) or lower --order\n";
+      std::cerr
+          << "beamid modal-id: the pole at " << format_value(m.frequency_hz) << " Hz has damping ratio "
+          << format_value(m.damping_ratio) << " (> " << signal::kHeavilyDampedRatio
+          << "): more likely the excitation or noise than a mode of the beam; cut the record after the excitation "
+             "(--start) or lower --order\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()
             << " samples at dt = " << data.dt_s << " s; matrix pencil, model order "
             << (o.order > 0 ? o.order : 2 * o.modes + 8) << "\n";

@@ -15,8 +15,8 @@
 #include "io/resources.h"
 #include "study/plan/plan.h"
 #include "study/real/real_study.h"
-#include "study/run/runner.h"
 #include "study/run/record_schema.h"
+#include "study/run/runner.h"
 #include "study/run/store.h"
 
 namespace beamid::apps {
@@ -98,8 +98,7 @@ int run_merge(const Flags& a, std::ostream& out) {
   std::vector<std::string> seen;
   while (std::getline(list, dir, ',')) {
     // An empty name between two commas is a typo, not a shard to skip (the third pass's P397).
-    if (dir.empty())
-      a.require(false, "shards", "names an empty folder (two commas together, or a comma at an end)");
+    if (dir.empty()) a.require(false, "shards", "names an empty folder (two commas together, or a comma at an end)");
     if (!io::is_existing_folder(dir + "/store"))
       throw InputError("beamid merge: --shards: '" + dir +
                        "' has no store/ folder: must be the --output of a shard run");
@@ -120,11 +119,9 @@ int run_merge(const Flags& a, std::ostream& out) {
     // Only truths (which do not depend on the sweep or the seed) and foreign records: the shard ran another study.
     if (shard_units == 0 && absorbed.foreign > 0)
       a.require(false, "shards",
-                "'" + dir + "' holds " + std::to_string(absorbed.foreign) +
-                    " record(s) of no unit of " + spec.path +
+                "'" + dir + "' holds " + std::to_string(absorbed.foreign) + " record(s) of no unit of " + spec.path +
                     " (and no case of it): it is a shard of another study file, or of another version of this one");
-    for (const std::string& record : absorbed.left_behind)
-      std::cerr << "beamid merge: left behind: " << record << "\n";
+    for (const std::string& record : absorbed.left_behind) std::cerr << "beamid merge: left behind: " << record << "\n";
     left_behind += static_cast<int>(absorbed.left_behind.size());
   }
   try {

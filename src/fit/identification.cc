@@ -233,9 +233,9 @@ void check_first_step(const FitOptions& o, const ParameterMap& map) {
     if (step > kMaxFirstStepOverStart) {
       const EstimatedParameter& e = map.estimated()[static_cast<std::size_t>(i)];
       throw InputError("bounds of " + e.key + " = [" + format_value(e.lower) + ", " + format_value(e.upper) +
-                       "]: " + method + "'s first step in linear coordinates (" + format_value(o.optimizer.initial_step) +
-                       " of the range) is " + format_rounded(step) + " times the start " +
-                       format_value(map.reference(i)) +
+                       "]: " + method + "'s first step in linear coordinates (" +
+                       format_value(o.optimizer.initial_step) + " of the range) is " + format_rounded(step) +
+                       " times the start " + format_value(map.reference(i)) +
                        ", and the search leaves the start's scale behind: give log coordinates (--scaling log) or "
                        "bounds within about 500 times the start");
     }

@@ -40,7 +40,8 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
       const FitResult r = fit(o, cut);
       status = r.status;
       if (status != "failed")
-        for (std::size_t i = 0; i < n; ++i) estimate[i] = r.parameters[i].estimate, formal[i] = r.parameters[i].standard_error;
+        for (std::size_t i = 0; i < n; ++i)
+          estimate[i] = r.parameters[i].estimate, formal[i] = r.parameters[i].standard_error;
     } catch (const std::exception& error) {  // a window the cost cannot use (too few spikes in it, for example)
       status = std::string("failed: ") + error.what();
     }
@@ -53,7 +54,7 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
   // Only windows whose fit converged count: one stopped by the evaluation budget sits wherever the budget left it
   // (near its start, the full estimate), and eight such windows gave an sd of EI 300 times below its formal error,
   // a measure of the budget rather than the data (the second adversarial pass's N540).
-  std::vector<bool> counted;
+  std::vector<bool>& counted = spread.counted;
   for (std::size_t k = 0; k < spread.estimates.size(); ++k) {
     counted.push_back(spread.statuses[k].rfind("converged", 0) == 0 && !spread.estimates[k].empty() &&
                       !std::isnan(spread.estimates[k].front()));

@@ -35,6 +35,7 @@ struct WindowSpread {
   // is compared with this, not with the full fit's formal error (on a model-exact noisy record the sd was 37 times
   // the full fit's formal error and the report said to quote it as model error: the third pass's P317).
   std::vector<double> window_formal;
+  std::vector<bool> counted;  // per window: its fit converged, so it counts in the statistics
   int used = 0;  // windows whose fit converged (status converged...)
 };
 

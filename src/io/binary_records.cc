@@ -45,13 +45,14 @@ Samples array_samples(const std::string& path, const std::string& format, const 
   for (std::size_t c = 0; c < channels; ++c)
     if (c != time_channel) names.push_back(std::to_string(c + 1)), indices.push_back(c);
   if (!o.channel.empty() && time_channel && o.channel == std::to_string(*time_channel + 1))
-    throw InputError(path + ": --channel = --time-channel = " + o.channel + ": the signal and its time are different "
+    throw InputError(path + ": --channel = --time-channel = " + o.channel +
+                     ": the signal and its time are different "
                      "channels");
   const std::size_t channel = indices[choose_channel(names, o, path, what + " channels")];
   s.value_column = channels == 1 ? what : what + " channel " + std::to_string(channel + 1);
   // The time's own name in messages: its channel, or the MAT variable --time-variable named (a swapped pair was told
   // "time column time does not increase": the third pass's P134).
-  s.time_column = time_channel              ? what + " channel " + std::to_string(*time_channel + 1)
+  s.time_column = time_channel               ? what + " channel " + std::to_string(*time_channel + 1)
                   : !o.time_variable.empty() ? "time variable '" + o.time_variable + "'"
                                              : "time";
   for (std::size_t i = 0; i < samples; ++i) out.v.push_back(value(i, channel));
@@ -79,7 +80,8 @@ Samples array_samples(const std::string& path, const std::string& format, const 
     // A rate makes the time base uniform by construction: there is nothing for --resample to interpolate (it was
     // accepted and did nothing).
     if (o.resample)
-      throw InputError(path + ": --resample interpolates a non-uniform time base; one made from --sample-rate is "
+      throw InputError(path +
+                       ": --resample interpolates a non-uniform time base; one made from --sample-rate is "
                        "uniform (give the record's own time instead: --time-channel or --time-variable)");
     for (std::size_t i = 0; i < samples; ++i) out.t.push_back(static_cast<double>(i) / *o.sample_rate_hz);
   }

@@ -78,7 +78,8 @@ std::vector<std::size_t> dimensions(const std::string& shape, const std::string&
         fail(path, offset, "shape = " + shape + ": must hold non-negative integers");
       // 12 digits bound the parse (the sample limit, 2^28, has 9); a longer one is a size, said as such.
       if (field.size() > 12)
-        fail(path, offset, "shape = " + shape + ": dimension " + field + " is beyond any record (at most 2^28 samples)");
+        fail(path, offset,
+             "shape = " + shape + ": dimension " + field + " is beyond any record (at most 2^28 samples)");
       out.push_back(std::stoull(field));
     }
     begin = comma + 1;
@@ -138,8 +139,10 @@ NpyArray parse_npy(const std::string& bytes, const std::string& path) {
   // An object array (descr '|O') holds Python objects, not numbers: it was told to be a quoted type string, which
   // it is (the third pass's P097).
   if (descr.size() >= 3 && descr[descr.size() - 2] == 'O')
-    fail(path, header_offset, "descr = " + descr + ": an object array (Python objects) is not a signal: save it as "
-                              "floats, e.g. np.asarray(a, dtype=float)");
+    fail(path, header_offset,
+         "descr = " + descr +
+             ": an object array (Python objects) is not a signal: save it as "
+             "floats, e.g. np.asarray(a, dtype=float)");
   if (descr.size() < 5 || (descr.front() != '\'' && descr.front() != '"') || descr.back() != descr.front())
     fail(path, header_offset, "descr = " + descr + ": must be a quoted type string such as '<f8'");
   array.descr = descr.substr(1, descr.size() - 2);

@@ -220,8 +220,8 @@ void use_mean_step_when_coarse(Samples& out, const Table& table, const std::stri
   const double n = static_cast<double>(out.t.size());
   const double step = (out.t.back() - t0) / (n - 1);
   if (!(std::abs(step - delta) <= 1e-2 * delta))
-    throw InputError(path + ":" + std::to_string(table.line_of.back()) + ": the X column steps " +
-                     format_value(step) + " s on average but the header's Delta_X is " + format_value(delta) +
+    throw InputError(path + ":" + std::to_string(table.line_of.back()) + ": the X column steps " + format_value(step) +
+                     " s on average but the header's Delta_X is " + format_value(delta) +
                      " s: the header and the data disagree (which one is the record's?)");
   if (resolution <= 0.5 * step) return;  // the column resolves its steps: they are checked as any column's
   for (std::size_t i = 0; i < out.t.size(); ++i)
@@ -234,8 +234,9 @@ void use_mean_step_when_coarse(Samples& out, const Table& table, const std::stri
   out.time_in_file = false;
   out.time_resolution = 0;
   out.series.notes += "uniform time base of step " + format_value(step) + " s from the X column's ends (printed to " +
-                      std::to_string(time_decimals) + " decimals, it does not resolve single steps; Delta_X = " +
-                      format_value(delta) + " s agrees to 1 %); ";
+                      std::to_string(time_decimals) +
+                      " decimals, it does not resolve single steps; Delta_X = " + format_value(delta) +
+                      " s agrees to 1 %); ";
 }
 
 double parse(const std::string& path, int line, const std::string& column, const std::string& text) {
@@ -269,9 +270,10 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   // Lines ended by a bare carriage return (classic Mac OS) read as one line of a thousand columns (the third pass's
   // P064): said as such.
   if (const auto cr = text.find('\r'); cr != std::string::npos && (cr + 1 == text.size() || text[cr + 1] != '\n') &&
-                                         text.find('\n') == std::string::npos)
-    throw InputError(path + ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
-                            "line feeds (LF) or CR LF");
+                                       text.find('\n') == std::string::npos)
+    throw InputError(path +
+                     ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
+                     "line feeds (LF) or CR LF");
   std::istringstream in(text);
   const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
   const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);

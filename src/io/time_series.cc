@@ -224,9 +224,8 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
   const double median = median_step(t);
   // The times as doubles hold no better than a few units in the last place of the largest: epoch seconds (1.7e9 s,
   // ulp 2.4e-7 s) printed to 17 digits were refused as non-uniform at a tolerance of 1e-7 s (the third pass's P050).
-  const double resolution =
-      std::max(in.time_resolution,
-               4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t.front()), std::abs(t.back())));
+  const double resolution = std::max(in.time_resolution, 4 * std::numeric_limits<double>::epsilon() *
+                                                             std::max(std::abs(t.front()), std::abs(t.back())));
   const bool coarse = resolution >= 0.5 * median;
   for (std::size_t i = 1; i < t.size(); ++i)
     if (!(t[i] > t[i - 1]))
@@ -337,10 +336,11 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
                      format_rounded(t_end - start + dt, 6) + " s from there");
   if (last - first < 8)
     // Without --duration the window runs to the end: said so, not as a length the user never gave.
-    throw InputError(path + ": the window " +
-                     (o.duration_s ? "of " + format_value(*o.duration_s) + " s " : std::string("to the record's end ")) +
-                     "from " + format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
-                     " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
+    throw InputError(
+        path + ": the window " +
+        (o.duration_s ? "of " + format_value(*o.duration_s) + " s " : std::string("to the record's end ")) + "from " +
+        format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
+        " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
   s.values.assign(v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last));
   s.t0_s = t0 + static_cast<double>(first) * dt;
   s.dt_s = dt;
@@ -470,8 +470,7 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     }
     Samples samples = array_samples(
         path, "mat", a.path, a.rows, a.columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
-        o.time_variable.empty() ? nullptr : &time, o.time_variable.empty() ? a.relative_precision : time_precision,
-        o);
+        o.time_variable.empty() ? nullptr : &time, o.time_variable.empty() ? a.relative_precision : time_precision, o);
     samples.series.format = "mat v" + a.version;
     return finish(std::move(samples), path, o);
   }

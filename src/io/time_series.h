@@ -32,10 +32,10 @@ struct ImportOptions {
   std::string channel;            // name or 1-based index among the signal columns; "": the only one
   std::string units = "auto";     // "auto": convert to SI when the file states g or mm (io/units.h); "g": in g; "as-is"
   std::optional<double> start_s;  // first sample: the one nearest to this time (default: the first)
-  std::optional<double> duration_s;        // round(duration / dt) samples from there (default: to the last)
-  bool resample = false;                   // interpolate a non-uniform time base instead of refusing it
-  std::optional<double> sample_rate_hz;    // the time base of a record that has none (.npy, .mat without a time)
-  std::string variable, time_variable;     // .mat: the record's and its time vector's dotted paths
+  std::optional<double> duration_s;      // round(duration / dt) samples from there (default: to the last)
+  bool resample = false;                 // interpolate a non-uniform time base instead of refusing it
+  std::optional<double> sample_rate_hz;  // the time base of a record that has none (.npy, .mat without a time)
+  std::string variable, time_variable;   // .mat: the record's and its time vector's dotted paths
   // .npy, .mat, arrays: the channel (1-based, as --channel counts them) that holds the time in s, instead of a
   // --sample-rate; --channel then chooses among the others. "": none.
   std::string time_channel;

@@ -29,14 +29,14 @@ struct UffFunction {
   std::string name;       // ID line 1 trimmed, or "node N dir D" when it is empty or NONE
   int function_type = 0;  // 1: time response
   bool complex = false;
-  std::string unit;          // the ordinate's units label, trimmed
-  int abscissa_type = 0;     // record 8's specific data type: 0 unknown, 1 general, 17 time, 18 frequency, ...
-  std::string abscissa_unit; // record 8's units label, trimmed ("" for NONE)
-  int abscissa_line = 0;     // the line of record 8
-  bool even = true;          // abscissa spacing
-  double x0 = 0, dx = 0;     // abscissa minimum and increment (even spacing)
-  std::vector<double> x, y;  // x only with uneven spacing
-  int first_value_line = 0;  // line of its first value (ASCII), 0 for binary
+  std::string unit;           // the ordinate's units label, trimmed
+  int abscissa_type = 0;      // record 8's specific data type: 0 unknown, 1 general, 17 time, 18 frequency, ...
+  std::string abscissa_unit;  // record 8's units label, trimmed ("" for NONE)
+  int abscissa_line = 0;      // the line of record 8
+  bool even = true;           // abscissa spacing
+  double x0 = 0, dx = 0;      // abscissa minimum and increment (even spacing)
+  std::vector<double> x, y;   // x only with uneven spacing
+  int first_value_line = 0;   // line of its first value (ASCII), 0 for binary
   std::size_t first_value_byte = 0;
 };
 

@@ -39,16 +39,16 @@ std::string known_unit(std::string u, bool label) {
       u.replace(at, from.size(), to);
   }
   static const std::array<std::pair<const char*, const char*>, 50> spellings{{
-      {"km", "km"},        {"yd", "yd"},       {"mil", "mil"},       {"mph", "mph"},      {"pm", "pm"},
-      {"inch", "in"},      {"inches", "in"},   {"feet", "ft"},       {"foot", "ft"},      {"gal", "Gal"},
-      {"g", "g"},          {"g's", "g"},       {"gs", "g"},          {"gn", "g"},         {"mg", "mg"},
-      {"m", "m"},          {"cm", "cm"},       {"mm", "mm"},         {"um", "um"},        {"nm", "nm"},
-      {"in", "in"},        {"ft", "ft"},       {"m/s", "m/s"},       {"ms^-1", "m/s"},    {"mm/s", "mm/s"},
-      {"in/s", "in/s"},    {"ips", "in/s"},    {"ft/s", "ft/s"},     {"km/h", "km/h"},    {"m/s^2", "m/s^2"},
-      {"m/s2", "m/s^2"},   {"ms^-2", "m/s^2"}, {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
-      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"}, {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"}, {"v", "V"},
-      {"volt", "V"},       {"volts", "V"},     {"mv", "mV"},         {"n", "N"},          {"newton", "N"},
-      {"newtons", "N"},    {"lbf", "lbf"},     {"pa", "Pa"},         {"kn", "kN"},        {"um/s", "um/s"},
+      {"km", "km"},         {"yd", "yd"},        {"mil", "mil"},       {"mph", "mph"},       {"pm", "pm"},
+      {"inch", "in"},       {"inches", "in"},    {"feet", "ft"},       {"foot", "ft"},       {"gal", "Gal"},
+      {"g", "g"},           {"g's", "g"},        {"gs", "g"},          {"gn", "g"},          {"mg", "mg"},
+      {"m", "m"},           {"cm", "cm"},        {"mm", "mm"},         {"um", "um"},         {"nm", "nm"},
+      {"in", "in"},         {"ft", "ft"},        {"m/s", "m/s"},       {"ms^-1", "m/s"},     {"mm/s", "mm/s"},
+      {"in/s", "in/s"},     {"ips", "in/s"},     {"ft/s", "ft/s"},     {"km/h", "km/h"},     {"m/s^2", "m/s^2"},
+      {"m/s2", "m/s^2"},    {"ms^-2", "m/s^2"},  {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
+      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"}, {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},  {"v", "V"},
+      {"volt", "V"},        {"volts", "V"},      {"mv", "mV"},         {"n", "N"},           {"newton", "N"},
+      {"newtons", "N"},     {"lbf", "lbf"},      {"pa", "Pa"},         {"kn", "kN"},         {"um/s", "um/s"},
   }};
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
   for (const auto& [spelling, unit] : spellings)
@@ -135,7 +135,7 @@ std::optional<SiConversion> si_conversion(const std::string& unit) {
   if (unit == "yd") return SiConversion{"m", 3 * kFoot};
   if (unit == "mil") return SiConversion{"m", 1e-3 * kInch};
   if (unit == "mph") return SiConversion{"m/s", 1609.344 / 3600};  // the international mile, 1760 yd
-  if (unit == "Gal") return SiConversion{"m/s^2", 1e-2};            // the gal, 1 cm/s^2
+  if (unit == "Gal") return SiConversion{"m/s^2", 1e-2};           // the gal, 1 cm/s^2
   if (unit == "ft") return SiConversion{"m", kFoot};
   if (unit == "ft/s") return SiConversion{"m/s", kFoot};
   if (unit == "ft/s^2") return SiConversion{"m/s^2", kFoot};

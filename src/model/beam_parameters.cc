@@ -226,8 +226,9 @@ std::optional<std::string> rig_implausibility(const BeamParameters& beam) {
              format_rounded(max_body_mass_kg(beam)) + " kg (" + format_rounded(kMaxBodyMassRatio) +
              " times the beam's mass rho l = " + format_rounded(beam.rho * beam.l) + " kg)";
     if (!(a.J <= max_body_inertia_kg_m2(a.m, beam)))
-      return attachment_key(k) + ".J = " + format_value(a.J) + ": must be at most (m + rho l) l^2 = " +
-             format_rounded(max_body_inertia_kg_m2(a.m, beam)) + " kg m^2 (a radius of gyration up to a beam length)";
+      return attachment_key(k) + ".J = " + format_value(a.J) +
+             ": must be at most (m + rho l) l^2 = " + format_rounded(max_body_inertia_kg_m2(a.m, beam)) +
+             " kg m^2 (a radius of gyration up to a beam length)";
     total_kg += a.m;
   }
   if (!(total_kg <= max_body_mass_kg(beam)))

@@ -144,8 +144,7 @@ std::string artefact(const Spectrum& s, int k, const std::vector<int>& stronger)
   // (leakage around a 77.9 Hz mode was called "harmonic 7 of 11.06 Hz" after a noise maximum).
   for (int p : stronger) {
     const int apart = std::abs(k - p);
-    if (apart >= 2 && apart <= kSideLobeBins &&
-        s.magnitude(k) <= 1.5 * s.magnitude(p) / (std::numbers::pi * apart))
+    if (apart >= 2 && apart <= kSideLobeBins && s.magnitude(k) <= 1.5 * s.magnitude(p) / (std::numbers::pi * apart))
       return "side lobe of " + text(estimate(p).frequency_hz) + " Hz";
   }
   // Decays as `expected` (a factor of 2 either way), or cannot be told (a rate that is not estimated).

@@ -267,8 +267,9 @@ TEST(CostOptions, InvalidChoicesAreNamed) {
   EXPECT_EQ(*validation_error(o), "eps1 = 1e+308: must be 0 or in [1e-100, 1e100]");
   o.eps1 = 0.0;
   o.eps2 = 0.0;
-  EXPECT_EQ(*validation_error(o), "eps1 = eps2 = 0: every term of the spike cost would weigh nothing; at least one "
-                                  "weight must be > 0");
+  EXPECT_EQ(*validation_error(o),
+            "eps1 = eps2 = 0: every term of the spike cost would weigh nothing; at least one "
+            "weight must be > 0");
   o.name = "spike-smooth";
   EXPECT_FALSE(validation_error(o)) << "eps3 (default) still weighs the decay rates";
   o.eps3 = 0.0;

@@ -144,10 +144,10 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   // A candidate's values meet the bounds the beam file's own met: a 1e9 kg tip and a 1e-12 N m/rad clamp spring were
   // accepted and their fits failed with no reason (the second adversarial pass's N506-N509).
   for (const auto& [name, values, key] : {std::tuple{"heavy", "m = 1e9", "m = 1e+09"},
-                                           std::tuple{"soft", "\"support.k_theta\" = 1e-12", "support.k_theta"},
-                                           std::tuple{"flywheel", "J_o = 1e6", "J_o = 1e+06"}}) {
-    const std::string text = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"" + name +
-                             "\"\nvalues = { " + values + " }\n";
+                                          std::tuple{"soft", "\"support.k_theta\" = 1e-12", "support.k_theta"},
+                                          std::tuple{"flywheel", "J_o = 1e6", "J_o = 1e+06"}}) {
+    const std::string text =
+        std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"" + name + "\"\nvalues = { " + values + " }\n";
     const std::string error = load_error(name, text);
     EXPECT_NE(error.find(std::string("candidate '") + name + "'"), std::string::npos) << error;
     EXPECT_NE(error.find(std::string("values: ") + key), std::string::npos) << error;
@@ -156,8 +156,9 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   const std::string unnamed = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"\"\n";
   EXPECT_NE(load_error("unnamed", unnamed).find("must be a non-empty name"), std::string::npos)
       << load_error("unnamed", unnamed);
-  const std::string outside = std::string(kTwoRecords) + fit +
-                              "\n[[candidate]]\nname = \"stiff\"\nvalues = { EI = 1000.0 }\nbounds = { EI = [1.0, 10.0] }\n";
+  const std::string outside =
+      std::string(kTwoRecords) + fit +
+      "\n[[candidate]]\nname = \"stiff\"\nvalues = { EI = 1000.0 }\nbounds = { EI = [1.0, 10.0] }\n";
   EXPECT_NE(load_error("outside", outside).find("must lie in its bounds [1, 10]"), std::string::npos)
       << load_error("outside", outside);
   const std::string unknown_record =

@@ -29,10 +29,16 @@ namespace {
 // (record.sample_rate_hz): an error names those, with the study file and the record (the second pass's N519).
 std::string in_study_keys(std::string message, const RealStudySpec& spec, const RealRecordSpec& r) {
   // Longer flags first, so that --resample-rate is not read as --resample.
-  const std::pair<const char*, const char*> keys[] = {
-      {"--resample-rate", "resample_rate_hz"}, {"--time-variable", "time_variable"}, {"--time-channel", "time_channel"}, {"--sample-rate", "sample_rate_hz"},
-      {"--resample", "resample"},             {"--variable", "variable"},           {"--channel", "channel"},
-      {"--start", "start_s"},                 {"--duration", "duration_s"},         {"--units", "units"}};
+  const std::pair<const char*, const char*> keys[] = {{"--resample-rate", "resample_rate_hz"},
+                                                      {"--time-variable", "time_variable"},
+                                                      {"--time-channel", "time_channel"},
+                                                      {"--sample-rate", "sample_rate_hz"},
+                                                      {"--resample", "resample"},
+                                                      {"--variable", "variable"},
+                                                      {"--channel", "channel"},
+                                                      {"--start", "start_s"},
+                                                      {"--duration", "duration_s"},
+                                                      {"--units", "units"}};
   for (const auto& [flag, key] : keys) {
     const std::string replacement = "record '" + r.name + "'." + key;
     for (std::size_t at = message.find(flag); at != std::string::npos;
