@@ -37,8 +37,9 @@ int decimals(const std::string& text) {
 struct Table {
   std::string format;
   std::vector<std::string> names;
-  std::vector<std::string> units;  // per column ("" when unknown)
-  int time_column = 0;             // -1: time from x0 + i delta (LVM X_Columns No)
+  std::vector<std::string> units;          // per column ("" when unknown)
+  std::vector<std::string> unit_problems;  // per column: why its name's unit cannot be taken ("" when it can)
+  int time_column = 0;                     // -1: time from x0 + i delta (LVM X_Columns No)
   double x0 = 0, delta = 0;
   std::vector<std::vector<std::string>> rows;
   std::vector<int> line_of;
@@ -88,7 +89,8 @@ Table read_csv(std::istream& in, const std::string& path) {
     throw InputError(path + ":1: time column '" + shown(time) + "' is in " + unit +
                      ": beamid reads the time in seconds (convert it, e.g. t_s)");
   // A unit in the name, "accel_g", "v_mm_s" or "accel (g)", is taken as the column's unit (io/units.h).
-  for (const auto& n : t.names) t.units.push_back(unit_of_column_name(n));
+  for (const auto& n : t.names)
+    t.units.push_back(unit_of_column_name(n)), t.unit_problems.push_back(column_unit_problem(n));
   int number = 1;
   while (std::getline(in, line)) {
     ++number;
@@ -290,6 +292,10 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
   s.value_column = table.names[static_cast<std::size_t>(column)];
   s.unit = table.units[static_cast<std::size_t>(column)];
+  if (o.units == "auto" && column < static_cast<int>(table.unit_problems.size()) &&
+      !table.unit_problems[static_cast<std::size_t>(column)].empty())
+    throw InputError(path + ":1: column '" + shown(s.value_column) +
+                     "': " + table.unit_problems[static_cast<std::size_t>(column)] + " (or give --units as-is)");
 
   int time_decimals = 0;  // the finest printed resolution (trailing zeros may be dropped on some lines)
   for (std::size_t r = 0; r < table.rows.size(); ++r) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <utility>
+#include <vector>
 
 namespace beamid::io {
 
@@ -38,17 +39,20 @@ std::string known_unit(std::string u, bool label) {
     for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
       u.replace(at, from.size(), to);
   }
-  static const std::array<std::pair<const char*, const char*>, 50> spellings{{
-      {"km", "km"},         {"yd", "yd"},        {"mil", "mil"},       {"mph", "mph"},       {"pm", "pm"},
-      {"inch", "in"},       {"inches", "in"},    {"feet", "ft"},       {"foot", "ft"},       {"gal", "Gal"},
-      {"g", "g"},           {"g's", "g"},        {"gs", "g"},          {"gn", "g"},          {"mg", "mg"},
-      {"m", "m"},           {"cm", "cm"},        {"mm", "mm"},         {"um", "um"},         {"nm", "nm"},
-      {"in", "in"},         {"ft", "ft"},        {"m/s", "m/s"},       {"ms^-1", "m/s"},     {"mm/s", "mm/s"},
-      {"in/s", "in/s"},     {"ips", "in/s"},     {"ft/s", "ft/s"},     {"km/h", "km/h"},     {"m/s^2", "m/s^2"},
-      {"m/s2", "m/s^2"},    {"ms^-2", "m/s^2"},  {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
-      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"}, {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},  {"v", "V"},
-      {"volt", "V"},        {"volts", "V"},      {"mv", "mV"},         {"n", "N"},           {"newton", "N"},
-      {"newtons", "N"},     {"lbf", "lbf"},      {"pa", "Pa"},         {"kn", "kN"},         {"um/s", "um/s"},
+  static const std::array<std::pair<const char*, const char*>, 61> spellings{{
+      {"meter", "m"},      {"meters", "m"},      {"metre", "m"},        {"metres", "m"},      {"micron", "um"},
+      {"microns", "um"},   {"millimeter", "mm"}, {"millimeters", "mm"}, {"millimetre", "mm"}, {"millimetres", "mm"},
+      {"mm/sec", "mm/s"},  {"km", "km"},         {"yd", "yd"},          {"mil", "mil"},       {"mph", "mph"},
+      {"pm", "pm"},        {"inch", "in"},       {"inches", "in"},      {"feet", "ft"},       {"foot", "ft"},
+      {"gal", "Gal"},      {"g", "g"},           {"g's", "g"},          {"gs", "g"},          {"gn", "g"},
+      {"mg", "mg"},        {"m", "m"},           {"cm", "cm"},          {"mm", "mm"},         {"um", "um"},
+      {"nm", "nm"},        {"in", "in"},         {"ft", "ft"},          {"m/s", "m/s"},       {"ms^-1", "m/s"},
+      {"mm/s", "mm/s"},    {"in/s", "in/s"},     {"ips", "in/s"},       {"ft/s", "ft/s"},     {"km/h", "km/h"},
+      {"m/s^2", "m/s^2"},  {"m/s2", "m/s^2"},    {"ms^-2", "m/s^2"},    {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"},
+      {"mm/s2", "mm/s^2"}, {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"},   {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},
+      {"v", "V"},          {"volt", "V"},        {"volts", "V"},        {"mv", "mV"},         {"n", "N"},
+      {"newton", "N"},     {"newtons", "N"},     {"lbf", "lbf"},        {"pa", "Pa"},         {"kn", "kN"},
+      {"um/s", "um/s"},
   }};
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
   for (const auto& [spelling, unit] : spellings)
@@ -56,13 +60,97 @@ std::string known_unit(std::string u, bool label) {
   return "";
 }
 
-// A bracketed label at the end of a name: "(g)", "[m/s^2]"; nothing when the name has none.
-std::optional<std::string> bracketed(const std::string& name) {
-  for (const auto& [open, close] : {std::pair{'(', ')'}, std::pair{'[', ']'}}) {
-    const auto o = name.rfind(open), c = name.rfind(close);
-    if (o != std::string::npos && c != std::string::npos && c > o) return name.substr(o + 1, c - o - 1);
+// Whether a label is a unit, though not one beamid converts: a time unit ("ms" in a value column was read as m/s), or
+// a motion unit with a capital M, which is mega, not milli ("Mm" was read as mm, 1e9 times off). All capitals ("MM",
+// "MM/S") are read as shouted lower case.
+bool is_unconverted_unit(const std::string& label, bool in_brackets) {
+  const std::string t = trimmed(label);
+  const bool has_lower = std::any_of(t.begin(), t.end(), [](unsigned char c) { return std::islower(c) != 0; });
+  if (t.size() > 1 && t[0] == 'M' && has_lower) {
+    const std::string base = known_unit(t.substr(1), true);
+    if (base == "m" || base == "m/s" || base == "m/s^2" || base == "g" || base == "V") return true;
   }
-  return std::nullopt;
+  const std::string l = lower(t);
+  if (l == "ms" || l == "us" || l == "msec" || l == "usec") return true;
+  if (!in_brackets) return false;  // as a suffix, "tip_s" or "x_h" is as likely a name
+  for (const char* unit : {"s",
+                           "sec",
+                           "min",
+                           "h",
+                           "hz",
+                           "khz",
+                           "rad",
+                           "deg",
+                           "degc",
+                           "degf",
+                           "k",
+                           "kg",
+                           "g/cm3",
+                           "lb",
+                           "psi",
+                           "kpa",
+                           "mpa",
+                           "bar",
+                           "a",
+                           "ma",
+                           "w",
+                           "j",
+                           "nm/rad",
+                           "rpm",
+                           "%",
+                           "db",
+                           "ohm",
+                           "ue",
+                           "\xc2\xb5\xce\xb5",
+                           "strain",
+                           "mile",
+                           "miles",
+                           "furlong",
+                           "fathom"})
+    if (l == unit) return true;
+  return false;
+}
+
+// The bracketed labels of a name, last first: "(g)", "[m/s^2]". An opening bracket with no closing one after it is
+// returned in `unclosed`.
+std::vector<std::string> bracketed_labels(const std::string& name, std::string* unclosed = nullptr) {
+  std::vector<std::string> labels;
+  std::size_t end = name.size();
+  while (end > 0) {
+    const auto o = name.find_last_of("([", end - 1);
+    if (o == std::string::npos) break;
+    const char close = name[o] == '(' ? ')' : ']';
+    const auto c = name.find(close, o);
+    if (c == std::string::npos || c >= end) {
+      if (unclosed && unclosed->empty()) *unclosed = name.substr(o);
+    } else {
+      labels.push_back(name.substr(o + 1, c - o - 1));
+    }
+    end = o;
+  }
+  return labels;
+}
+
+// A bracketed label as a unit: known, a unit expression ('/' or '^'), or a unit beamid does not convert, kept as
+// stated so that it is refused rather than read as SI; "" for a remark ("accel (tip)").
+std::string unit_of_label(const std::string& label) {
+  const std::string unit = is_unconverted_unit(label, true) ? "" : known_unit(label, true);
+  if (!unit.empty()) return unit;
+  if (is_unconverted_unit(label, true) || label.find_first_of("/^") != std::string::npos) return trimmed(label);
+  return "";
+}
+
+// The unit a name's suffix states ("acc_m_s2" m/s^2, "v_mm_s" mm/s), the longest that spells one, and the position
+// of the separator before it; a unit beamid does not convert ("ux_ms", "x_Mm") is returned as written.
+std::pair<std::string, std::size_t> suffix_unit(const std::string& name) {
+  const std::string n = lower(name);
+  for (std::size_t at = 0; (at = n.find('_', at)) != std::string::npos; ++at) {
+    if (is_unconverted_unit(name.substr(at + 1), false)) return {name.substr(at + 1), at};
+    std::string suffix = n.substr(at + 1);
+    std::replace(suffix.begin(), suffix.end(), '_', '/');  // m_s2 -> m/s2, mm_s -> mm/s, in_s -> in/s
+    if (const std::string unit = known_unit(suffix, false); !unit.empty()) return {unit, at};
+  }
+  return {"", std::string::npos};
 }
 
 }  // namespace
@@ -74,26 +162,42 @@ std::string normalized_unit(std::string_view label) {
 
 std::string unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
-  if (const auto label = bracketed(name)) {
-    // A bracket may hold a unit or a remark ("accel (tip)"); one that is written as a unit expression ('/' or '^')
-    // is kept as stated even when beamid does not know it, so that it is refused rather than read as SI.
-    const std::string unit = known_unit(*label, true);
-    if (unit.empty() && label->find_first_of("/^") != std::string::npos) return trimmed(*label);
-    return unit;
+  if (const auto labels = bracketed_labels(name); !labels.empty()) return unit_of_label(labels.front());
+  return suffix_unit(name).first;
+}
+
+std::string column_unit_problem(std::string_view column) {
+  const std::string name = trimmed(column);
+  std::string unclosed;
+  const auto labels = bracketed_labels(name, &unclosed);
+  if (!unclosed.empty())
+    return "'" + unclosed + "' opens a bracket that does not close: write the unit as 'name (unit)'";
+  // Every unit the name states, bracketed or as a suffix of the name before the first bracket.
+  std::vector<std::string> units;
+  for (const auto& label : labels)
+    if (const std::string unit = unit_of_label(label); !unit.empty()) units.push_back(unit);
+  const std::string stem = name.substr(0, std::min(name.find_first_of("(["), name.size()));
+  auto [unit, at] = suffix_unit(trimmed(stem));
+  if (!unit.empty()) units.push_back(unit);
+  // "x_mm_um": a known unit between the name and its suffix unit.
+  const std::string before = at == std::string::npos ? "" : lower(trimmed(stem)).substr(0, at);
+  if (const auto sep = before.find('_'); sep != std::string::npos) {
+    for (std::size_t from = sep; from != std::string::npos;) {
+      const auto next = before.find('_', from + 1);
+      const std::string token =
+          before.substr(from + 1, next == std::string::npos ? std::string::npos : next - from - 1);
+      if (const std::string u = known_unit(token, false); !u.empty()) units.push_back(u);
+      from = next;
+    }
   }
-  // A suffix after a separator, the longest that spells a unit: "acc_m_s2" is m/s^2 before s2 or m, "v_mm_s" mm/s.
-  const std::string n = lower(name);
-  for (std::size_t at = 0; (at = n.find('_', at)) != std::string::npos; ++at) {
-    std::string suffix = n.substr(at + 1);
-    std::replace(suffix.begin(), suffix.end(), '_', '/');  // m_s2 -> m/s2, mm_s -> mm/s, in_s -> in/s
-    if (const std::string unit = known_unit(suffix, false); !unit.empty()) return unit;
-  }
+  for (const auto& u : units)
+    if (u != units.front()) return "it states two units, " + units.front() + " and " + u + ": name the column with one";
   return "";
 }
 
 std::string time_unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
-  if (const auto inside = bracketed(name)) return time_unit_of_label(*inside);
+  if (const auto labels = bracketed_labels(name); !labels.empty()) return time_unit_of_label(labels.front());
   if (const auto at = name.rfind('_'); at != std::string::npos) return time_unit_of_label(name.substr(at + 1));
   return "";
 }

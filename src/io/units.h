@@ -19,6 +19,9 @@ std::string normalized_unit(std::string_view label);
 // the last separator ("accel_g", "v_mm_s", "acc_m_s2", "acc_m_s^2", "x_cm", "vel_ips", "ch0_V"); "" when it states
 // none.
 std::string unit_of_column_name(std::string_view name);
+// Why a column name's unit cannot be taken as stated: a bracket that does not close ("v (mm/s"), or two units that
+// differ ("x (mm) (um)", "x_mm_um", "x_mm (um)"); "" when it can.
+std::string column_unit_problem(std::string_view name);
 // The unit a time column's name states in the same ways ("t_s", "t_ms", "Time [ms]", "time_msec", "T (mS)"): s, ms,
 // us, ns, min or h; "" when it states none.
 std::string time_unit_of_column_name(std::string_view name);

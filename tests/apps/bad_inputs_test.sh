@@ -65,6 +65,12 @@ expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..100
 expect_error "data /dev/zero" "not a regular file" spikes --data /dev/zero
 expect_error "beam /dev/zero" "(not a regular file)" modes --beam /dev/zero --elements 4
 expect_error "data folder" "is a folder" spikes --data "$tmp"
+# Column names whose unit cannot be taken as stated (the fifth pass, adv33 #2): mega is not milli, a bracket that does
+# not close, two units.
+for label in 'x (Mm)' 'v (mm/s' 'x_mm_um'; do
+  { printf 't_s,%s\n' "$label"; tail -n +2 "$tmp/z.csv" | cut -d, -f1,2; } >"$tmp/unit.csv"
+  expect_error "column '$label'" "$label" spikes --data "$tmp/unit.csv"
+done
 head -c 4096 /dev/urandom >"$tmp/random.csv"
 printf '\001' >>"$tmp/random.csv"
 expect_error "random bytes" "a binary file of no format beamid reads" spikes --data "$tmp/random.csv"

@@ -81,6 +81,26 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_DOUBLE_EQ(si_conversion(unit_of_column_name("x (yd)"))->factor, 0.9144);
   EXPECT_EQ(si_conversion(unit_of_column_name("a (Gal)"))->unit, "m/s^2");
   EXPECT_TRUE(is_known_unit("m/s^2") && is_known_unit("mm") && is_known_unit("V"));
+  // The fifth pass's (adv33 #2): a capital M is mega, not milli ("x (Mm)" was read as mm, 1e9 times off), a time
+  // unit in a value column is no motion ("v (ms)" was read as m/s), and both are kept as stated so that they are
+  // refused; shouted capitals and spelled-out words still read.
+  EXPECT_EQ(unit_of_column_name("x (Mm)"), "Mm");
+  EXPECT_EQ(unit_of_column_name("x_Mm"), "Mm");
+  EXPECT_EQ(unit_of_column_name("v (ms)"), "ms");
+  EXPECT_EQ(unit_of_column_name("ux_ms"), "ms");
+  EXPECT_EQ(unit_of_column_name("v (furlong)"), "furlong");
+  EXPECT_FALSE(is_known_unit("Mm") || is_known_unit("ms") || is_known_unit("furlong"));
+  EXPECT_EQ(unit_of_column_name("X (MM)"), "mm");
+  EXPECT_EQ(unit_of_column_name("x (millimetres)"), "mm");
+  EXPECT_EQ(unit_of_column_name("x (Meters)"), "m");
+  EXPECT_EQ(unit_of_column_name("v (Mph)"), "mph");
+  // Names whose unit cannot be taken as stated: an unclosed bracket, two units that differ.
+  EXPECT_NE(column_unit_problem("v (mm/s"), "");
+  EXPECT_NE(column_unit_problem("x (mm) (um)"), "");
+  EXPECT_NE(column_unit_problem("x_mm_um"), "");
+  EXPECT_NE(column_unit_problem("x_mm (um)"), "");
+  for (const char* fine : {"x (mm)", "acc_m_s2", "v_mm_s", "accel (tip) (g)", "tip_mm_s", "sensor", "x (mm) [tip]"})
+    EXPECT_EQ(column_unit_problem(fine), "") << fine;
 }
 
 TEST(Units, ARecordInMillimetresPerSecondIsReadInMetresPerSecond) {
