@@ -310,7 +310,8 @@ def crb(**flags) -> "CramerRao":
 
 def modal_id(data, time=None, **flags) -> np.ndarray:
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
-    damping_ratio, amplitude, phase_rad)."""
+    damping_ratio, amplitude, phase_rad). What the modes do not say (fewer found than asked, a pole more likely the
+    excitation, a growing oscillation) is a warning, as the command's stderr."""
     array, f = _record_flags(data, flags)
     r = _call(_core.modal_id, _arguments(f), array, time)
     fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad"]
@@ -318,6 +319,8 @@ def modal_id(data, time=None, **flags) -> np.ndarray:
     table["mode"] = np.arange(1, len(table) + 1)
     for name in fields:
         table[name] = r[name]
+    for note in r["notes"]:
+        warnings.warn("beamid modal-id: " + note, stacklevel=3)
     return table
 
 

@@ -381,6 +381,7 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   d["damping_ratio"] = copied_array(zeta);
   d["amplitude"] = copied_array(amplitude);
   d["phase_rad"] = copied_array(phase);
+  d["notes"] = r.notes;
   return d;
 }
 

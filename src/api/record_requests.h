@@ -57,7 +57,13 @@ struct ModalIdRequest {
 struct ModalIdResult {
   signal::PencilOptions options;
   std::vector<signal::IdentifiedMode> modes;
+  // What the modes do not say: fewer than K found, a pole more likely the excitation than a mode, a growing
+  // oscillation (no mode of a stable beam), one line each without the command's name.
+  std::vector<std::string> notes;
 };
 ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeries& data);
+// The notes of ModalIdResult for the modes the pencil reported and what else it found.
+std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
+                                        const signal::PencilDiagnostics& found, const signal::PencilOptions& options);
 
 }  // namespace beamid::api

@@ -41,18 +41,7 @@ int run_modal_id(const Flags& a, std::ostream& out) {
     io::write_row(csv, {modes[k].frequency_hz, modes[k].damping_ratio, modes[k].amplitude, modes[k].phase_rad});
   }
   out << csv.str();
-  if (static_cast<int>(modes.size()) < o.modes)
-    std::cerr << "beamid modal-id: --modes " << o.modes << ": the record shows only " << modes.size()
-              << " decaying oscillation(s) in the band: " << modes.size() << " printed\n";
-  // A record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for. Said, not
-  // dropped: a heavily damped structure exists, and the user decides.
-  for (const signal::IdentifiedMode& m : modes)
-    if (m.damping_ratio > signal::kHeavilyDampedRatio)
-      std::cerr
-          << "beamid modal-id: the pole at " << format_value(m.frequency_hz) << " Hz has damping ratio "
-          << format_value(m.damping_ratio) << " (> " << signal::kHeavilyDampedRatio
-          << "): more likely the excitation or noise than a mode of the beam; cut the record after the excitation "
-             "(--start) or lower --order\n";
+  for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()
             << " samples at dt = " << data.dt_s << " s; matrix pencil, model order "
             << (o.order > 0 ? o.order : 2 * o.modes + 8) << "\n";

@@ -10,7 +10,8 @@
 
 namespace beamid::signal {
 
-std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o) {
+std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o,
+                                          PencilDiagnostics* diagnostics) {
   const int n = static_cast<int>(y.size());
   if (o.modes < 1) throw InputError("modes = " + std::to_string(o.modes) + ": must be >= 1");
   if (!(dt_s > 0) || !std::isfinite(dt_s)) throw InputError("dt = " + format_value(dt_s) + ": must be > 0");
@@ -82,9 +83,15 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   // at this rate, and was listed as the strongest "mode" at 505-989 Hz of a 1 kHz record.
   const double nyquist_hz = 0.5 / dt_s;
 
+  double largest = 0;
+  for (double v : y) largest = std::max(largest, std::abs(v));
+  PencilDiagnostics unused;
+  PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
+  d = {};
+
   std::vector<IdentifiedMode> modes;
   for (int k = 0; k < order; ++k) {
-    if (!(z(k).imag() > 0) || !(std::abs(z(k)) < 1)) continue;  // one of each pair; decaying only
+    if (!(z(k).imag() > 0) || !std::isfinite(std::abs(z(k))) || std::abs(z(k)) == 1) continue;  // one of each pair
     IdentifiedMode m;
     m.lambda = std::log(z(k)) / dt_s;
     const double magnitude = std::abs(m.lambda);
@@ -92,9 +99,14 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     if (m.frequency_hz < o.min_frequency_hz || m.frequency_hz > o.max_frequency_hz || m.frequency_hz >= nyquist_hz)
       continue;
     m.damping_ratio = -m.lambda.real() / magnitude;
+    // The amplitude at the pole's anchor: the start for a decaying pole, the end for a growing one (its largest).
     m.amplitude = 2 * std::abs(c(k));
     m.phase_rad = std::arg(c(k));
-    modes.push_back(m);
+    if (m.amplitude <= kNegligibleAmplitude * largest) {
+      d.negligible += std::abs(z(k)) < 1;
+      continue;
+    }
+    (std::abs(z(k)) < 1 ? modes : d.growing).push_back(m);
   }
   // The K strongest, then by frequency. The strength is the mode's energy over the record, |c|^2 sum |z|^2i, so that
   // a heavily damped spurious pole with a large initial amplitude does not outrank a lasting mode.

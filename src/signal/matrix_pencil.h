@@ -47,8 +47,22 @@ struct IdentifiedMode {
   std::complex<double> lambda;  // rad/s, Im > 0
 };
 
+// An identified pole whose amplitude is below this fraction of the record's largest |y| is rounding, not a mode: no
+// recorder resolves it (a 24-bit converter resolves 1.2e-7 of its full scale), and the amplitudes' least squares
+// leaves ~1e-13 of it in poles that fit nothing (a noise-free record of one mode gave "modes" of amplitude 1e-17).
+inline constexpr double kNegligibleAmplitude = 1e-9;
+
+// What the pencil found besides the modes it reports.
+struct PencilDiagnostics {
+  std::vector<IdentifiedMode> growing;  // oscillatory poles in the band that grow (damping ratio < 0), not negligible
+  int negligible = 0;                   // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
+};
+
 // The modes of the record y sampled at dt_s, sorted by frequency (fewer than K when fewer decaying oscillatory poles
-// lie in the band). InputError for options or a record that cannot support them (too short for M, non-finite).
-std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& options);
+// of more than negligible amplitude lie in the band). A growing oscillation is no mode of a stable beam and is not
+// reported as one; `diagnostics`, when given, lists it. InputError for options or a record that cannot support them
+// (too short for M, non-finite).
+std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& options,
+                                          PencilDiagnostics* diagnostics = nullptr);
 
 }  // namespace beamid::signal

@@ -77,6 +77,27 @@ TEST(MatrixPencil, GrowingPolesAtAHighOrderLeaveTheAmplitudesFinite) {
   }
 }
 
+TEST(MatrixPencil, AGrowingOscillationIsNamedAndRoundingPolesAreNoModes) {
+  // The fourth pass's Q278: a 50 Hz oscillation growing as e^{+0.31 t} and nothing else came out as three "modes" of
+  // amplitude 1e-17 to 3e-17 at 88-298 Hz, the oscillation itself unlisted. It is no mode (a negative damping ratio)
+  // and is listed as growing; the rounding poles, far below kNegligibleAmplitude of the record, are no modes.
+  // Tolerances: a noise-free record of one exponential pair is recovered to round-off (1e-9 as above).
+  const std::vector<Tone> growing = {{50, -0.31 / (2 * std::numbers::pi * 50), 1e-3, 0.4}};
+  PencilOptions o;
+  o.modes = 3;
+  PencilDiagnostics found;
+  EXPECT_TRUE(matrix_pencil(record(growing, 1e-3, 4096), 1e-3, o, &found).empty());
+  ASSERT_EQ(found.growing.size(), 1u);
+  EXPECT_NEAR(found.growing[0].frequency_hz, 50, 50 * 1e-9);
+  EXPECT_NEAR(found.growing[0].damping_ratio, growing[0].damping_ratio, 1e-9);
+  EXPECT_GT(found.negligible, 0);
+  // One decaying mode asked for as three: one mode, the rest counted as rounding.
+  const auto one = matrix_pencil(record({{80, 0.002, 0.5, 0.0}}, 1e-3, 4096), 1e-3, o, &found);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].amplitude, 0.5, 1e-9);
+  EXPECT_TRUE(found.growing.empty());
+}
+
 TEST(MatrixPencil, RecoversTheBeamsOwnDampedEigenvalues) {
   // An exact record of the thin beam at N = 8 (velocity, after a 4 ms pulse): from t = 20 ms on it is a free decay,
   // a sum of the model's damped modes. With M = 60 every mode still visible is kept, so modes 1-3 come out as the
