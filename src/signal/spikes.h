@@ -68,11 +68,12 @@ std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeO
 //   "side lobe of F Hz":       2-10 bins from a stronger peak F and below 1.5 |Z(F)| / (pi |k - k_F|), the
 //                              rectangular window's leakage envelope;
 //   "harmonic n of F Hz":      at n F for any n >= 2 below Nyquist, F a stronger peak not itself skipped, decaying at
-//                              n sigma_F within a factor 2 (a nonlinearity, a clipped or rattling sensor; a beam's own
-//                              modes are not integer multiples, and a mode near one decays at its own rate), and only
-//                              where a chance coincidence is unlikely (2 x the tolerance below 5 % of F);
-//   "sideband F1 +- F2 Hz":    at F1 + F2 or F1 - F2 for stronger peaks F1 > F2, decaying at sigma_1 + sigma_2 within a
-//                              factor 2 (modulation, beating);
+//                              n sigma_F within 25 % or three sd of the rates' estimates (a nonlinearity, a clipped or
+//                              rattling sensor; a beam's own modes are not integer multiples, and a mode near one
+//                              decays at its own rate), and only where a chance coincidence is unlikely (2 x the
+//                              tolerance below 5 % of F);
+//   "sideband F1 +- F2 Hz":    at F1 + F2 or F1 - F2 for stronger peaks F1 > F2, decaying at sigma_1 + sigma_2 within
+//                              the same tolerance (modulation, beating);
 //   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).
 // A rate that cannot be estimated (a flat top) leaves the frequency test alone.
 // The picks are the first `count` candidates not skipped. Chosen frequencies (frequencies_hz) are never skipped.
