@@ -212,33 +212,47 @@ Table read_lvm(std::istream& in, const std::string& path) {
 }
 
 // An LVM with an X column and a header Delta_X: the two must agree to 1 % (a Delta_X of 0.002 beside a column stepping
-// 0.001 was settled silently in the column's favour: the second pass's N080). Delta_X itself is printed to a few
-// digits (the steel record's 0.000605 is 0.075 % below its column's step, 0.00060545), so the column's mean step,
-// (t_last - t_0)/(n - 1), is the record's. Where the column is printed too coarsely to resolve single steps (3
-// decimals at 0.6 ms: "repeats the previous sample's time", N079) the time base is t_0 + i (that mean step), once
-// every printed time agrees with it to its printed resolution; the notes say so.
+// 0.001 was settled silently in the column's favour: the second pass's N080). Where the column resolves single steps
+// it is the record's time base, checked as any column (Delta_X itself is printed to a few digits: the steel record's
+// 0.000605 is 0.075 % below its column's step, 0.00060545). Where it is printed too coarsely to (3 decimals at
+// 0.6 ms: "repeats the previous sample's time", N079) the time base is t_0 + i step with the header's Delta_X, the
+// sampling interval the DAQ states, when every printed time agrees with it to its printed resolution (a column
+// rounded to 10 ms beside Delta_X = 0.001 gave the column's mean step, 0.3 % off, and every frequency with it: the
+// fourth pass's Q214); else with the column's mean step (t_last - t_0)/(n - 1) when every printed time agrees with
+// that; else the record is refused on the first line that agrees with neither. The notes say which step was used.
 void use_mean_step_when_coarse(Samples& out, const Table& table, const std::string& path, int time_decimals) {
   const double delta = table.delta, t0 = out.t.front(), resolution = out.time_resolution;
   const double n = static_cast<double>(out.t.size());
-  const double step = (out.t.back() - t0) / (n - 1);
-  if (!(std::abs(step - delta) <= 1e-2 * delta))
-    throw InputError(path + ":" + std::to_string(table.line_of.back()) + ": the X column steps " + format_value(step) +
-                     " s on average but the header's Delta_X is " + format_value(delta) +
+  const double mean_step = (out.t.back() - t0) / (n - 1);
+  if (!(std::abs(mean_step - delta) <= 1e-2 * delta))
+    throw InputError(path + ":" + std::to_string(table.line_of.back()) + ": the X column steps " +
+                     format_value(mean_step) + " s on average but the header's Delta_X is " + format_value(delta) +
                      " s: the header and the data disagree (which one is the record's?)");
-  if (resolution <= 0.5 * step) return;  // the column resolves its steps: they are checked as any column's
-  for (std::size_t i = 0; i < out.t.size(); ++i)
-    if (std::abs(out.t[i] - (t0 + static_cast<double>(i) * step)) > resolution * (1 + 1e-9))
-      throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": X = " + format_value(out.t[i]) +
-                       " s is more than its printed resolution " + format_value(resolution) +
-                       " s from a uniform time base of step " + format_value(step) +
-                       " s: the record is not uniformly sampled, or a sample is missing");
+  if (resolution <= 0.5 * mean_step) return;  // the column resolves its steps: they are checked as any column's
+  // The first sample whose printed time is more than its resolution from t_0 + i step (n when none is).
+  const auto first_off = [&](double step) {
+    std::size_t i = 0;
+    while (i < out.t.size() && std::abs(out.t[i] - (t0 + static_cast<double>(i) * step)) <= resolution * (1 + 1e-9))
+      ++i;
+    return i;
+  };
+  const bool header = first_off(delta) == out.t.size();
+  const double step = header ? delta : mean_step;
+  if (const std::size_t i = first_off(step); i < out.t.size())
+    throw InputError(path + ":" + std::to_string(table.line_of[i]) + ": X = " + format_value(out.t[i]) +
+                     " s is more than its printed resolution " + format_value(resolution) +
+                     " s from a uniform time base of step " + format_value(step) +
+                     " s (the X column's mean; Delta_X = " + format_value(delta) +
+                     " agrees with it no better): the record is not uniformly sampled, or a sample is missing");
   for (std::size_t i = 0; i < out.t.size(); ++i) out.t[i] = t0 + static_cast<double>(i) * step;
   out.time_in_file = false;
   out.time_resolution = 0;
-  out.series.notes += "uniform time base of step " + format_value(step) + " s from the X column's ends (printed to " +
-                      std::to_string(time_decimals) +
-                      " decimals, it does not resolve single steps; Delta_X = " + format_value(delta) +
-                      " s agrees to 1 %); ";
+  out.series.notes += "uniform time base of step " + format_value(step) + " s, " +
+                      (header ? std::string("the header's Delta_X, which every printed time agrees with")
+                              : "the X column's mean step from its ends (Delta_X = " + format_value(delta) +
+                                    " s agrees to 1 %, but not with every printed time)") +
+                      "; the X column, printed to " + std::to_string(time_decimals) +
+                      " decimals, does not resolve single steps; ";
 }
 
 double parse(const std::string& path, int line, const std::string& column, const std::string& text) {
