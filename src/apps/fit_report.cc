@@ -28,6 +28,24 @@ std::string g(double v, int digits = 6) {
 
 }  // namespace
 
+std::vector<int> pair_modes(const std::vector<double>& data_hz, const std::vector<double>& model_hz) {
+  // One model mode to one data mode, the closest pairs (relative frequency) first: a data pole of zeta 73 % was
+  // paired with model mode 2 already paired (the third pass's P290). And only within kModePairingWindow: a 5.8 Hz
+  // noise pole was shown as the model's 2.46 Hz mode (the fourth pass's Q335); at an estimate a mode the data and the
+  // model share agrees far closer.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;  // (|f_m / f_d - 1|, data, model)
+  for (std::size_t i = 0; i < data_hz.size(); ++i)
+    for (std::size_t j = 0; j < model_hz.size(); ++j)
+      candidates.emplace_back(std::abs(model_hz[j] / data_hz[i] - 1), i, j);
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<int> partner(data_hz.size(), -1);
+  std::vector<bool> taken(model_hz.size(), false);
+  for (const auto& [distance, i, j] : candidates)
+    if (distance <= kModePairingWindow && partner[i] < 0 && !taken[j])
+      partner[i] = static_cast<int>(j), taken[j] = true;
+  return partner;
+}
+
 ModeComparison compare_modes(const FitReportInput& in) {
   ModeComparison c;
   const auto& o = in.options;
@@ -58,20 +76,14 @@ ModeComparison compare_modes(const FitReportInput& in) {
     const std::vector<signal::IdentifiedMode> identified =
         wanted.empty() ? signal::matrix_pencil(decay, in.data.dt_s, p)
                        : signal::modes_near(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
-    // One model mode to one data mode, the closest pairs (relative frequency) first: a data pole of zeta 73 % was
-    // paired with model mode 2 already paired (the third pass's P290); such heavily damped poles are left out.
+    // Heavily damped poles are left out (the third pass's P290: a data pole of zeta 73 %).
     std::vector<signal::IdentifiedMode> kept;
     for (const auto& m : identified)
       if (m.damping_ratio <= signal::kHeavilyDampedRatio) kept.push_back(m);
-    std::vector<std::tuple<double, std::size_t, std::size_t>> candidates;  // (|f_u / f_m - 1|, data, model)
-    for (std::size_t i = 0; i < kept.size(); ++i)
-      for (std::size_t j = 0; j < model.size(); ++j)
-        candidates.emplace_back(std::abs(model[j].frequency_hz / kept[i].frequency_hz - 1), i, j);
-    std::sort(candidates.begin(), candidates.end());
-    std::vector<int> partner(kept.size(), -1);
-    std::vector<bool> taken(model.size(), false);
-    for (const auto& [distance, i, j] : candidates)
-      if (partner[i] < 0 && !taken[j]) partner[i] = static_cast<int>(j), taken[j] = true;
+    std::vector<double> data_hz, model_hz;
+    for (const auto& m : kept) data_hz.push_back(m.frequency_hz);
+    for (const auto& m : model) model_hz.push_back(m.frequency_hz);
+    const std::vector<int> partner = pair_modes(data_hz, model_hz);
     for (std::size_t i = 0; i < kept.size(); ++i) {
       ModePair pair{kept[i].frequency_hz, kept[i].damping_ratio, std::nan(""), std::nan("")};
       if (partner[i] >= 0) {

@@ -35,6 +35,10 @@ struct ModeComparison {
 };
 // K = the cost's spike count (at most 8) modes in the cost's frequency band.
 ModeComparison compare_modes(const FitReportInput& input);
+// The model mode each data mode pairs with (-1: none): one to one, closest relative frequency first, and only within
+// kModePairingWindow of each other.
+inline constexpr double kModePairingWindow = 0.2;
+std::vector<int> pair_modes(const std::vector<double>& data_hz, const std::vector<double>& model_hz);
 // One line for stderr: "modes at the estimate (data | model): 2.4637 | 2.4637 Hz, zeta 0.0809 | 0.0809 %; ...".
 std::string modes_line(const ModeComparison& comparison);
 

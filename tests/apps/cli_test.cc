@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/fit_report.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
 
@@ -121,6 +122,16 @@ TEST(CommandLine, SystemPrintsTheAssembledMatricesExactly) {
   ASSERT_EQ(load.size(), 10u);
   EXPECT_EQ(load[3], 2.0 / 3.0);
   EXPECT_EQ(load[5], 0.0);
+}
+
+TEST(FitReport, ModesPairOneToOneAndOnlyWithinTwentyPercent) {
+  // The fourth pass's Q335: a 5.82 Hz noise pole was shown beside the model's 2.46 Hz mode. Data modes 5.82, 26.62,
+  // 85.63 Hz against model modes 2.46, 26.62, 85.64 Hz: the last two pair, the noise pole does not (58 % away).
+  EXPECT_EQ(pair_modes({5.82, 26.62, 85.63}, {2.46, 26.62, 85.64}), (std::vector<int>{-1, 1, 2}));
+  // Two data modes near one model mode: the closer takes it, the other stays unpaired (no model mode twice).
+  EXPECT_EQ(pair_modes({26.0, 26.6}, {26.62}), (std::vector<int>{-1, 0}));
+  // 19 % apart still pairs (a poor estimate's mode is still that mode).
+  EXPECT_EQ(pair_modes({10.0}, {11.9}), (std::vector<int>{0}));
 }
 
 }  // namespace
