@@ -307,7 +307,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   py::list messages;
   const api::FitNotes notes = api::fit_notes(r, &channels.front().values, c->options.cost.name);
   for (const std::string& note : notes.lines()) messages.append(note);
-  if (r.final_evaluation.a4 != "ok") messages.append(r.final_evaluation.a4);
+  if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   d["messages"] = messages;
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;

@@ -240,7 +240,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&on_bound, &explains_nothing, &no_errors, &failed, &identifiability})
+  for (const std::string* note : {&on_bound, &explains_nothing, &pairing, &no_errors, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -251,7 +251,7 @@ namespace {
 // record 102 times the model (milli-g read as m/s^2) was 2 % explained and a record 30 times it 6.6 %, both in
 // silence, where only 1 % was said (the fourth pass's Q252, Q257). Said, not refused: a very noisy record is data.
 constexpr double kLeastExplainedFraction = 0.5;
-}
+}  // namespace
 
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record, const std::string& cost) {
   FitNotes notes;
@@ -276,6 +276,15 @@ FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* reco
       notes.explains_nothing = line.str();
     }
   }
+  // (A4) at the estimate: two data spikes or modes pair with one of the model's, so the cost jumped where the
+  // pairing changed and the estimate is no minimum of a smooth cost (the modal cost with --spikes 10 on a record of
+  // fewer resolvable modes ended with every mode 8 % high and only a tag at the end of the summary: the fourth
+  // pass's Q140).
+  if (result.status != "failed" && !result.final_evaluation.a4.empty() && result.final_evaluation.a4 != "ok")
+    notes.pairing = "the estimate is not reliable: " + result.final_evaluation.a4 +
+                    " at the estimate, where the cost is not smooth (its pairing of data and model is ambiguous); ask "
+                    "for fewer (--spikes) or name "
+                    "them (--spike-frequencies)";
   std::string at_bound;
   for (const fit::ParameterEstimate& p : result.parameters)
     if (p.status == fit::kAtLowerBound || p.status == fit::kAtUpperBound)

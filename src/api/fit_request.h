@@ -81,10 +81,11 @@ struct FitNotes {
   std::string on_bound, failed, identifiability;
   std::string explains_nothing;  // a least-squares fit no better than a zero model (given the record and the cost)
   std::string no_errors;         // no degrees of freedom: the standard errors are not defined
+  std::string pairing;           // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };
-// With the record and the cost's name, a one-record least-squares fit that explains less than 1 % of the record's
+// With the record and the cost's name, a one-record least-squares fit that explains less than half of the record's
 // sum of squares (or none of it) is said to (a fit of white noise, of another beam's record, or of a record in counts
 // reported precise "free" estimates with exit 0).
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record = nullptr,

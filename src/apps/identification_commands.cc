@@ -193,6 +193,7 @@ int run_fit(const Flags& a, std::ostream& out) {
             << ": " << result.status << " (" << result.termination << "), cost " << result.cost << ", "
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
+  if (!notes.pairing.empty()) std::cerr << "beamid fit: " << notes.pairing << "\n";
   if (!notes.identifiability.empty()) std::cerr << "beamid fit: " << notes.identifiability << "\n";
   if (result.records.size() > 1)
     for (std::size_t k = 0; k < result.records.size(); ++k) {

@@ -10,6 +10,34 @@
 
 namespace beamid::signal {
 
+namespace {
+
+// The amplitudes c_k of all M exponentials z_k by least squares on the whole record y (a complex Vandermonde system).
+Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>& y, int order) {
+  const int n = static_cast<int>(y.size());
+  // A growing pole (|z| > 1, noise or an unmodelled transient at a high order) is anchored at the record's end,
+  // column z^(i - n + 1), so that no entry exceeds 1 in modulus: anchored at the start, 1.5^307 overflowed to inf and
+  // the QR returned zeros for every amplitude. Decaying poles keep the start.
+  Eigen::MatrixXcd vandermonde(n, order);
+  for (int k = 0; k < order; ++k) {
+    const bool growing = std::abs(z(k)) > 1;
+    const std::complex<double> ratio = growing ? 1.0 / z(k) : z(k);
+    std::complex<double> power = 1.0;
+    for (int j = 0; j < n; ++j) {
+      vandermonde(growing ? n - 1 - j : j, k) = power;
+      power *= ratio;
+    }
+  }
+  const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(
+      Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
+  if (!c.allFinite())
+    throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
+                         std::to_string(order) + "): try a lower --order");
+  return c;
+}
+
+}  // namespace
+
 std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o,
                                           PencilDiagnostics* diagnostics) {
   const int n = static_cast<int>(y.size());
@@ -59,25 +87,7 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
   const Eigen::VectorXcd z = eig.eigenvalues();
 
-  // Amplitudes of all M exponentials by least squares on the whole record (complex Vandermonde system). A growing
-  // pole (|z| > 1, noise or an unmodelled transient at a high order) is anchored at the record's end, column
-  // z^(i - n + 1), so that no entry exceeds 1 in modulus: anchored at the start, 1.5^307 overflowed to inf and the
-  // QR returned zeros for every amplitude. Only decaying poles' amplitudes are reported, and those keep the start.
-  Eigen::MatrixXcd vandermonde(n, order);
-  for (int k = 0; k < order; ++k) {
-    const bool growing = std::abs(z(k)) > 1;
-    const std::complex<double> ratio = growing ? 1.0 / z(k) : z(k);
-    std::complex<double> power = 1.0;
-    for (int j = 0; j < n; ++j) {
-      vandermonde(growing ? n - 1 - j : j, k) = power;
-      power *= ratio;
-    }
-  }
-  const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(
-      Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
-  if (!c.allFinite())
-    throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
-                         std::to_string(order) + "): try a lower --order");
+  const Eigen::VectorXcd c = amplitudes(z, y, order);
   // A pole is a mode of the sampled record only if its natural frequency |lambda| / 2 pi is below the Nyquist
   // frequency: a heavily damped pole beyond it (at a high order, fitting the pulse) is not resolvable from samples
   // at this rate, and was listed as the strongest "mode" at 505-989 Hz of a 1 kHz record.
