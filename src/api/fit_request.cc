@@ -19,6 +19,7 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
   for (const std::string& key : request.estimate) listed += (listed.empty() ? "" : ",") + key;
   std::map<std::string, std::pair<double, double>> explicit_bounds = request.bounds;
   std::vector<fit::EstimatedParameter> estimate;
+  bool factor_read = false;
   for (const std::string& key : request.estimate) {
     if (!model::describe_parameter(nominal, key))
       refuse(request.caller, "estimate", listed,
@@ -32,8 +33,13 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
     if (!(v > 0))
       refuse(request.caller, "--estimate " + key + ": the --beam value is " + format_value(v) +
                                  ", so --bound-factor gives no range: give --bounds " + key + "=LO:HI");
-    estimate.push_back(fit::bounds_around(key, v, request.bound_factor));
+    estimate.push_back(fit::bounds_around(key, v, request.bound_factor.value_or(kDefaultBoundFactor)));
+    factor_read = true;
   }
+  // A bound factor that no estimated key takes (--bounds gives every one) is read by nothing (the fourth pass's Q110).
+  if (request.bound_factor && !factor_read)
+    refuse(request.caller, "bound-factor", format_value(*request.bound_factor),
+           "sets the bounds of estimated keys --bounds leaves out; --bounds gives every one");
   if (!explicit_bounds.empty())
     refuse(request.caller, "--bounds names '" + explicit_bounds.begin()->first + "', which is not in --estimate");
   return estimate;
@@ -154,6 +160,12 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (request.integrator && o.experiment.excitation == simulation::kFreeDecay)
     refuse(caller, "integrator", *request.integrator,
            "applies to --excitation pulse or pluck; a free decay is computed from the model's modes in closed form");
+  // A free decay's modal amplitudes are solved against the record already (simulation/free_decay.h): a free scale on
+  // top changes nothing (the output was byte-identical with and without: the fourth pass's Q116).
+  if (request.cost.unknown_amplitude && o.experiment.excitation == simulation::kFreeDecay)
+    refuse(caller,
+           "--unknown-amplitude frees the excitation's amplitude; a free decay has none, and its modal amplitudes are "
+           "solved against the record already");
   // A hybrid fit's refinement reads the same request's options (its window, its spikes).
   o.cost = cost_options(request.cost, caller,
                         request.strategy == fit::kHybrid ? std::vector<std::string>{request.refine.value_or(o.refine)}
@@ -182,7 +194,8 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
            "seeds the multistart (--starts > 1) and crs2-lm's population; this fit has one start and optimizer " +
                o.optimizer.method + ", with nothing random");
   if (!(request.start_scale > 0)) refuse(caller, "start-scale", format_value(request.start_scale), "must be > 0");
-  if (!(request.bound_factor > 1)) refuse(caller, "bound-factor", format_value(request.bound_factor), "must be > 1");
+  if (request.bound_factor && !(*request.bound_factor > 1))
+    refuse(caller, "bound-factor", format_value(*request.bound_factor), "must be > 1");
   o.estimate = estimated_parameters(request);
   // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
   o.cost.pick_detrend = request.detrend.value_or(

@@ -26,6 +26,8 @@
 
 namespace beamid::api {
 
+inline constexpr double kDefaultBoundFactor = 2.0;
+
 struct FitRequest {
   Caller caller{"beamid fit"};
   std::string beam_name;              // what the program says it fitted ("banks-aluminium", "my_beam.toml")
@@ -34,7 +36,8 @@ struct FitRequest {
   ExperimentRequest experiment;       // dt and samples, if given, must match the data's
   std::vector<std::string> estimate;  // --estimate: the keys to estimate (required)
   std::map<std::string, std::pair<double, double>> bounds;  // --bounds KEY=LO:HI: explicit bounds of some keys
-  double bound_factor = 2.0;              // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v
+  // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v (kDefaultBoundFactor when not given)
+  std::optional<double> bound_factor;
   double start_scale = 1.0;               // --start-scale S: every estimated parameter starts at S x its --beam value
   CostRequest cost;                       // --cost (required) and the spectrum choices
   std::optional<std::string> optimizer;   // --optimizer (default: the cost's, fit::default_optimizer)

@@ -57,6 +57,26 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
   if (!measured.empty() && !predicted.empty() && measured != predicted)
     refuse(caller, "--prediction = '" + prediction.path + "': in " + prediction.unit + ", a " + predicted +
                        ": the data are in " + data.unit + ", a " + measured + " (compare like with like)");
+  // Two records carry no eigenvalues, which the modal cost compares (it ended in exit 3 naming --integrator, a flag
+  // `cost` does not have: the fourth pass's Q539).
+  if (request.cost.name == costs::kModalCost)
+    refuse(caller, "cost", costs::kModalCost,
+           "compares the model's eigenvalues with the record's modes, and a prediction file carries no eigenvalues: "
+           "use it in fit");
+  // What picks spikes (their number, chosen frequencies) and their band, where the cost reads neither: in fit they
+  // also choose the modes compared at the estimate; here nothing reads them (the fourth pass's Q511, Q524-Q537).
+  const bool picks = costs::is_spike_cost(request.cost.name), band = picks || request.cost.name == costs::kBandCost;
+  const SpikeRequest& spikes = request.cost.spikes;
+  if (!picks && spikes.count)
+    refuse(caller, "spikes", std::to_string(*spikes.count),
+           "is read by the spike costs; cost " + request.cost.name + " picks no spikes");
+  if (!picks && !spikes.frequencies_hz.empty())
+    refuse(caller, "spike-frequencies", format_value(spikes.frequencies_hz.front()),
+           "is read by the spike costs; cost " + request.cost.name + " picks no spikes");
+  if (!band && (spikes.min_frequency_hz || spikes.max_frequency_hz))
+    refuse(caller, spikes.min_frequency_hz ? "min-frequency" : "max-frequency",
+           format_value(spikes.min_frequency_hz.value_or(spikes.max_frequency_hz.value_or(0))),
+           "is read by the spike costs and freq-band; cost " + request.cost.name + " has no band");
   const costs::CostOptions options = cost_options(request.cost, caller);
   if (options.model_poles == costs::kEigenvaluePoles)
     refuse(caller, "--model-poles = 'eigenvalues': a prediction file carries no eigenvalues");

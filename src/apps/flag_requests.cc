@@ -133,7 +133,7 @@ api::FitRequest fit_request_of(const Flags& a) {
   r.experiment = experiment_request_of(a);
   r.estimate = a.texts("estimate");
   r.bounds = bounds_of(a);
-  r.bound_factor = a.optional_number("bound-factor").value_or(r.bound_factor);
+  r.bound_factor = a.optional_number("bound-factor");
   r.start_scale = a.optional_number("start-scale").value_or(r.start_scale);
   r.cost = cost_request_of(a);
   if (a.has("optimizer")) r.optimizer = a.text("optimizer");

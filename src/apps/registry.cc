@@ -1,4 +1,5 @@
 // The command registry (commands.h): what each command is called, what it does in a line, and its flags.
+#include <algorithm>
 #include <limits>
 
 #include "apps/command_flags.h"
@@ -16,6 +17,13 @@ FlagSpec beam_flag() {
 FlagSpec elements_flag(bool required) {
   return integer_flag("elements", "Galerkin order N (cubic B-spline elements)", core::kMinElements, core::kMaxElements,
                       required);
+}
+
+// The flags less one a command does not read (cost takes no --welch: it compares two records, it picks on neither).
+std::vector<FlagSpec> without(std::vector<FlagSpec> flags, const std::string& name) {
+  flags.erase(std::remove_if(flags.begin(), flags.end(), [&](const FlagSpec& f) { return f.name == name; }),
+              flags.end());
+  return flags;
 }
 
 std::vector<FlagSpec> joined(std::vector<FlagSpec> a, const std::vector<FlagSpec>& b) {
@@ -65,7 +73,7 @@ std::vector<Command> make_commands() {
                "the time, spike, spike-smooth or freq-band cost of a prediction against data",
                joined(joined({text_flag("data", "record of the data: CSV, LabVIEW .lvm, .npy, .mat or UFF 58", true),
                               text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
-                             cost_flags(true)),
+                             without(cost_flags(true), "welch")),
                       import_flags()),
                {},
                run_cost});

@@ -333,6 +333,19 @@ expect_error "spikes exponential end without its window" "is the exponential win
 expect_error "model poles with spike" "--model-poles = 'eigenvalues': is read by the spike-smooth cost" fit "${Z[@]}" \
   --cost spike --model-poles eigenvalues
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
+# The fourth pass's: a bound factor where --bounds gives every key (Q110), a free amplitude on a free decay (Q116),
+# and cost's flags that pick spikes or a band on a cost that has neither, and --welch, which cost never read (Q511,
+# Q524-Q537); the modal cost on two records, which carry no eigenvalues (Q539).
+expect_error "bound factor with every bound" "--bound-factor = '3': sets the bounds of estimated keys --bounds" fit \
+  "${Z[@]}" --cost time --bounds EI=0.3:0.6 --bound-factor 3
+expect_error "unknown amplitude, free decay" "a free decay has none" fit "${Z[@]}" --cost spike --excitation free-decay \
+  --unknown-amplitude
+C=(cost --data "$tmp/z.csv" --prediction "$tmp/z.csv")
+expect_error "cost time --spikes" "--spikes = '3': is read by the spike costs; cost time picks no spikes" "${C[@]}" \
+  --cost time --spikes 3
+expect_error "cost time --min-frequency" "cost time has no band" "${C[@]}" --cost time --min-frequency 5
+expect_error "cost --welch" "unknown flag --welch" "${C[@]}" --cost spike --welch 4
+expect_error "cost modal" "a prediction file carries no eigenvalues: use it in fit" "${C[@]}" --cost modal
 expect_error "force with a free decay" "--force-x describes the force of --excitation pulse or pluck" fit "${Z[@]}" \
   --cost time --excitation free-decay --force-x 0.3
 expect_error "rtol with the exact propagator" "--rtol is CVODE's" simulate --beam banks-aluminium --elements 6 \

@@ -322,6 +322,26 @@ void read_outputs(const config::Document& document, StudySpec& spec) {
 // study whose methods run only the time cost they were ignored without a word (the second adversarial pass's N459,
 // N460). The costs a method runs: the sweep's (when the sweep lists it), its start-distance runs', a hybrid's refine.
 void check_method_overrides(const config::Document& document, const StudySpec& spec) {
+  // The [fit] table's, against every cost the study runs (sweep, landscape, start distance, hybrid refines): a
+  // frequency weight in a study of only the time cost was read by nothing (the fourth pass's Q534).
+  if (const std::optional<Table> fit = document.table("fit", false)) {
+    std::vector<std::string> all = spec.sweep.cost;
+    all.insert(all.end(), spec.landscape.cost.begin(), spec.landscape.cost.end());
+    for (const auto& [cost, method] : spec.start_distance.runs) all.push_back(cost);
+    for (const MethodSpec& m : spec.methods)
+      if (m.strategy == fit::kHybrid) all.push_back(m.refine);
+    std::string listed;
+    for (const std::string& c : all)
+      if (listed.find(c) == std::string::npos) listed += (listed.empty() ? "" : ", ") + c;
+    for (const auto& [key, field, readers] :
+         {std::tuple{"window", &costs::CostUses::window, "the DFT costs (spike, spike-smooth, freq-band)"},
+          std::tuple{"frequency_weight", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"spike_rule", &costs::CostUses::spike_rule, "the spike costs (spike, spike-smooth)"}})
+      if (!all.empty() && fit->has(key) &&
+          std::none_of(all.begin(), all.end(), [&](const std::string& c) { return costs::cost_uses(c).*field; }))
+        throw InputError(fit->where(key) + ": fit." + key + " is read by " + readers + "; this study runs only " +
+                         listed);
+  }
   std::optional<Table> methods = document.table("methods", false);
   if (!methods) return;
   for (const MethodSpec& m : spec.methods) {
