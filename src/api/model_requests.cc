@@ -116,6 +116,13 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
   return r;
 }
 
+namespace {
+// Why a simulated response is zero at every sample, for simulate and crb.
+constexpr const char* kZeroResponse =
+    "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, --force-x 0) or "
+    "the force is 0 (--force-amplitude)";
+}  // namespace
+
 SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings) {
   const Caller& caller = request.run.caller;
   SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}};
@@ -149,9 +156,7 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   // A response that is zero everywhere is no record (every reader refuses a constant one, and a study refuses such a
   // truth): the sensor or the force at a rigid clamp, or no force (the third pass's P216, P218, P219).
   if (std::all_of(r.trace.y.begin(), r.trace.y.end(), [](double v) { return v == 0; }))
-    refuse(caller,
-           "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, "
-           "--force-x 0) or the force is 0 (--force-amplitude); nothing is written");
+    refuse(caller, std::string(kZeroResponse) + "; nothing is written");
   r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
   return r;
 }
@@ -204,6 +209,12 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
     r.keys.push_back(key);
   }
   if (r.keys.empty()) refuse(caller, "estimate", listed, "must name at least one parameter");
+  // The bound is of a simulated experiment; a free decay's initial state is unknown (the error blamed --estimate:
+  // the fourth pass's Q291).
+  if (r.run.experiment.excitation == simulation::kFreeDecay)
+    refuse(caller, "excitation", simulation::kFreeDecay,
+           "the bound is computed for a simulated experiment, and a free decay's initial state is unknown: use "
+           "pulse or pluck");
   if (!request.noise_sd && !request.noise_level)
     refuse(caller, "give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
   r.options.log_step = request.log_step.value_or(r.options.log_step);
@@ -223,6 +234,10 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   } catch (const InputError& error) {
     refuse(caller, "estimate", listed, error.what());
   }
+  // Every sensitivity 0: the output is zero whatever the parameters (the fourth pass's Q299-Q305: "singular Fisher
+  // information" for a zero force or a sensor at the clamp, where simulate names the cause).
+  if (r.bound.sensitivities.size() > 0 && r.bound.sensitivities.cwiseAbs().maxCoeff() == 0)
+    refuse(caller, kZeroResponse);
   if (r.bound.status != "ok") throw NumericalError(caller.label + ": " + r.bound.status);
   // A bound that is 0 or infinite is no bound (a force of 1e-300 N against a noise of 0.01 printed inf): said.
   for (Eigen::Index i = 0; i < r.bound.sd.size(); ++i)

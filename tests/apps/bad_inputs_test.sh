@@ -340,6 +340,11 @@ expect_error "bound factor with every bound" "--bound-factor = '3': sets the bou
   "${Z[@]}" --cost time --bounds EI=0.3:0.6 --bound-factor 3
 expect_error "unknown amplitude, free decay" "a free decay has none" fit "${Z[@]}" --cost spike --excitation free-decay \
   --unknown-amplitude
+# crb names a zero response and a free decay as such (the fourth pass's Q291, Q299-Q305).
+expect_error "crb of a zero force" "the response is zero at every sample" crb --beam banks-aluminium --elements 6 \
+  --samples 512 --estimate EI,rho --noise-sd 1e-6 --force-amplitude 0
+expect_error "crb of a free decay" "--excitation = 'free-decay': the bound is computed for a simulated experiment" \
+  crb --beam banks-aluminium --elements 6 --samples 512 --estimate EI --noise-sd 1e-6 --excitation free-decay
 C=(cost --data "$tmp/z.csv" --prediction "$tmp/z.csv")
 expect_error "cost time --spikes" "--spikes = '3': is read by the spike costs; cost time picks no spikes" "${C[@]}" \
   --cost time --spikes 3
