@@ -88,6 +88,24 @@ TEST(Store, RecordsOfAnEarlierBuildWithoutCheckLinesAreRecomputedQuietly) {
   fs::remove_all(dir);
 }
 
+TEST(Store, ARecordCutInsideItsCodeLineIsDamageNotAnotherBuilds) {
+  // Cut to its first 20 bytes, "code\t55c6710cfb00-d", a record read as another build's and was recomputed without a
+  // word (the fourth pass's Q393); an earlier build's whole record still is (the test above).
+  const fs::path dir = scratch("first-line");
+  std::ostringstream log;
+  const Store store(dir.string(), "55c6710cfb00-dirty", &log);
+  Record r;
+  r.set("status", std::string("ok"));
+  store.save("u", r);
+  const std::string whole = io::read_file(dir / "u.rec", "record");
+  ASSERT_EQ(whole.rfind("code\t", 0), 0u) << whole;
+  io::write_file_atomic(dir / "u.rec", whole.substr(0, 20));
+  EXPECT_FALSE(store.load("u"));
+  EXPECT_TRUE(fs::exists(dir / "damaged" / "u.rec"));
+  EXPECT_NE(log.str().find("u.rec"), std::string::npos) << log.str();
+  fs::remove_all(dir);
+}
+
 TEST(Store, DamagedRecordsAreNamedMovedAsideAndRecomputed) {
   const fs::path dir = scratch("damage");
   std::ostringstream log;

@@ -152,10 +152,13 @@ std::optional<Record> Store::load(const std::string& id, const RecordCheck& chec
       if (why.empty() && check) why = check(r);
       if (why.empty()) return r;
     } else if (text.find(kCheck) == std::string::npos) {
-      // A record of an earlier build, written before records had check lines: not damage, just not ours.
+      // A record of an earlier build, written before records had check lines: not damage, just not ours. Only a
+      // whole one, of complete lines beyond the first: a record cut inside its first line ("code\t55c6710cfb00-d")
+      // reads as another build's code and was recomputed without a word (the fourth pass's Q393).
+      const bool whole = !text.empty() && text.back() == '\n' && std::count(text.begin(), text.end(), '\n') >= 2;
       try {
         const Record r = Record::parse(text, path.string());
-        if (r.has("code") && r.text("code") != code_version_) return std::nullopt;
+        if (whole && r.has("code") && r.text("code") != code_version_) return std::nullopt;
       } catch (const InputError&) {
       }
     }
