@@ -121,6 +121,21 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
   if (const std::string unit = time_unit_of_label(f.abscissa_unit); !unit.empty() && unit != "s")
     throw InputError(at + "abscissa units '" + f.abscissa_unit + "' are " + unit +
                      ": beamid reads the time in seconds (rewrite the abscissa in s)");
+  // A units label that is no time unit at all ("m", "fortnight") was read as seconds (the fourth pass's Q231, Q232).
+  if (!f.abscissa_unit.empty() && time_unit_of_label(f.abscissa_unit).empty())
+    throw InputError(at + "abscissa units '" + f.abscissa_unit +
+                     "': not a time unit (s, ms, us, min, h): a time record's abscissa is time in s");
+  // The ordinate's specific data type against its units label: an acceleration (12) labelled m/s was fitted as a
+  // velocity without a word (the fourth pass's Q528). UFF types 8, 11, 12: displacement, velocity, acceleration.
+  const std::string stated = f.ordinate_type == 8    ? "displacement"
+                             : f.ordinate_type == 11 ? "velocity"
+                             : f.ordinate_type == 12 ? "acceleration"
+                                                     : "";
+  if (const std::string labelled = quantity_of(normalized_unit(f.unit));
+      !stated.empty() && !labelled.empty() && stated != labelled)
+    throw InputError(path + ":" + std::to_string(f.ordinate_line) + ": ordinate data type " +
+                     std::to_string(f.ordinate_type) + " (" + stated + ") with units '" + f.unit + "', a " + labelled +
+                     ": the header contradicts itself (which is the record?)");
   Samples out;
   out.series.path = path;
   out.series.format = "uff58";

@@ -147,6 +147,11 @@ std::pair<long, long> read_header(Cursor& c, const std::string& path, int delimi
   f.x0 = number_field(path, form_line, field(header[6], 30, 13), "abscissa minimum");
   f.dx = number_field(path, form_line, field(header[6], 43, 13), "abscissa increment");
   f.unit = field(header[8], 46, 21);
+  f.ordinate_line = header_line[8];
+  const std::string ordinate_type = field(header[8], 0, 10);
+  f.ordinate_type = ordinate_type.empty()
+                        ? 0
+                        : static_cast<int>(integer_field(path, header_line[8], ordinate_type, "ordinate data type"));
   if (f.unit == "NONE") f.unit.clear();
   // Record 8, the abscissa: I10 specific data type, 3I5 unit exponents, then the axis label and units label as
   // record 9's (pyuff and the UFF specification: '%10i%5i%5i%5i %-20s %-20s').
@@ -230,7 +235,12 @@ void read_ascii_values(Cursor& c, const std::string& path, int delimiter_line, l
       if (!text.empty()) {
         if (values.size() == wanted)
           fail(path, at, "more values than the header's " + std::to_string(count) + " points");
-        values.push_back(number_field(path, at, text, "value " + std::to_string(values.size() + 1)));
+        const std::string what =
+            "value " + std::to_string(values.size() + 1) +
+            (data_type == 5 || data_type == 6 ? " of a complex ordinate (data type " + std::to_string(data_type) +
+                                                    "; a time record is real: type 2 or 4)"
+                                              : "");
+        values.push_back(number_field(path, at, text, what));
       }
       begin += width;
     }
@@ -282,7 +292,10 @@ std::vector<UffFunction> parse_uff58(const std::string& bytes, const std::string
     if (values.size() != wanted)
       fail(path, delimiter_line,
            "the dataset holds " + std::to_string(values.size()) + " values: its header says " + std::to_string(count) +
-               " points of " + std::to_string(per_point));
+               " points of " + std::to_string(per_point) +
+               (f.complex ? " (ordinate data type " + std::to_string(data_type) +
+                                " is complex, two values a point; a time record is real: type 2 or 4)"
+                          : std::string()));
     for (std::size_t k = 0; k < static_cast<std::size_t>(count); ++k) {
       if (!f.even) f.x.push_back(values[k * per_point]);
       f.y.push_back(values[k * per_point + (f.even ? 0 : 1)]);  // the real part of a complex ordinate

@@ -30,6 +30,8 @@ struct UffFunction {
   int function_type = 0;  // 1: time response
   bool complex = false;
   std::string unit;           // the ordinate's units label, trimmed
+  int ordinate_type = 0;      // record 9's specific data type: 8 displacement, 11 velocity, 12 acceleration, ...
+  int ordinate_line = 0;      // the line of record 9
   int abscissa_type = 0;      // record 8's specific data type: 0 unknown, 1 general, 17 time, 18 frequency, ...
   std::string abscissa_unit;  // record 8's units label, trimmed ("" for NONE)
   int abscissa_line = 0;      // the line of record 8

@@ -425,6 +425,19 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   in_hz.replace(abscissa, 48, "        18    0    0    0 Frequency            Hz");
   EXPECT_NE(error_of(write("hz.uff", in_hz), o).find("hz.uff:17: abscissa data type 18"), std::string::npos)
       << error_of(write("hz.uff", in_hz), o);
+  // The fourth pass's Q231, Q232, Q528: an abscissa labelled in metres (no time unit) was read as seconds, and an
+  // acceleration ordinate (type 12) labelled m/s fitted as a velocity.
+  std::string in_m = good;
+  in_m.replace(abscissa, 48, "        17    0    0    0 Length               m");
+  EXPECT_NE(error_of(write("m.uff", in_m), o).find("m.uff:17: abscissa units 'm': not a time unit"), std::string::npos)
+      << error_of(write("m.uff", in_m), o);
+  std::string velocity_label = good;
+  const std::size_t ordinate = good.find("        12    1    0    0 Acceleration         g   ");
+  ASSERT_NE(ordinate, std::string::npos);  // channel 1's, the tip accelerometer's
+  velocity_label.replace(ordinate, 50, "        12    1    0    0 Acceleration         m/s ");
+  EXPECT_NE(error_of(write("v.uff", velocity_label), o).find("ordinate data type 12 (acceleration) with units 'm/s'"),
+            std::string::npos)
+      << error_of(write("v.uff", velocity_label), o);
   // A binary file of no known kind says which formats are read.
   EXPECT_NE(error_of(write("mystery.bin", std::string("\x01\x02\x03\x04", 4) + std::string(100, 'a'))).find(".npy"),
             std::string::npos);
