@@ -179,6 +179,10 @@ def beam(spec=None, *, toml=None):
         raise TypeError("give a preset or file (spec) or TOML text (toml=), one of them")
     if toml is not None:
         return dict(_core.parse_beam(toml, "<toml>"))
+    if isinstance(spec, dict):  # a beam dict, checked as every function checks one (it raised a bare TypeError: Q519)
+        return dict(_core.parse_beam(beam_toml(spec), BEAM_DICT))
+    if not isinstance(spec, (str, os.PathLike)):
+        raise TypeError(f"beam(): spec = {spec!r}: must be a preset name, a beam TOML file's path or a beam dict")
     return dict(_core.beam(os.fspath(spec)))
 
 
@@ -326,14 +330,20 @@ def modal_id(data, time=None, **flags) -> np.ndarray:
 
 def read_record(path, **flags) -> "Record":
     """A record file as beamid reads it (CSV, .lvm, .npy, .mat, UFF 58, with the import flags: channel, units, start,
-    duration, sample_rate, variable, time_variable, resample, resample_rate): a :class:`Record` with values (array),
-    dt_s, t0_s, unit, format, channel and notes."""
+    duration, sample_rate, variable, time_variable, time_channel, resample, resample_rate): a :class:`Record` with
+    values (array), dt_s, t0_s, unit, format, channel and notes."""
     if not isinstance(path, (str, os.PathLike)):  # read_record(123) reached the core untyped (the fourth pass's Q490)
         raise TypeError(f"read_record(): path = {path!r}: must be a file path (str or os.PathLike)")
     try:
         return Record._from_core(_call(_core.read_record, _arguments(dict(flags, data=path))))
-    except InputError as error:  # the core reads it with modal-id's import flags
-        raise InputError(str(error).replace("beamid modal-id:", "beamid.read_record:")) from None
+    except InputError as error:  # the core reads it with modal-id's import flags: named as read_record's
+        message = str(error).replace("beamid modal-id:", "beamid.read_record:")
+        message = message.replace("(beamid modal-id --help lists them)", "(read_record takes " + _IMPORT_FLAGS + ")")
+        raise InputError(message) from None
+
+
+_IMPORT_FLAGS = ("channel, units, start, duration, resample, sample_rate, variable, time_variable, time_channel, "
+                 "resample_rate")
 
 
 _KINDS = {"number": float, "integer": int, "text": str, "switch": bool}

@@ -348,6 +348,15 @@ def test_dict_beams_and_prediction_arrays_are_checked():
                                         "attachment3.m": 0.5}))
     with pytest.raises(TypeError, match="must be a file path"):  # the fourth pass's Q490
         beamid.read_record(123)
+    # An unknown keyword of read_record names read_record's keywords, not modal-id's help (Q489); beam() checks a dict
+    # as every function does, and names a spec of another type (Q518, Q519).
+    with pytest.raises(beamid.InputError, match=r"read_record takes channel, units"):
+        beamid.read_record(__file__, bogus=1)
+    with pytest.raises(beamid.InputError, match="<beam dict>:1: \\[beam\\] is missing key 'l'"):
+        beamid.beam({"EI": 0.491})
+    assert beamid.beam(steel) == steel
+    with pytest.raises(TypeError, match="spec = 3: must be a preset name"):
+        beamid.beam(3)
     with pytest.raises(beamid.InputError, match="a bool array"):
         beamid.spikes(data=y > 0, sample_rate=1e4)
     with pytest.raises(beamid.InputError, match=r"structured array \(fields t, a\)"):
