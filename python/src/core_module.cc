@@ -321,6 +321,9 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   identifiability["verdict"] = r.identifiability.verdict;
   identifiability["condition"] = r.identifiability.condition;
   identifiability["weakest"] = r.identifiability.combination();
+  identifiability["of_interest"] = r.identifiability.keys;  // what the verdict is about
+  identifiability["nuisance"] = r.identifiability.nuisance;
+  identifiability["on_bound"] = r.identifiability.on_bound;
   d["identifiability"] = identifiability;
   py::list mode_rows;
   for (const auto& p : modes->pairs) {

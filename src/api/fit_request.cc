@@ -197,6 +197,10 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (request.bound_factor && !(*request.bound_factor > 1))
     refuse(caller, "bound-factor", format_value(*request.bound_factor), "must be > 1");
   o.estimate = estimated_parameters(request);
+  for (const std::string& key : request.of_interest)
+    if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
+      refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
+  o.of_interest = request.of_interest;
   // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
   o.cost.pick_detrend = request.detrend.value_or(
       o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
@@ -315,8 +319,8 @@ FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* reco
   const fit::Identifiability& i = result.identifiability;
   if (i.status == "ok" && i.verdict != "identifiable") {
     std::ostringstream line;  // numbers as the stream prints them (6 significant digits)
-    line << i.verdict << ": condition number of J (in ln q) " << i.condition << "; the record hardly constrains "
-         << i.combination() << " (formal sd " << i.weakest_sd << ")"
+    line << i.verdict << ": condition number of J (in ln q) " << i.condition << i.scope()
+         << "; the record hardly constrains " << i.combination() << " (formal sd " << i.weakest_sd << ")"
          << (i.weak.size() > 1 ? " and " + std::to_string(i.weak.size() - 1) +
                                      " further combination(s) above 1e3 (listed in --report)"
                                : std::string());

@@ -35,6 +35,8 @@ struct FitRequest {
   int elements = 0;                   // --elements: Galerkin order N (required)
   ExperimentRequest experiment;       // dt and samples, if given, must match the data's
   std::vector<std::string> estimate;  // --estimate: the keys to estimate (required)
+  // --of-interest: the estimated keys the identifiability verdict is about (empty: the non-damping ones)
+  std::vector<std::string> of_interest;
   std::map<std::string, std::pair<double, double>> bounds;  // --bounds KEY=LO:HI: explicit bounds of some keys
   // --bound-factor F: the others' bounds [v/F, v F] around the --beam value v (kDefaultBoundFactor when not given)
   std::optional<double> bound_factor;

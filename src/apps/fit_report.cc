@@ -251,9 +251,9 @@ void identifiability_section(Markdown& md, const fit::FitResult& r) {
     md << "Identifiability: not computed (" << id.status << ").\n\n";
     return;
   }
-  md << "Identifiability: J at the estimate (in ln q) has condition number " << g(id.condition, 3) << " (" << id.verdict
-     << "); the weakest combination is " << id.combination() << ", formal standard deviation " << g(id.weakest_sd, 3)
-     << " (relative)."
+  md << "Identifiability: J at the estimate (in ln q)" << id.scope() << " has condition number " << g(id.condition, 3)
+     << " (" << id.verdict << "); the weakest combination is " << id.combination() << ", formal standard deviation "
+     << g(id.weakest_sd, 3) << " (relative)."
      << (id.verdict == "not identifiable" ? " The record cannot separate the parameters in it: fix one of them." : "")
      << "\n\n";
   if (id.weak.size() > 1) {

@@ -226,6 +226,9 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("beam", "preset or TOML file: the known parameters and the start of the estimated ones", true),
       integer_flag("elements", "Galerkin order N of the fitted model", core::kMinElements, core::kMaxElements, true),
       text_flag("estimate", "comma-separated keys to estimate, e.g. EI,rho,cDI,gamma", true),
+      text_flag("of-interest",
+                "comma-separated estimated keys the identifiability verdict is about, the rest marginalised "
+                "(default: the non-damping ones)"),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
       text_flag("refine", "hybrid: the cost of the second fit, time | freq-band (default time)"),

@@ -352,6 +352,24 @@ void record_results(JointObjective& objective, const std::vector<Record>& record
   if (result.final_evaluation.ok()) result.cost = result.final_evaluation.value;
 }
 
+// What the identifiability verdict is about (FitOptions::of_interest): the parameters of interest among the estimated
+// ones, and those a bound set.
+VerdictScope verdict_scope(const ParameterMap& map, const FitOptions& o, const std::vector<ParameterEstimate>& p) {
+  VerdictScope scope;
+  for (int i = 0; i < map.size(); ++i) {
+    const std::string& key = map.estimated()[static_cast<std::size_t>(i)].key;
+    const std::string local = local_key(key);
+    scope.of_interest.push_back(o.of_interest.empty()
+                                    ? model::parameter_role(local) != "damping"
+                                    : std::any_of(o.of_interest.begin(), o.of_interest.end(),
+                                                  [&](const std::string& k) { return k == key || k == local; }));
+    scope.on_bound.push_back(static_cast<std::size_t>(i) < p.size() &&
+                             (p[static_cast<std::size_t>(i)].status == kAtLowerBound ||
+                              p[static_cast<std::size_t>(i)].status == kAtUpperBound));
+  }
+  return scope;
+}
+
 // The estimates with their formal and sandwich standard errors (physical units), correlations, identifiability and
 // bound statuses.
 void parameter_results(JointObjective& objective, const ParameterMap& map, const FitOptions& o, const StrategyRun& best,
@@ -363,7 +381,6 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
   const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x,
                                               robust_lags(o.cost.name, objective.residual_count()));
   result.covariance_status = covariance.status;
-  result.identifiability = identifiability_of(covariance, map, best.x);
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd robust_error = standard_error;
   if (covariance.ok()) {
@@ -410,6 +427,7 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
     result.parameters.push_back(p);
   }
   if (at_bound && result.status != "failed") result.status += "-at-bound";
+  result.identifiability = identifiability_of(covariance, map, best.x, verdict_scope(map, o, result.parameters));
 }
 
 }  // namespace

@@ -69,6 +69,10 @@ struct FitOptions {
   // w_k = 1 / s_k with s_k^2 = |r_k|^2 / m_k the record's residual variance, and the direct fit repeated from the
   // estimate until the weights settle (at most 5 passes, 1e-3 relative), as minimising sum_k m_k ln |r_k| does.
   std::string record_weights = "rms";
+  // The parameters the identifiability verdict is about (fit/identifiability.h), by key as in `estimate` or by base
+  // key for every record's ("cDI" for "record2.cDI"); empty: every estimated parameter that is not damping (gamma,
+  // cDI, kAcs), or all of them when every one is. The others are marginalised, and those on a bound left out.
+  std::vector<std::string> of_interest;
 };
 
 inline const std::string kRmsWeights = "rms";

@@ -345,6 +345,16 @@ expect_error "crb of a zero force" "the response is zero at every sample" crb --
   --samples 512 --estimate EI,rho --noise-sd 1e-6 --force-amplitude 0
 expect_error "crb of a free decay" "--excitation = 'free-decay': the bound is computed for a simulated experiment" \
   crb --beam banks-aluminium --elements 6 --samples 512 --estimate EI --noise-sd 1e-6 --excitation free-decay
+# The identifiability verdict is about the parameters of interest (issue 31): by default the damping is marginalised
+# (EI is determined, no word), and --of-interest with the damping names cDI and gamma's weak combination.
+expect_error "of-interest not estimated" "--of-interest = 'rho': is not estimated" fit "${Z[@]}" --cost time \
+  --of-interest rho
+"$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 8 --pulse-width 0.004 --estimate EI,cDI,gamma \
+  --cost time --max-evaluations 60 >/dev/null 2>"$tmp/err"
+grep -q "ill-conditioned" "$tmp/err" && bad "EI with the damping marginalised: $(head -c 300 "$tmp/err")" || ok
+expect_notice "verdict about the damping" "the record hardly constrains 0.99 ln cDI - 0.14 ln gamma" fit \
+  --data "$tmp/z.csv" --beam banks-aluminium --elements 8 --pulse-width 0.004 --estimate EI,cDI,gamma --cost time \
+  --max-evaluations 60 --of-interest EI,cDI,gamma
 C=(cost --data "$tmp/z.csv" --prediction "$tmp/z.csv")
 expect_error "cost time --spikes" "--spikes = '3': is read by the spike costs; cost time picks no spikes" "${C[@]}" \
   --cost time --spikes 3
