@@ -314,11 +314,11 @@ def crb(**flags) -> "CramerRao":
 
 def modal_id(data, time=None, **flags) -> np.ndarray:
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
-    damping_ratio, amplitude, phase_rad). What the modes do not say (fewer found than asked, a pole more likely the
+    damping_ratio, amplitude, phase_rad, frequency_sd_hz: the Cramér-Rao bound at the residual's noise level). What the modes do not say (fewer found than asked, a pole more likely the
     excitation, a growing oscillation) is a warning, as the command's stderr."""
     array, f = _record_flags(data, flags)
     r = _call(_core.modal_id, _arguments(f), array, time)
-    fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad"]
+    fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad", "frequency_sd_hz"]
     table = np.zeros(len(r["frequency_hz"]), dtype=[("mode", "i8")] + [(name, "f8") for name in fields])
     table["mode"] = np.arange(1, len(table) + 1)
     for name in fields:

@@ -372,18 +372,20 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   const api::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
     return api::compute_modal_id(apps::modal_id_request_of(a), record_of(a, array));
   });
-  std::vector<double> f, zeta, amplitude, phase;
+  std::vector<double> f, zeta, amplitude, phase, f_sd;
   for (const auto& m : r.modes) {
     f.push_back(m.frequency_hz);
     zeta.push_back(m.damping_ratio);
     amplitude.push_back(m.amplitude);
     phase.push_back(m.phase_rad);
+    f_sd.push_back(m.frequency_sd_hz);
   }
   py::dict d;
   d["frequency_hz"] = copied_array(f);
   d["damping_ratio"] = copied_array(zeta);
   d["amplitude"] = copied_array(amplitude);
   d["phase_rad"] = copied_array(phase);
+  d["frequency_sd_hz"] = copied_array(f_sd);
   d["notes"] = r.notes;
   return d;
 }

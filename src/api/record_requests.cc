@@ -127,6 +127,19 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                       format_rounded(m.damping_ratio, 3) + " (> " + format_value(signal::kHeavilyDampedRatio) +
                       "): more likely the excitation or noise than a mode of the beam; cut the record after the "
                       "excitation (--start) or lower --order");
+  // Two poles within 2 % of each other: one mode whose frequency changes with its amplitude (a strip's f1 split into
+  // 9.406 and 9.421 Hz, with nothing said: issue 31), or two close modes (bending in two planes). Said with its size;
+  // the record's later, smaller part tells which (--start).
+  for (std::size_t k = 1; k < modes.size(); ++k) {
+    const signal::IdentifiedMode &a = modes[k - 1], &b = modes[k];
+    if (b.frequency_hz - a.frequency_hz <= 0.02 * a.frequency_hz && a.damping_ratio <= signal::kHeavilyDampedRatio &&
+        b.damping_ratio <= signal::kHeavilyDampedRatio)
+      notes.push_back("the poles at " + format_rounded(a.frequency_hz, 6) + " and " +
+                      format_rounded(b.frequency_hz, 6) + " Hz are " +
+                      format_rounded(100 * (b.frequency_hz / a.frequency_hz - 1), 2) +
+                      " % apart: one mode whose frequency changes with its amplitude, or two close modes; the "
+                      "record's later part (--start) tells which");
+  }
   // A growing oscillation (the fourth pass's Q278: a 50 Hz oscillation growing as e^{0.31 t} was not listed and
   // nothing said so) is no free decay of a stable beam: a self-excited or driven record, or one cut before the
   // excitation ended. Named when it is at least 1 % of the largest mode (weaker ones fit the noise).

@@ -35,10 +35,11 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   const signal::PencilOptions& o = r.options;
   const std::vector<signal::IdentifiedMode>& modes = r.modes;
   std::ostringstream csv;
-  csv << "mode,frequency_hz,damping_ratio,amplitude,phase_rad\n";
+  csv << "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz\n";
   for (std::size_t k = 0; k < modes.size(); ++k) {
     csv << k + 1 << ",";
-    io::write_row(csv, {modes[k].frequency_hz, modes[k].damping_ratio, modes[k].amplitude, modes[k].phase_rad});
+    io::write_row(csv, {modes[k].frequency_hz, modes[k].damping_ratio, modes[k].amplitude, modes[k].phase_rad,
+                        modes[k].frequency_sd_hz});
   }
   out << csv.str();
   for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";

@@ -7,13 +7,16 @@
 
 #include "core/errors.h"
 #include "core/limits.h"
+#include "signal/spikes.h"
 
 namespace beamid::signal {
 
 namespace {
 
-// The amplitudes c_k of all M exponentials z_k by least squares on the whole record y (a complex Vandermonde system).
-Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>& y, int order) {
+// The amplitudes c_k of all M exponentials z_k by least squares on the whole record y (a complex Vandermonde system),
+// and the residual's standard deviation, |y - Re(V c)| / sqrt(n - 2 M) (each exponential has a complex pole and a
+// complex amplitude; conjugate pairs make them M real parameters of each kind).
+Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>& y, int order, double& residual_sd) {
   const int n = static_cast<int>(y.size());
   // A growing pole (|z| > 1, noise or an unmodelled transient at a high order) is anchored at the record's end,
   // column z^(i - n + 1), so that no entry exceeds 1 in modulus: anchored at the start, 1.5^307 overflowed to inf and
@@ -28,8 +31,9 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
       power *= ratio;
     }
   }
-  const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(
-      Eigen::Map<const Eigen::VectorXd>(y.data(), n).cast<std::complex<double>>());
+  const Eigen::Map<const Eigen::VectorXd> record(y.data(), n);
+  const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(record.cast<std::complex<double>>());
+  residual_sd = (record - (vandermonde * c).real()).norm() / std::sqrt(std::max(1, n - 2 * order));
   if (!c.allFinite())
     throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
                          std::to_string(order) + "): try a lower --order");
@@ -87,7 +91,8 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
   const Eigen::VectorXcd z = eig.eigenvalues();
 
-  const Eigen::VectorXcd c = amplitudes(z, y, order);
+  double residual_sd = 0;
+  const Eigen::VectorXcd c = amplitudes(z, y, order, residual_sd);
   // A pole is a mode of the sampled record only if its natural frequency |lambda| / 2 pi is below the Nyquist
   // frequency: a heavily damped pole beyond it (at a high order, fitting the pulse) is not resolvable from samples
   // at this rate, and was listed as the strongest "mode" at 505-989 Hz of a 1 kHz record.
@@ -112,6 +117,9 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     // The amplitude at the pole's anchor: the start for a decaying pole, the end for a growing one (its largest).
     m.amplitude = 2 * std::abs(c(k));
     m.phase_rad = std::arg(c(k));
+    if (std::abs(z(k)) < 1)
+      m.frequency_sd_hz =
+          damped_mode_frequency_sd(m.amplitude, -m.lambda.real(), dt_s, n, residual_sd) / (2 * std::numbers::pi);
     if (m.amplitude <= kNegligibleAmplitude * largest) {
       d.negligible += std::abs(z(k)) < 1;
       continue;

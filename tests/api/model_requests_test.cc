@@ -113,5 +113,24 @@ TEST(RecordRequests, SpikesAndModalIdFindTheModesOfASimulatedRecord) {
             "beamid modal-id: --max-frequency = '-1': must exceed --min-frequency");
 }
 
+TEST(RecordRequests, ModalIdSaysWhenAModeSplitsIntoTwoClosePoles) {
+  // A strip's first mode read 9.406 and 9.421 Hz as two poles (its frequency changes with its amplitude) and
+  // nothing said so (issue 31): two lightly damped poles 0.16 % apart are named with their distance; 10 % apart,
+  // they are two modes and nothing is said.
+  signal::PencilOptions o;
+  o.modes = 2;
+  const auto mode = [](double f) {
+    signal::IdentifiedMode m;
+    m.frequency_hz = f;
+    m.damping_ratio = 0.003;
+    m.amplitude = 1;
+    return m;
+  };
+  const auto notes = modal_id_notes({mode(9.406), mode(9.421)}, {}, o);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("9.406 and 9.421 Hz are 0.16 % apart"), std::string::npos) << notes[0];
+  EXPECT_TRUE(modal_id_notes({mode(9.406), mode(10.4)}, {}, o).empty());
+}
+
 }  // namespace
 }  // namespace beamid::api

@@ -149,7 +149,7 @@ expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/noga
 # round-off on a noise-free decay; the tests of signal/matrix_pencil.h measure 1e-14 and 3e-11).
 "$BEAMID" modal-id --data "$tmp/z.csv" --start 0.01 --modes 1 --order 20 >"$tmp/m.csv" 2>/dev/null || fail=$((fail + 1))
 "$BEAMID" modes --beam banks-aluminium --elements 4 --count 1 >"$tmp/m4.csv" || fail=$((fail + 1))
-check "modal-id header" test "$(head -1 "$tmp/m.csv")" = "mode,frequency_hz,damping_ratio,amplitude,phase_rad"
+check "modal-id header" test "$(head -1 "$tmp/m.csv")" = "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz"
 check "modal-id mode 1 is the model's" awk -F, 'NR == FNR { if (FNR == 2) { f = $2; z = $3 } next }
     FNR == 2 { a = $2 / f - 1; b = $3 / z - 1; exit !(a < 1e-8 && a > -1e-8 && b < 1e-5 && b > -1e-5) }' \
   "$tmp/m4.csv" "$tmp/m.csv"
