@@ -73,8 +73,7 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
     return r;
   }
   r.kind = "damped";
-  const galerkin::StateSpaceModes state_modes(system);
-  const auto modes = state_modes.underdamped_modes();
+  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
   r.available = static_cast<int>(modes.size());
   const int shown = std::min(r.requested.value_or(r.available), r.available);
   r.note = fewer_modes_note(r, n, "underdamped modes");
@@ -90,24 +89,22 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
         std::count_if(omega.data(), omega.data() + omega.size(), [&](double w) { return w < highest_rad_s; }));
     // Air damping (gamma) overdamps the lowest modes instead, and moves the rest: with gamma = 50 "mode 1" was at
     // 11.3 Hz, zeta 0.63, above the undamped beam's second mode, so that the count above missed it (the fourth pass's
-    // Q311). An overdamped pair has real poles with lambda_1 lambda_2 = omega^2, the slower below omega: a real pole
-    // slower than the lowest listed mode's |lambda| is an overdamped mode below it. (Kelvin-Voigt-overdamped high
-    // modes have their slow pole near EI / cDI, above the listed modes unless the count above already says so.)
+    // Q311). An undamped mode well below the lowest listed one (under 0.9 of its |lambda|; damping moves a lightly
+    // damped mode's |lambda| by far less) has no underdamped counterpart: it is overdamped. (Counting real poles
+    // instead took the shear relaxation poles, kAG / kAcs, for overdamped modes: the fifth pass's R211.)
     const double lowest_rad_s = 2 * std::numbers::pi * modes.front().frequency_hz;
-    const Eigen::VectorXcd& lambda = state_modes.eigenvalues();
-    const auto slow_real = static_cast<int>(std::count_if(lambda.data(), lambda.data() + lambda.size(), [&](auto l) {
-      return std::abs(l.imag()) <= 1e-9 * std::abs(l) && std::abs(l) < lowest_rad_s;
-    }));
+    const auto missing_below = static_cast<int>(
+        std::count_if(omega.data(), omega.data() + omega.size(), [&](double w) { return w < 0.9 * lowest_rad_s; }));
     if (below > shown)
       r.note += std::string(r.note.empty() ? "" : "; ") + std::to_string(below - shown) +
                 " mode(s) of the undamped beam below " + format_rounded(highest_rad_s / (2 * std::numbers::pi)) +
                 " Hz are overdamped here (real poles, no oscillation) and not listed: 'mode' numbers the underdamped "
                 "modes only (--undamped lists the undamped beam's)";
-    else if (slow_real > 0)
-      r.note += std::string(r.note.empty() ? "" : "; ") + "the damping overdamps mode(s) below " +
-                format_rounded(lowest_rad_s / (2 * std::numbers::pi)) + " Hz here: " + std::to_string(slow_real) +
-                " real pole(s) decay slower than mode 1 oscillates, and 'mode' numbers the underdamped modes only "
-                "(--undamped lists the undamped beam's)";
+    else if (missing_below > 0)
+      r.note += std::string(r.note.empty() ? "" : "; ") + "the damping overdamps " + std::to_string(missing_below) +
+                " mode(s) of the undamped beam below " + format_rounded(lowest_rad_s / (2 * std::numbers::pi)) +
+                " Hz here (real poles, no oscillation): 'mode' numbers the underdamped modes only (--undamped lists "
+                "the undamped beam's)";
   }
   for (int k = 0; k < shown; ++k) {
     r.frequency_hz.push_back(modes[static_cast<std::size_t>(k)].frequency_hz);

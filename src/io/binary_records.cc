@@ -134,8 +134,16 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
   if (const std::string labelled = quantity_of(normalized_unit(f.unit));
       !stated.empty() && !labelled.empty() && stated != labelled)
     throw InputError(path + ":" + std::to_string(f.ordinate_line) + ": ordinate data type " +
-                     std::to_string(f.ordinate_type) + " (" + stated + ") with units '" + f.unit + "', a " + labelled +
+                     std::to_string(f.ordinate_type) + " (" + stated + ") with units '" + f.unit + "', " +
+                     (labelled == "acceleration" ? "an " : "a ") + labelled +
                      ": the header contradicts itself (which is the record?)");
+  // A type that is no motion (13 excitation force, 9 reaction force, 15 pressure, 2 stress, 3 strain, 5
+  // temperature, ...) is no response beamid fits: an excitation force was fitted as a motion (the fifth pass's R153).
+  if (f.ordinate_type != 0 && f.ordinate_type != 1 && stated.empty())
+    throw InputError(path + ":" + std::to_string(f.ordinate_line) + ": ordinate data type " +
+                     std::to_string(f.ordinate_type) + (f.ordinate_type == 13 ? " (excitation force)" : "") +
+                     ": a response record is 8 (displacement), 11 (velocity) or 12 (acceleration), or 0 or 1 "
+                     "(unknown, general)");
   Samples out;
   out.series.path = path;
   out.series.format = "uff58";

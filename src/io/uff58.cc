@@ -239,7 +239,8 @@ void read_ascii_values(Cursor& c, const std::string& path, int delimiter_line, l
             "value " + std::to_string(values.size() + 1) +
             (data_type == 5 || data_type == 6 ? " of a complex ordinate (data type " + std::to_string(data_type) +
                                                     "; a time record is real: type 2 or 4)"
-                                              : "");
+                                              : " (ordinate data type " + std::to_string(data_type) + ": fields of " +
+                                                    std::to_string(width) + " characters)");
         values.push_back(number_field(path, at, text, what));
       }
       begin += width;

@@ -156,14 +156,30 @@ std::pair<std::string, std::size_t> suffix_unit(const std::string& name) {
 }  // namespace
 
 std::string normalized_unit(std::string_view label) {
+  // A capital-M label is mega, kept as stated (refused), in an LVM or UFF label as in a column name (the fifth
+  // pass's R088: Y_Unit_Label "Mm" was read as mm).
+  if (is_unconverted_unit(std::string(label), true)) return trimmed(label);
   const std::string unit = known_unit(std::string(label), true);
   return unit.empty() ? trimmed(label) : unit;
 }
 
 std::string unit_of_column_name(std::string_view column) {
+  // The last bracketed label that is a unit: "x (mm) (raw)" is in mm, not SI after its remark "(raw)" (the fifth
+  // pass's R005).
   const std::string name = trimmed(column);
-  if (const auto labels = bracketed_labels(name); !labels.empty()) return unit_of_label(labels.front());
-  return suffix_unit(name).first;
+  for (const std::string& label : bracketed_labels(name))
+    if (const std::string unit = unit_of_label(label); !unit.empty()) return unit;
+  const std::string stem = name.substr(0, std::min(name.find_first_of("(["), name.size()));
+  if (const std::string unit = suffix_unit(trimmed(stem)).first; !unit.empty()) return unit;
+  // A unit between the name and a remark: "acc_g_raw" is in g (R043).
+  const std::string n = lower(trimmed(stem));
+  for (auto at = n.rfind('_'); at != std::string::npos && at > 0; at = n.rfind('_', at - 1)) {
+    const auto next = n.find('_', at + 1);
+    const std::string token = n.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    if (const std::string unit = known_unit(token, false); !unit.empty()) return unit;
+    if (n.find('_') == at) break;  // the first token is the name itself
+  }
+  return "";
 }
 
 std::string column_unit_problem(std::string_view column) {
@@ -196,28 +212,33 @@ std::string column_unit_problem(std::string_view column) {
 }
 
 std::string time_unit_of_column_name(std::string_view column) {
+  // The last bracketed label that is a unit of any kind ("t (ms) [rel]" is in ms: the fifth pass's R061); one that
+  // is no time unit ("t (Hz)", "t (m)") is returned as written, for the caller to refuse.
   const std::string name = trimmed(column);
-  if (const auto labels = bracketed_labels(name); !labels.empty()) return time_unit_of_label(labels.front());
-  if (const auto at = name.rfind('_'); at != std::string::npos) return time_unit_of_label(name.substr(at + 1));
+  for (const std::string& label : bracketed_labels(name)) {
+    if (const std::string unit = time_unit_of_label(label); !unit.empty()) return unit;
+    if (!unit_of_label(label).empty() || lower(trimmed(label)) == "hz") return trimmed(label);
+  }
+  const std::string stem = lower(trimmed(name.substr(0, std::min(name.find_first_of("(["), name.size()))));
+  // The suffix, or a time unit between the name and a remark ("t_ms_abs").
+  for (auto at = stem.rfind('_'); at != std::string::npos; at = at > 0 ? stem.rfind('_', at - 1) : std::string::npos) {
+    const auto next = stem.find('_', at + 1);
+    const std::string token = stem.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    if (const std::string unit = time_unit_of_label(token); !unit.empty()) return unit;
+    if (at == 0) break;
+  }
   return "";
 }
 
 std::string time_unit_of_label(std::string_view text) {
   const std::string label = lower(trimmed(text));
-  for (const auto& [spelling, unit] : std::array<std::pair<const char*, const char*>, 14>{{{"s", "s"},
-                                                                                           {"sec", "s"},
-                                                                                           {"seconds", "s"},
-                                                                                           {"ms", "ms"},
-                                                                                           {"msec", "ms"},
-                                                                                           {"us", "us"},
-                                                                                           {"usec", "us"},
-                                                                                           {"\xc2\xb5s", "us"},
-                                                                                           {"ns", "ns"},
-                                                                                           {"min", "min"},
-                                                                                           {"mins", "min"},
-                                                                                           {"minutes", "min"},
-                                                                                           {"h", "h"},
-                                                                                           {"hours", "h"}}})
+  for (
+      const auto& [spelling, unit] : std::array<std::pair<const char*, const char*>, 24>{
+          {{"s", "s"},       {"secs", "s"},          {"second", "s"},     {"millisecond", "ms"}, {"milliseconds", "ms"},
+           {"msecs", "ms"},  {"microseconds", "us"}, {"hr", "h"},         {"hrs", "h"},          {"hour", "h"},
+           {"days", "days"}, {"sec", "s"},           {"seconds", "s"},    {"ms", "ms"},          {"msec", "ms"},
+           {"us", "us"},     {"usec", "us"},         {"\xc2\xb5s", "us"}, {"ns", "ns"},          {"min", "min"},
+           {"mins", "min"},  {"minutes", "min"},     {"h", "h"},          {"hours", "h"}}})
     if (label == spelling) return unit;
   return "";
 }

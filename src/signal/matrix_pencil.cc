@@ -124,7 +124,10 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
       d.negligible += std::abs(z(k)) < 1;
       continue;
     }
-    (std::abs(z(k)) < 1 ? modes : d.growing).push_back(m);
+    if (std::abs(z(k)) < 1)
+      modes.push_back(m);
+    else if (m.frequency_hz * n * dt_s >= 2)  // under two cycles in the record it is a trend (an offset and a drift
+      d.growing.push_back(m);                 // were a "growing oscillation at 6.85e-08 Hz": the fifth pass's R183)
   }
   // The K strongest, then by frequency. The strength is the mode's energy over the record, |c|^2 sum |z|^2i, so that
   // a heavily damped spurious pole with a large initial amplitude does not outrank a lasting mode.

@@ -58,8 +58,9 @@ inline constexpr double kNegligibleAmplitude = 1e-9;
 
 // What the pencil found besides the modes it reports.
 struct PencilDiagnostics {
-  std::vector<IdentifiedMode> growing;  // oscillatory poles in the band that grow (damping ratio < 0), not negligible
-  int negligible = 0;                   // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
+  // oscillatory poles in the band that grow (damping ratio < 0), not negligible, of two cycles in the record or more
+  std::vector<IdentifiedMode> growing;
+  int negligible = 0;  // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
 };
 
 // The modes of the record y sampled at dt_s, sorted by frequency (fewer than K when fewer decaying oscillatory poles

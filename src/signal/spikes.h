@@ -75,7 +75,8 @@ std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeO
 //   "sideband F1 +- F2 Hz":    at F1 + F2 or F1 - F2 for stronger peaks F1 > F2, decaying at sigma_1 + sigma_2 within
 //                              the same tolerance (modulation, beating);
 //   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).
-// A rate that cannot be estimated (a flat top) leaves the frequency test alone.
+// A rate that cannot be estimated (a flat top, Welch's average) or that is too uncertain to tell (three sd above half
+// the expected rate) keeps the peak: a peak is skipped only on evidence that it behaves as an artefact.
 // The picks are the first `count` candidates not skipped. Chosen frequencies (frequencies_hz) are never skipped.
 struct LabelledPeak {
   Spike spike;

@@ -286,10 +286,14 @@ expect_notice "overdamped modes" "mode(s) of the undamped beam below" modes --be
 # Air damping overdamps the lowest mode instead (gamma = 50: "mode 1" at 11.3 Hz, zeta 0.63; the fourth pass's Q311):
 # said too, though no undamped mode is missing below the listed ones. banks-aluminium itself gets no such note.
 sed 's/^gamma = .*/gamma = 50/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/air.toml"
-expect_notice "air-overdamped mode" "the damping overdamps mode(s) below 11.3 Hz" modes --beam "$tmp/air.toml" \
+expect_notice "air-overdamped mode" "the damping overdamps 1 mode(s) of the undamped beam below 11.3 Hz" modes --beam "$tmp/air.toml" \
   --elements 16 --count 3
 "$BEAMID" modes --beam banks-aluminium --elements 16 --count 15 2>"$tmp/err" >/dev/null
 grep -q "overdamp" "$tmp/err" && bad "banks-aluminium: an overdamped note: $(head -c 300 "$tmp/err")" || ok
+# Shear relaxation poles (kAG / kAcs = 7.4 rad/s with kAcs = 1e5) are real and slow, but no mode is overdamped (R211).
+sed 's/^kAcs = .*/kAcs = 1e5/' "$SRC/tests/data/banks-aluminium.toml" >"$tmp/shear.toml"
+"$BEAMID" modes --beam "$tmp/shear.toml" --elements 16 --count 3 2>"$tmp/err" >/dev/null
+grep -q "overdamp" "$tmp/err" && bad "kAcs 1e5: an overdamped note: $(head -c 300 "$tmp/err")" || ok
 # A flag before the command (the third pass's P251) and a binary file as the report to update (P431).
 expect_error "flag before the command" "'--beam' comes before the command 'simulate': flags follow the command" \
   --beam banks-aluminium simulate

@@ -395,7 +395,9 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   const std::size_t first = bad_value.find("  0.00000000000E+00", bad_value.find("tip accelerometer"));
   bad_value.replace(first, 19, "  0.0000000000XE+00");
   const std::string value_error = error_of(write("value.uff", bad_value), o);
-  EXPECT_NE(value_error.find("value.uff:21: value 1 = '0.0000000000XE+00': must be a finite number"), std::string::npos)
+  EXPECT_NE(value_error.find("value.uff:21: value 1 (ordinate data type 4: fields of 20 characters) = "
+                             "'0.0000000000XE+00': must be a finite number"),
+            std::string::npos)
       << value_error;
   // The binary dataset cut short: its byte offset.
   const std::string cut = good.substr(0, good.find("mid-span accelerometer") + 700);
@@ -438,6 +440,12 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   EXPECT_NE(error_of(write("v.uff", velocity_label), o).find("ordinate data type 12 (acceleration) with units 'm/s'"),
             std::string::npos)
       << error_of(write("v.uff", velocity_label), o);
+  // An excitation force (type 13) is no response (the fifth pass's R153).
+  std::string force = good;
+  force.replace(ordinate, 50, "        13    1    0    0 Force                N   ");
+  EXPECT_NE(error_of(write("f.uff", force), o).find("ordinate data type 13 (excitation force): a response record is"),
+            std::string::npos)
+      << error_of(write("f.uff", force), o);
   // A binary file of no known kind says which formats are read.
   EXPECT_NE(error_of(write("mystery.bin", std::string("\x01\x02\x03\x04", 4) + std::string(100, 'a'))).find(".npy"),
             std::string::npos);

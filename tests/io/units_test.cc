@@ -99,6 +99,18 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_NE(column_unit_problem("x (mm) (um)"), "");
   EXPECT_NE(column_unit_problem("x_mm_um"), "");
   EXPECT_NE(column_unit_problem("x_mm (um)"), "");
+  // The fifth pass's: a remark after the unit (R005, R043), and time columns labelled after a remark, spelled out,
+  // or in no time unit (R061-R074).
+  EXPECT_EQ(unit_of_column_name("x (mm) (raw)"), "mm");
+  EXPECT_EQ(unit_of_column_name("a (g) [tip]"), "g");
+  EXPECT_EQ(unit_of_column_name("acc_g_raw"), "g");
+  EXPECT_EQ(time_unit_of_column_name("t (ms) [rel]"), "ms");
+  EXPECT_EQ(time_unit_of_column_name("t_ms_abs"), "ms");
+  EXPECT_EQ(time_unit_of_column_name("time (milliseconds)"), "ms");
+  EXPECT_EQ(time_unit_of_column_name("t (Hz)"), "Hz");
+  EXPECT_EQ(time_unit_of_column_name("t (m)"), "m");
+  EXPECT_EQ(time_unit_of_column_name("time"), "");
+  EXPECT_NE(column_unit_problem("t [ms"), "");
   for (const char* fine : {"x (mm)", "acc_m_s2", "v_mm_s", "accel (tip) (g)", "tip_mm_s", "sensor", "x (mm) [tip]"})
     EXPECT_EQ(column_unit_problem(fine), "") << fine;
 }

@@ -179,6 +179,15 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   // One window.
   EXPECT_NE(load_error("windows", std::string(kTwoRecords) + fit + "windows = 1\n").find("fit.windows"),
             std::string::npos);
+  // The fifth pass's: two records of one name (R437), and a key both shared and per record (R428, which failed every
+  // fit at run time with exit 3).
+  std::string same_names = kTwoRecords;
+  same_names.replace(same_names.find("name = \"long\""), 13, "name = \"short\"");
+  EXPECT_NE(load_error("names", same_names + fit).find("must differ from every other record's"), std::string::npos)
+      << load_error("names", same_names + fit);
+  const std::string both =
+      std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"a\"\nestimate = [\"EI\"]\nper_record = [\"EI\"]\n";
+  EXPECT_NE(load_error("both", both).find("is also in estimate"), std::string::npos) << load_error("both", both);
 }
 
 }  // namespace

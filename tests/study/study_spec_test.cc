@@ -144,6 +144,10 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
             "s.toml:13: fit.frequency_weight is read by the spike costs (spike, spike-smooth); this study runs only "
             "time");
   EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fit]\nfrequency_weight = \"relative\"")), "no error");
+  EXPECT_EQ(error_of(replaced(replaced(kValid, "[fit]", "[fit]\nmax_frequency_hz = 300.0"),
+                              "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\"]")),
+            "s.toml:13: fit.max_frequency_hz is read by the spike costs, modal and freq-band; this study runs only "
+            "time");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nnoise = [0.0, 1.5]\n"),
             "s.toml:32: landscape.noise element 1.5: must be in [0, 1] (a fraction of the clean RMS)");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nzoom_range_factor = 1.03\n"),

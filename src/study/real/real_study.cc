@@ -114,7 +114,13 @@ void read_records(const config::Document& document, const Relative& relative, Re
                 "must hold at most " + std::to_string(core::kMaxRecords) + " records");
     for (std::size_t k = 0; k < items.size(); ++k) {
       const std::string name = "record" + std::to_string(k + 1);
-      s.records.push_back(read_record(items[k].table(name + ".", "record"), name, relative));
+      Table t = items[k].table(name + ".", "record");
+      s.records.push_back(read_record(t, name, relative));
+      // Records are named in candidates' `records` and in the tables: two of one name were accepted (the fifth
+      // pass's R437).
+      for (std::size_t j = 0; j + 1 < s.records.size(); ++j)
+        if (s.records[j].name == s.records.back().name)
+          t.fail("name", "'" + s.records.back().name + "'", "must differ from every other record's");
     }
   } else {
     s.records.push_back(read_record(document.required("record"), "record1", relative));
@@ -156,6 +162,10 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
   if (r.has("per_record")) c.per_record = estimated_keys(r, "per_record");
   if (c.estimate.empty() && c.per_record.empty())
     r.fail("estimate", "[]", "must name the parameters to estimate (here or in [fit])");
+  // A key both shared and per record failed every fit at run time, exit 3 (the fifth pass's R428).
+  for (const std::string& key : c.per_record)
+    if (std::find(c.estimate.begin(), c.estimate.end(), key) != c.estimate.end())
+      r.fail("per_record", "'" + key + "'", "is also in estimate: a key is shared or per record, not both");
   std::vector<std::string> all = c.estimate;
   all.insert(all.end(), c.per_record.begin(), c.per_record.end());
   for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
@@ -227,6 +237,8 @@ RealStudySpec load_real_study(const std::string& path) {
   {
     Table r = document.required("beam");
     s.beam_file = relative(r.string("file", std::nullopt));
+    // Checked here even when every record has its own beam (a missing file was accepted in silence: R438).
+    if (!io::is_existing_file(s.beam_file)) r.fail("file", "'" + s.beam_file + "'", "must be an existing beam file");
     r.finish({"file"});
   }
   CandidateSpec given;

@@ -333,12 +333,23 @@ void check_method_overrides(const config::Document& document, const StudySpec& s
     std::string listed;
     for (const std::string& c : all)
       if (listed.find(c) == std::string::npos) listed += (listed.empty() ? "" : ", ") + c;
-    for (const auto& [key, field, readers] :
-         {std::tuple{"window", &costs::CostUses::window, "the DFT costs (spike, spike-smooth, freq-band)"},
-          std::tuple{"frequency_weight", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
-          std::tuple{"spike_rule", &costs::CostUses::spike_rule, "the spike costs (spike, spike-smooth)"}})
-      if (!all.empty() && fit->has(key) &&
-          std::none_of(all.begin(), all.end(), [&](const std::string& c) { return costs::cost_uses(c).*field; }))
+    using Reads = bool (*)(const std::string&);
+    const Reads window = [](const std::string& c) { return costs::cost_uses(c).window; };
+    const Reads spike = [](const std::string& c) { return costs::is_spike_cost(c); };
+    const Reads picks = [](const std::string& c) { return costs::is_spike_cost(c) || c == costs::kModalCost; };
+    const Reads band = [](const std::string& c) {
+      return costs::is_spike_cost(c) || c == costs::kModalCost || c == costs::kBandCost;
+    };
+    // The spikes' number and band too (the fifth pass's R345-R361).
+    for (const auto& [key, reads, readers] :
+         {std::tuple{"window", window, "the DFT costs (spike, spike-smooth, freq-band)"},
+          std::tuple{"frequency_weight", spike, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"spike_rule", spike, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"spikes", picks, "the spike costs and modal"},
+          std::tuple{"max_spikes", picks, "the spike costs and modal"},
+          std::tuple{"min_frequency_hz", band, "the spike costs, modal and freq-band"},
+          std::tuple{"max_frequency_hz", band, "the spike costs, modal and freq-band"}})
+      if (!all.empty() && fit->has(key) && std::none_of(all.begin(), all.end(), reads))
         throw InputError(fit->where(key) + ": fit." + key + " is read by " + readers + "; this study runs only " +
                          listed);
   }
