@@ -45,7 +45,7 @@ void real_csv(const RealStudySpec& spec, const RealResults& results, RealCsv& cs
           "window_sd,nominal,ratio_to_nominal,parameter_status\n";
   modes << "candidate,cost,record,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio\n";
   candidates << "candidate,cost,status,parameters,rms_frequency_misfit,worst_frequency_misfit,condition_number,"
-                "verdict,weakest_combination\n";
+                "verdict,weakest_combination,verdict_scope\n";
   timings << "candidate,cost,wall_time_s\n";
   for (const RealFit& f : results.fits) {
     const std::string label = io::json_string(f.candidate) + "," + f.cost;
@@ -74,7 +74,8 @@ void real_csv(const RealStudySpec& spec, const RealResults& results, RealCsv& cs
     candidates << label << "," << f.status << "," << f.parameters.size() << "," << io::round_trip(f.rms_misfit) << ","
                << io::round_trip(f.worst_misfit) << "," << io::round_trip(id.condition) << ","
                << io::json_string(id.status == "ok" ? id.verdict : id.status) << ","
-               << io::json_string(id.status == "ok" ? id.combination() : "") << "\n";
+               << io::json_string(id.status == "ok" ? id.combination() : "") << ","
+               << io::json_string(id.status == "ok" ? id.scope() : "") << "\n";
     if (f.overlay && f.candidate == spec.candidates.front().name) overlays.emplace_back(f.cost, *f.overlay);
   }
 }
@@ -137,9 +138,12 @@ void real_candidates(Markdown& md, const RealStudySpec& spec, const RealResults&
       const fit::Identifiability& id = f.identifiability;
       md << "| " << f.candidate << " | " << f.cost << " | " << f.status << " | " << keys << " | "
          << (failed(f) ? "-" : g3(100 * f.rms_misfit)) << " | " << (failed(f) ? "-" : g3(100 * f.worst_misfit)) << " | "
-         << (id.status == "ok" ? g3(id.condition) : "-") << " | " << (id.status == "ok" ? id.verdict : "-") << " | "
-         << (id.status == "ok" ? id.combination() : "-") << " |\n";
+         << (id.status == "ok" ? g3(id.condition) : "-") << " | " << (id.status == "ok" ? id.verdict + id.scope() : "-")
+         << " | " << (id.status == "ok" ? id.combination() : "-") << " |\n";
     }
+    md << "\nThe verdict and the weakest combination are about the parameters that are not damping: the damping terms "
+          "are marginalised (their uncertainty counts) and a parameter on its bound is left out (the bound set it), "
+          "as each row says.\n";
   }
 }
 
