@@ -162,26 +162,23 @@ TEST(TimeSeries, ACoarseLabViewTimeColumnTakesTheHeadersStepWhenEveryTimeAgrees)
   // The fourth pass's Q214: an X column rounded to 10 ms beside Delta_X = 0.001 gave the column's mean step,
   // 0.000997067 s, 0.3 % off, and every frequency with it. Every printed time agrees with the header's step to its
   // printed resolution, so that step is the record's, exactly.
-  std::string text = lvm(0);
-  text.replace(text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
-  for (int i = 0; i < 1024; ++i) {
-    char line[64];
-    std::snprintf(line, sizeof line, "%.2f\t%.6f\n", i * 1e-3, std::sin(0.3 * i));
-    text += line;
-  }
-  const auto s = read_time_series(write("coarse.lvm", text));
+  // n samples at 1 ms with Delta_X = 0.001 and the X column printed to 2 decimals.
+  const auto coarse = [](int n) {
+    std::string text = lvm(0);
+    text.replace(text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
+    for (int i = 0; i < n; ++i) {
+      char line[64];
+      std::snprintf(line, sizeof line, "%.2f\t%.6f\n", i * 1e-3, std::sin(0.3 * i));
+      text += line;
+    }
+    return text;
+  };
+  const auto s = read_time_series(write("coarse.lvm", coarse(1024)));
   EXPECT_EQ(s.dt_s, 1e-3);
   EXPECT_NE(s.notes.find("the header's Delta_X"), std::string::npos) << s.notes;
   // 60 samples: the rounded last time makes the column's mean step 1.7 % off, which was refused as "the header and
   // the data disagree" (the fifth pass's R120), though every printed time agrees with Delta_X.
-  std::string short_text = lvm(0);
-  short_text.replace(short_text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
-  for (int i = 0; i < 60; ++i) {
-    char line[64];
-    std::snprintf(line, sizeof line, "%.2f\t%.6f\n", i * 1e-3, std::sin(0.3 * i));
-    short_text += line;
-  }
-  EXPECT_EQ(read_time_series(write("short.lvm", short_text)).dt_s, 1e-3);
+  EXPECT_EQ(read_time_series(write("short.lvm", coarse(60))).dt_s, 1e-3);
 }
 
 TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
