@@ -31,27 +31,67 @@ std::string lower(std::string text) {
 std::string known_unit(std::string u, bool label) {
   u = lower(trimmed(u));
   // The micro sign (UTF-8 C2 B5) and Greek mu (CE BC) as u; the superscript two (C2 B2) as ^2.
+  // Negative exponents as written in SI style ("mm s-1", "mm.s-2", "m\xc2\xb7s-1") and "per" as '/' (the fifth pass's
+  // R008-R017), before the spaces go.
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"\xc2\xb5", "u"},
                                  {"\xce\xbc", "u"},
                                  {"\xc2\xb2", "^2"},
                                  {"**", "^"},
+                                 {" per ", "/"},
+                                 {"\xc2\xb7", " "},
+                                 {".s-", " s-"},
+                                 {" s^-1", "/s"},
+                                 {" s-1", "/s"},
+                                 {" s^-2", "/s^2"},
+                                 {" s-2", "/s^2"},
+                                 {"/sec", "/s"},
                                  {" ", ""}}) {
     for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
       u.replace(at, from.size(), to);
   }
-  static const std::array<std::pair<const char*, const char*>, 61> spellings{{
-      {"meter", "m"},      {"meters", "m"},      {"metre", "m"},        {"metres", "m"},      {"micron", "um"},
-      {"microns", "um"},   {"millimeter", "mm"}, {"millimeters", "mm"}, {"millimetre", "mm"}, {"millimetres", "mm"},
-      {"mm/sec", "mm/s"},  {"km", "km"},         {"yd", "yd"},          {"mil", "mil"},       {"mph", "mph"},
-      {"pm", "pm"},        {"inch", "in"},       {"inches", "in"},      {"feet", "ft"},       {"foot", "ft"},
-      {"gal", "Gal"},      {"g", "g"},           {"g's", "g"},          {"gs", "g"},          {"gn", "g"},
-      {"mg", "mg"},        {"m", "m"},           {"cm", "cm"},          {"mm", "mm"},         {"um", "um"},
-      {"nm", "nm"},        {"in", "in"},         {"ft", "ft"},          {"m/s", "m/s"},       {"ms^-1", "m/s"},
-      {"mm/s", "mm/s"},    {"in/s", "in/s"},     {"ips", "in/s"},       {"ft/s", "ft/s"},     {"km/h", "km/h"},
-      {"m/s^2", "m/s^2"},  {"m/s2", "m/s^2"},    {"ms^-2", "m/s^2"},    {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"},
-      {"mm/s2", "mm/s^2"}, {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"},   {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},
-      {"v", "V"},          {"volt", "V"},        {"volts", "V"},        {"mv", "mV"},         {"n", "N"},
-      {"newton", "N"},     {"newtons", "N"},     {"lbf", "lbf"},        {"pa", "Pa"},         {"kn", "kN"},
+  static const std::array<std::pair<const char*, const char*>, 85> spellings{{
+      {"kmh", "km/h"},      {"kph", "km/h"},
+      {"micrometre", "um"}, {"micrometres", "um"},
+      {"micrometer", "um"}, {"micrometers", "um"},
+      {"centimetre", "cm"}, {"centimetres", "cm"},
+      {"centimeter", "cm"}, {"centimeters", "cm"},
+      {"nanometre", "nm"},  {"nanometres", "nm"},
+      {"nanometer", "nm"},  {"nanometers", "nm"},
+      {"kilometre", "km"},  {"kilometres", "km"},
+      {"yard", "yd"},       {"yards", "yd"},
+      {"mils", "mil"},      {"thou", "mil"},
+      {"gee", "g"},         {"milli-g", "mg"},
+      {"in.", "in"},        {"cm/s", "cm/s"},
+      {"meter", "m"},       {"meters", "m"},
+      {"metre", "m"},       {"metres", "m"},
+      {"micron", "um"},     {"microns", "um"},
+      {"millimeter", "mm"}, {"millimeters", "mm"},
+      {"millimetre", "mm"}, {"millimetres", "mm"},
+      {"mm/sec", "mm/s"},   {"km", "km"},
+      {"yd", "yd"},         {"mil", "mil"},
+      {"mph", "mph"},       {"pm", "pm"},
+      {"inch", "in"},       {"inches", "in"},
+      {"feet", "ft"},       {"foot", "ft"},
+      {"gal", "Gal"},       {"g", "g"},
+      {"g's", "g"},         {"gs", "g"},
+      {"gn", "g"},          {"mg", "mg"},
+      {"m", "m"},           {"cm", "cm"},
+      {"mm", "mm"},         {"um", "um"},
+      {"nm", "nm"},         {"in", "in"},
+      {"ft", "ft"},         {"m/s", "m/s"},
+      {"ms^-1", "m/s"},     {"mm/s", "mm/s"},
+      {"in/s", "in/s"},     {"ips", "in/s"},
+      {"ft/s", "ft/s"},     {"km/h", "km/h"},
+      {"m/s^2", "m/s^2"},   {"m/s2", "m/s^2"},
+      {"ms^-2", "m/s^2"},   {"m/s/s", "m/s^2"},
+      {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
+      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"},
+      {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},
+      {"v", "V"},           {"volt", "V"},
+      {"volts", "V"},       {"mv", "mV"},
+      {"n", "N"},           {"newton", "N"},
+      {"newtons", "N"},     {"lbf", "lbf"},
+      {"pa", "Pa"},         {"kn", "kN"},
       {"um/s", "um/s"},
   }};
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
@@ -117,9 +157,9 @@ std::vector<std::string> bracketed_labels(const std::string& name, std::string* 
   std::vector<std::string> labels;
   std::size_t end = name.size();
   while (end > 0) {
-    const auto o = name.find_last_of("([", end - 1);
+    const auto o = name.find_last_of("([{<", end - 1);
     if (o == std::string::npos) break;
-    const char close = name[o] == '(' ? ')' : ']';
+    const char close = name[o] == '(' ? ')' : name[o] == '[' ? ']' : name[o] == '{' ? '}' : '>';
     const auto c = name.find(close, o);
     if (c == std::string::npos || c >= end) {
       if (unclosed && unclosed->empty()) *unclosed = name.substr(o);
@@ -148,7 +188,15 @@ std::pair<std::string, std::size_t> suffix_unit(const std::string& name) {
     if (is_unconverted_unit(name.substr(at + 1), false)) return {name.substr(at + 1), at};
     std::string suffix = n.substr(at + 1);
     std::replace(suffix.begin(), suffix.end(), '_', '/');  // m_s2 -> m/s2, mm_s -> mm/s, in_s -> in/s
+    for (auto per = suffix.find("/per/"); per != std::string::npos; per = suffix.find("/per/"))
+      suffix.replace(per, 5, "/");  // v_mm_per_s (R017)
     if (const std::string unit = known_unit(suffix, false); !unit.empty()) return {unit, at};
+    // Units over a time unit that beamid does not convert ("v_m_min": m/min) are kept as written, to be refused
+    // (they were read as SI after "min" matched nothing: R016).
+    if (const auto slash = suffix.find('/'); slash != std::string::npos &&
+                                             !known_unit(suffix.substr(0, slash), false).empty() &&
+                                             !time_unit_of_label(suffix.substr(slash + 1)).empty())
+      return {suffix, at};
   }
   return {"", std::string::npos};
 }
@@ -169,8 +217,15 @@ std::string unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
   for (const std::string& label : bracketed_labels(name))
     if (const std::string unit = unit_of_label(label); !unit.empty()) return unit;
-  const std::string stem = name.substr(0, std::min(name.find_first_of("(["), name.size()));
+  const std::string stem = name.substr(0, std::min(name.find_first_of("([{<"), name.size()));
   if (const std::string unit = suffix_unit(trimmed(stem)).first; !unit.empty()) return unit;
+  // A unit after the name's last space: "v mm/s" (R040); one that spells no unit but is written as one ('/') is kept
+  // as stated, to be refused.
+  if (const auto space = stem.find_last_of(' '); space != std::string::npos) {
+    const std::string last = trimmed(stem.substr(space + 1));
+    if (const std::string unit = known_unit(last, false); !unit.empty()) return unit;
+    if (last.find('/') != std::string::npos) return last;
+  }
   // A unit between the name and a remark: "acc_g_raw" is in g (R043).
   const std::string n = lower(trimmed(stem));
   for (auto at = n.rfind('_'); at != std::string::npos && at > 0; at = n.rfind('_', at - 1)) {
@@ -188,11 +243,14 @@ std::string column_unit_problem(std::string_view column) {
   const auto labels = bracketed_labels(name, &unclosed);
   if (!unclosed.empty())
     return "'" + unclosed + "' opens a bracket that does not close: write the unit as 'name (unit)'";
+  if (std::count(name.begin(), name.end(), ')') > std::count(name.begin(), name.end(), '(') ||
+      std::count(name.begin(), name.end(), ']') > std::count(name.begin(), name.end(), '['))
+    return "a bracket closes that no bracket opened: write the unit as 'name (unit)'";
   // Every unit the name states, bracketed or as a suffix of the name before the first bracket.
   std::vector<std::string> units;
   for (const auto& label : labels)
     if (const std::string unit = unit_of_label(label); !unit.empty()) units.push_back(unit);
-  const std::string stem = name.substr(0, std::min(name.find_first_of("(["), name.size()));
+  const std::string stem = name.substr(0, std::min(name.find_first_of("([{<"), name.size()));
   auto [unit, at] = suffix_unit(trimmed(stem));
   if (!unit.empty()) units.push_back(unit);
   // "x_mm_um": a known unit between the name and its suffix unit.
@@ -219,7 +277,7 @@ std::string time_unit_of_column_name(std::string_view column) {
     if (const std::string unit = time_unit_of_label(label); !unit.empty()) return unit;
     if (!unit_of_label(label).empty() || lower(trimmed(label)) == "hz") return trimmed(label);
   }
-  const std::string stem = lower(trimmed(name.substr(0, std::min(name.find_first_of("(["), name.size()))));
+  const std::string stem = lower(trimmed(name.substr(0, std::min(name.find_first_of("([{<"), name.size()))));
   // The suffix, or a time unit between the name and a remark ("t_ms_abs").
   for (auto at = stem.rfind('_'); at != std::string::npos; at = at > 0 ? stem.rfind('_', at - 1) : std::string::npos) {
     const auto next = stem.find('_', at + 1);
@@ -266,6 +324,7 @@ std::optional<SiConversion> si_conversion(const std::string& unit) {
   if (unit == "ft/s^2") return SiConversion{"m/s^2", kFoot};
   if (unit == "km/h") return SiConversion{"m/s", 1 / 3.6};
   if (unit == "um/s") return SiConversion{"m/s", 1e-6};
+  if (unit == "cm/s") return SiConversion{"m/s", 1e-2};
   return std::nullopt;
 }
 
@@ -287,7 +346,8 @@ bool is_known_unit(const std::string& unit) {
 }
 
 std::string known_units_list() {
-  return "m, km, cm, mm, um, nm, pm, in, mil, ft, yd; m/s, mm/s, um/s, in/s, ft/s, km/h, mph; m/s^2, mm/s^2, in/s^2, "
+  return "m, km, cm, mm, um, nm, pm, in, mil, ft, yd; m/s, cm/s, mm/s, um/s, in/s, ft/s, km/h, mph; m/s^2, mm/s^2, "
+         "in/s^2, "
          "ft/s^2, Gal, g, mg; V, mV, N, kN, lbf, Pa";
 }
 
