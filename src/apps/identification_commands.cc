@@ -139,9 +139,12 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
   }
   line << "; sd over them:";
   for (std::size_t i = 0; i < spread.keys.size(); ++i) {
-    line << (i ? "," : "") << " " << spread.keys[i] << " " << spread.sd[i] << " (formal "
-         << result.parameters[i].standard_error << ", sandwich " << result.parameters[i].robust_standard_error
-         << "; the windows' own formal " << spread.window_formal[i];
+    // A parameter on its bound in some windows is spread over the others only (NaN under two).
+    const int off_bound = i < spread.used_per_parameter.size() ? spread.used_per_parameter[i] : spread.used;
+    line << (i ? "," : "") << " " << spread.keys[i]
+         << (off_bound < spread.used ? " (over the " + std::to_string(off_bound) + " window(s) off its bound)" : "")
+         << " " << spread.sd[i] << " (formal " << result.parameters[i].standard_error << ", sandwich "
+         << result.parameters[i].robust_standard_error << "; the windows' own formal " << spread.window_formal[i];
     // Model error shows as a spread beyond what each window's own noise gives; the full fit's formal error is the
     // wrong yardstick, the later windows being free decays that carry less information.
     const double ratio = spread.sd[i] / spread.window_formal[i];

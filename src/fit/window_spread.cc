@@ -24,6 +24,7 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
   o.strategy = o.strategy == kHybrid ? kHybrid : kDirect;  // the hybrid's refinement is part of its estimate
   o.starts = 1;
   std::vector<std::vector<double>> formal_errors;  // [window][parameter]
+  std::vector<std::vector<bool>> on_bound;         // [window][parameter]: the window fit left it on a bound
   for (int k = 0; k < windows; ++k) {
     std::vector<Record> cut = records;
     for (std::size_t r = 0; r < cut.size(); ++r) {
@@ -35,18 +36,22 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
       cut[r].start = full.records[r].beam;                               // inside the bounds, always
     }
     std::vector<double> estimate(n, std::numeric_limits<double>::quiet_NaN()), formal = estimate;
+    std::vector<bool> bound(n, false);
     std::string status;
     try {
       const FitResult r = fit(o, cut);
       status = r.status;
       if (status != "failed")
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = 0; i < n; ++i) {
           estimate[i] = r.parameters[i].estimate, formal[i] = r.parameters[i].standard_error;
+          bound[i] = r.parameters[i].status == kAtLowerBound || r.parameters[i].status == kAtUpperBound;
+        }
     } catch (const std::exception& error) {  // a window the cost cannot use (too few spikes in it, for example)
       status = std::string("failed: ") + error.what();
     }
     spread.estimates.push_back(estimate);
     formal_errors.push_back(formal);
+    on_bound.push_back(bound);
     spread.statuses.push_back(status);
   }
   spread.mean.assign(n, std::numeric_limits<double>::quiet_NaN());
@@ -54,27 +59,32 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
   // Only windows whose fit converged count: one stopped by the evaluation budget sits wherever the budget left it
   // (near its start, the full estimate), and eight such windows gave an sd of EI 300 times below its formal error,
   // a measure of the budget rather than the data (the second adversarial pass's N540).
+  // A parameter's statistics leave out the windows where it sits on a bound (the bound set it, not the data).
   std::vector<bool>& counted = spread.counted;
   for (std::size_t k = 0; k < spread.estimates.size(); ++k) {
     counted.push_back(spread.statuses[k].rfind("converged", 0) == 0 && !spread.estimates[k].empty() &&
                       !std::isnan(spread.estimates[k].front()));
     spread.used += counted.back() ? 1 : 0;
   }
-  if (spread.used < 2) return spread;
+  spread.used_per_parameter.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
+    const auto counts = [&](std::size_t k) { return counted[k] && !on_bound[k][i]; };
     double sum = 0, squares = 0;
+    int used = 0;
     for (std::size_t k = 0; k < spread.estimates.size(); ++k)
-      if (counted[k]) sum += spread.estimates[k][i];
-    const double mean = sum / spread.used;
+      if (counts(k)) sum += spread.estimates[k][i], ++used;
+    spread.used_per_parameter[i] = used;
+    if (used < 2) continue;
+    const double mean = sum / used;
     for (std::size_t k = 0; k < spread.estimates.size(); ++k)
-      if (counted[k]) squares += (spread.estimates[k][i] - mean) * (spread.estimates[k][i] - mean);
+      if (counts(k)) squares += (spread.estimates[k][i] - mean) * (spread.estimates[k][i] - mean);
     spread.mean[i] = mean;
-    spread.sd[i] = std::sqrt(squares / (spread.used - 1));
-    double formal_squares = 0;  // NaN (an estimate on a bound) propagates: no comparison then
+    spread.sd[i] = std::sqrt(squares / (used - 1));
+    double formal_squares = 0;
     for (std::size_t k = 0; k < spread.estimates.size(); ++k)
-      if (counted[k]) formal_squares += formal_errors[k][i] * formal_errors[k][i];
-    spread.window_formal[i] = std::sqrt(formal_squares / spread.used);
-    spread.standard_error[i] = spread.sd[i] / std::sqrt(static_cast<double>(spread.used));
+      if (counts(k)) formal_squares += formal_errors[k][i] * formal_errors[k][i];
+    spread.window_formal[i] = std::sqrt(formal_squares / used);
+    spread.standard_error[i] = spread.sd[i] / std::sqrt(static_cast<double>(used));
   }
   return spread;
 }

@@ -36,7 +36,10 @@ struct WindowSpread {
   // the full fit's formal error and the report said to quote it as model error: the third pass's P317).
   std::vector<double> window_formal;
   std::vector<bool> counted;  // per window: its fit converged, so it counts in the statistics
-  int used = 0;  // windows whose fit converged (status converged...)
+  int used = 0;               // windows whose fit converged (status converged...)
+  // Per parameter, the converged windows where it is not on a bound: its statistics are over these only (a window's
+  // cDI on its bound was counted in cDI's sd, the bound's value rather than the data's: the fifth pass's R284).
+  std::vector<int> used_per_parameter;
 };
 
 // The smallest window, in samples: shorter windows resolve no mode below a few hundred bins.

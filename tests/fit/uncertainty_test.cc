@@ -93,6 +93,12 @@ TEST(Uncertainty, WithModelErrorTheWindowsAndTheSandwichExceedTheFormalError) {
   ASSERT_NE(full.status, "failed");
   const WindowSpread w = window_spread(s.options, data, full, 4);
   ASSERT_GE(w.used, 3);
+  // The windows' cDI absorbs the model error onto its bound (measured: in every window): its spread is over the
+  // windows off the bound only, here none, so it has no sd; EI, interior in each, keeps all of them (R284).
+  ASSERT_EQ(w.used_per_parameter.size(), 2u);
+  EXPECT_EQ(w.used_per_parameter[0], w.used);
+  EXPECT_EQ(w.used_per_parameter[1], 0) << w.statuses[0];
+  EXPECT_TRUE(std::isnan(w.sd[1]));
   const ParameterEstimate& ei = full.parameters[0];
   EXPECT_GT(w.sd[0], 5 * ei.standard_error);
   EXPECT_GT(ei.robust_standard_error, 1.2 * ei.standard_error);
