@@ -150,9 +150,8 @@ void real_candidates(Markdown& md, const RealStudySpec& spec, const RealResults&
 // Every estimate with its three uncertainties.
 void real_uncertainties(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   md << "\nThree uncertainties per estimate (REPORT 2.8 says which to quote): formal, sandwich (both from J at the "
-        "estimate) and the sd over the disjoint windows whose fits converged inside the bounds (none for an estimate "
-        "on "
-        "its bound, or with fewer than two such windows).\n";
+        "estimate) and the sd over the disjoint windows whose fits converged, each parameter's over those where it "
+        "is off its bound (none for an estimate on its bound, or with fewer than two such windows).\n";
   md << "\n| " << (spec.candidates.size() > 1 ? "candidate | " : "")
      << "cost | parameter | estimate | x nominal | formal sd | sandwich sd | window sd | status |\n|"
      << (spec.candidates.size() > 1 ? "---|" : "") << "---|---|---|---|---|---|---|---|\n";
