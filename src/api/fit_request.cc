@@ -242,7 +242,15 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
     }
   }
   const std::vector<double>& data = channels.front().values;
-  c.result = c.records.empty() ? fit::fit(o, data) : fit::fit(o, c.records);
+  // The lower layers' input errors ("cost spike: spikes = 8: the data spectrum has only 5 local maxima ...") name
+  // the command (they did not: the fifth pass's R258-R263).
+  try {
+    c.result = c.records.empty() ? fit::fit(o, data) : fit::fit(o, c.records);
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    if (what.rfind(caller.label, 0) == 0) throw;
+    refuse(caller, what);
+  }
   // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
   if (request.windows && c.result.status != "failed") {
     try {

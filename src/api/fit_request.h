@@ -93,6 +93,11 @@ struct FitNotes {
 // With the record and the cost's name, a one-record least-squares fit that explains less than half of the record's
 // sum of squares (or none of it) is said to (a fit of white noise, of another beam's record, or of a record in counts
 // reported precise "free" estimates with exit 0).
+// The cost whose value the result carries: a hybrid fit's is its refinement's (fit/identification.h), so that a
+// hybrid fit refined by least squares is told when it explains little of the record (the fifth pass's R253).
+inline const std::string& result_cost_name(const fit::FitOptions& o) {
+  return o.strategy == fit::kHybrid ? o.refine : o.cost.name;
+}
 FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record = nullptr,
                    const std::string& cost = "");
 

@@ -269,6 +269,10 @@ expect_notice "modal cost, (A4) at the estimate" "the estimate is not reliable: 
 awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, 30 * $2 }' "$tmp/z.csv" >"$tmp/scaled.csv"
 expect_notice "a fit of a record 30x the model" "the fitted model explains only" fit --data "$tmp/scaled.csv" \
   --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 --max-evaluations 30
+# The same with a hybrid fit refined by least squares, whose result is the refinement's (the fifth pass's R253).
+expect_notice "a hybrid fit of a record 30x the model" "the fitted model explains" fit --data "$tmp/scaled.csv" \
+  --beam banks-aluminium --elements 6 --estimate EI --cost spike-smooth --strategy hybrid --refine time \
+  --pulse-width 0.004 --max-evaluations 30
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 \
   --max-evaluations 30 >/dev/null 2>"$tmp/err"
 grep -q "explains" "$tmp/err" && bad "the record's own fit: $(head -c 300 "$tmp/err")" || ok
