@@ -116,6 +116,23 @@ double time_base_number(const std::string& key, const std::string& value, const 
   return v;
 }
 
+// With X_Columns Multi every channel's X column must be the first's: channel 1's times were used for every channel
+// without a check (the fifth pass's R135). Equal to the coarser of the two printed resolutions.
+void check_x_columns(const std::vector<std::string>& fields, const std::vector<std::string>& names,
+                     const std::string& path, int number) {
+  for (std::size_t c = 2; c < fields.size() && c < names.size(); c += 2) {
+    const std::string &first = fields[0], &other = fields[c];
+    if (trim(other).empty() || other == first) continue;
+    const double a = std::strtod(first.c_str(), nullptr), b = std::strtod(other.c_str(), nullptr);
+    const double resolution = std::pow(10.0, -std::min(decimals(first), decimals(other)));
+    if (!(std::abs(a - b) <= 0.5 * resolution * (1 + 1e-9)))
+      throw InputError(path + ":" + std::to_string(number) + ": X column " + std::to_string(c + 1) + " ('" +
+                       shown(names[c]) + "') = " + shown(trim(other)) + " s differs from the first X column's " +
+                       shown(trim(first)) +
+                       " s: channels sampled at other times are not one record (save each to its own file)");
+  }
+}
+
 // LabVIEW measurement text: a file header and one segment header, each ending in ***End_of_Header***, then a line
 // of column names and the data. Keys read: Separator, Decimal_Separator, X_Columns, Y_Unit_Label, X0, Delta_X.
 Table read_lvm(std::istream& in, const std::string& path) {
@@ -205,6 +222,7 @@ Table read_lvm(std::istream& in, const std::string& path) {
                        ": a second segment begins here: beamid reads LVM files of one segment (save each segment, or "
                        "each run, to its own file)");
     const auto fields = split(line, separator);
+    if (x_columns == "Multi") check_x_columns(fields, names, path, number);
     std::vector<std::string> row;
     for (int c : keep) row.push_back(c < static_cast<int>(fields.size()) ? fields[static_cast<std::size_t>(c)] : "");
     t.rows.push_back(row);

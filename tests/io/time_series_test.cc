@@ -181,6 +181,29 @@ TEST(TimeSeries, ACoarseLabViewTimeColumnTakesTheHeadersStepWhenEveryTimeAgrees)
   EXPECT_EQ(read_time_series(write("short.lvm", coarse(60))).dt_s, 1e-3);
 }
 
+TEST(TimeSeries, LabViewChannelsOnOtherTimesAreNotOneRecord) {
+  // X_Columns Multi: each channel has its own X column. Channel 1's times were used for channel 2 though its own were
+  // 0.5 ms later (the fifth pass's R135); equal columns read as before.
+  const auto two_channels = [](double offset_s) {
+    std::string text = lvm(0);
+    text.replace(text.find("X_Value\tAcceleration\tComment"), 28, "X_Value\tA\tX_Value\tB\tComment");
+    text.replace(text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
+    for (int i = 0; i < 64; ++i) {
+      char line[96];
+      std::snprintf(line, sizeof line, "%.6f\t%.6f\t%.6f\t%.6f\n", i * 1e-3, std::sin(0.3 * i), i * 1e-3 + offset_s,
+                    std::cos(0.3 * i));
+      text += line;
+    }
+    return text;
+  };
+  ImportOptions o;
+  o.channel = "B";
+  EXPECT_EQ(read_time_series(write("multi.lvm", two_channels(0)), o).values.size(), 64u);
+  EXPECT_NE(error_of(write("shifted.lvm", two_channels(5e-4)), o).find("X column 3 ('X_Value') = 0.000500 s differs"),
+            std::string::npos)
+      << error_of(write("shifted.lvm", two_channels(5e-4)), o);
+}
+
 TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   // Line 16 is the column-name line; data row 8 (0-based) is line 25.
   EXPECT_NE(error_of(write("nan.lvm", lvm(50, "NaN"))).find("nan.lvm:25: Acceleration = NaN: must be finite"),
