@@ -1,8 +1,8 @@
 #include "io/units.h"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -49,7 +49,7 @@ std::string known_unit(std::string u, bool label) {
     for (auto at = u.find(from); at != std::string::npos; at = u.find(from, at + to.size()))
       u.replace(at, from.size(), to);
   }
-  static const std::array<std::pair<const char*, const char*>, 85> spellings{{
+  static constexpr std::pair<const char*, const char*> spellings[] = {
       {"kmh", "km/h"},      {"kph", "km/h"},
       {"micrometre", "um"}, {"micrometres", "um"},
       {"micrometer", "um"}, {"micrometers", "um"},
@@ -93,7 +93,7 @@ std::string known_unit(std::string u, bool label) {
       {"newtons", "N"},     {"lbf", "lbf"},
       {"pa", "Pa"},         {"kn", "kN"},
       {"um/s", "um/s"},
-  }};
+  };
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
   for (const auto& [spelling, unit] : spellings)
     if (u == spelling) return unit;
@@ -180,6 +180,23 @@ std::string unit_of_label(const std::string& label) {
   return "";
 }
 
+// The name before its first bracket ("x_mm" of "x_mm (raw)").
+std::string stem_of(const std::string& name) {
+  return trimmed(name.substr(0, std::min(name.find_first_of("([{<"), name.size())));
+}
+
+// The '_'-separated tokens of a name after its first (the name itself), lower case: "acc_g_raw" gives g, raw.
+std::vector<std::string> tokens_after_name(const std::string& name) {
+  std::vector<std::string> tokens;
+  const std::string n = lower(name);
+  for (auto at = n.find('_'); at != std::string::npos;) {
+    const auto next = n.find('_', at + 1);
+    tokens.push_back(n.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1));
+    at = next;
+  }
+  return tokens;
+}
+
 // The unit a name's suffix states ("acc_m_s2" m/s^2, "v_mm_s" mm/s), the longest that spells one, and the position
 // of the separator before it; a unit beamid does not convert ("ux_ms", "x_Mm") is returned as written.
 std::pair<std::string, std::size_t> suffix_unit(const std::string& name) {
@@ -217,8 +234,8 @@ std::string unit_of_column_name(std::string_view column) {
   const std::string name = trimmed(column);
   for (const std::string& label : bracketed_labels(name))
     if (const std::string unit = unit_of_label(label); !unit.empty()) return unit;
-  const std::string stem = name.substr(0, std::min(name.find_first_of("([{<"), name.size()));
-  if (const std::string unit = suffix_unit(trimmed(stem)).first; !unit.empty()) return unit;
+  const std::string stem = stem_of(name);
+  if (const std::string unit = suffix_unit(stem).first; !unit.empty()) return unit;
   // A unit after the name's last space: "v mm/s" (R040); one that spells no unit but is written as one ('/') is kept
   // as stated, to be refused.
   if (const auto space = stem.find_last_of(' '); space != std::string::npos) {
@@ -226,14 +243,10 @@ std::string unit_of_column_name(std::string_view column) {
     if (const std::string unit = known_unit(last, false); !unit.empty()) return unit;
     if (last.find('/') != std::string::npos) return last;
   }
-  // A unit between the name and a remark: "acc_g_raw" is in g (R043).
-  const std::string n = lower(trimmed(stem));
-  for (auto at = n.rfind('_'); at != std::string::npos && at > 0; at = n.rfind('_', at - 1)) {
-    const auto next = n.find('_', at + 1);
-    const std::string token = n.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
-    if (const std::string unit = known_unit(token, false); !unit.empty()) return unit;
-    if (n.find('_') == at) break;  // the first token is the name itself
-  }
+  // A unit between the name and a remark: "acc_g_raw" is in g (R043), the last such token.
+  const std::vector<std::string> tokens = tokens_after_name(stem);
+  for (auto token = tokens.rbegin(); token != tokens.rend(); ++token)
+    if (const std::string unit = known_unit(*token, false); !unit.empty()) return unit;
   return "";
 }
 
@@ -250,20 +263,13 @@ std::string column_unit_problem(std::string_view column) {
   std::vector<std::string> units;
   for (const auto& label : labels)
     if (const std::string unit = unit_of_label(label); !unit.empty()) units.push_back(unit);
-  const std::string stem = name.substr(0, std::min(name.find_first_of("([{<"), name.size()));
-  auto [unit, at] = suffix_unit(trimmed(stem));
+  const std::string stem = stem_of(name);
+  const auto [unit, at] = suffix_unit(stem);
   if (!unit.empty()) units.push_back(unit);
   // "x_mm_um": a known unit between the name and its suffix unit.
-  const std::string before = at == std::string::npos ? "" : lower(trimmed(stem)).substr(0, at);
-  if (const auto sep = before.find('_'); sep != std::string::npos) {
-    for (std::size_t from = sep; from != std::string::npos;) {
-      const auto next = before.find('_', from + 1);
-      const std::string token =
-          before.substr(from + 1, next == std::string::npos ? std::string::npos : next - from - 1);
+  if (at != std::string::npos)
+    for (const std::string& token : tokens_after_name(stem.substr(0, at)))
       if (const std::string u = known_unit(token, false); !u.empty()) units.push_back(u);
-      from = next;
-    }
-  }
   for (const auto& u : units)
     if (u != units.front()) return "it states two units, " + units.front() + " and " + u + ": name the column with one";
   return "";
@@ -277,21 +283,17 @@ std::string time_unit_of_column_name(std::string_view column) {
     if (const std::string unit = time_unit_of_label(label); !unit.empty()) return unit;
     if (!unit_of_label(label).empty() || lower(trimmed(label)) == "hz") return trimmed(label);
   }
-  const std::string stem = lower(trimmed(name.substr(0, std::min(name.find_first_of("([{<"), name.size()))));
-  // The suffix, or a time unit between the name and a remark ("t_ms_abs").
-  for (auto at = stem.rfind('_'); at != std::string::npos; at = at > 0 ? stem.rfind('_', at - 1) : std::string::npos) {
-    const auto next = stem.find('_', at + 1);
-    const std::string token = stem.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
-    if (const std::string unit = time_unit_of_label(token); !unit.empty()) return unit;
-    if (at == 0) break;
-  }
+  // The suffix, or a time unit between the name and a remark ("t_ms_abs"): the last such token.
+  const std::vector<std::string> tokens = tokens_after_name(stem_of(name));
+  for (auto token = tokens.rbegin(); token != tokens.rend(); ++token)
+    if (const std::string unit = time_unit_of_label(*token); !unit.empty()) return unit;
   return "";
 }
 
 std::string time_unit_of_label(std::string_view text) {
   const std::string label = lower(trimmed(text));
   for (
-      const auto& [spelling, unit] : std::array<std::pair<const char*, const char*>, 24>{
+      const auto& [spelling, unit] : std::initializer_list<std::pair<const char*, const char*>>{
           {{"s", "s"},       {"secs", "s"},          {"second", "s"},     {"millisecond", "ms"}, {"milliseconds", "ms"},
            {"msecs", "ms"},  {"microseconds", "us"}, {"hr", "h"},         {"hrs", "h"},          {"hour", "h"},
            {"days", "days"}, {"sec", "s"},           {"seconds", "s"},    {"ms", "ms"},          {"msec", "ms"},
