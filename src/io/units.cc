@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -292,13 +291,14 @@ std::string time_unit_of_column_name(std::string_view column) {
 
 std::string time_unit_of_label(std::string_view text) {
   const std::string label = lower(trimmed(text));
-  for (
-      const auto& [spelling, unit] : std::initializer_list<std::pair<const char*, const char*>>{
-          {{"s", "s"},       {"secs", "s"},          {"second", "s"},     {"millisecond", "ms"}, {"milliseconds", "ms"},
-           {"msecs", "ms"},  {"microseconds", "us"}, {"hr", "h"},         {"hrs", "h"},          {"hour", "h"},
-           {"days", "days"}, {"sec", "s"},           {"seconds", "s"},    {"ms", "ms"},          {"msec", "ms"},
-           {"us", "us"},     {"usec", "us"},         {"\xc2\xb5s", "us"}, {"ns", "ns"},          {"min", "min"},
-           {"mins", "min"},  {"minutes", "min"},     {"h", "h"},          {"hours", "h"}}})
+  // Time units' spellings: a named array (not a braced temporary: GCC and Clang read doubled braces differently).
+  static constexpr std::pair<const char*, const char*> spellings[] = {
+      {"s", "s"},       {"secs", "s"},          {"second", "s"},     {"millisecond", "ms"}, {"milliseconds", "ms"},
+      {"msecs", "ms"},  {"microseconds", "us"}, {"hr", "h"},         {"hrs", "h"},          {"hour", "h"},
+      {"days", "days"}, {"sec", "s"},           {"seconds", "s"},    {"ms", "ms"},          {"msec", "ms"},
+      {"us", "us"},     {"usec", "us"},         {"\xc2\xb5s", "us"}, {"ns", "ns"},          {"min", "min"},
+      {"mins", "min"},  {"minutes", "min"},     {"h", "h"},          {"hours", "h"}};
+  for (const auto& [spelling, unit] : spellings)
     if (label == spelling) return unit;
   return "";
 }
