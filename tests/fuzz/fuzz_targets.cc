@@ -89,7 +89,17 @@ void command_line(const std::uint8_t* data, std::size_t size) {
 // case's schema, or moves it aside, and never crashes. Each input is one file in a per-process folder.
 void store_record(const std::uint8_t* data, std::size_t size) {
   namespace fs = std::filesystem;
-  static const fs::path dir = fs::temp_directory_path() / ("beamid-fuzz-store-" + std::to_string(::getpid()));
+  // The folder goes with the process (libFuzzer ends by exit(), which runs static destructors): a fuzz pass leaves
+  // nothing in the temporary directory.
+  struct ProcessFolder {
+    fs::path path = fs::temp_directory_path() / ("beamid-fuzz-store-" + std::to_string(::getpid()));
+    ~ProcessFolder() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const ProcessFolder folder;
+  const fs::path& dir = folder.path;
   std::ostringstream log;
   const study::Store store(dir.string(), "fuzz", &log);
   {
