@@ -1,5 +1,6 @@
 // The text formats of the record readers (io/record_samples.h): CSV and LabVIEW .lvm.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -44,7 +45,27 @@ struct Table {
   std::vector<std::vector<std::string>> rows;
   std::vector<int> line_of;
   long declared_samples = 0;  // LVM "Samples" of the segment header (0: not given)
+  int names_line = 1;         // the line of the column names
 };
+
+// The word in a column's name that marks it as a spectrum rather than samples in time ("" when none): the real
+// Impulse_test.lvm holds "Acceleration (FFT - (RMS))" in dB against frequency under a header that says X_Dimension
+// Time, and its values read as a time series gave a "mode" at 1.6e-4 Hz without a word. Whole words only, any case.
+std::string spectrum_word(const std::string& name) {
+  static constexpr const char* words[] = {"fft", "psd", "asd", "spectrum", "spectra", "frf", "db", "autopower"};
+  std::string word;
+  for (std::size_t i = 0; i <= name.size(); ++i) {
+    const unsigned char c = i < name.size() ? static_cast<unsigned char>(name[i]) : ' ';
+    if (std::isalnum(c)) {
+      word += static_cast<char>(std::tolower(c));
+      continue;
+    }
+    for (const char* w : words)
+      if (word == w) return name.substr(i - word.size(), word.size());
+    word.clear();
+  }
+  return "";
+}
 
 Table read_csv(std::istream& in, const std::string& path) {
   Table t;
@@ -101,6 +122,28 @@ Table read_csv(std::istream& in, const std::string& path) {
     t.line_of.push_back(number);
   }
   return t;
+}
+
+// A Y column's unit: its Y_Unit_Label, else the unit its name states ("disp (mm)", read as a CSV column's name; an
+// empty label beside that name was read as metres, 1e3 off: the fifth pass's R104). A name and a label that
+// disagree are a problem to name, not a choice to make (R105).
+void set_lvm_units(Table& t, const std::vector<std::string>& y_units) {
+  int y = 0;
+  for (std::size_t i = 0; i < t.names.size(); ++i) {
+    const bool time = t.time_column == 0 && i == 0;
+    if (time) {
+      t.units.push_back("s"), t.unit_problems.push_back("");
+      continue;
+    }
+    const std::string label =
+        y < static_cast<int>(y_units.size()) ? normalized_unit(y_units[static_cast<std::size_t>(y)]) : "";
+    ++y;
+    const std::string named = unit_of_column_name(t.names[i]);
+    std::string problem = column_unit_problem(t.names[i]);
+    if (problem.empty() && !label.empty() && !named.empty() && named != label)
+      problem = "its name states " + named + " and the header's Y_Unit_Label states " + label + ": they must agree";
+    t.units.push_back(label.empty() ? named : label), t.unit_problems.push_back(problem);
+  }
 }
 
 // An LVM header's X0 or Delta_X on its line: a finite number, and a step that advances (Delta_X = 0 or -0.001 was
@@ -170,6 +213,10 @@ Table read_lvm(std::istream& in, const std::string& path) {
         throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value +
                          "': must be One, Multi or No");
       x_columns = value;
+    } else if (key == "X_Dimension" && !value.empty() && value != "Time") {
+      throw InputError(path + ":" + std::to_string(number) + ": X_Dimension = '" + value +
+                       "': must be Time (beamid reads time series; a spectrum's peaks are what `beamid spikes` "
+                       "finds in a time record)");
     } else if (key == "Y_Unit_Label") {
       y_units.assign(fields.begin() + 1, fields.end());
     } else if (key == "X0" || key == "Delta_X") {
@@ -205,14 +252,8 @@ Table read_lvm(std::istream& in, const std::string& path) {
   std::vector<std::string> kept_names;
   for (int c : keep) kept_names.push_back(names[static_cast<std::size_t>(c)]);
   t.names = kept_names;
-  int y = 0;
-  for (std::size_t i = 0; i < t.names.size(); ++i) {
-    const bool time = t.time_column == 0 && i == 0;
-    t.units.push_back(
-        time ? "s"
-             : (y < static_cast<int>(y_units.size()) ? normalized_unit(y_units[static_cast<std::size_t>(y)]) : ""));
-    if (!time) ++y;
-  }
+  t.names_line = number;
+  set_lvm_units(t, y_units);
   while (std::getline(in, line)) {
     ++number;
     if (trim(line).empty()) continue;
@@ -329,9 +370,14 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
   s.value_column = table.names[static_cast<std::size_t>(column)];
   s.unit = table.units[static_cast<std::size_t>(column)];
+  if (const std::string word = spectrum_word(s.value_column); !word.empty())
+    throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +
+                     "': its name says " + word +
+                     ": beamid reads time series, not spectra (a spectrum's peaks are what `beamid spikes` finds in "
+                     "a time record; rename the column if it does hold samples in time)");
   if (o.units == "auto" && column < static_cast<int>(table.unit_problems.size()) &&
       !table.unit_problems[static_cast<std::size_t>(column)].empty())
-    throw InputError(path + ":1: column '" + shown(s.value_column) +
+    throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +
                      "': " + table.unit_problems[static_cast<std::size_t>(column)] + " (or give --units as-is)");
 
   int time_decimals = 0;  // the finest printed resolution (trailing zeros may be dropped on some lines)

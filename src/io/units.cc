@@ -153,21 +153,30 @@ bool is_unconverted_unit(const std::string& label, bool in_brackets) {
 // The bracketed labels of a name, last first: "(g)", "[m/s^2]". An opening bracket with no closing one after it is
 // returned in `unclosed`.
 std::vector<std::string> bracketed_labels(const std::string& name, std::string* unclosed = nullptr) {
-  std::vector<std::string> labels;
-  std::size_t end = name.size();
-  while (end > 0) {
-    const auto o = name.find_last_of("([{<", end - 1);
-    if (o == std::string::npos) break;
-    const char close = name[o] == '(' ? ')' : name[o] == '[' ? ']' : name[o] == '{' ? '}' : '>';
-    const auto c = name.find(close, o);
-    if (c == std::string::npos || c >= end) {
-      if (unclosed && unclosed->empty()) *unclosed = name.substr(o);
-    } else {
-      labels.push_back(name.substr(o + 1, c - o - 1));
+  // A forward scan with a stack, so that nested brackets pair up: the real Impulse_test.lvm names its channel
+  // "Acceleration (FFT - (RMS))", whose outer bracket a backward scan for the next closer took as unclosed. A closer
+  // without its opener is column_unit_problem's to name. The labels come last-opened first ("x (mm) (raw)" gives raw,
+  // mm; a nested label before the one around it).
+  std::vector<std::pair<std::size_t, std::string>> labels;  // (opener's position, text inside)
+  std::vector<std::size_t> open;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const char c = name[i];
+    if (c == '(' || c == '[' || c == '{' || c == '<') {
+      open.push_back(i);
+    } else if (c == ')' || c == ']' || c == '}' || c == '>') {
+      if (open.empty()) continue;
+      const char o = name[open.back()];
+      if ((o == '(' && c != ')') || (o == '[' && c != ']') || (o == '{' && c != '}') || (o == '<' && c != '>'))
+        continue;
+      labels.emplace_back(open.back(), name.substr(open.back() + 1, i - open.back() - 1));
+      open.pop_back();
     }
-    end = o;
   }
-  return labels;
+  if (unclosed && !open.empty()) *unclosed = name.substr(open.front());
+  std::sort(labels.begin(), labels.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::string> texts;
+  for (auto& [at, text] : labels) texts.push_back(std::move(text));
+  return texts;
 }
 
 // A bracketed label as a unit: known, a unit expression ('/' or '^'), or a unit beamid does not convert, kept as

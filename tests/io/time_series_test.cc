@@ -158,6 +158,38 @@ TEST(TimeSeries, ReadsLabViewTextWithRoundedTimesAndConvertsG) {
   EXPECT_NEAR(w.t0_s, 10 * w.dt_s, 1e-12);
 }
 
+TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
+  // The fifth pass's R104: a channel named "disp (mm)" under an empty Y_Unit_Label was read as metres, 1e3 off.
+  std::string text = lvm(100);
+  text.replace(text.find("Y_Unit_Label\tg"), 14, "Y_Unit_Label\t");
+  text.replace(text.find("\tAcceleration\t"), 14, "\tdisp (mm)\t");
+  const auto mm = read_time_series(write("name_mm.lvm", text));
+  EXPECT_EQ(mm.unit, "m");
+  EXPECT_NEAR(mm.values[3], 1e-3 * std::round(1e6 * std::sin(0.9)) / 1e6, 1e-15);
+  // R105: a name and a Y_Unit_Label that disagree are refused on the names' line (16).
+  text.replace(text.find("Y_Unit_Label\t"), 13, "Y_Unit_Label\tm");
+  const std::string both = error_of(write("name_and_label.lvm", text));
+  EXPECT_NE(both.find("name_and_label.lvm:16: column 'disp (mm)': its name states mm and the header's Y_Unit_Label "
+                      "states m"),
+            std::string::npos)
+      << both;
+  // A spectrum, named so (the real Impulse_test.lvm: dB against frequency under X_Dimension Time), or declared so by
+  // X_Dimension, is not read as samples in time.
+  std::string fft = lvm(100);
+  fft.replace(fft.find("\tAcceleration\t"), 14, "\tAcceleration (FFT - (RMS))\t");
+  EXPECT_NE(error_of(write("fft.lvm", fft)).find("its name says FFT: beamid reads time series"), std::string::npos)
+      << error_of(write("fft.lvm", fft));
+  std::string frequency = lvm(100);
+  frequency.replace(frequency.find("X_Dimension\tTime"), 16, "X_Dimension\tFrequency");
+  EXPECT_NE(error_of(write("f.lvm", frequency)).find("f.lvm:12: X_Dimension = 'Frequency': must be Time"),
+            std::string::npos)
+      << error_of(write("f.lvm", frequency));
+  // A word inside another is no mark ("feedback" holds "db" only as letters of a word).
+  std::string feedback = lvm(100);
+  feedback.replace(feedback.find("\tAcceleration\t"), 14, "\tfeedback (g)\t");
+  EXPECT_EQ(read_time_series(write("feedback.lvm", feedback)).unit, "m/s^2");
+}
+
 TEST(TimeSeries, ACoarseLabViewTimeColumnTakesTheHeadersStepWhenEveryTimeAgrees) {
   // The fourth pass's Q214: an X column rounded to 10 ms beside Delta_X = 0.001 gave the column's mean step,
   // 0.000997067 s, 0.3 % off, and every frequency with it. Every printed time agrees with the header's step to its

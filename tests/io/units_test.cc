@@ -99,6 +99,12 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_NE(column_unit_problem("x (mm) (um)"), "");
   EXPECT_NE(column_unit_problem("x_mm_um"), "");
   EXPECT_NE(column_unit_problem("x_mm (um)"), "");
+  // Nested brackets pair up: the real Impulse_test.lvm's "Acceleration (FFT - (RMS))" closes (a backward scan called
+  // it unclosed); a nested unit is read, and a bracket that closes with the wrong kind is still unclosed.
+  EXPECT_EQ(column_unit_problem("Acceleration (FFT - (RMS))"), "");
+  EXPECT_EQ(unit_of_column_name("Acceleration (FFT - (RMS))"), "");
+  EXPECT_EQ(unit_of_column_name("x (tip (mm))"), "mm");
+  EXPECT_NE(column_unit_problem("x (mm]"), "");
   // The fifth pass's: a remark after the unit (R005, R043), and time columns labelled after a remark, spelled out,
   // or in no time unit (R061-R074).
   EXPECT_EQ(unit_of_column_name("x (mm) (raw)"), "mm");
