@@ -305,7 +305,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   d["a4"] = r.final_evaluation.a4;
   // What the command says on stderr beside its summary line (api::fit_notes), and (A4) when violated.
   py::list messages;
-  const api::FitNotes notes = api::fit_notes(r, &channels.front().values, api::result_cost_name(c->options));
+  const api::FitNotes notes = api::fit_notes(r);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   d["messages"] = messages;

@@ -276,31 +276,37 @@ namespace {
 // record 102 times the model (milli-g read as m/s^2) was 2 % explained and a record 30 times it 6.6 %, both in
 // silence, where only 1 % was said (the fourth pass's Q252, Q257). Said, not refused: a very noisy record is data.
 constexpr double kLeastExplainedFraction = 0.5;
-}  // namespace
 
-FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record, const std::string& cost) {
-  FitNotes notes;
-  if (record && cost == costs::kTimeCost && result.records.size() <= 1 && result.status != "failed") {
-    double energy = 0;
-    for (const double y : *record) energy += y * y;
+// What a least-squares fit leaves of each record (every record of a joint fit, a hybrid fit's refinement: the fifth
+// pass's R251-R254), against the record's own cost at a zero model: "" when it explains at least half.
+std::string explained_note(const fit::FitResult& result) {
+  if (result.status == "failed") return "";
+  std::ostringstream line;
+  for (const fit::RecordResult& r : result.records) {
+    if (!r.evaluation.ok() || !std::isfinite(r.zero_model_value) || !(r.zero_model_value > 0)) continue;
+    const std::string which = result.records.size() > 1 ? " of record '" + r.name + "'" : " of the record";
+    const double cost = r.evaluation.value, energy = r.zero_model_value;
     // A record of integer counts 1e6 times the model's scale left 99.99999 % of its sum of squares unexplained, with
     // an EI standard error 1600 times the value and no word (the third pass's P055, P095, P116).
-    const double explained = 1 - result.cost / energy;
-    if (result.cost >= energy) {
-      std::ostringstream line;
-      line << "the fitted model explains none of the record: its residual sum of squares " << result.cost
-           << " is at least the record's own " << energy
+    if (cost >= energy) {
+      line << (line.tellp() > 0 ? "; " : "") << "the fitted model explains none" << which
+           << ": its residual sum of squares " << cost << " is at least the record's own " << energy
            << ", which a zero model attains (is the record noise, another beam's, or another quantity?)";
-      notes.explains_nothing = line.str();
-    } else if (explained < kLeastExplainedFraction) {
-      std::ostringstream line;
-      line << "the fitted model explains only " << 100 * explained << " % of the record's sum of squares (residual "
-           << result.cost << " of " << energy
+    } else if (1 - cost / energy < kLeastExplainedFraction) {
+      line << (line.tellp() > 0 ? "; " : "") << "the fitted model explains only " << 100 * (1 - cost / energy)
+           << " % of the sum of squares" << which << " in what the cost compares (residual " << cost << " of " << energy
            << "): the residual outweighs the model; is the record mostly noise, another beam's, another quantity, "
               "or in other units or scale (or the force off by a factor)?";
-      notes.explains_nothing = line.str();
     }
   }
+  return line.str();
+}
+
+}  // namespace
+
+FitNotes fit_notes(const fit::FitResult& result) {
+  FitNotes notes;
+  notes.explains_nothing = explained_note(result);
   // (A4) at the estimate: two data spikes or modes pair with one of the model's, so the cost jumped where the
   // pairing changed and the estimate is no minimum of a smooth cost (the modal cost with --spikes 10 on a record of
   // fewer resolvable modes ended with every mode 8 % high and only a tag at the end of the summary: the fourth

@@ -84,21 +84,15 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
 // estimates on a bound, a failure, weak identifiability.
 struct FitNotes {
   std::string on_bound, failed, identifiability;
-  std::string explains_nothing;  // a least-squares fit no better than a zero model (given the record and the cost)
+  std::string explains_nothing;  // a least-squares fit that explains under half of a record (fit_notes)
   std::string no_errors;         // no degrees of freedom: the standard errors are not defined
   std::string pairing;           // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };
-// With the record and the cost's name, a one-record least-squares fit that explains less than half of the record's
-// sum of squares (or none of it) is said to (a fit of white noise, of another beam's record, or of a record in counts
-// reported precise "free" estimates with exit 0).
-// The cost whose value the result carries: a hybrid fit's is its refinement's (fit/identification.h), so that a
-// hybrid fit refined by least squares is told when it explains little of the record (the fifth pass's R253).
-inline const std::string& result_cost_name(const fit::FitOptions& o) {
-  return o.strategy == fit::kHybrid ? o.refine : o.cost.name;
-}
-FitNotes fit_notes(const fit::FitResult& result, const std::vector<double>* record = nullptr,
-                   const std::string& cost = "");
+// A least-squares fit (time or freq-band, of one record or several, or a hybrid's refinement) that explains less than
+// half of a record's sum of squares in what its cost compares (or none of it) is said to: a fit of white noise, of
+// another beam's record, or of a record in counts reported precise "free" estimates with exit 0.
+FitNotes fit_notes(const fit::FitResult& result);
 
 }  // namespace beamid::api

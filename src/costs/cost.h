@@ -151,6 +151,10 @@ class Cost {
   // d r / d q at `model` (whose evaluation must be ok) from d lambda_k / d q of its poles (poles x p, in the order of
   // model.poles_rad_s). The pairing of data and model modes is held, as it is constant almost everywhere.
   virtual Eigen::MatrixXd pole_jacobian(const ModelResponse& model, const Eigen::MatrixXcd& d_poles);
+  // The value a zero model attains, for the least-squares costs (time: sum z_i^2; freq-band: sum over the band of
+  // w_k |Z(k)|^2, the record's energy in the band by Parseval): the baseline a fit's explained fraction
+  // 1 - J / J(0) is measured against. Nothing for the costs that compare features (spikes, modes), which have none.
+  virtual std::optional<double> zero_model_value() const { return std::nullopt; }
 };
 
 // Why a model output cannot be compared with `samples` data samples (its length, a non-finite value), or nothing: the

@@ -36,6 +36,11 @@ class TimeCost final : public Cost {
   Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
     return dy;  // r = y - z
   }
+  std::optional<double> zero_model_value() const override {
+    double sum = 0;
+    for (const double z : z_) sum += z * z;
+    return sum;
+  }
 
  private:
   CostOptions options_;
@@ -102,6 +107,13 @@ class BandCost final : public Cost {
     }
     e.value = e.residuals.squaredNorm();
     return e;
+  }
+
+  std::optional<double> zero_model_value() const override {
+    double sum = 0;
+    for (std::size_t b = 0; b < bins_.size(); ++b)
+      sum += weights_[b] * weights_[b] * std::norm(data_.half[static_cast<std::size_t>(bins_[b])]);
+    return sum;
   }
 
   bool has_output_jacobian() const override { return !options_.unknown_amplitude; }

@@ -343,6 +343,10 @@ void record_results(JointObjective& objective, const std::vector<Record>& record
     if (r < final_output.records.size()) {
       part.evaluation = final_output.records[r].evaluation;
       part.model_output = std::move(final_output.records[r].y);
+      part.zero_model_value = objective.part(static_cast<int>(r))
+                                  .cost()
+                                  .zero_model_value()
+                                  .value_or(std::numeric_limits<double>::quiet_NaN());
     } else {
       part.evaluation.status = "not evaluated: an earlier record failed";
     }

@@ -128,6 +128,9 @@ struct RecordResult {
   costs::Evaluation evaluation;      // of the record's own cost, unweighted, at the estimate
   std::vector<double> model_output;  // y at the estimate
   double weight = 1;                 // the factor on the record's residuals in the joint cost (above)
+  // The record's own cost at a zero model (costs::Cost::zero_model_value: least-squares costs only, else NaN), so
+  // that 1 - evaluation.value / zero_model_value is the fraction of the record the fit explains.
+  double zero_model_value = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct FitResult {

@@ -273,6 +273,14 @@ expect_notice "a fit of a record 30x the model" "the fitted model explains only"
 expect_notice "a hybrid fit of a record 30x the model" "the fitted model explains" fit --data "$tmp/scaled.csv" \
   --beam banks-aluminium --elements 6 --estimate EI --cost spike-smooth --strategy hybrid --refine time \
   --pulse-width 0.004 --max-evaluations 30
+# The same for least squares on DFT bins, against the record's energy in the band (Parseval), and for a joint fit,
+# record by record: a channel 30 times the other was fitted in silence (the fifth pass's R251, R252).
+expect_notice "a freq-band fit of a record 30x the model" "the fitted model explains only" fit --data "$tmp/scaled.csv" \
+  --beam banks-aluminium --elements 6 --estimate EI --cost freq-band --pulse-width 0.004 --max-evaluations 30
+awk -F, 'NR == 1 { print "t_s,a,b"; next } { printf "%s,%.17g,%.17g\n", $1, $2, 30 * $2 }' "$tmp/z.csv" >"$tmp/ab.csv"
+expect_notice "a joint fit with one channel 30x the model" "of record 'b'" fit --data "$tmp/ab.csv" --channel a,b \
+  --sensor-x 0.4573,0.4573 \
+  --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 --max-evaluations 30
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 \
   --max-evaluations 30 >/dev/null 2>"$tmp/err"
 grep -q "explains" "$tmp/err" && bad "the record's own fit: $(head -c 300 "$tmp/err")" || ok
