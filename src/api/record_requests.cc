@@ -118,6 +118,12 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                          ? " (" + std::to_string(found.negligible) + " more pole(s) of amplitude below " +
                                format_value(signal::kNegligibleAmplitude) +
                                " of the record's largest value are rounding, not modes)"
+                         : "") +
+                    (found.below_noise > 0
+                         ? " (" + std::to_string(found.below_noise) +
+                               " more pole(s) below the noise: white noise of the residual's sd puts as much energy "
+                               "into one damped sinusoid with probability " +
+                               format_value(signal::kNoiseFalseAlarm) + " or more)"
                          : ""));
   // A record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for. Said, not
   // dropped: a heavily damped structure exists, and the user decides.

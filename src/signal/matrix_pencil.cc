@@ -40,6 +40,33 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
   return c;
 }
 
+// The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
+// vectors (the file's head), with pencil parameter L.
+Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
+  const int n = static_cast<int>(y.size());
+  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its M dominant right singular vectors.
+  Eigen::MatrixXd hankel(n - pencil, pencil + 1);
+  for (int i = 0; i < n - pencil; ++i)
+    for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
+  // Its right singular vectors are those of R in Y = Q R. Y is tall, n - L >= 2 L >= L + 1 rows for its L + 1 columns
+  // (L <= n / 3, L >= 2), about six rows a column at the default L, and a Householder QR (blocked, in matrix-matrix
+  // products) plus the SVD of the (L + 1)-square triangle cost 2 m c^2 + ~3 c^3 flops (m x c = Y's size) against
+  // ~4 m c^2 for bidiagonalising Y itself, whose matrix-vector products dominated `beamid fit` and a study's
+  // modal-cost cases (measured at Nbar = 4096, L = 599: 0.57-0.65 s against 0.92-1.1 s, on a loaded machine; the
+  // subspaces agree to 1.4e-15).
+  const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(hankel);  // in place: Y is not needed again
+  const Eigen::MatrixXd triangle = qr.matrixQR().topRows(pencil + 1).triangularView<Eigen::Upper>();
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(triangle, Eigen::ComputeThinV);
+  if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
+  const Eigen::MatrixXd v = svd.matrixV().leftCols(order);
+  const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
+  // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
+  const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
+  const Eigen::EigenSolver<Eigen::MatrixXd> eig(pencil_matrix, false);
+  if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
+  return eig.eigenvalues();
+}
+
 }  // namespace
 
 std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o,
@@ -69,27 +96,7 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     throw InputError("order M = " + std::to_string(order) + ": must be at least 2 K = " + std::to_string(2 * o.modes) +
                      " (each real mode is a conjugate pair of exponentials)");
 
-  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its M dominant right singular vectors.
-  Eigen::MatrixXd hankel(n - pencil, pencil + 1);
-  for (int i = 0; i < n - pencil; ++i)
-    for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
-  // Its right singular vectors are those of R in Y = Q R. Y is tall, n - L >= 2 L >= L + 1 rows for its L + 1 columns
-  // (L <= n / 3, L >= 2), about six rows a column at the default L, and a Householder QR (blocked, in matrix-matrix
-  // products) plus the SVD of the (L + 1)-square triangle cost 2 m c^2 + ~3 c^3 flops (m x c = Y's size) against
-  // ~4 m c^2 for bidiagonalising Y itself, whose matrix-vector products dominated `beamid fit` and a study's
-  // modal-cost cases (measured at Nbar = 4096, L = 599: 0.57-0.65 s against 0.92-1.1 s, on a loaded machine; the
-  // subspaces agree to 1.4e-15).
-  const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(hankel);  // in place: Y is not needed again
-  const Eigen::MatrixXd triangle = qr.matrixQR().topRows(pencil + 1).triangularView<Eigen::Upper>();
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(triangle, Eigen::ComputeThinV);
-  if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
-  const Eigen::MatrixXd v = svd.matrixV().leftCols(order);
-  const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
-  // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
-  const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
-  const Eigen::EigenSolver<Eigen::MatrixXd> eig(pencil_matrix, false);
-  if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
-  const Eigen::VectorXcd z = eig.eigenvalues();
+  const Eigen::VectorXcd z = pencil_poles(y, pencil, order);
 
   double residual_sd = 0;
   const Eigen::VectorXcd c = amplitudes(z, y, order, residual_sd);
@@ -104,6 +111,12 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
   d = {};
 
+  // A^2 sum |z|^2i with A = 2 |c|: twice the real mode's sum of squares over the record (kNoiseFalseAlarm).
+  auto energy = [n, dt_s](const IdentifiedMode& m) {
+    const double r2 = std::exp(2 * m.lambda.real() * dt_s);
+    return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
+  };
+  const double noise_energy = 2 * residual_sd * residual_sd * std::log(n / kNoiseFalseAlarm);
   std::vector<IdentifiedMode> modes;
   for (int k = 0; k < order; ++k) {
     if (!(z(k).imag() > 0) || !std::isfinite(std::abs(z(k))) || std::abs(z(k)) == 1) continue;  // one of each pair
@@ -124,17 +137,17 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
       d.negligible += std::abs(z(k)) < 1;
       continue;
     }
+    if (std::abs(z(k)) < 1 && energy(m) / 2 <= noise_energy) {
+      ++d.below_noise;
+      continue;
+    }
     if (std::abs(z(k)) < 1)
       modes.push_back(m);
     else if (m.frequency_hz * n * dt_s >= 2)  // under two cycles in the record it is a trend (an offset and a drift
       d.growing.push_back(m);                 // were a "growing oscillation at 6.85e-08 Hz": the fifth pass's R183)
   }
-  // The K strongest, then by frequency. The strength is the mode's energy over the record, |c|^2 sum |z|^2i, so that
-  // a heavily damped spurious pole with a large initial amplitude does not outrank a lasting mode.
-  auto energy = [n, dt_s](const IdentifiedMode& m) {
-    const double r2 = std::exp(2 * m.lambda.real() * dt_s);
-    return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
-  };
+  // The K strongest, then by frequency. The strength is the mode's energy over the record, so that a heavily damped
+  // spurious pole with a large initial amplitude does not outrank a lasting mode.
   std::sort(modes.begin(), modes.end(), [&](const auto& a, const auto& b) { return energy(a) > energy(b); });
   if (static_cast<int>(modes.size()) > o.modes) modes.resize(static_cast<std::size_t>(o.modes));
   std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
