@@ -97,7 +97,8 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   o.max_frequency_hz = request.max_frequency_hz.value_or(o.max_frequency_hz);
   if (!(o.min_frequency_hz >= 0)) refuse(caller, "min-frequency", format_value(o.min_frequency_hz), "must be >= 0");
   if (!(o.max_frequency_hz > o.min_frequency_hz))
-    refuse(caller, "max-frequency", format_value(o.max_frequency_hz), "must exceed --min-frequency");
+    refuse(caller, "max-frequency", format_value(o.max_frequency_hz),
+           "must exceed --min-frequency = '" + format_value(o.min_frequency_hz) + "'");
   signal::PencilDiagnostics found;
   try {
     r.modes = signal::matrix_pencil(data.values, data.dt_s, o, &found);

@@ -23,6 +23,9 @@ struct Caller {
 // form (format_value), an integer's decimal digits.
 [[noreturn]] void refuse(const Caller& caller, const std::string& field, const std::string& value,
                          const std::string& constraint);
+// A lower layer's message with the option fields it names written as the flags that set them ("sensor_x_m = 0.5"
+// becomes "--sensor-x = '0.5'"); refuse applies it.
+std::string in_flags(std::string message);
 // InputError "label: message": a constraint between fields, or a lower layer's message with its own key.
 [[noreturn]] void refuse(const Caller& caller, const std::string& message);
 

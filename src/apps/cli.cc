@@ -10,6 +10,10 @@
 namespace beamid::apps {
 namespace {
 
+// An error as the line the user reads: "beamid: " before it, unless it already begins with "beamid <command>:" (it
+// read "beamid: beamid fit: ..." before).
+std::string prefixed(const std::string& what) { return what.rfind("beamid ", 0) == 0 ? what : "beamid: " + what; }
+
 std::string command_list() {
   std::string s;
   for (const Command& c : commands()) s += (s.empty() ? "" : ", ") + c.name;
@@ -122,7 +126,7 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
   } catch (const CLI::ParseError& e) {
     const auto [c, sub] = active();
     const bool separator = std::find(args.begin(), args.end(), "--") != args.end();
-    err << "beamid: " << one_line(message_of(e, c ? "beamid " + c->name : "", separator)) << "\n";
+    err << prefixed(one_line(message_of(e, c ? "beamid " + c->name : "", separator))) << "\n";
     return 2;
   }
   if (version) {
@@ -139,10 +143,10 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
     const Flags flags(command->name, *sub, command->flags, rest);
     return run ? command->run(flags, out) : 0;
   } catch (const InputError& error) {
-    err << "beamid: " << error.what() << "\n";
+    err << prefixed(error.what()) << "\n";
     return 2;
   } catch (const NumericalError& error) {
-    err << "beamid: " << error.what() << "\n";
+    err << prefixed(error.what()) << "\n";
     return 3;
   } catch (const std::exception& error) {
     err << "beamid: internal error: " << error.what() << "\n";

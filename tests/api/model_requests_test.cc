@@ -58,7 +58,7 @@ TEST(ModelRunRequest, RefusesWhatOnlyTheFlagParserCheckedBefore) {
   run.elements = 8;
   run.experiment.sensor_x_m = {0.5};  // the thick beam is 0.3 m long
   EXPECT_EQ(refusal([&] { compute_system(run, warnings); }),
-            "beamid system: sensor_x_m = 0.5: must lie on the beam, 0 <= x <= l = 0.3");
+            "beamid system: --sensor-x = '0.5': must lie on the beam, 0 <= x <= l = 0.3");
   SimulateRequest simulate;
   simulate.run.beam = model::preset("thick-steel");
   simulate.run.elements = 8;
@@ -110,7 +110,7 @@ TEST(RecordRequests, SpikesAndModalIdFindTheModesOfASimulatedRecord) {
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(id.modes[k].frequency_hz / m.frequency_hz[k], 1, 1e-6) << k;
   pencil.max_frequency_hz = -1;
   EXPECT_EQ(refusal([&] { compute_modal_id(pencil, decay); }),
-            "beamid modal-id: --max-frequency = '-1': must exceed --min-frequency");
+            "beamid modal-id: --max-frequency = '-1': must exceed --min-frequency = '0'");
 }
 
 TEST(RecordRequests, ModalIdSaysWhenAModeSplitsIntoTwoClosePoles) {

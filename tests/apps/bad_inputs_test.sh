@@ -158,7 +158,7 @@ else bad "damaged store: $named of 8 records named; $(diff -rq -x store -x timin
 paste -d, "$tmp/z.csv" <(cut -d, -f2 "$tmp/z.csv") | sed '1s/.*/t_s,a,b/' >"$tmp/two.csv"
 expect_error "sensor-x count" "--sensor-x = '0.2': must list one position per --channel (2 channel(s))" fit \
   --data "$tmp/two.csv" --channel a,b --sensor-x 0.2 "${S[@]}" --estimate EI --cost time
-expect_error "sensor-x off the beam" "--sensor-x = '0.2,0.9': channel 2: sensor_x_m = 0.9" fit \
+expect_error "sensor-x off the beam" "--sensor-x = '0.2,0.9': channel 2: --sensor-x = '0.9'" fit \
   --data "$tmp/two.csv" --channel a,b --sensor-x 0.2,0.9 "${S[@]}" --estimate EI --cost time
 expect_error "channel list empty item" "must be a comma-separated list without empty items" fit \
   --data "$tmp/two.csv" --channel a,,b --sensor-x 0.2,0.3 "${S[@]}" --estimate EI --cost time
@@ -287,8 +287,8 @@ grep -q "explains" "$tmp/err" && bad "the record's own fit: $(head -c 300 "$tmp/
 # simulate writes no record that is all zeros, none at dt below 1e-9 s, and no CVODE run at a useless tolerance (the
 # third pass's P209, P216-P219, P229, P230).
 expect_error "simulate a zero record" "the response is zero at every sample" simulate "${S[@]}" --samples 64 --force-x 0
-expect_error "simulate at dt 1e-300" "dt_s = 1e-300: must be at least 1e-9 s" simulate "${S[@]}" --samples 64 --dt 1e-300
-expect_error "cvode rtol 0.5" "cvode.rtol = 0.5: must be in [1e-14, 1e-3]" simulate "${S[@]}" --samples 64 \
+expect_error "simulate at dt 1e-300" "--dt = '1e-300': must be at least 1e-9 s" simulate "${S[@]}" --samples 64 --dt 1e-300
+expect_error "cvode rtol 0.5" "--rtol = '0.5': must be in [1e-14, 1e-3]" simulate "${S[@]}" --samples 64 \
   --integrator cvode --rtol 0.5
 # Heavy Kelvin-Voigt damping makes bending modes 2-8 overdamped: modes says they are not listed, since its 'mode 2'
 # is then at 4.6 kHz (the third pass's P178, P179).
@@ -417,7 +417,7 @@ done
 expect_error "J 1e6 on 1 g" "attachment1.J = 1e+06: must be in [0, (m + rho l) l^2 = 0.009103] kg m^2" \
   modes --beam "$tmp/flywheel.toml" --elements 4
 # A force whose response overflows double printed inf and NaN samples with exit 0 (A061, A062).
-expect_error "force 1e308" "force_amplitude_N = 1e+308: must be finite and at most 1e12 N in magnitude" \
+expect_error "force 1e308" "--force-amplitude = '1e+308': must be finite and at most 1e12 N in magnitude" \
   simulate "${S[@]}" --force-amplitude 1e308 --output acceleration
 # Choices the computation has no use for are said, not ignored (C019, D029).
 expect_error "eps1 on time" "--eps1 = '2': weighs a term of the spike costs (spike, spike-smooth); cost time has none" \

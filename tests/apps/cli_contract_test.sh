@@ -72,9 +72,9 @@ expect_error "unknown toml key" "bad2.toml:7: unknown key beam.kAGG" modes --bea
 expect_error "unknown preset" "unknown beam preset 'steel'" modes --beam steel --elements 4
 expect_error "missing file" "nope.toml: cannot open beam file" modes --beam "$tmp/nope.toml" --elements 4
 expect_error "bad elements" "--elements = '0': must be an integer in 1..400" modes --beam thick-steel --elements 0
-expect_error "bad dt" "dt_s = -1: must be finite and > 0" simulate --beam thick-steel --elements 4 --dt -1
+expect_error "bad dt" "--dt = '-1': must be finite and > 0" simulate --beam thick-steel --elements 4 --dt -1
 expect_error "bad number" "--dt = 'fast': must be a finite number" simulate --beam thick-steel --elements 4 --dt fast
-expect_error "sensor off beam" "sensor_x_m = 2: must lie on the beam" simulate --beam thick-steel --elements 4 --sensor-x 2
+expect_error "sensor off beam" "--sensor-x = '2': must lie on the beam" simulate --beam thick-steel --elements 4 --sensor-x 2
 expect_error "bad output" "output = 'strain': must be one of displacement, velocity, acceleration" \
   simulate --beam thick-steel --elements 4 --output strain
 expect_error "bad integrator" "integrator = 'rk4': must be one of fast, cvode" \
