@@ -45,8 +45,8 @@ std::vector<FlagSpec> spike_flags() {
                    2, 1000)};
 }
 
-// Reading the --data record: CSV, LabVIEW .lvm, .npy, .mat or UFF 58, a channel, units, a time window, a rate
-// (io/time_series.h).
+// Reading the --data record: CSV, LabVIEW .lvm, text table (.txt, .dat), .npy, .mat or UFF 58, a channel, units, a time
+// window, a rate (io/time_series.h).
 std::vector<FlagSpec> import_flags() {
   return {text_flag("channel", "signal column by name or 1-based index (default: the only one)"),
           text_flag("units", "auto | g | as-is (default auto: records in g, mm, mm/s or mm/s^2 are converted to SI)"),
@@ -222,7 +222,8 @@ int run_fit(const Flags& a, std::ostream& out) {
 std::vector<FlagSpec> fit_flags() {
   std::vector<FlagSpec> flags = {
       text_flag("data",
-                "record to fit, CSV, LabVIEW .lvm, .npy, .mat or UFF 58; its time step and length fix dt and Nbar; "
+                "record to fit, CSV, LabVIEW .lvm, text table (.txt, .dat), .npy, .mat or UFF 58; its time step and "
+                "length fix dt and Nbar; "
                 "with a --channel "
                 "list, every channel is a record of one joint fit (one --sensor-x each)",
                 true),

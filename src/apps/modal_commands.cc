@@ -17,7 +17,8 @@ namespace beamid::apps {
 std::vector<FlagSpec> modal_id_flags() {
   std::vector<FlagSpec> flags = {
       text_flag("data",
-                "free-decay record: CSV (time, then channels), LabVIEW .lvm, .npy, .mat or UFF 58 (cut off the "
+                "free-decay record: CSV (time, then channels), LabVIEW .lvm, text table (.txt), .npy, .mat or UFF 58 "
+                "(cut off the "
                 "excitation with --start)",
                 true),
       integer_flag("modes", "number K of modes reported: the K strongest decaying oscillations in the band (default 3)",

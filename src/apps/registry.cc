@@ -61,22 +61,27 @@ std::vector<Command> make_commands() {
                joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),
                {},
                run_system});
-  c.push_back({"spikes",
-               "the DFT spikes of a record, with their 20 % supports and the peaks skipped as artefacts",
-               joined(joined({text_flag("data", "record: CSV, LabVIEW .lvm, .npy, .mat or UFF 58", true),
-                              text_flag("detrend", "none | mean | linear: removed before the DFT (default linear)")},
-                             spike_flags()),
-                      import_flags()),
-               {},
-               run_spikes});
-  c.push_back({"cost",
-               "the time, spike, spike-smooth or freq-band cost of a prediction against data",
-               joined(joined({text_flag("data", "record of the data: CSV, LabVIEW .lvm, .npy, .mat or UFF 58", true),
-                              text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
-                             without(cost_flags(true), "welch")),
-                      import_flags()),
-               {},
-               run_cost});
+  c.push_back(
+      {"spikes",
+       "the DFT spikes of a record, with their 20 % supports and the peaks skipped as artefacts",
+       joined(
+           joined({text_flag("data", "record: CSV, LabVIEW .lvm, text table (.txt, .dat), .npy, .mat or UFF 58", true),
+                   text_flag("detrend", "none | mean | linear: removed before the DFT (default linear)")},
+                  spike_flags()),
+           import_flags()),
+       {},
+       run_spikes});
+  c.push_back(
+      {"cost",
+       "the time, spike, spike-smooth or freq-band cost of a prediction against data",
+       joined(joined({text_flag("data",
+                                "record of the data: CSV, LabVIEW .lvm, text table (.txt, .dat), .npy, .mat or UFF 58",
+                                true),
+                      text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
+                     without(cost_flags(true), "welch")),
+              import_flags()),
+       {},
+       run_cost});
   c.push_back({"fit",
                "identify beam parameters from a record (NLopt or Ceres; direct, staged, continuation or hybrid)",
                fit_flags(),

@@ -32,7 +32,9 @@ std::size_t choose_channel(const std::vector<std::string>& names, const ImportOp
 // The first byte of `text` that no text record holds (a control character other than tab, line feed, carriage return
 // and form feed), as the one-line refusal of a binary file of no format beamid reads; nothing for text.
 std::optional<std::string> binary_text_problem(std::string_view text, const std::string& path);
-// CSV or LabVIEW .lvm text (by the ending of `path`).
+// Whether `path` ends as a plain text table (.txt, .dat, .tsv, .asc, any case): numbers separated by whitespace.
+bool is_plain_text_path(const std::string& path);
+// CSV, LabVIEW .lvm or a plain text table (by the ending of `path`).
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o);
 // An array of samples x channels (either way round: the samples run along the longer dimension) with its time base
 // from --sample-rate, or from a time vector of the same length, or from its channel o.time_channel, either stored to

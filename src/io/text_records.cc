@@ -1,4 +1,4 @@
-// The text formats of the record readers (io/record_samples.h): CSV and LabVIEW .lvm.
+// The text formats of the record readers (io/record_samples.h): CSV, LabVIEW .lvm and plain text tables.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -119,6 +119,82 @@ Table read_csv(std::istream& in, const std::string& path) {
     ++number;
     if (trim(line).empty()) continue;
     t.rows.push_back(split(line, ','));
+    t.line_of.push_back(number);
+  }
+  return t;
+}
+
+// The fields of a whitespace-separated line (tabs, spaces; a comma too, as some exports end fields with one).
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  for (const char c : line) {
+    if (c == ' ' || c == '\t' || c == ',' || c == '\r') {
+      if (!field.empty()) out.push_back(field), field.clear();
+    } else {
+      field += c;
+    }
+  }
+  if (!field.empty()) out.push_back(field);
+  return out;
+}
+
+bool all_numbers(const std::vector<std::string>& fields) {
+  for (const auto& cell : fields) {
+    char* end = nullptr;
+    std::strtod(cell.c_str(), &end);
+    if (cell.empty() || end != cell.c_str() + cell.size()) return false;
+  }
+  return !fields.empty();
+}
+
+// A plain text table (.txt, .dat, .tsv, .asc): numbers separated by tabs or spaces, time in s in the first column,
+// blank lines and lines starting with # or % skipped, with or without a line of column names first. As a DAQ's
+// "save as text" writes it: the UnB impact records (studies/data/unb-steel-tipmass) are a blank line, then rows of
+// time, an unused channel, acceleration and hammer force. Without names its columns are "column K" (K counted in
+// the file), chosen by --channel as any record's (the signals counted 1-based, or the name), and it states no unit:
+// the caller must give one (text_samples).
+Table read_plain(std::istream& in, const std::string& path) {
+  Table t;
+  t.format = "text";
+  std::string line;
+  int number = 0;
+  std::vector<std::string> first;
+  while (first.empty() && std::getline(in, line)) {
+    ++number;
+    const std::string l = trim(line);
+    if (l.empty() || l[0] == '#' || l[0] == '%') continue;
+    first = fields_of(l);
+  }
+  if (first.empty()) throw InputError(path + ": no rows (expected a table of numbers: time in s, then the signals)");
+  const bool named = !all_numbers(first);
+  if (named) {
+    // Names separated by tabs where there are tabs ("Accel (g)" holds a space), else by spaces.
+    t.names = line.find('\t') != std::string::npos ? split(trim(line), '\t') : first;
+    for (auto& n : t.names) n = trim(n);
+    t.names_line = number;
+  } else {
+    for (std::size_t k = 0; k < first.size(); ++k) t.names.push_back("column " + std::to_string(k + 1));
+    t.names_line = 0;
+    t.rows.push_back(first);
+    t.line_of.push_back(number);
+  }
+  if (t.names.size() < 2)
+    throw InputError(path + ":" + std::to_string(number) + ": '" + shown(trim(line)) +
+                     "': 1 column: a record is a time column in s and at least one signal");
+  for (const auto& n : t.names)
+    t.units.push_back(named ? unit_of_column_name(n) : ""),
+        t.unit_problems.push_back(named ? column_unit_problem(n) : "");
+  if (named) {
+    if (const std::string unit = time_unit_of_column_name(t.names.front()); !unit.empty() && unit != "s")
+      throw InputError(path + ":" + std::to_string(number) + ": time column '" + shown(t.names.front()) + "' is in " +
+                       unit + ": beamid reads the time in seconds (convert it)");
+  }
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string l = trim(line);
+    if (l.empty() || l[0] == '#' || l[0] == '%') continue;
+    t.rows.push_back(fields_of(l));
     t.line_of.push_back(number);
   }
   return t;
@@ -341,8 +417,17 @@ std::optional<std::string> binary_text_problem(std::string_view text, const std:
   return path + ": byte " + std::to_string(binary - text.begin()) + " is 0x" +
          "0123456789abcdef"[(static_cast<unsigned char>(*binary) >> 4) & 15] +
          "0123456789abcdef"[static_cast<unsigned char>(*binary) & 15] +
-         ": a binary file of no format beamid reads (it reads CSV and LabVIEW .lvm text, NumPy .npy, MATLAB .mat v5 "
+         ": a binary file of no format beamid reads (it reads CSV, LabVIEW .lvm and plain table text, NumPy .npy, "
+         "MATLAB .mat v5 "
          "and v7.3, and UFF dataset 58 ASCII or binary)";
+}
+
+bool is_plain_text_path(const std::string& path) {
+  std::string lower = path;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* ending : {".txt", ".dat", ".tsv", ".asc"})
+    if (lower.ends_with(ending)) return true;
+  return false;
 }
 
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
@@ -355,8 +440,9 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
                      ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
                      "line feeds (LF) or CR LF");
   std::istringstream in(text);
-  const bool lvm = path.size() > 4 && path.substr(path.size() - 4) == ".lvm";
-  const Table table = lvm ? read_lvm(in, path) : read_csv(in, path);
+  const Table table = path.ends_with(".lvm")     ? read_lvm(in, path)
+                      : is_plain_text_path(path) ? read_plain(in, path)
+                                                 : read_csv(in, path);
 
   Samples out;
   TimeSeries& s = out.series;
@@ -375,6 +461,11 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
                      "': its name says " + word +
                      ": beamid reads time series, not spectra (a spectrum's peaks are what `beamid spikes` finds in "
                      "a time record; rename the column if it does hold samples in time)");
+  // A table without names states no unit: the user says which (its values were taken as SI).
+  if (table.format == "text" && table.names_line == 0 && o.units == "auto")
+    throw InputError(path + ": column '" + s.value_column +
+                     "': the table names no columns, so it states no unit: give --units g for an accelerometer in g, "
+                     "or --units as-is to take the values as SI (m, m/s, m/s^2)");
   if (o.units == "auto" && column < static_cast<int>(table.unit_problems.size()) &&
       !table.unit_problems[static_cast<std::size_t>(column)].empty())
     throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +
@@ -384,7 +475,7 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const auto& row = table.rows[r];
     const int line = table.line_of[r];
-    if ((table.format == "csv" && row.size() != table.names.size()) || static_cast<int>(row.size()) <= column ||
+    if ((table.format != "lvm" && row.size() != table.names.size()) || static_cast<int>(row.size()) <= column ||
         (table.time_column >= 0 && row.empty()))
       throw InputError(path + ":" + std::to_string(line) + ": " + std::to_string(row.size()) + " fields: must be " +
                        std::to_string(table.names.size()) + " (" + s.time_column + ", ..., " + s.value_column + ")");

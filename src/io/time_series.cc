@@ -83,7 +83,8 @@ namespace {
 // The whole record file: a regular file of at most 1 GiB (the longest real record here is 4 MB; 1 GiB of text is
 // about 50 million samples), checked against the memory that parsing it takes before it is parsed.
 std::string read_text(const std::string& path) {
-  const std::string cannot_read = "cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF)";
+  const std::string cannot_read =
+      "cannot read the file (expected a record: CSV, LabVIEW .lvm, a text table, .npy, .mat or UFF)";
   // Its first 64 KiB first: a binary file of no format beamid reads is refused before the whole of it is read (a
   // 100 MB file of NUL bytes was read whole, 300 MB resident, before "byte 0 is 0x00").
   const std::string head = read_file_head(path, cannot_read, 1 << 16);

@@ -426,7 +426,7 @@ expect_error "record weights of one record" "--record-weights = 'noise': weighs 
   fit --data "$tmp/z.csv" "${S[@]}" --estimate EI --cost time --record-weights noise
 # A missing file names the system's reason (Z023); a binary file of no known format (a MAT v4 file, NUL bytes) is
 # said to be one before any flag is weighed against it (N025) and from its first bytes, not after reading it whole.
-expect_error "missing record" "no-such.csv: cannot read the file (expected a record: CSV, LabVIEW .lvm, .npy, .mat or UFF) (No such file or directory)" \
+expect_error "missing record" "no-such.csv: cannot read the file (expected a record: CSV, LabVIEW .lvm, a text table, .npy, .mat or UFF) (No such file or directory)" \
   spikes --data "$tmp/no-such.csv"
 head -c 4096 /dev/zero >"$tmp/zeros.mat"
 expect_error "NUL file with --sample-rate" "zeros.mat: byte 0 is 0x00: a binary file of no format beamid reads" \

@@ -190,6 +190,45 @@ TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
   EXPECT_EQ(read_time_series(write("feedback.lvm", feedback)).unit, "m/s^2");
 }
 
+TEST(TimeSeries, APlainTextTableIsReadByColumnAndStatesNoUnitOfItsOwn) {
+  // As a DAQ's "save as text" writes a record (the UnB impact tests: a blank line, then tab-separated time, an unused
+  // channel, acceleration in g and force): 100 rows at dt = 0.000605 s.
+  std::string text = "\n";
+  for (int i = 0; i < 100; ++i) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%.6f\t30.2\t%.6f\t%.6f\n", i * 0.000605, std::sin(0.3 * i), 0.0);
+    text += line;
+  }
+  const std::string path = write("impact.txt", text);
+  // It names no column, so it states no unit: taken as SI it would be 9.81 times off for a record in g.
+  ImportOptions o;
+  o.channel = "2";  // the second signal: the file's column 3
+  EXPECT_NE(error_of(path, o).find("the table names no columns, so it states no unit: give --units g"),
+            std::string::npos)
+      << error_of(path, o);
+  o.units = "g";
+  const auto s = read_time_series(path, o);
+  EXPECT_EQ(s.format, "text");
+  EXPECT_EQ(s.value_column, "column 3");
+  EXPECT_EQ(s.unit, "m/s^2");
+  ASSERT_EQ(s.values.size(), 100u);
+  EXPECT_NEAR(s.dt_s, 0.000605, 1e-12);
+  EXPECT_NEAR(s.values[3], 9.80665 * std::round(1e6 * std::sin(0.9)) / 1e6, 1e-12);
+  // With a line of names (tabs between names that hold spaces), a name's unit is read as a CSV column's.
+  std::string named = "# exported by hand\ntime (s)\tdisp (mm)\n";
+  for (int i = 0; i < 20; ++i) named += std::to_string(i * 0.001) + "  " + std::to_string(i % 3) + "\n";
+  const auto mm = read_time_series(write("named.dat", named));
+  EXPECT_EQ(mm.unit, "m");
+  EXPECT_NEAR(mm.values[2], 2e-3, 1e-15);
+  // A row with a field missing is refused on its line (line 2 of the file is its first row).
+  std::string short_row = text;
+  short_row.replace(short_row.find("\t0.000000\n", 200), 10, "\n");
+  EXPECT_NE(error_of(write("short.txt", short_row), o).find("short.txt:"), std::string::npos)
+      << error_of(write("short.txt", short_row), o);
+  EXPECT_NE(error_of(write("short.txt", short_row), o).find("3 fields: must be 4"), std::string::npos)
+      << error_of(write("short.txt", short_row), o);
+}
+
 TEST(TimeSeries, ACoarseLabViewTimeColumnTakesTheHeadersStepWhenEveryTimeAgrees) {
   // The fourth pass's Q214: an X column rounded to 10 ms beside Delta_X = 0.001 gave the column's mean step,
   // 0.000997067 s, 0.3 % off, and every frequency with it. Every printed time agrees with the header's step to its
