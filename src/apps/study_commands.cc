@@ -73,7 +73,7 @@ std::vector<FlagSpec> merge_flags() {
 int run_merge(const Flags& a, std::ostream& out) {
   const study::StudySpec spec = study::load_study(a.text("STUDY.toml"));
   const std::string output = a.text_or("output", default_output(spec));
-  if (const std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path});
+  if (const std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path);
       !problem.empty())
     a.require(false, "output", problem);
   const study::Store store(output + "/store", io::commit_label());

@@ -17,7 +17,27 @@ void make_folder(const std::filesystem::path& path) {
   if (ec) throw InputError(path.string() + ": cannot create folder (" + ec.message() + ")");
 }
 
-std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs) {
+namespace {
+
+// The "study_file" string of a manifest.json beamid wrote (io::json_string escapes '"' and '\\'), or "".
+std::string manifest_study_file(const std::filesystem::path& manifest) {
+  std::ifstream in(manifest);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string key = "\"study_file\": \"";
+  auto at = text.find(key);
+  if (at == std::string::npos) return "";
+  std::string value;
+  for (at += key.size(); at < text.size() && text[at] != '"'; ++at) {
+    if (text[at] == '\\' && at + 1 < text.size()) ++at;
+    value += text[at];
+  }
+  return value;
+}
+
+}  // namespace
+
+std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
+                                  const std::string& study_file) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(folder, ec)) return "";
@@ -33,6 +53,13 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
       return "holds the input " + input +
              " (an output folder holds what beamid writes, and an output there could replace an input of the same "
              "name): write into a new or empty folder";
+  }
+  if (!study_file.empty() && fs::exists(folder / "manifest.json", ec)) {
+    const std::string owner = manifest_study_file(folder / "manifest.json");
+    if (!owner.empty() && fs::exists(owner, ec) && !fs::equivalent(owner, study_file, ec) && !ec)
+      return "holds the results of another study file, " + owner +
+             " (its manifest.json), whose tables this run would replace: give this study its own [study] name, or "
+             "its own --output";
   }
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "

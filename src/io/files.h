@@ -21,7 +21,11 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 // folder; it holds files but is not an earlier output of beamid (no manifest.json, no store/), so that files of the
 // user's could be overwritten by the tables' names; or one of `inputs` (the command's input files) lies inside it,
 // where a table of the same name would replace it.
-std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs);
+// With `study_file`, also a folder whose manifest.json names another study file that still exists: two study files of
+// one [study] name wrote into one results/<name>, each replacing the other's tables and recomputing its units (the
+// sixth pass's S420).
+std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
+                                  const std::string& study_file = "");
 
 // Whether a relative path stays inside the folder it is joined to: not empty, not absolute, and no ".." part. For
 // names that come from files (a report's block names, the list of tables a study wrote), which must not reach out.

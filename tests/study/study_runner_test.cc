@@ -252,6 +252,28 @@ TEST_F(StudyRunner, ARerunWithAnotherSeedRecomputesEveryUnit) {
   EXPECT_NE(tables(root_ / "seed12"), reference_);
 }
 
+TEST_F(StudyRunner, AnotherStudyFileOfTheSameNameDoesNotTakeOverTheResultsFolder) {
+  // The sixth pass's S420: b.toml, of a.toml's [study] name with another seed, ran into a.toml's results folder,
+  // replaced its tables and moved its finished records aside. Refused, naming the owner; a.toml itself reruns there.
+  const fs::path a = root_ / "a.toml", b = root_ / "b.toml";
+  std::string other = kMini;
+  other.replace(other.find("seed = 11"), 9, "seed = 12");
+  std::ofstream(a) << kMini;
+  std::ofstream(b) << other;
+  RunOptions o;
+  o.output_dir = (root_ / "named").string();
+  std::ostringstream log;
+  ASSERT_TRUE(run_study(parse_study(kMini, a.string(), root_.string()), o, log, false).tables);
+  try {
+    run_study(parse_study(other, b.string(), root_.string()), o, log, false);
+    ADD_FAILURE() << "b.toml ran into a.toml's folder";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds the results of another study file, " + a.string()), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(run_study(parse_study(kMini, a.string(), root_.string()), o, log, false).computed, 0);
+}
+
 // Issue 30: a study rerun without a section left that section's old tables beside the new ones. The tables an
 // earlier run wrote and this one does not are removed: the folder equals a fresh run's.
 TEST_F(StudyRunner, ARerunWithoutASectionRemovesItsOldTables) {

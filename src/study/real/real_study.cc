@@ -280,7 +280,7 @@ int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std
   std::vector<std::string> inputs = {spec.path, spec.beam_file};
   for (const RealRecordSpec& r : spec.records) inputs.insert(inputs.end(), {r.file, r.beam_file});
   for (const CandidateSpec& c : spec.candidates) inputs.push_back(c.beam_file);
-  if (const std::string problem = io::output_folder_problem(output_dir, inputs); !problem.empty())
+  if (const std::string problem = io::output_folder_problem(output_dir, inputs, spec.path); !problem.empty())
     throw InputError("beamid real: --output " + output_dir + ": " + problem);
   const RealResults results = compute_real_study(spec, log);
   for (const Rendered& f : render_real_study(spec, results))
