@@ -73,13 +73,10 @@ ModeComparison compare_modes(const FitReportInput& in) {
     const std::vector<double> decay(in.data.values.begin() + static_cast<std::ptrdiff_t>(first), in.data.values.end());
     // The chosen spikes' modes when there are any (a record's strongest modes may be ones the model lacks).
     const auto& wanted = o.cost.spikes.frequencies_hz;
-    const std::vector<signal::IdentifiedMode> identified =
-        wanted.empty() ? signal::matrix_pencil(decay, in.data.dt_s, p)
-                       : signal::modes_near(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
-    // Heavily damped poles are left out (the third pass's P290: a data pole of zeta 73 %).
-    std::vector<signal::IdentifiedMode> kept;
-    for (const auto& m : identified)
-      if (m.damping_ratio <= signal::kHeavilyDampedRatio) kept.push_back(m);
+    // Those the modal cost compares with: heavily damped poles are left out (the third pass's P290: a data pole of
+    // zeta 73 %), and chosen frequencies' modes kept as they are.
+    const std::vector<signal::IdentifiedMode> kept =
+        signal::lightly_damped_modes(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
     std::vector<double> data_hz, model_hz;
     for (const auto& m : kept) data_hz.push_back(m.frequency_hz);
     for (const auto& m : model) model_hz.push_back(m.frequency_hz);

@@ -22,15 +22,19 @@ class ModalCost final : public Cost {
     const auto& wanted = options_.spikes.frequencies_hz;
     p.modes = options_.spikes.count;
     std::vector<signal::IdentifiedMode> found;
+    int heavy = 0;  // poles left out as the excitation or noise (signal::lightly_damped_modes)
     try {
-      found = wanted.empty() ? signal::matrix_pencil(decay, dt_s, p)
-                             : signal::modes_near(decay, dt_s, p, wanted, options_.spikes.frequency_window);
+      found = signal::lightly_damped_modes(decay, dt_s, p, wanted, options_.spikes.frequency_window, &heavy);
     } catch (const InputError& e) {
       throw InputError(std::string("cost modal: ") + e.what());
     }
     if (wanted.empty() && static_cast<int>(found.size()) < options_.spikes.count)  // modes_near has one per choice
       throw InputError("cost modal: the record shows " + std::to_string(found.size()) + " decaying mode(s) in the " +
-                       "band, fewer than the " + std::to_string(options_.spikes.count) + " asked for");
+                       "band, fewer than the " + std::to_string(options_.spikes.count) + " asked for" +
+                       (heavy > 0 ? " (and " + std::to_string(heavy) +
+                                        " pole(s) damped beyond zeta = " + format_value(signal::kHeavilyDampedRatio) +
+                                        ", the excitation or noise rather than modes)"
+                                  : ""));
     for (const auto& m : found) {
       SpikePair pair;
       pair.data_frequency_hz = m.frequency_hz;

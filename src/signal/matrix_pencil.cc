@@ -111,11 +111,7 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
   d = {};
 
-  // A^2 sum |z|^2i with A = 2 |c|: twice the real mode's sum of squares over the record (kNoiseFalseAlarm).
-  auto energy = [n, dt_s](const IdentifiedMode& m) {
-    const double r2 = std::exp(2 * m.lambda.real() * dt_s);
-    return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
-  };
+  auto energy = [n, dt_s](const IdentifiedMode& m) { return mode_energy(m, dt_s, n); };
   const double noise_energy = 2 * residual_sd * residual_sd * std::log(n / kNoiseFalseAlarm);
   std::vector<IdentifiedMode> modes;
   for (int k = 0; k < order; ++k) {
@@ -150,6 +146,30 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   // spurious pole with a large initial amplitude does not outrank a lasting mode.
   std::sort(modes.begin(), modes.end(), [&](const auto& a, const auto& b) { return energy(a) > energy(b); });
   if (static_cast<int>(modes.size()) > o.modes) modes.resize(static_cast<std::size_t>(o.modes));
+  std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
+  return modes;
+}
+
+double mode_energy(const IdentifiedMode& m, double dt_s, int n) {
+  const double r2 = std::exp(2 * m.lambda.real() * dt_s);
+  return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
+}
+
+std::vector<IdentifiedMode> lightly_damped_modes(const std::vector<double>& decay, double dt_s, PencilOptions options,
+                                                 const std::vector<double>& wanted_hz, double window,
+                                                 int* heavily_damped) {
+  if (heavily_damped) *heavily_damped = 0;
+  if (!wanted_hz.empty()) return modes_near(decay, dt_s, options, wanted_hz, window);
+  const int k = options.modes;
+  options.modes = k + 4;
+  std::vector<IdentifiedMode> modes = matrix_pencil(decay, dt_s, options);
+  const auto heavy =
+      std::erase_if(modes, [](const IdentifiedMode& m) { return m.damping_ratio > kHeavilyDampedRatio; });
+  if (heavily_damped) *heavily_damped = static_cast<int>(heavy);
+  const int n = static_cast<int>(decay.size());
+  std::sort(modes.begin(), modes.end(),
+            [&](const auto& a, const auto& b) { return mode_energy(a, dt_s, n) > mode_energy(b, dt_s, n); });
+  if (static_cast<int>(modes.size()) > k) modes.resize(static_cast<std::size_t>(k));
   std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
   return modes;
 }

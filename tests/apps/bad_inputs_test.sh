@@ -260,10 +260,20 @@ expect_error "derivative-free first step" "bobyqa's first step in linear coordin
 awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, $2 + 1 }' "$tmp/z.csv" >"$tmp/offset.csv"
 expect_notice "a fit that explains almost nothing" "the fitted model explains only" fit --data "$tmp/offset.csv" \
   --beam banks-aluminium --elements 6 --estimate EI --cost time --pulse-width 0.004 --max-evaluations 30
-# The modal cost asked for more modes than pair one to one with the model's walks off (every mode 5 % high) with
-# (A4) violated at the estimate: said as a warning, not only as a tag on the summary (the fourth pass's Q140).
-expect_notice "modal cost, (A4) at the estimate" "the estimate is not reliable: (A4)" fit --data "$tmp/z.csv" \
-  --beam banks-aluminium --elements 8 --estimate EI --max-evaluations 20 --excitation free-decay --cost modal --spikes 6
+# The modal cost whose data modes do not pair one to one with the model's walks off with (A4) violated at the
+# estimate: said as a warning, not only as a tag on the summary (the fourth pass's Q140). Here the record holds a
+# second mode at 27.4 Hz beside the beam's 26.6 Hz (two close modes the model has one of). A heavily damped pole,
+# which triggered it before, is no longer taken for a mode (the sixth pass's S212): asking for six modes of a record
+# that shows five is refused, the pole left out counted.
+m=$(awk -F, 'NR > 1 { v = $2 < 0 ? -$2 : $2; if (v > m) m = v } END { print m }' "$tmp/z.csv")
+awk -F, -v m="$m" 'NR == 1 { print; next } \
+  { printf "%s,%.17g\n", $1, $2 + 0.3 * m * exp(-0.3 * $1) * sin(2 * 3.141592653589793 * 27.4 * $1) }' \
+  "$tmp/z.csv" >"$tmp/split.csv"
+expect_notice "modal cost, (A4) at the estimate" "the estimate is not reliable: (A4)" fit --data "$tmp/split.csv" \
+  --beam banks-aluminium --elements 8 --estimate EI --max-evaluations 20 --excitation free-decay --cost modal --spikes 3
+expect_error "modal cost, a heavily damped pole is no mode" "fewer than the 6 asked for (and 2 pole(s) damped beyond" \
+  fit --data "$tmp/z.csv" --beam banks-aluminium --elements 8 --estimate EI --max-evaluations 20 \
+  --excitation free-decay --cost modal --spikes 6
 # A record 30 times the model (a scale or units error) is about 7 % explained: said too (the fourth pass's Q257); the
 # record itself, fitted, is not.
 awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, 30 * $2 }' "$tmp/z.csv" >"$tmp/scaled.csv"
