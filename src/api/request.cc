@@ -24,6 +24,7 @@ constexpr std::pair<const char*, const char*> kFlagOfField[] = {
     {"spikes", "spikes"},
     {"spike_rule", "spike-rule"},
     {"max_evaluations", "max-evaluations"},
+    {"optimizer", "optimizer"},
     {"exponential_end", "exponential-end"},
     {"cvode.rtol", "rtol"},
     {"cvode.atol", "atol"},
@@ -45,7 +46,8 @@ std::string in_flags(std::string message) {
       // The value runs to the next ':' or ',' or ' ' (a number or a word).
       const std::size_t begin = at + key.size();
       const std::size_t end = std::min(message.find_first_of(":, )", begin), message.size());
-      const std::string value = message.substr(begin, end - begin);
+      std::string value = message.substr(begin, end - begin);
+      if (value.size() >= 2 && value.front() == '\'' && value.back() == '\'') value = value.substr(1, value.size() - 2);
       const std::string replacement = "--" + std::string(flag) + " = '" + value + "'";
       message.replace(at, end - at, replacement);
       at += replacement.size() - 1;

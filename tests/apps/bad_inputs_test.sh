@@ -527,5 +527,9 @@ expect_notice "modal-id after a lead-in" "after a quieter lead-in: it is no free
 "$BEAMID" modal-id --data "$tmp/z.csv" --modes 2 >/dev/null 2>"$tmp/err"
 grep -q "lead-in" "$tmp/err" && bad "a decay from rest called a lead-in: $(head -c 300 "$tmp/err")" || ok
 
+# The spike cost with a derivative-based optimizer stalled on its flat steps and said "converged" 9 % off (S272).
+expect_error "spike cost with lm" "--optimizer = 'lm': cost spike is piecewise constant" fit --data "$tmp/z.csv" \
+  "${S[@]}" --estimate EI --cost spike --optimizer lm --pulse-width 0.004
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
