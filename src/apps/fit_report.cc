@@ -104,6 +104,25 @@ std::string modes_line(const ModeComparison& c) {
   return s;
 }
 
+std::string modes_mismatch_note(const ModeComparison& c) {
+  if (c.status != "ok") return "";
+  double worst = 0;
+  const ModePair* at = nullptr;
+  for (const ModePair& p : c.pairs) {
+    const double off =
+        std::isnan(p.model_hz) ? std::numeric_limits<double>::infinity() : std::abs(p.model_hz / p.data_hz - 1);
+    if (off > worst) worst = off, at = &p;
+  }
+  if (!at || worst <= kModeMismatch) return "";
+  const std::string what = std::isinf(worst) ? "the record's mode at " + g(at->data_hz) +
+                                                   " Hz has no model mode within " + g(100 * kModePairingWindow) + " %"
+                                             : "the model's mode at " + g(at->model_hz) + " Hz is " +
+                                                   g(100 * worst, 3) + " % from the record's " + g(at->data_hz) + " Hz";
+  return "the estimate does not reproduce the record's modes: " + what + " (beyond " + g(100 * kModeMismatch) +
+         " %): a local minimum or a model that cannot fit the record, which the standard errors do not include; try "
+         "other starts (--starts) or another model";
+}
+
 namespace {
 
 using Markdown = std::ostringstream;

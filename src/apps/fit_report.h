@@ -41,6 +41,12 @@ inline constexpr double kModePairingWindow = 0.2;
 std::vector<int> pair_modes(const std::vector<double>& data_hz, const std::vector<double>& model_hz);
 // One line for stderr: "modes at the estimate (data | model): 2.4637 | 2.4637 Hz, zeta 0.0809 | 0.0809 %; ...".
 std::string modes_line(const ModeComparison& comparison);
+// A model that fits a record puts its modes within about 1 % of the record's (model error on the real records here
+// is 0.1-0.7 %): beyond kModeMismatch, a "converged" fit with tight standard errors sits in a local minimum or has a
+// model that cannot fit the record, which the errors do not include (a start 15 % off in frequency ended with modes
+// 15 % apart and 0.4 % errors, nothing said: the sixth pass's S213). "" when every pair agrees.
+inline constexpr double kModeMismatch = 0.02;
+std::string modes_mismatch_note(const ModeComparison& comparison);
 
 // InputError when the file cannot be written.
 // The report as text: the Markdown (which names the spectra's file) and the full spectra as CSV.

@@ -210,7 +210,9 @@ int run_fit(const Flags& a, std::ostream& out) {
     }
   if (spread) std::cerr << "beamid fit: " << window_spread_line(*spread, result) << "\n";
   const FitReportInput input{o, result, data, beam_name, a.arguments(), channels, spread ? &*spread : nullptr};
-  std::cerr << "beamid fit: " << modes_line(compare_modes(input)) << "\n";
+  const ModeComparison modes = compare_modes(input);
+  std::cerr << "beamid fit: " << modes_line(modes) << "\n";
+  if (const std::string note = modes_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
   if (a.has("report")) {
     write_fit_report(a.text("report"), input);
     std::cerr << "beamid fit: report written to " << a.text("report") << " and its full spectra to " << a.text("report")
