@@ -166,6 +166,15 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                       " % apart: one mode whose frequency changes with its amplitude, or two close modes; the "
                       "record's later part (--start) tells which");
   }
+  // A pole that neither decays nor grows over the record (matrix_pencil: kSteadyGrowth): a mains line at 50 Hz was
+  // called a growing oscillation (the sixth pass's S225).
+  for (const signal::IdentifiedMode& m : modes)
+    if (m.damping_ratio <= 0)
+      notes.push_back("the pole at " + format_rounded(m.frequency_hz) +
+                      " Hz neither decays nor grows over the record " + "(damping ratio " +
+                      format_rounded(m.damping_ratio, 2) +
+                      "): a steady line (mains, a driven source) or a mode too lightly damped for this record's "
+                      "length to measure its damping");
   // A growing oscillation (the fourth pass's Q278: a 50 Hz oscillation growing as e^{0.31 t} was not listed and
   // nothing said so) is no free decay of a stable beam: a self-excited or driven record, or one cut before the
   // excitation ended. Named when it is at least 1 % of the largest mode (weaker ones fit the noise).

@@ -289,10 +289,15 @@ Table read_lvm(std::istream& in, const std::string& path) {
         throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value +
                          "': must be One, Multi or No");
       x_columns = value;
-    } else if (key == "X_Dimension" && !value.empty() && value != "Time") {
-      throw InputError(path + ":" + std::to_string(number) + ": X_Dimension = '" + value +
-                       "': must be Time (beamid reads time series; a spectrum's peaks are what `beamid spikes` "
-                       "finds in a time record)");
+    } else if (key == "X_Dimension") {
+      // One field per channel: each must be Time (a second channel marked Frequency was read as a time series:
+      // the sixth pass's S094).
+      for (std::size_t f = 1; f < fields.size(); ++f)
+        if (!fields[f].empty() && fields[f] != "Time")
+          throw InputError(path + ":" + std::to_string(number) + ": X_Dimension = '" + fields[f] + "' (channel " +
+                           std::to_string(f) +
+                           "): must be Time (beamid reads time series; a spectrum's peaks are what `beamid spikes` "
+                           "finds in a time record)");
     } else if (key == "Y_Unit_Label") {
       y_units.assign(fields.begin() + 1, fields.end());
     } else if (key == "X0" || key == "Delta_X") {

@@ -126,18 +126,22 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     // The amplitude at the pole's anchor: the start for a decaying pole, the end for a growing one (its largest).
     m.amplitude = 2 * std::abs(c(k));
     m.phase_rad = std::arg(c(k));
-    if (std::abs(z(k)) < 1)
+    // A pole that grows by less than kSteadyGrowth over the record neither decays nor grows measurably: a mains
+    // line or a driven tone, or a mode too lightly damped for the record's length, whose noise put |z| just above 1.
+    // It is listed with its damping ratio (<= 0), not called a growing oscillation (the sixth pass's S225).
+    const bool kept = std::abs(z(k)) < 1 || std::exp(m.lambda.real() * n * dt_s) <= kSteadyGrowth;
+    if (kept)
       m.frequency_sd_hz =
           damped_mode_frequency_sd(m.amplitude, -m.lambda.real(), dt_s, n, residual_sd) / (2 * std::numbers::pi);
     if (m.amplitude <= kNegligibleAmplitude * largest) {
-      d.negligible += std::abs(z(k)) < 1;
+      d.negligible += kept;
       continue;
     }
-    if (std::abs(z(k)) < 1 && energy(m) / 2 <= noise_energy) {
+    if (kept && energy(m) / 2 <= noise_energy) {
       ++d.below_noise;
       continue;
     }
-    if (std::abs(z(k)) < 1)
+    if (kept)
       modes.push_back(m);
     else if (m.frequency_hz * n * dt_s >= 2)  // under two cycles in the record it is a trend (an offset and a drift
       d.growing.push_back(m);                 // were a "growing oscillation at 6.85e-08 Hz": the fifth pass's R183)

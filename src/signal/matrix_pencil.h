@@ -56,6 +56,9 @@ struct IdentifiedMode {
 // leaves ~1e-13 of it in poles that fit nothing (a noise-free record of one mode gave "modes" of amplitude 1e-17).
 inline constexpr double kNegligibleAmplitude = 1e-9;
 
+// A pole whose amplitude grows by at most this factor over the whole record is steady, not growing (matrix_pencil).
+inline constexpr double kSteadyGrowth = 1.1;
+
 // What the pencil found besides the modes it reports.
 struct PencilDiagnostics {
   // oscillatory poles in the band that grow (damping ratio < 0), not negligible, of two cycles in the record or more

@@ -542,5 +542,13 @@ expect_notice "a fit far from the record's modes" "the estimate does not reprodu
   --cost time >/dev/null 2>"$tmp/err"
 grep -q "does not reproduce" "$tmp/err" && bad "the record's own beam: $(head -c 300 "$tmp/err")" || ok
 
+# A steady 50 Hz line beside a decaying 12 Hz mode was "a growing oscillation" (the sixth pass's S225): it is listed,
+# as neither decaying nor growing.
+awk 'BEGIN { print "t_s,v_m_s"; for (i = 0; i < 2000; i++) { t = i * 0.001;
+  printf "%.3f,%.9f\n", t, exp(-t) * sin(2 * 3.141592653589793 * 12 * t) + 0.2 * sin(2 * 3.141592653589793 * 50 * t) } }' \
+  >"$tmp/hum.csv"
+expect_notice "a steady line" "the pole at 50 Hz neither decays nor grows" modal-id --data "$tmp/hum.csv" --modes 2
+grep -q "growing" "$tmp/err" && bad "a steady line called growing: $(head -c 300 "$tmp/err")" || ok
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

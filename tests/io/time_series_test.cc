@@ -181,9 +181,15 @@ TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
       << error_of(write("fft.lvm", fft));
   std::string frequency = lvm(100);
   frequency.replace(frequency.find("X_Dimension\tTime"), 16, "X_Dimension\tFrequency");
-  EXPECT_NE(error_of(write("f.lvm", frequency)).find("f.lvm:12: X_Dimension = 'Frequency': must be Time"),
+  EXPECT_NE(error_of(write("f.lvm", frequency)).find("f.lvm:12: X_Dimension = 'Frequency' (channel 1): must be Time"),
             std::string::npos)
       << error_of(write("f.lvm", frequency));
+  // The second channel's X_Dimension counts too (S094).
+  std::string second = lvm(100);
+  second.replace(second.find("X_Dimension\tTime"), 16, "X_Dimension\tTime\tFrequency");
+  EXPECT_NE(error_of(write("f2.lvm", second)).find("X_Dimension = 'Frequency' (channel 2): must be Time"),
+            std::string::npos)
+      << error_of(write("f2.lvm", second));
   // A word inside another is no mark ("feedback" holds "db" only as letters of a word).
   std::string feedback = lvm(100);
   feedback.replace(feedback.find("\tAcceleration\t"), 14, "\tfeedback (g)\t");
