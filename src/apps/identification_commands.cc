@@ -148,7 +148,11 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
     // Model error shows as a spread beyond what each window's own noise gives; the full fit's formal error is the
     // wrong yardstick, the later windows being free decays that carry less information.
     const double ratio = spread.sd[i] / spread.window_formal[i];
-    if (std::isfinite(ratio))
+    // A spread at the level of rounding (a noise-free record of the model itself: 2e-12 relative) is neither noise
+    // nor model error, whatever its ratio to formal errors of the same size (the sixth pass's S264).
+    if (spread.sd[i] <= 1e-9 * std::abs(result.parameters[i].estimate))
+      line << ": at the level of rounding (a noise-free record the model fits exactly)";
+    else if (std::isfinite(ratio))
       line << (ratio <= 2 ? ": within the windows' noise"
                           : ", " + format_rounded(ratio) +
                                 " times it: model error or "

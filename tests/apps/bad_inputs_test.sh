@@ -550,5 +550,10 @@ awk 'BEGIN { print "t_s,v_m_s"; for (i = 0; i < 2000; i++) { t = i * 0.001;
 expect_notice "a steady line" "the pole at 50 Hz neither decays nor grows" modal-id --data "$tmp/hum.csv" --modes 2
 grep -q "growing" "$tmp/err" && bad "a steady line called growing: $(head -c 300 "$tmp/err")" || ok
 
+# --windows on a noise-free record of the model: a rounding-level spread is not "model error or drift" (S264).
+expect_notice "windows at rounding" "at the level of rounding" fit --data "$tmp/z.csv" "${S[@]}" --pulse-width 0.004 \
+  --estimate EI --cost time --windows 2
+grep -q "model error or drift" "$tmp/err" && bad "rounding called drift: $(head -c 300 "$tmp/err")" || ok
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
