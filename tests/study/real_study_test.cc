@@ -170,6 +170,13 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
     EXPECT_NE(error.find(std::string("candidate '") + name + "'"), std::string::npos) << error;
     EXPECT_NE(error.find(std::string("values: ") + key), std::string::npos) << error;
   }
+  // A key both shared and per record in [fit] itself, listed after another (the sixth pass's S460: run, exit 3).
+  const std::string shared_and_own =
+      std::string(kTwoRecords) + "\n[fit]\nestimate = [\"EI\"]\nper_record = [\"cDI\", \"EI\"]\ncosts = [\"modal\"]\n";
+  EXPECT_NE(load_error("own", shared_and_own).find("fit.per_record"), std::string::npos)
+      << load_error("own", shared_and_own);
+  EXPECT_NE(load_error("own", shared_and_own).find("is also in estimate"), std::string::npos)
+      << load_error("own", shared_and_own);
   // An empty candidate name, and a start value outside the candidate's bounds (the fourth pass's Q429, Q440).
   const std::string unnamed = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"\"\n";
   EXPECT_NE(load_error("unnamed", unnamed).find("must be a non-empty name"), std::string::npos)

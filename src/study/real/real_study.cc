@@ -250,6 +250,11 @@ RealStudySpec load_real_study(const std::string& path) {
     given.per_record = estimated_keys(r, "per_record");
     if (given.estimate.empty() && given.per_record.empty() && !document.root().has("candidate"))
       r.fail("estimate", "[]", "must name the parameters to estimate (or per_record, or [[candidate]]s)");
+    // As in a candidate: a key both shared and per record failed every fit at run time, exit 3, also when [fit] is
+    // the one model (the sixth pass's S460).
+    for (const std::string& key : given.per_record)
+      if (std::find(given.estimate.begin(), given.estimate.end(), key) != given.estimate.end())
+        r.fail("per_record", "'" + key + "'", "is also in estimate: a key is shared or per record, not both");
     s.costs = r.strings("costs", true, costs::cost_names().names());
     s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, core::kMaxEvaluations);
     s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
