@@ -145,8 +145,22 @@ bool is_unconverted_unit(const std::string& label, bool in_brackets) {
                            "mile",
                            "miles",
                            "furlong",
-                           "fathom"})
+                           "fathom",
+                           "counts",
+                           "count",
+                           "cnt",
+                           "adc",
+                           "lsb",
+                           "digits",
+                           "dm",
+                           "gee"})
     if (l == unit) return true;
+  // A micro sign or an Angstrom sign is a unit's prefix or symbol, never a remark's: "µg", "µin", "Å" (the sixth
+  // pass's S035-S056 read them as SI). "µm" and "µm/s" are known before this is asked.
+  if ((t.find("\xc2\xb5") != std::string::npos || t.find("\xce\xbc") != std::string::npos ||
+       t.find("\xc3\x85") != std::string::npos || t.find("\xe2\x84\xab") != std::string::npos) &&
+      known_unit(t, true).empty())
+    return true;
   return false;
 }
 
@@ -174,14 +188,70 @@ std::vector<std::string> bracketed_labels(const std::string& name, std::string* 
   }
   if (unclosed && !open.empty()) *unclosed = name.substr(open.front());
   std::sort(labels.begin(), labels.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  // The outermost groups only: a bracket inside a label is part of it ("m/(s^2)", "mm [tip]": label_unit reads it),
+  // not a second label (one unit in two brackets was "two units": the sixth pass's S003).
   std::vector<std::string> texts;
-  for (auto& [at, text] : labels) texts.push_back(std::move(text));
+  for (const auto& [at, text] : labels) {
+    const std::size_t end = at + text.size() + 1;  // the closer's position
+    const bool inside = std::any_of(labels.begin(), labels.end(), [&](const auto& other) {
+      return other.first < at && other.first + other.second.size() + 1 > end;
+    });
+    if (!inside) texts.push_back(text);
+  }
   return texts;
 }
 
 // A bracketed label as a unit: known, a unit expression ('/' or '^'), or a unit beamid does not convert, kept as
 // stated so that it is refused rather than read as SI; "" for a remark ("accel (tip)").
-std::string unit_of_label(const std::string& label) {
+std::string unit_of_plain_label(const std::string& label);
+
+// A label as a unit, its own brackets and qualifiers read: with an operator ('/', '^') the brackets only group
+// ("m/(s^2)", "[mm/s]"); without one, an inner group that states a unit is the unit ("tip (mm)", "(mm)") and one that
+// does not is a remark ("mm [tip]"); a peak or RMS qualifier beside a unit leaves the unit ("g pk", "pk-pk mm": the
+// sixth pass's S028, S029).
+std::string unit_of_label(const std::string& given) {
+  std::string label = trimmed(given);
+  if (label.find_first_of("([{<") != std::string::npos) {
+    if (label.find_first_of("/^") != std::string::npos) {
+      std::erase_if(label, [](char c) { return std::string_view("()[]{}<>").find(c) != std::string_view::npos; });
+    } else {
+      std::string outside;
+      std::string inner_unit;
+      for (const std::string& inner : bracketed_labels(label))
+        if (inner_unit.empty()) inner_unit = unit_of_plain_label(inner);
+      int depth = 0;
+      for (const char c : label) {
+        if (c == '(' || c == '[' || c == '{' || c == '<') ++depth;
+        if (depth == 0) outside += c;
+        if ((c == ')' || c == ']' || c == '}' || c == '>') && depth > 0) --depth;
+      }
+      outside = trimmed(outside);
+      const std::string outer_unit = unit_of_plain_label(outside);
+      if (!outer_unit.empty()) return outer_unit;
+      return inner_unit;
+    }
+  }
+  return unit_of_plain_label(label);
+}
+
+std::string unit_of_plain_label(const std::string& given) {
+  std::string label = trimmed(given);
+  // Peak and RMS qualifiers ("g pk", "pk-pk mm", "mm/s rms") beside one word that is a unit.
+  if (const auto space = label.find(' '); space != std::string::npos) {
+    std::vector<std::string> words;
+    for (std::size_t at = 0; at < label.size();) {
+      const auto next = label.find(' ', at);
+      const std::string word = label.substr(at, next == std::string::npos ? std::string::npos : next - at);
+      if (!word.empty()) words.push_back(word);
+      at = next == std::string::npos ? label.size() : next + 1;
+    }
+    std::vector<std::string> rest;
+    for (const std::string& w : words) {
+      const std::string l = lower(w);
+      if (l != "pk" && l != "peak" && l != "pk-pk" && l != "p-p" && l != "0-pk" && l != "rms") rest.push_back(w);
+    }
+    if (rest.size() == 1 && rest.size() < words.size()) label = rest.front();
+  }
   const std::string unit = is_unconverted_unit(label, true) ? "" : known_unit(label, true);
   if (!unit.empty()) return unit;
   if (is_unconverted_unit(label, true) || label.find_first_of("/^") != std::string::npos) return trimmed(label);

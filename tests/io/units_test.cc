@@ -105,6 +105,19 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_EQ(unit_of_column_name("Acceleration (FFT - (RMS))"), "");
   EXPECT_EQ(unit_of_column_name("x (tip (mm))"), "mm");
   EXPECT_NE(column_unit_problem("x (mm]"), "");
+  // The sixth pass: one unit in two brackets is one unit (S003, S007: "two units" before), a remark inside the unit's
+  // bracket is a remark (S004: read as SI), a peak or RMS qualifier leaves the unit (S028, S029), and units beamid
+  // does not convert are refused rather than read as SI (S035-S060).
+  for (const auto& [name, unit] :
+       {std::pair{"a (m/(s^2))", "m/s^2"}, std::pair{"v ([mm/s])", "mm/s"}, std::pair{"v ((mm/s))", "mm/s"},
+        std::pair{"x ((mm))", "mm"}, std::pair{"x (mm [tip])", "mm"}, std::pair{"a (g pk)", "g"},
+        std::pair{"x (pk-pk mm)", "mm"}, std::pair{"v (mm/s rms)", "mm/s"}}) {
+    EXPECT_EQ(unit_of_column_name(name), unit) << name;
+    EXPECT_EQ(column_unit_problem(name), "") << name;
+  }
+  for (const char* name : {"a (\xc2\xb5g)", "x (\xc2\xb5in)", "x (dm)", "x (\xc3\x85)", "v (counts)"})
+    EXPECT_FALSE(is_known_unit(unit_of_column_name(name))) << name << ": " << unit_of_column_name(name);
+  for (const char* name : {"a (\xc2\xb5g)", "x (dm)", "v (counts)"}) EXPECT_NE(unit_of_column_name(name), "") << name;
   // The fifth pass's: a remark after the unit (R005, R043), and time columns labelled after a remark, spelled out,
   // or in no time unit (R061-R074).
   EXPECT_EQ(unit_of_column_name("x (mm) (raw)"), "mm");
