@@ -67,6 +67,33 @@ std::string spectrum_word(const std::string& name) {
   return "";
 }
 
+// The words of a name, lower case, split at '_', ' ', '-', '.' and brackets ("freq_Hz" gives freq, hz).
+std::vector<std::string> words_of(const std::string& name) {
+  std::vector<std::string> words(1);
+  for (const char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      words.back() += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    else if (!words.back().empty())
+      words.emplace_back();
+  }
+  if (words.back().empty()) words.pop_back();
+  return words;
+}
+
+// Whether a column's name says it holds frequencies (a spectrum's axis: "freq_Hz", "bin", "frequency_hz") or times
+// ("time_s", "t"): neither is a record's time column or signal, as their names say (the sixth pass's S070, S137,
+// S477: a spectrum's axis was read as seconds, a time column as the vibration).
+bool names_frequency(const std::string& name) {
+  for (const std::string& w : words_of(name))
+    if (w == "hz" || w == "khz" || w == "freq" || w == "frequency" || w == "frequencies" || w == "bin" || w == "bins")
+      return true;
+  return false;
+}
+bool names_time(const std::string& name) {
+  const std::vector<std::string> words = words_of(name);
+  return !words.empty() && (words.front() == "t" || words.front() == "time" || words.front() == "timestamp");
+}
+
 Table read_csv(std::istream& in, const std::string& path) {
   Table t;
   t.format = "csv";
@@ -111,6 +138,9 @@ Table read_csv(std::istream& in, const std::string& path) {
                      ": beamid reads the time in seconds (convert it, e.g. t_s)");
   if (const std::string problem = column_unit_problem(time); !problem.empty())
     throw InputError(path + ":1: time column '" + shown(time) + "': " + problem);
+  if (names_frequency(time))
+    throw InputError(path + ":1: first column '" + shown(time) +
+                     "': its name says frequency: beamid reads time series (time in s first), not spectra");
   // A unit in the name, "accel_g", "v_mm_s" or "accel (g)", is taken as the column's unit (io/units.h).
   for (const auto& n : t.names)
     t.units.push_back(unit_of_column_name(n)), t.unit_problems.push_back(column_unit_problem(n));
@@ -186,6 +216,9 @@ Table read_plain(std::istream& in, const std::string& path) {
     t.units.push_back(named ? unit_of_column_name(n) : ""),
         t.unit_problems.push_back(named ? column_unit_problem(n) : "");
   if (named) {
+    if (names_frequency(t.names.front()))
+      throw InputError(path + ":" + std::to_string(number) + ": first column '" + shown(t.names.front()) +
+                       "': its name says frequency: beamid reads time series (time in s first), not spectra");
     if (const std::string unit = time_unit_of_column_name(t.names.front()); !unit.empty() && unit != "s")
       throw InputError(path + ":" + std::to_string(number) + ": time column '" + shown(t.names.front()) + "' is in " +
                        unit + ": beamid reads the time in seconds (convert it)");
@@ -461,6 +494,10 @@ Samples text_samples(const std::string& text, const std::string& path, const Imp
   s.time_column = table.time_column >= 0 ? table.names[static_cast<std::size_t>(table.time_column)] : "time";
   s.value_column = table.names[static_cast<std::size_t>(column)];
   s.unit = table.units[static_cast<std::size_t>(column)];
+  if (names_frequency(s.value_column) || names_time(s.value_column))
+    throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +
+                     "': its name says it holds " + (names_time(s.value_column) ? "times" : "frequencies") +
+                     ", not the vibration: choose the signal column with --channel");
   if (const std::string word = spectrum_word(s.value_column); !word.empty())
     throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +
                      "': its name says " + word +

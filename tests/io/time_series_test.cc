@@ -235,6 +235,31 @@ TEST(TimeSeries, APlainTextTableIsReadByColumnAndStatesNoUnitOfItsOwn) {
       << error_of(write("short.txt", short_row), o);
 }
 
+TEST(TimeSeries, AColumnNamedAsFrequenciesOrTimesIsNoRecordOrSignal) {
+  // The sixth pass's S070, S137, S477: a spectrum's axis "freq_Hz" was read as seconds, beamid's own fit-report
+  // spectra file (bin, frequency_hz, data_magnitude) as a time record, and a second time column as the vibration.
+  std::string spectrum = "freq_Hz,magnitude\n", spectra = "bin,frequency_hz,data_magnitude\n";
+  std::string two_times = "t_s,time_s,v_m_s\n";
+  for (int i = 0; i < 20; ++i) {
+    spectrum += std::to_string(i) + "," + std::to_string(1.0 / (1 + i)) + "\n";
+    spectra += std::to_string(i) + "," + std::to_string(0.5 * i) + "," + std::to_string(1.0 / (1 + i)) + "\n";
+    two_times += std::to_string(0.001 * i) + "," + std::to_string(0.001 * i) + "," + std::to_string(i % 3) + "\n";
+  }
+  EXPECT_NE(error_of(write("spectrum.csv", spectrum)).find("first column 'freq_Hz': its name says frequency"),
+            std::string::npos)
+      << error_of(write("spectrum.csv", spectrum));
+  ImportOptions o;
+  o.channel = "2";
+  EXPECT_NE(error_of(write("spectra.csv", spectra), o).find("its name says frequency"), std::string::npos)
+      << error_of(write("spectra.csv", spectra), o);
+  o.channel = "time_s";
+  EXPECT_NE(error_of(write("times.csv", two_times), o).find("column 'time_s': its name says it holds times"),
+            std::string::npos)
+      << error_of(write("times.csv", two_times), o);
+  o.channel = "v_m_s";
+  EXPECT_EQ(read_time_series(write("times.csv", two_times), o).values.size(), 20u);
+}
+
 TEST(TimeSeries, ACoarseLabViewTimeColumnTakesTheHeadersStepWhenEveryTimeAgrees) {
   // The fourth pass's Q214: an X column rounded to 10 ms beside Delta_X = 0.001 gave the column's mean step,
   // 0.000997067 s, 0.3 % off, and every frequency with it. Every printed time agrees with the header's step to its
