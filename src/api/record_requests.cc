@@ -103,7 +103,9 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   try {
     r.modes = signal::matrix_pencil(data.values, data.dt_s, o, &found);
   } catch (const InputError& error) {
-    refuse(caller, "--data = '" + data.path + "': " + error.what());
+    const std::string what = error.what();
+    if (what.rfind("order M = ", 0) == 0) refuse(caller, what);  // --order's own (in_flags), not the record's
+    refuse(caller, "--data = '" + data.path + "': " + what);
   }
   r.notes = modal_id_notes(r.modes, found, o);
   // A free decay is largest within its first cycle, and what comes before its largest value is part of the decay.

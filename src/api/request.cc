@@ -25,6 +25,7 @@ constexpr std::pair<const char*, const char*> kFlagOfField[] = {
     {"spike_rule", "spike-rule"},
     {"max_evaluations", "max-evaluations"},
     {"optimizer", "optimizer"},
+    {"order M", "order"},
     {"exponential_end", "exponential-end"},
     {"cvode.rtol", "rtol"},
     {"cvode.atol", "atol"},

@@ -56,7 +56,9 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
     try {
       records.push_back(read(o));
     } catch (const InputError& e) {
-      throw InputError("beamid " + a.command() + ": --data: " + e.what());
+      // An import flag's own error names the flag, not the record (--duration = '0': must be > 0).
+      const std::string what = e.what();
+      throw InputError("beamid " + a.command() + ": " + (what.rfind("--", 0) == 0 ? "" : "--data: ") + what);
     }
     // One column twice (by index and name, or twice the same) would count its data twice in a joint fit and
     // shrink the standard errors by sqrt(2): refused. Two columns are the same when their names and their samples

@@ -391,13 +391,15 @@ namespace {
 // The options every format checks before reading.
 void check_options(const ImportOptions& o) {
   if (o.units != "auto" && o.units != "g" && o.units != "as-is")
-    throw InputError("units = '" + o.units + "': must be one of auto, g, as-is");
+    throw InputError("--units = '" + o.units + "': must be one of auto, g, as-is");
+  // Named as the flags that set them (the sixth pass's S146, S157, S178: "duration = 0" named no flag); a study's
+  // record keys are checked at load, before these.
   if (o.duration_s && !(*o.duration_s > 0))
-    throw InputError("duration = " + format_value(*o.duration_s) + ": must be > 0");
+    throw InputError("--duration = '" + format_value(*o.duration_s) + "': must be > 0 (s)");
   if (o.sample_rate_hz && !(*o.sample_rate_hz > 0 && std::isfinite(*o.sample_rate_hz)))
-    throw InputError("sample rate = " + format_value(*o.sample_rate_hz) + " Hz: must be > 0");
+    throw InputError("--sample-rate = '" + format_value(*o.sample_rate_hz) + "': must be > 0 (Hz)");
   if (o.resample_rate_hz && !(*o.resample_rate_hz > 0 && std::isfinite(*o.resample_rate_hz)))
-    throw InputError("resample rate = " + format_value(*o.resample_rate_hz) + " Hz: must be > 0");
+    throw InputError("--resample-rate = '" + format_value(*o.resample_rate_hz) + "': must be > 0 (Hz)");
 }
 
 }  // namespace

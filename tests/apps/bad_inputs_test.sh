@@ -187,7 +187,7 @@ expect_error "channel list for spikes" "must name one channel (several are for b
 expect_error "variable on csv" "name variables of a MAT-file; this is not one" spikes --data "$tmp/z.csv" --variable x
 expect_error "sample rate on csv" "--sample-rate is for records without a time base" spikes --data "$tmp/z.csv" \
   --sample-rate 1000
-expect_error "resample rate negative" "resample rate = -5 Hz: must be > 0" spikes --data "$tmp/z.csv" --resample-rate -5
+expect_error "resample rate negative" "--resample-rate = '-5': must be > 0 (Hz)" spikes --data "$tmp/z.csv" --resample-rate -5
 expect_error "artefacts maybe" "--artefacts = 'maybe': must be one of reject, keep" spikes --data "$tmp/z.csv" \
   --artefacts maybe
 expect_error "detrend cubic" "--detrend = 'cubic': must be one of none, mean, linear" spikes --data "$tmp/z.csv" \
@@ -554,6 +554,12 @@ grep -q "growing" "$tmp/err" && bad "a steady line called growing: $(head -c 300
 expect_notice "windows at rounding" "at the level of rounding" fit --data "$tmp/z.csv" "${S[@]}" --pulse-width 0.004 \
   --estimate EI --cost time --windows 2
 grep -q "model error or drift" "$tmp/err" && bad "rounding called drift: $(head -c 300 "$tmp/err")" || ok
+
+# Import and pencil flags are named as flags, not as internal fields or the record (the sixth pass's S146, S231).
+expect_error "duration 0" "beamid spikes: --duration = '0': must be > 0 (s)" spikes --data "$tmp/z.csv" --duration 0 \
+  --spikes 1
+expect_error "order too high" "beamid modal-id: --order = '3000': must be at most the pencil parameter" modal-id \
+  --data "$tmp/z.csv" --modes 2 --order 3000
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]
