@@ -471,12 +471,20 @@ bool is_plain_text_path(const std::string& path) {
 Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
   if (auto problem = binary_text_problem(text, path)) throw InputError(*problem);
   // Lines ended by a bare carriage return (classic Mac OS) read as one line of a thousand columns (the third pass's
-  // P064): said as such.
-  if (const auto cr = text.find('\r'); cr != std::string::npos && (cr + 1 == text.size() || text[cr + 1] != '\n') &&
-                                       text.find('\n') == std::string::npos)
-    throw InputError(path +
-                     ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
-                     "line feeds (LF) or CR LF");
+  // P064); one bare CR among LF lines merged two lines into "3 fields: must be 2" (the sixth pass's S099). Said as
+  // such, with its line.
+  for (std::size_t cr = text.find('\r'); cr != std::string::npos; cr = text.find('\r', cr + 1)) {
+    if (cr + 1 < text.size() && text[cr + 1] == '\n') continue;
+    if (cr + 1 == text.size()) break;  // a last line ended by CR alone is read as it is
+    if (text.find('\n') == std::string::npos)
+      throw InputError(path +
+                       ": its lines end in a bare carriage return (CR, as classic Mac OS wrote): convert them to "
+                       "line feeds (LF) or CR LF");
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(cr), '\n');
+    throw InputError(path + ":" + std::to_string(line) +
+                     ": a bare carriage return (CR) ends this line where the others end in a line feed: mixed line "
+                     "endings join two lines; convert the file's line endings to LF or CR LF");
+  }
   std::istringstream in(text);
   const Table table = path.ends_with(".lvm")     ? read_lvm(in, path)
                       : is_plain_text_path(path) ? read_plain(in, path)

@@ -329,6 +329,9 @@ if timeout 60 "$BEAMID" spikes --data "$tmp/epoch.csv" --spikes 2 >"$tmp/out" 2>
 # Readers that misdiagnosed (the third pass's P064, P097): bare-CR line endings, an object .npy.
 awk 'BEGIN { ORS = "\r" } { print }' "$tmp/z.csv" >"$tmp/cr.csv"
 expect_error "bare CR line endings" "its lines end in a bare carriage return" spikes --data "$tmp/cr.csv"
+# One bare CR among LF lines (mixed line endings) is named on its line, not as "3 fields" on the next (S099).
+awk 'NR == 3 { printf "%s\r", $0; next } { print }' "$tmp/z.csv" >"$tmp/mixed.csv"
+expect_error "mixed line endings" "mixed.csv:3: a bare carriage return (CR) ends this line" spikes --data "$tmp/mixed.csv"
 header="{'descr': '|O', 'fortran_order': False, 'shape': (4,), }"
 while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
 { printf '\x93NUMPY\x01\x00'; printf "\\x$(printf %02x $(( ${#header} + 1 )))\\x00"; printf '%s\n' "$header"; } \
