@@ -10,9 +10,13 @@
 namespace beamid::apps {
 namespace {
 
-// An error as the line the user reads: "beamid: " before it, unless it already begins with "beamid <command>:" (it
-// read "beamid: beamid fit: ..." before).
-std::string prefixed(const std::string& what) { return what.rfind("beamid ", 0) == 0 ? what : "beamid: " + what; }
+// An error as the line the user reads: "beamid <command>: " before it (the store's, merge's and report's errors
+// began with a bare "beamid:": the sixth pass's S366-S475), or "beamid: " outside a command, unless it already
+// begins with "beamid <command>:" (it read "beamid: beamid fit: ..." before).
+std::string prefixed(const std::string& what, const std::string& command = "") {
+  if (what.rfind("beamid ", 0) == 0) return what;
+  return (command.empty() ? "beamid: " : "beamid " + command + ": ") + what;
+}
 
 std::string command_list() {
   std::string s;
@@ -143,10 +147,10 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
     const Flags flags(command->name, *sub, command->flags, rest);
     return run ? command->run(flags, out) : 0;
   } catch (const InputError& error) {
-    err << prefixed(error.what()) << "\n";
+    err << prefixed(error.what(), command->name) << "\n";
     return 2;
   } catch (const NumericalError& error) {
-    err << prefixed(error.what()) << "\n";
+    err << prefixed(error.what(), command->name) << "\n";
     return 3;
   } catch (const std::exception& error) {
     err << "beamid: internal error: " << error.what() << "\n";

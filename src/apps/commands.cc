@@ -135,7 +135,7 @@ int run_report(const Flags& a, std::ostream& out) {
     a.require(false, "results", "must be an existing folder of study results (results/)");
   // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file).
   std::ostringstream text;
-  text << io::read_file(path, "beamid report: --update: cannot read the report");
+  text << io::read_file(path, "cannot read the report given to --update");
   // A binary file is no Markdown report (random bytes were "0 generated block(s) refreshed", exit 0: the third pass's
   // P431).
   if (auto problem = io::binary_text_problem(text.str(), path)) {

@@ -564,5 +564,9 @@ expect_error "duration 0" "beamid spikes: --duration = '0': must be > 0 (s)" spi
 expect_error "order too high" "beamid modal-id: --order = '3000': must be at most the pencil parameter" modal-id \
   --data "$tmp/z.csv" --modes 2 --order 3000
 
+# Every command's error line begins with its command (a bare "beamid:" before: the sixth pass's S377, S475).
+expect_error "report of a missing file" "beamid report: $tmp/none.md: cannot read the report given to --update" \
+  report --update "$tmp/none.md" --results "$tmp"
+
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

@@ -123,7 +123,9 @@ Store::Store(std::string directory, std::string code_version, std::ostream* log)
     : directory_(std::move(directory)), code_version_(std::move(code_version)), log_(log) {
   std::error_code ec;
   fs::create_directories(directory_, ec);
-  if (ec) throw InputError(directory_ + ": cannot create the study store folder: " + ec.message());
+  if (ec)
+    throw InputError("--output: " + directory_ + ": cannot create the study store folder: " + ec.message() +
+                     " (is --output a folder beamid may create?)");
 }
 
 namespace {
