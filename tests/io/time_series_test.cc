@@ -196,6 +196,24 @@ TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
   EXPECT_EQ(read_time_series(write("feedback.lvm", feedback)).unit, "m/s^2");
 }
 
+TEST(TimeSeries, AJumpInTheTimeBaseIsNamedOnItsOwnLine) {
+  // The sixth pass's S107: every time from row 300 on shifted by 0.4 ms (a 1 ms record) was blamed on line 3, where
+  // the mean step, biased by the jump, first missed the grid. Row 300 is line 302 (the header is line 1).
+  std::string text = "t_s,displacement_m\n";
+  for (int i = 0; i < 400; ++i)
+    text += std::to_string(i * 0.001 + (i >= 300 ? 0.0004 : 0.0)) + "," + std::to_string(0.1 * (i % 7)) + "\n";
+  const std::string error = error_of(write("jump.csv", text));
+  EXPECT_NE(error.find("jump.csv:302: t_s = 0.3004: a step of"), std::string::npos) << error;
+  EXPECT_NE(error.find("the time base jumps here"), std::string::npos) << error;
+  // One sample off its time (the steps around it make up for each other) is still the grid check's to name.
+  std::string off = "t_s,displacement_m\n";
+  for (int i = 0; i < 400; ++i)
+    off += std::to_string(i * 0.001 + (i == 300 ? 0.0004 : 0.0)) + "," + std::to_string(0.1 * (i % 7)) + "\n";
+  EXPECT_NE(error_of(write("off.csv", off)).find("off.csv:302: t_s = 0.3004: non-uniform time base"),
+            std::string::npos)
+      << error_of(write("off.csv", off));
+}
+
 TEST(TimeSeries, APlainTextTableIsReadByColumnAndStatesNoUnitOfItsOwn) {
   // As a DAQ's "save as text" writes a record (the UnB impact tests: a blank line, then tab-separated time, an unused
   // channel, acceleration in g and force): 100 rows at dt = 0.000605 s.
