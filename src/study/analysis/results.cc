@@ -79,7 +79,8 @@ StudyResults load_results(const StudySpec& spec, const Plan& plan, const Store& 
                                            std::to_string(plan.truths.size()) + " truth record(s)"
                                      : std::string()) +
                      " of study '" + spec.name + "' are missing (or were made by another build), the first " + first +
-                     ": run the missing shards (unit k is shard ((k - 1) mod N) + 1 of N)");
+                     ": run the missing shards and name every shard's folder in --shards (unit k is shard ((k - 1) mod "
+                     "N) + 1 of N)");
   }
   return results;
 }
