@@ -191,12 +191,13 @@ std::vector<std::string> bracketed_labels(const std::string& name, std::string* 
   // The outermost groups only: a bracket inside a label is part of it ("m/(s^2)", "mm [tip]": label_unit reads it),
   // not a second label (one unit in two brackets was "two units": the sixth pass's S003).
   std::vector<std::string> texts;
-  for (const auto& [at, text] : labels) {
-    const std::size_t end = at + text.size() + 1;  // the closer's position
-    const bool inside = std::any_of(labels.begin(), labels.end(), [&](const auto& other) {
+  for (const auto& label : labels) {
+    // (A named pair, not a structured binding: Clang 14, the fuzz build's compiler, captures none in a lambda.)
+    const std::size_t at = label.first, end = label.first + label.second.size() + 1;  // opener's and closer's places
+    const bool inside = std::any_of(labels.begin(), labels.end(), [at, end](const auto& other) {
       return other.first < at && other.first + other.second.size() + 1 > end;
     });
-    if (!inside) texts.push_back(text);
+    if (!inside) texts.push_back(label.second);
   }
   return texts;
 }
