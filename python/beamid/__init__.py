@@ -265,9 +265,14 @@ def system(**flags) -> "System":
 
 def spikes(data, time=None, **flags) -> "Spikes":
     """``beamid spikes``: a :class:`Spikes` with ``picks`` (the spikes, ascending: bin, frequency_hz, magnitude,
-    n_left, n_right, a structured array) and ``skipped`` (peaks passed over as artefacts, with the reason)."""
+    n_left, n_right, the sub-bin and the measured frequency, a structured array) and ``skipped`` (peaks passed over
+    as artefacts, with the reason). What widens a measured frequency's uncertainty, or why none was measured, is a
+    warning, as the command's stderr."""
     array, f = _record_flags(data, flags)
-    return Spikes._from_core(_call(_core.spikes, _arguments(f), array, time))
+    raw = _call(_core.spikes, _arguments(f), array, time)
+    for note in raw["notes"]:
+        warnings.warn("beamid spikes: " + note, stacklevel=2)
+    return Spikes._from_core(raw)
 
 
 def cost(data, prediction, time=None, **flags) -> "CostValue":
@@ -314,11 +319,15 @@ def crb(**flags) -> "CramerRao":
 
 def modal_id(data, time=None, **flags) -> np.ndarray:
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
-    damping_ratio, amplitude, phase_rad, frequency_sd_hz: the Cramér-Rao bound at the residual's noise level). What the modes do not say (fewer found than asked, a pole more likely the
-    excitation, a growing oscillation) is a warning, as the command's stderr."""
+    damping_ratio, amplitude, phase_rad, frequency_sd_hz: the Cramér-Rao bound at the residual's noise level;
+    drift_hz, span_low_hz, span_high_hz, frequency_uncertainty_hz: the frequency's change between the record's
+    segments, the span of every estimate of it, and the uncertainty that covers them, as every command reports a
+    measured frequency). What the modes do not say (fewer found than asked, a pole more likely the excitation, a
+    growing oscillation, a frequency that changes with the amplitude) is a warning, as the command's stderr."""
     array, f = _record_flags(data, flags)
     r = _call(_core.modal_id, _arguments(f), array, time)
-    fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad", "frequency_sd_hz"]
+    fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad", "frequency_sd_hz", "drift_hz",
+              "span_low_hz", "span_high_hz", "frequency_uncertainty_hz"]
     table = np.zeros(len(r["frequency_hz"]), dtype=[("mode", "i8")] + [(name, "f8") for name in fields])
     table["mode"] = np.arange(1, len(table) + 1)
     for name in fields:

@@ -48,7 +48,8 @@ class _Fields:
 
 
 _SPIKE_FIELDS = [("bin", "i8"), ("frequency_hz", "f8"), ("magnitude", "f8"), ("n_left", "i8"), ("n_right", "i8"),
-                 ("subbin_frequency_hz", "f8"), ("decay_rate_1_s", "f8")]
+                 ("subbin_frequency_hz", "f8"), ("decay_rate_1_s", "f8"), ("measured_frequency_hz", "f8"),
+                 ("measured_uncertainty_hz", "f8")]
 
 
 @dataclasses.dataclass(repr=False)
@@ -56,7 +57,9 @@ class Spikes(_Fields):
     """``beamid spikes``: the picked spikes and the peaks passed over.
 
     picks      structured array, ascending in frequency: bin, frequency_hz (the bin's), magnitude, n_left, n_right,
-               subbin_frequency_hz and decay_rate_1_s (the three-bin estimate of the peak; NaN on Welch's average)
+               subbin_frequency_hz and decay_rate_1_s (the three-bin estimate of the peak; NaN on Welch's average),
+               measured_frequency_hz and measured_uncertainty_hz (the matrix pencil's mode with its uncertainty, as
+               modal_id, fit and real report a measured frequency; NaN where none was measured)
     skipped    the same columns and ``reason``: peaks dropped as artefacts (harmonics, leakage), with why
     requested  how many spikes were asked for
     df_hz      the spectrum's bin width
@@ -189,7 +192,8 @@ class Record(_Fields):
                 f"channel {self.channel!r})")
 
 
-_MODE_FIELDS = [("data_hz", "f8"), ("data_damping_ratio", "f8"), ("model_hz", "f8"), ("model_damping_ratio", "f8")]
+_MODE_FIELDS = [("data_hz", "f8"), ("data_damping_ratio", "f8"), ("model_hz", "f8"), ("model_damping_ratio", "f8"),
+                ("data_uncertainty_hz", "f8")]
 _PARAMETER_FIELDS = [("parameter", "U"), ("estimate", "f8"), ("standard_error", "f8"), ("start", "f8"),
                      ("lower", "f8"), ("upper", "f8"), ("status", "U"), ("robust_standard_error", "f8"),
                      ("window_sd", "f8"), ("window_standard_error", "f8")]
@@ -205,13 +209,15 @@ class FitResult(_Fields):
     standard_errors   {key: formal standard error} (NaN at a bound)
     status            converged | max-evaluations | failed (with "-at-bound" when an estimate ends on a bound)
     termination, cost, evaluations, wall_time_s, covariance_status, correlation (array), identifiability (dict)
-    modes             structured array: data_hz, data_damping_ratio, model_hz, model_damping_ratio at the estimate
+    modes             structured array: data_hz, data_damping_ratio, model_hz, model_damping_ratio at the estimate,
+                      data_uncertainty_hz (the measured frequency's uncertainty, as modal-id's)
     beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)
     model_output      the model's output at the estimate (array)
     records           per record of a joint fit: name, cost, status, weight, amplitude_scale
     a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
     messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
-                      identifiability; fit() also issues each as a warning
+                      identifiability, a record's frequency that changes with the amplitude, modes the estimate does
+                      not reproduce; fit() also issues each as a warning
     """
     estimates: dict
     parameters: np.ndarray

@@ -197,7 +197,7 @@ py::dict py_spikes(const std::vector<std::string>& args, const py::object& data,
   });
   py::dict d;
   py::list picks, skipped;
-  const auto row = [&r](const signal::Spike& s) {
+  const auto row = [&r](const signal::Spike& s, const signal::MeasuredMode* measured) {
     py::dict p;
     p["bin"] = s.bin;
     p["frequency_hz"] = s.frequency_hz;
@@ -207,12 +207,14 @@ py::dict py_spikes(const std::vector<std::string>& args, const py::object& data,
     const signal::PoleEstimate e = r.subbin(s.bin);
     p["subbin_frequency_hz"] = e.frequency_hz;
     p["decay_rate_1_s"] = e.decay_rate_1_s;
+    p["measured_frequency_hz"] = measured ? measured->mode.frequency_hz : std::nan("");
+    p["measured_uncertainty_hz"] = measured ? measured->uncertainty_hz : std::nan("");
     return p;
   };
-  for (const auto& s : r.picks) picks.append(row(s));
+  for (std::size_t k = 0; k < r.picks.size(); ++k) picks.append(row(r.picks[k], &r.measured[k]));
   for (const auto& p : r.peaks)
     if (!p.skipped.empty()) {
-      py::dict s = row(p.spike);
+      py::dict s = row(p.spike, nullptr);
       s["reason"] = p.skipped;
       skipped.append(s);
     }
@@ -220,6 +222,10 @@ py::dict py_spikes(const std::vector<std::string>& args, const py::object& data,
   d["skipped"] = skipped;
   d["requested"] = r.requested;
   d["df_hz"] = r.spectrum.df_hz();
+  py::list notes;
+  if (!r.measured_note.empty()) notes.append(r.measured_note);
+  for (const std::string& note : r.notes) notes.append(note);
+  d["notes"] = notes;
   return d;
 }
 
@@ -308,7 +314,6 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   const api::FitNotes notes = api::fit_notes(r);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
-  d["messages"] = messages;
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;
@@ -332,10 +337,14 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     m["data_damping_ratio"] = p.data_damping_ratio;
     m["model_hz"] = p.model_hz;
     m["model_damping_ratio"] = p.model_damping_ratio;
+    m["data_uncertainty_hz"] = p.data_uncertainty_hz;
     mode_rows.append(m);
+    if (!p.data_note.empty()) messages.append("the record: " + p.data_note);
   }
+  if (const std::string note = apps::modes_mismatch_note(*modes); !note.empty()) messages.append(note);
   d["modes"] = mode_rows;
   d["modes_status"] = modes->status;
+  d["messages"] = messages;
   py::list records;
   for (const auto& part : r.records) {
     py::dict rec;
@@ -372,13 +381,18 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   const api::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
     return api::compute_modal_id(apps::modal_id_request_of(a), record_of(a, array));
   });
-  std::vector<double> f, zeta, amplitude, phase, f_sd;
-  for (const auto& m : r.modes) {
+  std::vector<double> f, zeta, amplitude, phase, f_sd, drift, low, high, uncertainty;
+  for (const auto& measured : r.measured) {
+    const auto& m = measured.mode;
     f.push_back(m.frequency_hz);
     zeta.push_back(m.damping_ratio);
     amplitude.push_back(m.amplitude);
     phase.push_back(m.phase_rad);
     f_sd.push_back(m.frequency_sd_hz);
+    drift.push_back(measured.drift_hz);
+    low.push_back(measured.span_low_hz);
+    high.push_back(measured.span_high_hz);
+    uncertainty.push_back(measured.uncertainty_hz);
   }
   py::dict d;
   d["frequency_hz"] = copied_array(f);
@@ -386,6 +400,10 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   d["amplitude"] = copied_array(amplitude);
   d["phase_rad"] = copied_array(phase);
   d["frequency_sd_hz"] = copied_array(f_sd);
+  d["drift_hz"] = copied_array(drift);
+  d["span_low_hz"] = copied_array(low);
+  d["span_high_hz"] = copied_array(high);
+  d["frequency_uncertainty_hz"] = copied_array(uncertainty);
   d["notes"] = r.notes;
   return d;
 }

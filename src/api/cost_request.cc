@@ -78,6 +78,8 @@ void refuse_unused(const CostRequest& request, const Caller& caller, const std::
             request.frequency_weight.value_or(""), spike_costs);
   refuse_if(request.model_poles.has_value(), &costs::CostUses::model_poles, "model-poles",
             request.model_poles.value_or(""), "the spike-smooth cost");
+  refuse_if(request.mode_weight.has_value(), &costs::CostUses::mode_weight, "mode-weight",
+            request.mode_weight.value_or(""), "the modal cost");
   if (request.unknown_amplitude && !uses(&costs::CostUses::unknown_amplitude))
     refuse(caller, "--unknown-amplitude frees the amplitude of a cost that compares amplitudes; cost " + named +
                        " compares frequencies and decay rates only");
@@ -109,6 +111,7 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.eps3 = request.eps3;
   o.unknown_amplitude = request.unknown_amplitude;
   o.model_poles = request.model_poles.value_or(o.model_poles);
+  o.mode_weight = request.mode_weight.value_or(o.mode_weight);
   o.frequency_weight = request.frequency_weight.value_or(costs::kRelativeWeight);
   if (auto error = costs::validation_error(o)) refuse(caller, *error);
   return o;

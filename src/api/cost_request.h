@@ -36,6 +36,7 @@ struct CostRequest {
   std::optional<double> eps1, eps2, eps3;  // --eps1, --eps2, --eps3
   bool unknown_amplitude = false;          // --unknown-amplitude
   std::optional<std::string> model_poles;  // --model-poles: dft | eigenvalues
+  std::optional<std::string> mode_weight;  // --mode-weight: relative | measured (modal)
   // --frequency-weight. A record read from a file is a measured record as far as beamid knows: errors relative to
   // each mode's frequency, so that the highest fitted mode does not dominate (costs/cost.h); the studies' synthetic
   // records keep the paper's Hz.

@@ -5,6 +5,7 @@
 #include <complex>
 
 #include "core/errors.h"
+#include "core/limits.h"
 #include "io/units.h"
 
 namespace beamid::api {
@@ -16,6 +17,56 @@ signal::PoleEstimate SpikesResult::subbin(int bin) const {
     e = {std::nan(""), std::nan(""), false};
   return e;
 }
+
+namespace {
+
+// The picks' modes by the shared estimator: one pencil for all of them; when one has no pole nearby, each alone (up to
+// kMaxSeparatelyMeasured of them: a pencil per pick on a long record takes seconds), NaN for those that fail.
+constexpr int kMaxSeparatelyMeasured = 8;
+void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt_s, double window) {
+  signal::MeasuredMode none;
+  none.mode.frequency_hz = std::nan("");
+  r.measured.assign(r.picks.size(), none);
+  if (r.picks.empty()) return;
+  if (static_cast<int>(values.size()) > core::kMaxPencilSamples) {
+    r.measured_note = "measured frequencies not computed: the record has " + std::to_string(values.size()) +
+                      " samples, more than the matrix pencil takes (" + std::to_string(core::kMaxPencilSamples) +
+                      "); cut it (--start, --duration) or lower its rate (--resample-rate)";
+    return;
+  }
+  const auto measure = [&](const std::vector<double>& wanted) {
+    signal::MeasureOptions o;
+    o.wanted_hz = wanted;
+    o.window = window;
+    return signal::measure_modes(values, dt_s, o).modes;
+  };
+  std::vector<double> wanted;
+  for (const auto& p : r.picks) wanted.push_back(p.frequency_hz);
+  std::string failure;
+  try {
+    r.measured = measure(wanted);
+  } catch (const std::exception& all) {
+    failure = all.what();
+    if (static_cast<int>(wanted.size()) <= kMaxSeparatelyMeasured)
+      for (std::size_t k = 0; k < wanted.size(); ++k) try {
+          r.measured[k] = measure({wanted[k]}).front();
+        } catch (const std::exception&) {
+        }
+  }
+  std::string missing;
+  for (std::size_t k = 0; k < r.measured.size(); ++k) {
+    if (std::isnan(r.measured[k].mode.frequency_hz)) {
+      missing += (missing.empty() ? "" : ", ") + format_rounded(wanted[k], 6);
+      continue;
+    }
+    if (const std::string note = signal::uncertainty_note(r.measured[k]); !note.empty()) r.notes.push_back(note);
+  }
+  if (!missing.empty())
+    r.measured_note = "no measured frequency for the spike(s) at " + missing + " Hz (" + failure +
+                      "): the matrix pencil finds no decaying or steady pole there";
+}
+
+}  // namespace
 
 SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& data) {
   const Caller& caller = request.caller;
@@ -41,6 +92,7 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   for (const auto& p : r.peaks)
     if (p.skipped.empty()) r.picks.push_back(p.spike);
   std::sort(r.picks.begin(), r.picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
+  measure_picks(r, values, data.dt_s, options.frequency_window);
   return r;
 }
 
@@ -99,15 +151,22 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   if (!(o.max_frequency_hz > o.min_frequency_hz))
     refuse(caller, "max-frequency", format_value(o.max_frequency_hz),
            "must exceed --min-frequency = '" + format_value(o.min_frequency_hz) + "'");
-  signal::PencilDiagnostics found;
+  signal::MeasureOptions measure;
+  measure.pencil = o;
+  measure.selection = signal::ModeSelection::strongest;
+  signal::MeasuredModes measured;
   try {
-    r.modes = signal::matrix_pencil(data.values, data.dt_s, o, &found);
+    measured = signal::measure_modes(data.values, data.dt_s, measure);
   } catch (const InputError& error) {
     const std::string what = error.what();
     if (what.rfind("order M = ", 0) == 0) refuse(caller, what);  // --order's own (in_flags), not the record's
     refuse(caller, "--data = '" + data.path + "': " + what);
   }
-  r.notes = modal_id_notes(r.modes, found, o);
+  r.measured = measured.modes;
+  for (const signal::MeasuredMode& m : r.measured) r.modes.push_back(m.mode);
+  r.notes = modal_id_notes(r.modes, measured.diagnostics, o);
+  for (const signal::MeasuredMode& m : r.measured)
+    if (const std::string note = signal::uncertainty_note(m); !note.empty()) r.notes.push_back(note);
   // A free decay is largest within its first cycle, and what comes before its largest value is part of the decay.
   // The whole real steel record (a quiet lead-in of 1.1 s, then the hit) gave damping ratios 100 to 3600 times too
   // low, with nothing said (the sixth pass's S434): the pencil fits the rise as well. Said when the first half of the

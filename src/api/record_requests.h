@@ -12,6 +12,7 @@
 #include "costs/cost.h"
 #include "io/time_series.h"
 #include "signal/matrix_pencil.h"
+#include "signal/measured_modes.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
@@ -35,6 +36,12 @@ struct SpikesResult {
   // frequency is up to half a bin off (4.293 against 4.268 Hz). NaN on Welch's average (it has no phases) or where
   // the estimate fails or strays beyond a bin.
   signal::PoleEstimate subbin(int bin) const;
+  // Per pick, its mode by the measured-frequency estimator that modal-id, fit and real share (signal/measured_modes.h:
+  // the matrix pencil's pole nearest the pick, with its uncertainty); mode.frequency_hz NaN where none was measured,
+  // and then `measured_note` says why. Notes on what widens a pick's uncertainty follow in `notes`.
+  std::vector<signal::MeasuredMode> measured;
+  std::string measured_note;
+  std::vector<std::string> notes;
 };
 SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& data);
 
@@ -57,6 +64,9 @@ struct ModalIdRequest {
 struct ModalIdResult {
   signal::PencilOptions options;
   std::vector<signal::IdentifiedMode> modes;
+  // The same modes with their uncertainty (signal/measured_modes.h: noise, drift between segments, close poles), the
+  // frequency every command reports as measured.
+  std::vector<signal::MeasuredMode> measured;
   // What the modes do not say: fewer than K found, a pole more likely the excitation than a mode, a growing
   // oscillation (no mode of a stable beam), one line each without the command's name.
   std::vector<std::string> notes;

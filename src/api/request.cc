@@ -23,6 +23,7 @@ constexpr std::pair<const char*, const char*> kFlagOfField[] = {
     {"max_frequency_hz", "max-frequency"},
     {"spikes", "spikes"},
     {"spike_rule", "spike-rule"},
+    {"mode_weight", "mode-weight"},
     {"max_evaluations", "max-evaluations"},
     {"optimizer", "optimizer"},
     {"order M", "order"},

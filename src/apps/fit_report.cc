@@ -14,7 +14,7 @@
 #include "io/files.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "signal/matrix_pencil.h"
+#include "signal/measured_modes.h"
 #include "signal/spectrum.h"
 
 namespace beamid::apps {
@@ -75,14 +75,19 @@ ModeComparison compare_modes(const FitReportInput& in) {
     const auto& wanted = o.cost.spikes.frequencies_hz;
     // Those the modal cost compares with: heavily damped poles are left out (the third pass's P290: a data pole of
     // zeta 73 %), and chosen frequencies' modes kept as they are.
-    const std::vector<signal::IdentifiedMode> kept =
-        signal::lightly_damped_modes(decay, in.data.dt_s, p, wanted, o.cost.spikes.frequency_window);
+    // With their uncertainty: the measured-frequency estimator that modal-id, spikes and real share.
+    signal::MeasureOptions measure;
+    measure.pencil = p;
+    measure.wanted_hz = wanted;
+    measure.window = o.cost.spikes.frequency_window;
+    const std::vector<signal::MeasuredMode> kept = signal::measure_modes(decay, in.data.dt_s, measure).modes;
     std::vector<double> data_hz, model_hz;
-    for (const auto& m : kept) data_hz.push_back(m.frequency_hz);
+    for (const auto& m : kept) data_hz.push_back(m.mode.frequency_hz);
     for (const auto& m : model) model_hz.push_back(m.frequency_hz);
     const std::vector<int> partner = pair_modes(data_hz, model_hz);
     for (std::size_t i = 0; i < kept.size(); ++i) {
-      ModePair pair{kept[i].frequency_hz, kept[i].damping_ratio, std::nan(""), std::nan("")};
+      ModePair pair{kept[i].mode.frequency_hz, kept[i].mode.damping_ratio,       std::nan(""), std::nan(""),
+                    kept[i].uncertainty_hz,    signal::uncertainty_note(kept[i])};
       if (partner[i] >= 0) {
         pair.model_hz = model[static_cast<std::size_t>(partner[i])].frequency_hz;
         pair.model_damping_ratio = model[static_cast<std::size_t>(partner[i])].damping_ratio;
@@ -97,29 +102,33 @@ ModeComparison compare_modes(const FitReportInput& in) {
 
 std::string modes_line(const ModeComparison& c) {
   if (c.status != "ok") return "modes at the estimate: not compared (" + c.status + ")";
-  std::string s = "modes at the estimate (data by matrix pencil | model):";
+  std::string s = "modes at the estimate (data by matrix pencil, +- its uncertainty | model):";
   for (std::size_t k = 0; k < c.pairs.size(); ++k)
-    s += std::string(k ? ";" : "") + " " + g(c.pairs[k].data_hz) + " | " + g(c.pairs[k].model_hz) + " Hz, zeta " +
-         g(100 * c.pairs[k].data_damping_ratio, 3) + " | " + g(100 * c.pairs[k].model_damping_ratio, 3) + " %";
+    s += std::string(k ? ";" : "") + " " + g(c.pairs[k].data_hz) + " +- " + g(c.pairs[k].data_uncertainty_hz, 2) +
+         " | " + g(c.pairs[k].model_hz) + " Hz, zeta " + g(100 * c.pairs[k].data_damping_ratio, 3) + " | " +
+         g(100 * c.pairs[k].model_damping_ratio, 3) + " %";
   return s;
 }
 
 std::string modes_mismatch_note(const ModeComparison& c) {
   if (c.status != "ok") return "";
-  double worst = 0;
+  double worst = 0, excess = 0;  // the largest relative misfit, and its ratio to its pair's tolerance
   const ModePair* at = nullptr;
   for (const ModePair& p : c.pairs) {
     const double off =
         std::isnan(p.model_hz) ? std::numeric_limits<double>::infinity() : std::abs(p.model_hz / p.data_hz - 1);
-    if (off > worst) worst = off, at = &p;
+    const double tolerance = std::max(kModeMismatch, 2 * p.data_uncertainty_hz / p.data_hz);
+    if (off / tolerance > excess) excess = off / tolerance, worst = off, at = &p;
   }
-  if (!at || worst <= kModeMismatch) return "";
+  if (!at || excess <= 1) return "";
   const std::string what = std::isinf(worst) ? "the record's mode at " + g(at->data_hz) +
                                                    " Hz has no model mode within " + g(100 * kModePairingWindow) + " %"
                                              : "the model's mode at " + g(at->model_hz) + " Hz is " +
                                                    g(100 * worst, 3) + " % from the record's " + g(at->data_hz) + " Hz";
-  return "the estimate does not reproduce the record's modes: " + what + " (beyond " + g(100 * kModeMismatch) +
-         " %): a local minimum or a model that cannot fit the record, which the standard errors do not include; try "
+  const double tolerance = std::max(kModeMismatch, 2 * at->data_uncertainty_hz / at->data_hz);
+  return "the estimate does not reproduce the record's modes: " + what + " (beyond " + g(100 * tolerance, 3) + " %" +
+         (tolerance > kModeMismatch ? ", twice the record's own uncertainty" : "") +
+         "): a local minimum or a model that cannot fit the record, which the standard errors do not include; try "
          "other starts (--starts) or another model";
 }
 
@@ -158,13 +167,17 @@ void modes_section(Markdown& md, const FitReportInput& in) {
   if (modes.status != "ok") {
     md << "Not compared: " << modes.status << ".\n\n";
   } else {
-    md << "The record's modes (matrix pencil on its free decay) beside the model's at the estimate, paired by "
-          "frequency:\n\n| mode | data f (Hz) | model f (Hz) | data zeta (%) | model zeta (%) "
-          "|\n|---|---|---|---|---|\n";
+    md << "The record's modes (matrix pencil on its free decay, with the uncertainty of a measured frequency: its "
+          "noise, its drift between the record's segments and the close poles that fit it) beside the model's at the "
+          "estimate, paired by frequency:\n\n| mode | data f (Hz) | its uncertainty (Hz) | model f (Hz) | data zeta "
+          "(%) | model zeta (%) |\n|---|---|---|---|---|---|\n";
     for (std::size_t k = 0; k < modes.pairs.size(); ++k)
-      md << "| " << k + 1 << " | " << g(modes.pairs[k].data_hz, 8) << " | " << g(modes.pairs[k].model_hz, 8) << " | "
-         << g(100 * modes.pairs[k].data_damping_ratio, 4) << " | " << g(100 * modes.pairs[k].model_damping_ratio, 4)
-         << " |\n";
+      md << "| " << k + 1 << " | " << g(modes.pairs[k].data_hz, 8) << " | " << g(modes.pairs[k].data_uncertainty_hz, 3)
+         << " | " << g(modes.pairs[k].model_hz, 8) << " | " << g(100 * modes.pairs[k].data_damping_ratio, 4) << " | "
+         << g(100 * modes.pairs[k].model_damping_ratio, 4) << " |\n";
+    md << "\n";
+    for (const ModePair& pair : modes.pairs)
+      if (!pair.data_note.empty()) md << "- The record: " << pair.data_note << ".\n";
     md << "\n";
   }
 }

@@ -28,6 +28,9 @@ struct FitReportInput {
 struct ModePair {
   double data_hz = 0, data_damping_ratio = 0;    // identified in the record
   double model_hz = 0, model_damping_ratio = 0;  // at the estimate
+  // The measured frequency's uncertainty (signal/measured_modes.h) and, when its span is notable, what widens it.
+  double data_uncertainty_hz = 0;
+  std::string data_note;
 };
 struct ModeComparison {
   std::vector<ModePair> pairs;
@@ -44,7 +47,9 @@ std::string modes_line(const ModeComparison& comparison);
 // A model that fits a record puts its modes within about 1 % of the record's (model error on the real records here
 // is 0.1-0.7 %): beyond kModeMismatch, a "converged" fit with tight standard errors sits in a local minimum or has a
 // model that cannot fit the record, which the errors do not include (a start 15 % off in frequency ended with modes
-// 15 % apart and 0.4 % errors, nothing said: the sixth pass's S213). "" when every pair agrees.
+// 15 % apart and 0.4 % errors, nothing said: the sixth pass's S213). A record's mode whose own frequency is uncertain
+// by more (2 u, u its measured uncertainty: a frequency that changes with the amplitude) is judged by that instead.
+// "" when every pair agrees.
 inline constexpr double kModeMismatch = 0.02;
 std::string modes_mismatch_note(const ModeComparison& comparison);
 

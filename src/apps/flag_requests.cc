@@ -56,6 +56,7 @@ api::CostRequest cost_request_of(const Flags& a) {
   r.eps3 = a.optional_number("eps3");
   r.unknown_amplitude = a.has("unknown-amplitude");
   if (a.has("model-poles")) r.model_poles = a.text("model-poles");
+  if (a.has("mode-weight")) r.mode_weight = a.text("mode-weight");
   if (a.has("frequency-weight")) r.frequency_weight = a.text("frequency-weight");
   return r;
 }

@@ -76,6 +76,9 @@ std::vector<FlagSpec> cost_flags(bool required) {
   flags.push_back(
       text_flag("model-poles", "spike-smooth: " + costs::model_pole_names().alternatives() + " (default dft)"));
   flags.push_back(
+      text_flag("mode-weight", "modal: " + costs::mode_weight_names().alternatives() +
+                                   " (default relative; measured: maximum likelihood for a measured record's modes)"));
+  flags.push_back(
       text_flag("frequency-weight", "spike costs: " + costs::frequency_weight_names().alternatives() +
                                         " (default relative: a record read from a file is a measured one)"));
   return flags;
@@ -90,17 +93,25 @@ int run_spikes(const Flags& a, std::ostream& out) {
     std::cerr << "beamid spikes: --spikes " << r.requested << ": the record shows only " << picks.size()
               << " spike(s) (local maxima of |Z| in the band, artefacts skipped): " << picks.size() << " printed\n";
   // The picks in order of frequency, then the peaks passed over on the way, with the reason.
-  // The bin's frequency, then the sub-bin (three-bin) estimate of the peak's frequency and decay rate.
-  out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped,subbin_frequency_hz,decay_rate_1_s\n";
-  const auto row = [&](const std::string& label, const signal::Spike& p, const std::string& skipped) {
+  // The bin's frequency, then the sub-bin (three-bin) estimate of the peak's frequency and decay rate, then the
+  // measured frequency and its uncertainty as modal-id, fit and real report them (picks only).
+  out << "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped,subbin_frequency_hz,decay_rate_1_s,"
+         "measured_frequency_hz,measured_uncertainty_hz\n";
+  const double nan = std::nan("");
+  const auto row = [&](const std::string& label, const signal::Spike& p, const std::string& skipped,
+                       const signal::MeasuredMode* measured) {
     const signal::PoleEstimate e = r.subbin(p.bin);
     out << label << "," << p.bin << "," << io::full_precision(p.frequency_hz) << "," << io::full_precision(p.magnitude)
         << "," << p.n_left << "," << p.n_right << "," << skipped << "," << io::full_precision(e.frequency_hz) << ","
-        << io::full_precision(e.decay_rate_1_s) << "\n";
+        << io::full_precision(e.decay_rate_1_s) << ","
+        << io::full_precision(measured ? measured->mode.frequency_hz : nan) << ","
+        << io::full_precision(measured ? measured->uncertainty_hz : nan) << "\n";
   };
-  for (std::size_t l = 0; l < picks.size(); ++l) row(std::to_string(l + 1), picks[l], "");
+  for (std::size_t l = 0; l < picks.size(); ++l) row(std::to_string(l + 1), picks[l], "", &r.measured[l]);
   for (const auto& p : peaks)
-    if (!p.skipped.empty()) row("", p.spike, "\"" + p.skipped + "\"");
+    if (!p.skipped.empty()) row("", p.spike, "\"" + p.skipped + "\"", nullptr);
+  if (!r.measured_note.empty()) std::cerr << "beamid spikes: " << r.measured_note << "\n";
+  for (const std::string& note : r.notes) std::cerr << "beamid spikes: " << note << "\n";
   if (a.has("welch"))
     std::cerr << "beamid spikes: picked on Welch's average of " << a.integer("welch") << " segments of "
               << r.spectrum.samples << " samples (df = " << r.spectrum.df_hz() << " Hz; bins are of that spectrum)\n";
@@ -216,6 +227,8 @@ int run_fit(const Flags& a, std::ostream& out) {
   const FitReportInput input{o, result, data, beam_name, a.arguments(), channels, spread ? &*spread : nullptr};
   const ModeComparison modes = compare_modes(input);
   std::cerr << "beamid fit: " << modes_line(modes) << "\n";
+  for (const ModePair& pair : modes.pairs)
+    if (!pair.data_note.empty()) std::cerr << "beamid fit: the record: " << pair.data_note << "\n";
   if (const std::string note = modes_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
   if (a.has("report")) {
     write_fit_report(a.text("report"), input);

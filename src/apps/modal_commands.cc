@@ -10,7 +10,7 @@
 #include "core/limits.h"
 #include "io/provenance.h"
 #include "io/text.h"
-#include "signal/matrix_pencil.h"
+#include "signal/measured_modes.h"
 
 namespace beamid::apps {
 
@@ -34,13 +34,16 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   const io::TimeSeries data = read_data(a);
   const api::ModalIdResult r = api::compute_modal_id(modal_id_request_of(a), data);
   const signal::PencilOptions& o = r.options;
-  const std::vector<signal::IdentifiedMode>& modes = r.modes;
   std::ostringstream csv;
-  csv << "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz\n";
-  for (std::size_t k = 0; k < modes.size(); ++k) {
+  // frequency_sd_hz: the noise's part (the Cramér-Rao bound); drift_hz, span and frequency_uncertainty_hz: the
+  // measured-frequency estimator's (signal/measured_modes.h), which spikes, fit and real report alike.
+  csv << "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz,drift_hz,span_low_hz,span_high_hz,"
+         "frequency_uncertainty_hz\n";
+  for (std::size_t k = 0; k < r.measured.size(); ++k) {
+    const signal::MeasuredMode& m = r.measured[k];
     csv << k + 1 << ",";
-    io::write_row(csv, {modes[k].frequency_hz, modes[k].damping_ratio, modes[k].amplitude, modes[k].phase_rad,
-                        modes[k].frequency_sd_hz});
+    io::write_row(csv, {m.mode.frequency_hz, m.mode.damping_ratio, m.mode.amplitude, m.mode.phase_rad,
+                        m.mode.frequency_sd_hz, m.drift_hz, m.span_low_hz, m.span_high_hz, m.uncertainty_hz});
   }
   out << csv.str();
   for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";

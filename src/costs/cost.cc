@@ -53,6 +53,13 @@ const core::NameSet& frequency_weight_names() {
   return names;
 }
 
+const core::NameSet& mode_weight_names() {
+  static const core::NameSet names(
+      {{kRelativeModeWeight, "frequency and decay-rate errors as fractions of each mode's |lambda|"},
+       {kMeasuredModeWeight, "each mode's errors over its measured uncertainty (noise, drift, close poles)"}});
+  return names;
+}
+
 const core::NameSet& model_pole_names() {
   static const core::NameSet names({{kDftPoles, "the 3-bin estimate on the model's own DFT, as on the data's"},
                                     {kEigenvaluePoles, "the model's eigenvalues"}});
@@ -68,6 +75,7 @@ CostUses cost_uses(const std::string& name) {
   u.frequency_weight = is_spike_cost(name);
   u.model_poles = name == kSpikeSmoothCost;
   u.unknown_amplitude = name != kModalCost;
+  u.mode_weight = name == kModalCost;
   return u;
 }
 
@@ -94,6 +102,7 @@ std::optional<std::string> validation_error(const CostOptions& o) {
     if (!(std::isfinite(value) && value > 0))
       return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
   if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
+  if (auto error = mode_weight_names().violation("mode_weight", o.mode_weight)) return error;
   return std::nullopt;
 }
 

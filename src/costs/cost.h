@@ -66,6 +66,11 @@ inline const std::string kRelativeWeight = "relative";
 inline const std::string kInverseVarianceWeight = "inverse-variance";
 const core::NameSet& frequency_weight_names();
 
+// How the modal cost weighs its modes, by name (costs/modal_cost.h).
+inline const std::string kRelativeModeWeight = "relative";
+inline const std::string kMeasuredModeWeight = "measured";
+const core::NameSet& mode_weight_names();
+
 // Where spike-smooth takes the model's poles from, by name.
 inline const std::string kDftPoles = "dft";
 inline const std::string kEigenvaluePoles = "eigenvalues";
@@ -81,6 +86,7 @@ struct CostOptions {
   std::string model_poles = kDftPoles;             // spike-smooth: "dft" (3-bin on U) | "eigenvalues"
   int first_free_sample = 0;                       // modal: the free decay starts here (after the excitation)
   std::string frequency_weight = kAbsoluteWeight;  // spike costs: across spikes (above)
+  std::string mode_weight = kRelativeModeWeight;   // modal: its residuals' weights (costs/modal_cost.h)
   // Spike costs: the data's spikes are picked on the record less its offset ("mean") or offset and linear trend
   // ("linear", signal/spikes.h), so that their leakage into the lowest bins is not taken for a mode; the picked
   // bins' magnitudes and supports are then read from the record as it is, which the model is compared with.
@@ -95,6 +101,7 @@ bool is_spike_cost(const std::string& name);
 // poles from the eigenvalues; every cost but modal (frequencies and decay rates only) may leave the amplitude free.
 struct CostUses {
   bool window = false, spike_rule = false, frequency_weight = false, model_poles = false, unknown_amplitude = false;
+  bool mode_weight = false;
 };
 CostUses cost_uses(const std::string& name);
 

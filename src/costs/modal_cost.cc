@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "core/errors.h"
-#include "signal/matrix_pencil.h"
+#include "signal/measured_modes.h"
 
 namespace beamid::costs {
 namespace {
@@ -23,8 +23,21 @@ class ModalCost final : public Cost {
     p.modes = options_.spikes.count;
     std::vector<signal::IdentifiedMode> found;
     int heavy = 0;  // poles left out as the excitation or noise (signal::lightly_damped_modes)
+    const bool measured = options_.mode_weight == kMeasuredModeWeight;
+    std::vector<signal::MeasuredMode> uncertain;  // the same modes with their uncertainty, when weighted by it
     try {
-      found = signal::lightly_damped_modes(decay, dt_s, p, wanted, options_.spikes.frequency_window, &heavy);
+      if (measured) {
+        signal::MeasureOptions m;
+        m.pencil = p;
+        m.wanted_hz = wanted;
+        m.window = options_.spikes.frequency_window;
+        const signal::MeasuredModes r = signal::measure_modes(decay, dt_s, m);
+        uncertain = r.modes;
+        heavy = r.heavily_damped;
+        for (const auto& u : uncertain) found.push_back(u.mode);
+      } else {
+        found = signal::lightly_damped_modes(decay, dt_s, p, wanted, options_.spikes.frequency_window, &heavy);
+      }
     } catch (const InputError& e) {
       throw InputError(std::string("cost modal: ") + e.what());
     }
@@ -35,7 +48,16 @@ class ModalCost final : public Cost {
                                         " pole(s) damped beyond zeta = " + format_value(signal::kHeavilyDampedRatio) +
                                         ", the excitation or noise rather than modes)"
                                   : ""));
-    for (const auto& m : found) {
+    for (std::size_t l = 0; l < found.size(); ++l) {
+      const signal::IdentifiedMode& m = found[l];
+      // The residuals' divisors (costs/modal_cost.h): |lambda| for both, or the measured uncertainties, at least
+      // kUncertaintyFloor |lambda| (a noise-free record's u is round-off, and the pencil is exact to ~1e-9 there).
+      const double magnitude = std::abs(m.lambda);
+      frequency_scale_.push_back(
+          measured ? std::max(2 * std::numbers::pi * uncertain[l].uncertainty_hz, kUncertaintyFloor * magnitude)
+                   : magnitude);
+      decay_scale_.push_back(measured ? std::max(uncertain[l].decay_uncertainty_1_s, kUncertaintyFloor * magnitude)
+                                      : magnitude);
       SpikePair pair;
       pair.data_frequency_hz = m.frequency_hz;
       pair.data_decay_rate_1_s = -m.lambda.real();
@@ -48,7 +70,11 @@ class ModalCost final : public Cost {
   const CostOptions& options() const override { return options_; }
   int residual_count() const override { return 2 * static_cast<int>(lambda_.size()); }
   const std::vector<SpikePair>& data_spikes() const override { return pairs_; }
-  std::string weights() const override { return "relative frequency and decay-rate errors (per |lambda| of the mode)"; }
+  std::string weights() const override {
+    return options_.mode_weight == kMeasuredModeWeight
+               ? "frequency and decay-rate errors over each mode's measured uncertainty (noise, drift, close poles)"
+               : "relative frequency and decay-rate errors (per |lambda| of the mode)";
+  }
 
   Evaluation evaluate(const ModelResponse& model) override {
     Evaluation e;
@@ -62,8 +88,8 @@ class ModalCost final : public Cost {
     for (std::size_t l = 0; l < lambda_.size(); ++l) {
       const double target = std::abs(lambda_[l]);
       const std::complex<double> u = model.poles_rad_s[static_cast<std::size_t>(partner[l])];
-      e.residuals(static_cast<Eigen::Index>(2 * l)) = (std::abs(u) - target) / target;
-      e.residuals(static_cast<Eigen::Index>(2 * l + 1)) = (u.real() - lambda_[l].real()) / target;
+      e.residuals(static_cast<Eigen::Index>(2 * l)) = (std::abs(u) - target) / frequency_scale_[l];
+      e.residuals(static_cast<Eigen::Index>(2 * l + 1)) = (u.real() - lambda_[l].real()) / decay_scale_[l];
       e.pairs[l].has_model = true;
       e.pairs[l].model_frequency_hz = std::abs(u) / (2 * std::numbers::pi);
       e.pairs[l].model_decay_rate_1_s = -u.real();
@@ -80,20 +106,19 @@ class ModalCost final : public Cost {
   }
   bool has_pole_jacobian() const override { return true; }
   Eigen::MatrixXd pole_jacobian(const ModelResponse& model, const Eigen::MatrixXcd& d_poles) override {
-    // r_2l = (|u| - |z|)/|z| and r_2l+1 = (Re u - Re z)/|z| for the partner u of data mode z: d|u| = Re(conj(u)
-    // du)/|u|.
+    // r_2l = (|u| - |z|)/s_f and r_2l+1 = (Re u - Re z)/s_d for the partner u of data mode z (s the divisors):
+    // d|u| = Re(conj(u) du)/|u|.
     if (d_poles.rows() != static_cast<Eigen::Index>(model.poles_rad_s.size()))
       throw InputError("cost modal: " + std::to_string(d_poles.rows()) + " pole derivatives for " +
                        std::to_string(model.poles_rad_s.size()) + " poles");
     const std::vector<int> partner = partners(model);
     Eigen::MatrixXd j(residual_count(), d_poles.cols());
     for (std::size_t l = 0; l < lambda_.size(); ++l) {
-      const double target = std::abs(lambda_[l]);
       const std::complex<double> u = model.poles_rad_s[static_cast<std::size_t>(partner[l])];
       for (Eigen::Index q = 0; q < d_poles.cols(); ++q) {
         const std::complex<double> du = d_poles(partner[l], q);
-        j(static_cast<Eigen::Index>(2 * l), q) = (std::conj(u) * du).real() / std::abs(u) / target;
-        j(static_cast<Eigen::Index>(2 * l + 1), q) = du.real() / target;
+        j(static_cast<Eigen::Index>(2 * l), q) = (std::conj(u) * du).real() / std::abs(u) / frequency_scale_[l];
+        j(static_cast<Eigen::Index>(2 * l + 1), q) = du.real() / decay_scale_[l];
       }
     }
     return j;
@@ -117,6 +142,7 @@ class ModalCost final : public Cost {
   CostOptions options_;
   std::vector<SpikePair> pairs_;
   std::vector<std::complex<double>> lambda_;
+  std::vector<double> frequency_scale_, decay_scale_;  // the residuals' divisors per mode, rad/s and 1/s
 };
 
 }  // namespace

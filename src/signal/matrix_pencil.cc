@@ -67,6 +67,10 @@ Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int orde
   return eig.eigenvalues();
 }
 
+void by_frequency(std::vector<IdentifiedMode>& modes) {
+  std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
+}
+
 }  // namespace
 
 std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double dt_s, const PencilOptions& o,
@@ -149,8 +153,12 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   // The K strongest, then by frequency. The strength is the mode's energy over the record, so that a heavily damped
   // spurious pole with a large initial amplitude does not outrank a lasting mode.
   std::sort(modes.begin(), modes.end(), [&](const auto& a, const auto& b) { return energy(a) > energy(b); });
-  if (static_cast<int>(modes.size()) > o.modes) modes.resize(static_cast<std::size_t>(o.modes));
-  std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
+  if (static_cast<int>(modes.size()) > o.modes) {
+    d.weaker.assign(modes.begin() + o.modes, modes.end());
+    modes.resize(static_cast<std::size_t>(o.modes));
+  }
+  by_frequency(d.weaker);
+  by_frequency(modes);
   return modes;
 }
 
@@ -161,39 +169,57 @@ double mode_energy(const IdentifiedMode& m, double dt_s, int n) {
 
 std::vector<IdentifiedMode> lightly_damped_modes(const std::vector<double>& decay, double dt_s, PencilOptions options,
                                                  const std::vector<double>& wanted_hz, double window,
-                                                 int* heavily_damped) {
+                                                 int* heavily_damped, PencilDiagnostics* diagnostics) {
   if (heavily_damped) *heavily_damped = 0;
-  if (!wanted_hz.empty()) return modes_near(decay, dt_s, options, wanted_hz, window);
+  if (!wanted_hz.empty()) return modes_near(decay, dt_s, options, wanted_hz, window, diagnostics);
   const int k = options.modes;
   options.modes = k + 4;
-  std::vector<IdentifiedMode> modes = matrix_pencil(decay, dt_s, options);
-  const auto heavy =
-      std::erase_if(modes, [](const IdentifiedMode& m) { return m.damping_ratio > kHeavilyDampedRatio; });
+  PencilDiagnostics unused;
+  PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
+  std::vector<IdentifiedMode> modes = matrix_pencil(decay, dt_s, options, &d);
+  const auto light = [](const IdentifiedMode& m) { return m.damping_ratio <= kHeavilyDampedRatio; };
+  const auto heavy = std::erase_if(modes, [&](const IdentifiedMode& m) { return !light(m); });
+  std::erase_if(d.weaker, [&](const IdentifiedMode& m) { return !light(m); });
   if (heavily_damped) *heavily_damped = static_cast<int>(heavy);
   const int n = static_cast<int>(decay.size());
   std::sort(modes.begin(), modes.end(),
             [&](const auto& a, const auto& b) { return mode_energy(a, dt_s, n) > mode_energy(b, dt_s, n); });
-  if (static_cast<int>(modes.size()) > k) modes.resize(static_cast<std::size_t>(k));
-  std::sort(modes.begin(), modes.end(), [](const auto& a, const auto& b) { return a.frequency_hz < b.frequency_hz; });
+  if (static_cast<int>(modes.size()) > k) {
+    d.weaker.insert(d.weaker.end(), modes.begin() + k, modes.end());
+    modes.resize(static_cast<std::size_t>(k));
+  }
+  by_frequency(d.weaker);
+  by_frequency(modes);
   return modes;
 }
 
 std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double dt_s, PencilOptions options,
-                                       const std::vector<double>& wanted_hz, double window) {
+                                       const std::vector<double>& wanted_hz, double window,
+                                       PencilDiagnostics* diagnostics) {
   if (wanted_hz.empty()) throw InputError("modes_near: no frequency chosen");
   const auto [low, high] = std::minmax_element(wanted_hz.begin(), wanted_hz.end());
   options.min_frequency_hz = std::max(options.min_frequency_hz, *low * (1 - window));
   options.max_frequency_hz = std::min(options.max_frequency_hz, *high * (1 + window));
   options.modes = 3 * static_cast<int>(wanted_hz.size()) + 4;
-  const std::vector<IdentifiedMode> found = matrix_pencil(decay, dt_s, options);
+  PencilDiagnostics unused;
+  PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
+  const std::vector<IdentifiedMode> found = matrix_pencil(decay, dt_s, options, &d);
   std::vector<IdentifiedMode> chosen;
+  std::vector<bool> taken(found.size(), false);
   for (double f : wanted_hz) {
-    const IdentifiedMode* best = nullptr;
-    for (const auto& m : found)
-      if (std::abs(m.frequency_hz / f - 1) <= window && (!best || m.amplitude > best->amplitude)) best = &m;
-    if (!best) throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
-    chosen.push_back(*best);
+    std::size_t best = found.size();
+    for (std::size_t i = 0; i < found.size(); ++i)
+      if (std::abs(found[i].frequency_hz / f - 1) <= window &&
+          (best == found.size() || found[i].amplitude > found[best].amplitude))
+        best = i;
+    if (best == found.size())
+      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
+    chosen.push_back(found[best]);
+    taken[best] = true;
   }
+  for (std::size_t i = 0; i < found.size(); ++i)
+    if (!taken[i]) d.weaker.push_back(found[i]);
+  by_frequency(d.weaker);
   return chosen;
 }
 

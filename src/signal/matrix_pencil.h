@@ -36,8 +36,11 @@ struct IdentifiedMode;
 // The modes of chosen frequencies (a record may hold modes a model lacks, such as torsion): the pencil is run over
 // the band the choices span (each widened by +-window, relative) for 3 K + 4 modes, and the strongest within +-window
 // of each wanted frequency is kept, in the order of `wanted_hz`. InputError naming a frequency that has none.
+// `diagnostics`, when given, is the pencil's, with the poles not chosen in `weaker`.
+struct PencilDiagnostics;
 std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double dt_s, PencilOptions options,
-                                       const std::vector<double>& wanted_hz, double window);
+                                       const std::vector<double>& wanted_hz, double window,
+                                       PencilDiagnostics* diagnostics = nullptr);
 
 struct IdentifiedMode {
   double frequency_hz = 0;      // |lambda| / (2 pi)
@@ -65,6 +68,9 @@ struct PencilDiagnostics {
   std::vector<IdentifiedMode> growing;
   int negligible = 0;   // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
   int below_noise = 0;  // decaying poles in the band dropped as below the noise (kNoiseFalseAlarm)
+  // Decaying poles in the band, above the noise, that were not reported: weaker than the K reported (ascending in
+  // frequency). What measured_modes reads for a mode split into close poles.
+  std::vector<IdentifiedMode> weaker;
 };
 
 // A decaying pole is a mode only if its energy over the record, sum_i (2 Re c z^i)^2 ~ |c|^2 2 sum |z|^2i, exceeds
@@ -80,9 +86,11 @@ inline constexpr double kNoiseFalseAlarm = 1e-3;
 // when `wanted_hz` is given; else the K = options.modes strongest decaying modes of damping ratio at most
 // kHeavilyDampedRatio, from a pencil asked for K + 4 (the pulse's 447 Hz pole at zeta 0.83 was paired with a beam
 // mode, EI 2.4 % off and "converged": the sixth pass's S212). `heavily_damped`, when given, counts the poles left out.
+// `diagnostics`, when given, is the pencil's, with the lightly damped poles not chosen in `weaker`.
 std::vector<IdentifiedMode> lightly_damped_modes(const std::vector<double>& decay, double dt_s, PencilOptions options,
                                                  const std::vector<double>& wanted_hz, double window,
-                                                 int* heavily_damped = nullptr);
+                                                 int* heavily_damped = nullptr,
+                                                 PencilDiagnostics* diagnostics = nullptr);
 
 // A^2 sum_{i<n} |z|^2i with A = 2 |c| and z = e^{lambda dt}: twice the real mode's sum of squares over n samples, the
 // strength by which modes are ranked (a heavily damped pole with a large initial amplitude does not outrank a

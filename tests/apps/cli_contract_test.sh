@@ -87,7 +87,10 @@ expect_error "unknown command" "unknown command 'fit2'" fit2
 # the fit at the same N recovers EI to round-off: 1e-6 is a loose bound).
 "$BEAMID" simulate --beam banks-aluminium --elements 4 --pulse-width 0.004 >"$tmp/z.csv"
 "$BEAMID" spikes --data "$tmp/z.csv" --spikes 3 >"$tmp/s.csv"
-check "spikes header" test "$(head -1 "$tmp/s.csv")" = "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped,subbin_frequency_hz,decay_rate_1_s"
+check "spikes header" test "$(head -1 "$tmp/s.csv")" = "spike,bin,frequency_hz,magnitude,n_left,n_right,skipped,subbin_frequency_hz,decay_rate_1_s,measured_frequency_hz,measured_uncertainty_hz"
+# The measured frequency (the pencil's, as modal-id reports it) of the first spike: the beam's mode 1, 2.4638 Hz, to
+# the noise-free record's round-off, beside its bin's 2.44 Hz.
+check "spikes: measured frequency of spike 1" awk -F, 'NR == 2 { exit !($10 > 2.4637 && $10 < 2.4639) }' "$tmp/s.csv"
 # The sub-bin estimate of mode 1 is the model's 2.46383 Hz at N = 4 to 1e-3 (the bin's is 2.441 Hz, a quarter bin
 # off; the three-bin estimate of a damped sinusoid is exact up to its neighbours' leakage, 2e-4 measured).
 check "spike 1's sub-bin frequency" awk -F, 'NR == 2 { d = $8 / 2.46383 - 1; exit !(d < 1e-3 && d > -1e-3) }' "$tmp/s.csv"
@@ -101,8 +104,9 @@ done
   --pulse-width 0.004 --report "$tmp/fit.md" >"$tmp/f.csv" 2>"$tmp/f.err"
 check "fit header" test "$(head -1 "$tmp/f.csv")" = "parameter,estimate,standard_error,start,lower,upper,status,robust_standard_error,window_sd,window_standard_error"
 check "fit: a recovered parameter is free" awk -F, 'NR == 2 { exit !($7 == "free") }' "$tmp/f.csv"
-# The modes line: data (matrix pencil) and model at the recovered estimate agree on mode 1, 2.4638 Hz.
-check "fit: modes at the estimate" grep -q "modes at the estimate (data by matrix pencil | model): 2.46383 | 2.46383 Hz" "$tmp/f.err"
+# The modes line: data (matrix pencil, with its uncertainty: round-off on a noise-free record) and model at the
+# recovered estimate agree on mode 1, 2.4638 Hz.
+check "fit: modes at the estimate" grep -Eq "modes at the estimate \(data by matrix pencil, \+- its uncertainty \| model\): 2.46383 \+- [0-9.]+e-1[0-9] \| 2.46383 Hz" "$tmp/f.err"
 check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
 check "fit recovers EI" awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-6 && r > -1e-6) }' "$tmp/f.csv"
 check "fit report written" grep -q "^## Result" "$tmp/fit.md"
@@ -149,7 +153,7 @@ expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/noga
 # round-off on a noise-free decay; the tests of signal/matrix_pencil.h measure 1e-14 and 3e-11).
 "$BEAMID" modal-id --data "$tmp/z.csv" --start 0.01 --modes 1 --order 20 >"$tmp/m.csv" 2>/dev/null || fail=$((fail + 1))
 "$BEAMID" modes --beam banks-aluminium --elements 4 --count 1 >"$tmp/m4.csv" || fail=$((fail + 1))
-check "modal-id header" test "$(head -1 "$tmp/m.csv")" = "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz"
+check "modal-id header" test "$(head -1 "$tmp/m.csv")" = "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz,drift_hz,span_low_hz,span_high_hz,frequency_uncertainty_hz"
 check "modal-id mode 1 is the model's" awk -F, 'NR == FNR { if (FNR == 2) { f = $2; z = $3 } next }
     FNR == 2 { a = $2 / f - 1; b = $3 / z - 1; exit !(a < 1e-8 && a > -1e-8 && b < 1e-5 && b > -1e-5) }' \
   "$tmp/m4.csv" "$tmp/m.csv"

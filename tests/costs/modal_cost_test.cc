@@ -10,6 +10,8 @@
 #include "core/errors.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
+#include "signal/measured_modes.h"
+#include "signal/noise.h"
 #include "thin_beam_fit.h"
 
 namespace beamid::costs {
@@ -111,6 +113,44 @@ TEST(ModalCost, ExactJacobianEqualsCentralDifferencesOfItsResiduals) {
     const Eigen::VectorXd numeric = (plus - minus) / (2 * h);
     EXPECT_LT((jacobian.col(static_cast<Eigen::Index>(q)) - numeric).cwiseAbs().maxCoeff() * value, 1e-6) << keys[q];
   }
+}
+
+TEST(ModalCost, MeasuredWeightDividesEachModeByItsMeasuredUncertainty) {
+  // mode_weight "measured" (costs/modal_cost.h): a model whose pole l lies exactly u_l above the data's natural
+  // frequency (u_l the measured frequency's uncertainty, signal/measure_modes on the same record and options) and has
+  // its decay rate gives residual 1 for that frequency and 0 for the decay rate; "relative" gives 2 pi u_l / |lambda|.
+  // The record: the thin beam's with 1 % noise, so that u is the noise's Cramér-Rao bound and its drift, not
+  // round-off. Tolerance 1e-9: the residual is one subtraction of numbers of |lambda| over 2 pi u (~1e-5 |lambda|).
+  fit::FitOptions o = modal_fit();
+  const auto data = signal::add_noise(thin_beam_data(o), 0.01, 5);
+  CostOptions c = o.cost;
+  c.mode_weight = kMeasuredModeWeight;
+  const auto measured = make_cost(c, data, 1e-3);
+  const auto relative = make_cost(o.cost, data, 1e-3);
+  signal::MeasureOptions m;
+  m.pencil.modes = 3;
+  m.pencil.min_frequency_hz = c.spikes.min_frequency_hz;
+  m.pencil.max_frequency_hz = c.spikes.max_frequency_hz;
+  const signal::MeasuredModes modes = signal::measure_modes(data, 1e-3, m);
+  ASSERT_EQ(modes.modes.size(), 3u);
+  std::vector<std::complex<double>> poles;
+  for (const auto& mode : modes.modes) {
+    const double magnitude = std::abs(mode.mode.lambda) + 2 * std::numbers::pi * mode.uncertainty_hz;
+    const double re = mode.mode.lambda.real();
+    poles.emplace_back(re, std::sqrt(magnitude * magnitude - re * re));
+  }
+  const Evaluation e = measured->evaluate(ModelResponse{data, poles});
+  const Evaluation r = relative->evaluate(ModelResponse{data, poles});
+  ASSERT_TRUE(e.ok()) << e.status;
+  for (Eigen::Index l = 0; l < 3; ++l) {
+    const auto& mode = modes.modes[static_cast<std::size_t>(l)];
+    EXPECT_GT(mode.uncertainty_hz, 0);
+    EXPECT_NEAR(e.residuals(2 * l), 1, 1e-9) << l;
+    EXPECT_NEAR(e.residuals(2 * l + 1), 0, 1e-9) << l;
+    EXPECT_NEAR(r.residuals(2 * l) / (2 * std::numbers::pi * mode.uncertainty_hz / std::abs(mode.mode.lambda)), 1, 1e-9)
+        << l;
+  }
+  EXPECT_NE(measured->weights().find("measured uncertainty"), std::string::npos);
 }
 
 }  // namespace

@@ -28,16 +28,24 @@ TEST(RealSteel, IdentifiedFrequenciesMatchTheMeasuredPeaks) {
   std::ifstream in(out + "/modes.csv");
   std::string line;
   std::getline(in, line);
-  ASSERT_EQ(line, "candidate,cost,record,mode,measured_frequency_hz,identified_frequency_hz,identified_damping_ratio");
+  ASSERT_EQ(line,
+            "candidate,cost,record,mode,measured_frequency_hz,measured_uncertainty_hz,identified_frequency_hz,"
+            "identified_damping_ratio,discretisation_error_hz");
   std::map<std::string, int> rows;
   while (std::getline(in, line)) {
     std::stringstream row(line);
-    std::string candidate, cost, record, mode, measured, identified, zeta;
+    std::string candidate, cost, record, mode, measured, uncertainty, identified, zeta;
     std::getline(row, candidate, ',');
     std::getline(row, cost, ',');
     std::getline(row, record, ',');
     std::getline(row, mode, ',');
     std::getline(row, measured, ',');
+    std::getline(row, uncertainty, ',');
+    // The measured frequency's uncertainty (signal/measured_modes.h): positive, and below 2 % of it on this record,
+    // whose modes drift by 0.1-0.9 % between segments (a larger u would say the estimator took a neighbour).
+    const double u = std::stod(uncertainty);
+    EXPECT_GT(u, 0) << cost << " mode " << mode;
+    EXPECT_LT(u, 0.02 * std::stod(measured)) << cost << " mode " << mode;
     std::getline(row, identified, ',');
     std::getline(row, zeta, ',');
     const double m = std::stod(measured), f = std::stod(identified), z = std::stod(zeta);
@@ -127,21 +135,22 @@ bounds = { "attachment1.m" = [0.001, 0.02], cDI = [1e-6, 1e-3] }
   ASSERT_NE(modes, files.end());
   EXPECT_NE(modes->text.find("\"short\""), std::string::npos);
   EXPECT_NE(modes->text.find("\"long\""), std::string::npos);
-  // Each record's verdict (issue 31): some candidate fits it within 1.5 % at every peak. A record measured 10 % off
-  // at one peak (as the UnB beam's tip masses are by one EI) is fitted by none, and the report says so.
+  // Each record's verdict (issue 31): some candidate fits it within 2 u at every mode (u the measured frequency's
+  // uncertainty; a synthetic record's modes are steady, so u is the noise's, and the fit at the truth lands within
+  // it). A record measured 10 % off at one mode (as the UnB beam's tip masses are by one EI) is fitted by none, and
+  // the report says so.
   const auto report = [&](const RealResults& r) {
     const RenderedFiles rendered = render_real_study(spec, r);
     return std::find_if(rendered.begin(), rendered.end(), [](const Rendered& x) { return x.path == "report.md"; })
         ->text;
   };
-  EXPECT_NE(report(results).find("`[true]` some candidate model fits record 'long' within 1.5 % at every peak"),
+  EXPECT_NE(report(results).find("`[true]` some candidate model fits record 'long' within 2 u at every mode"),
             std::string::npos)
       << report(results);
   RealResults off = results;
   off.records[1].measured_hz[0] *= 1.1;
   const std::string text = report(off);
-  EXPECT_NE(text.find("`[false]` some candidate model fits record 'long' within 1.5 % at every peak"),
-            std::string::npos)
+  EXPECT_NE(text.find("`[false]` some candidate model fits record 'long' within 2 u at every mode"), std::string::npos)
       << text;
   EXPECT_NE(text.find(": no candidate model fits it"), std::string::npos) << text;
   EXPECT_NE(text.find("`[true]` some candidate model fits record 'short'"), std::string::npos) << text;

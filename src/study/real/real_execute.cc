@@ -4,7 +4,6 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <string_view>
 #include <tuple>
 
@@ -17,8 +16,7 @@
 #include "galerkin/spline_space.h"
 #include "io/provenance.h"
 #include "io/resources.h"
-#include "signal/spectrum.h"
-#include "signal/spikes.h"
+#include "signal/measured_modes.h"
 #include "study/real/real_study.h"
 #include "study/tables/format.h"
 
@@ -73,21 +71,22 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
     throw InputError(in_study_keys(error.what(), spec, r));
   }
   out.nominal = config::load_beam_toml(r.beam_file.empty() ? spec.beam_file : r.beam_file);
-  // The data's sub-bin peak frequencies near peaks_hz, and damping ratios sigma / |lambda| from the 3-bin rates.
-  signal::SpikeOptions spikes;
-  spikes.frequencies_hz = r.peaks_hz;
-  spikes.count = static_cast<int>(r.peaks_hz.size());
-  signal::Dft dft(static_cast<int>(out.series.values.size()), out.series.dt_s);
-  const signal::Spectrum z = dft.transform(out.series.values);
-  for (const auto& s : signal::detect_spikes(z, spikes)) {
-    const auto e = signal::three_bin_estimate(z, s.bin);
-    out.measured_hz.push_back(e.ok ? e.frequency_hz : s.frequency_hz);
-    const double w = 2 * std::numbers::pi * out.measured_hz.back();
-    out.measured_zeta.push_back(e.ok ? e.decay_rate_1_s / std::hypot(e.decay_rate_1_s, w) : std::nan(""));
+  // The record's modes near peaks_hz, with their uncertainty, by the estimator every command shares (they had been
+  // three-bin DFT estimates, 0.1-0.2 % from what modal-id and fit reported for the same record: issue 31).
+  signal::MeasureOptions measure;
+  measure.wanted_hz = r.peaks_hz;
+  signal::MeasuredModes found;
+  try {
+    found = signal::measure_modes(out.series.values, out.series.dt_s, measure);
+  } catch (const InputError& error) {
+    throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + error.what());
   }
-  if (out.measured_hz.size() != r.peaks_hz.size())
-    throw InputError(spec.path + ": record '" + r.name +
-                     "'.peaks_hz: " + signal::unmatched_frequencies(signal::detect_spikes(z, spikes), spikes, z));
+  for (const signal::MeasuredMode& m : found.modes) {
+    out.measured_hz.push_back(m.mode.frequency_hz);
+    out.measured_zeta.push_back(m.mode.damping_ratio);
+    out.measured_uncertainty_hz.push_back(m.uncertainty_hz);
+    if (const std::string note = signal::uncertainty_note(m); !note.empty()) out.measured_notes.push_back(note);
+  }
   return out;
 }
 
@@ -135,23 +134,36 @@ std::vector<fit::EstimatedParameter> candidate_estimate(const CandidateSpec& c,
 // Every record's identified modes: the Galerkin modes at the estimate nearest to each measured peak.
 void identify_modes(const RealStudySpec& spec, const std::vector<RealRecordData>& all, const fit::FitResult& r,
                     RealFit& f) {
-  const galerkin::SplineSpace space(spec.elements);
+  const galerkin::SplineSpace space(spec.elements), finer(2 * spec.elements);
   double squares = 0;
   int count = 0;
-  f.worst_misfit = 0;
+  f.worst_misfit = 0, f.worst_in_uncertainty = 0;
+  const auto nearest = [](const std::vector<galerkin::DampedMode>& modes, double hz) {
+    const galerkin::DampedMode* best = nullptr;
+    for (const auto& d : modes)
+      if (best == nullptr || std::abs(d.frequency_hz - hz) < std::abs(best->frequency_hz - hz)) best = &d;
+    return best;
+  };
   for (std::size_t k = 0; k < f.records.size(); ++k) {
     const auto damped = galerkin::StateSpaceModes(galerkin::assemble(space, r.records[k].beam)).underdamped_modes();
+    const auto fine = galerkin::StateSpaceModes(galerkin::assemble(finer, r.records[k].beam)).underdamped_modes();
     f.identified_hz.emplace_back();
     f.zeta.emplace_back();
-    for (const double measured : all[static_cast<std::size_t>(f.records[k])].measured_hz) {
-      const galerkin::DampedMode* best = nullptr;
-      for (const auto& d : damped)
-        if (best == nullptr || std::abs(d.frequency_hz - measured) < std::abs(best->frequency_hz - measured)) best = &d;
+    f.discretisation_hz.emplace_back();
+    const RealRecordData& record = all[static_cast<std::size_t>(f.records[k])];
+    for (std::size_t m = 0; m < record.measured_hz.size(); ++m) {
+      const double measured = record.measured_hz[m];
+      const galerkin::DampedMode* best = nearest(damped, measured);
+      const double discretisation = std::abs(nearest(fine, best->frequency_hz)->frequency_hz - best->frequency_hz);
       f.identified_hz.back().push_back(best->frequency_hz);
       f.zeta.back().push_back(best->damping_ratio);
+      f.discretisation_hz.back().push_back(discretisation);
       const double e = best->frequency_hz / measured - 1;
       squares += e * e;
       f.worst_misfit = std::max(f.worst_misfit, std::abs(e));
+      f.worst_in_uncertainty =
+          std::max(f.worst_in_uncertainty, std::abs(best->frequency_hz - measured) /
+                                               std::hypot(record.measured_uncertainty_hz[m], discretisation));
       ++count;
     }
   }
@@ -186,6 +198,7 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
     base.cost.spikes.frequencies_hz = records.front().spike_frequencies_hz;
     base.cost.spikes.count = static_cast<int>(base.cost.spikes.frequencies_hz.size());
     base.cost.frequency_weight = spec.frequency_weight;
+    base.cost.mode_weight = spec.mode_weight;
     base.optimizer.max_evaluations = spec.max_evaluations;
     base.estimate = candidate_estimate(candidate, records);
     for (const auto& cost : spec.costs) {

@@ -258,13 +258,14 @@ RealStudySpec load_real_study(const std::string& path) {
     s.costs = r.strings("costs", true, costs::cost_names().names());
     s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, core::kMaxEvaluations);
     s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
+    s.mode_weight = r.string("mode_weight", s.mode_weight, costs::mode_weight_names().names());
     s.windows = r.integer("windows", 0, 0, 64);
     if (s.windows == 1) r.fail("windows", "1", "must be 0 (none) or >= 2");
     // Bounds of any key a candidate may estimate; one that no model estimates is refused below.
     given.bounds = read_bounds(r, path, "fit.", {});
     fit_bounds_line = [r](const std::string& key) { return r.where("bounds") + ": fit.bounds." + key; };
-    r.finish(
-        {"elements", "estimate", "per_record", "costs", "max_evaluations", "frequency_weight", "bounds", "windows"});
+    r.finish({"elements", "estimate", "per_record", "costs", "max_evaluations", "frequency_weight", "mode_weight",
+              "bounds", "windows"});
   }
   if (const auto items = document.root().array("candidate", false)) {
     for (std::size_t k = 0; k < items->size(); ++k) {

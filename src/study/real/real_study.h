@@ -16,8 +16,9 @@
 //   [beam]         file: a beam TOML ([beam] or [geometry]) giving the nominal values and the starts
 //   [fit]          elements, estimate (shared by every record), per_record (estimated for each record: recordK.KEY),
 //                  costs, bounds (a table KEY = [lo, hi]; default [v/2, 2v] around each record's nominal v),
-//                  max_evaluations, frequency_weight, windows (K >= 2: also the spread over K disjoint windows,
-//                  fit/window_spread.h; 0: not done)
+//                  max_evaluations, frequency_weight (the spike costs'), mode_weight (the modal cost's; default
+//                  measured: each mode over its measured uncertainty, costs/modal_cost.h), windows (K >= 2: also the
+//                  spread over K disjoint windows, fit/window_spread.h; 0: not done)
 //   [[candidate]]  optional alternative models, each fitted with every cost: name, and any of beam (file, replacing
 //                  every record's), values (a table KEY = nominal value, e.g. "support.k_theta" = 6000 makes the
 //                  clamp compliant), estimate, per_record, bounds (over [fit]'s), records (the names of the records
@@ -78,7 +79,10 @@ struct RealStudySpec {
   std::vector<std::string> costs;
   int max_evaluations = 3000;
   std::string frequency_weight = "relative";  // spike costs (costs/cost.h): a measured record's default
-  int windows = 0;                            // 0: no window spread
+  // The modal cost's (costs/cost.h): by default each mode over its measured uncertainty, the maximum-likelihood
+  // weighting that the study's verdict (a model frequency within 2 u) also judges by.
+  std::string mode_weight = "measured";
+  int windows = 0;  // 0: no window spread
 };
 
 // Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).
@@ -96,15 +100,25 @@ struct RealFit {
   fit::Identifiability identifiability;
   std::vector<int> records;                              // the study's records it fitted (indices)
   std::vector<std::vector<double>> identified_hz, zeta;  // [its record][mode]: the model's modes nearest each peak
-  std::optional<Overlay> overlay;                        // of the first record
-  // RMS and largest |f_identified / f_measured - 1| over every record's modes (NaN for a failed fit).
-  double rms_misfit = std::numeric_limits<double>::quiet_NaN(), worst_misfit = rms_misfit;
+  // [its record][mode]: the identified frequency's discretisation error, estimated as its change when the elements
+  // are doubled (|f_2N - f_N|: the Galerkin error falls as N^-4 for cubic splines, so this is f_N's error to 6 %).
+  // A model that is right but discretised is wrong by this much, which the verdict allows for beside u.
+  std::vector<std::vector<double>> discretisation_hz;
+  std::optional<Overlay> overlay;  // of the first record
+  // RMS and largest |f_identified / f_measured - 1| over every record's modes (NaN for a failed fit), and the largest
+  // |f_identified - f_measured| / sqrt(u^2 + d^2) in units of each measured frequency's uncertainty u and the
+  // identified one's discretisation error d: a fit fits a record when that is at most 2 on each of its modes.
+  double rms_misfit = std::numeric_limits<double>::quiet_NaN(), worst_misfit = rms_misfit,
+         worst_in_uncertainty = rms_misfit;
 };
 
 struct RealRecordData {
   io::TimeSeries series;
-  model::BeamParameters nominal;                   // the record's beam file
-  std::vector<double> measured_hz, measured_zeta;  // 3-bin estimates at the record's peaks near peaks_hz
+  model::BeamParameters nominal;  // the record's beam file
+  // The record's modes near peaks_hz by the measured-frequency estimator (signal/measured_modes.h), which modal-id,
+  // spikes and fit share: frequency, damping ratio, uncertainty u, and what widens u when notable.
+  std::vector<double> measured_hz, measured_zeta, measured_uncertainty_hz;
+  std::vector<std::string> measured_notes;
 };
 
 struct RealResults {
