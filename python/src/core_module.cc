@@ -342,6 +342,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     if (!p.data_note.empty()) messages.append("the record: " + p.data_note);
   }
   if (const std::string note = apps::modes_mismatch_note(*modes); !note.empty()) messages.append(note);
+  for (const std::string& note : modes->notes) messages.append(note);
   d["modes"] = mode_rows;
   d["modes_status"] = modes->status;
   d["messages"] = messages;

@@ -167,26 +167,19 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   r.notes = modal_id_notes(r.modes, measured.diagnostics, o);
   for (const signal::MeasuredMode& m : r.measured)
     if (const std::string note = signal::uncertainty_note(m); !note.empty()) r.notes.push_back(note);
-  // A free decay is largest within its first cycle, and what comes before its largest value is part of the decay.
-  // The whole real steel record (a quiet lead-in of 1.1 s, then the hit) gave damping ratios 100 to 3600 times too
-  // low, with nothing said (the sixth pass's S434): the pencil fits the rise as well. Said when the first half of the
-  // samples before the largest holds a mean |y| under 10 % of it (a decay from rest has 37 % there at the least: the
-  // mean of sin over its first eighth of a period).
-  const auto& y = data.values;
-  const auto peak = static_cast<std::size_t>(
-      std::max_element(y.begin(), y.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }) - y.begin());
-  double lead = 0;
-  for (std::size_t i = 0; i < peak / 2; ++i) lead += std::abs(y[i]) / static_cast<double>(peak / 2);
-  if (peak > 10 && lead < 0.1 * std::abs(y[peak])) {
-    const double t = data.t0_s + static_cast<double>(peak) * data.dt_s;
-    r.notes.push_back("the record is largest at t = " + format_rounded(t, 4) +
-                      " s after a quieter lead-in: it is no free decay from its start, and the pencil fits what "
-                      "comes before the excitation too "
-                      "(its damping ratios and amplitudes are then wrong); cut the record after the excitation "
-                      "(--start, a little after " +
-                      format_rounded(t, 4) + " s)");
-  }
+  if (const std::string note = lead_in_note(data, "the pencil"); !note.empty()) r.notes.push_back(note);
   return r;
+}
+
+std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
+  const long peak = signal::quiet_lead_in(data.values);
+  if (peak < 0) return "";
+  const std::string t = format_rounded(data.t0_s + static_cast<double>(peak) * data.dt_s, 4);
+  return "the record is largest at t = " + t + " s after a quieter lead-in: it is no free decay from its start, and " +
+         what +
+         " fits what comes before the excitation too (its damping ratios and amplitudes are then wrong); cut the "
+         "record after the excitation (--start, a little after " +
+         t + " s)";
 }
 
 std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
@@ -230,7 +223,7 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
   // A pole that neither decays nor grows over the record (matrix_pencil: kSteadyGrowth): a mains line at 50 Hz was
   // called a growing oscillation (the sixth pass's S225).
   for (const signal::IdentifiedMode& m : modes)
-    if (m.damping_ratio <= 0)
+    if (signal::is_steady(m))
       notes.push_back("the pole at " + format_rounded(m.frequency_hz) +
                       " Hz neither decays nor grows over the record " + "(damping ratio " +
                       format_rounded(m.damping_ratio, 2) +

@@ -72,6 +72,8 @@ struct ModalIdResult {
   std::vector<std::string> notes;
 };
 ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeries& data);
+// signal::quiet_lead_in in words, naming `what` fits the record ("the pencil", "a free-decay fit"), or "".
+std::string lead_in_note(const io::TimeSeries& data, const std::string& what);
 // The notes of ModalIdResult for the modes the pencil reported and what else it found.
 std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
                                         const signal::PencilDiagnostics& found, const signal::PencilOptions& options);

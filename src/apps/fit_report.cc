@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "api/record_requests.h"
 #include "apps/command_flags.h"
 #include "core/errors.h"
 #include "costs/cost.h"
@@ -53,6 +54,9 @@ ModeComparison compare_modes(const FitReportInput& in) {
     c.status = "the fit failed";
     return c;
   }
+  // A free-decay fit takes the record as a decay from its first sample: a hit left in it is fitted as one.
+  if (o.experiment.excitation == simulation::kFreeDecay)
+    if (const std::string note = api::lead_in_note(in.data, "a free-decay fit"); !note.empty()) c.notes.push_back(note);
   std::vector<galerkin::DampedMode> model;
   try {
     model = galerkin::StateSpaceModes(galerkin::assemble(galerkin::SplineSpace(o.elements), in.result.beam))

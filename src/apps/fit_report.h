@@ -34,6 +34,8 @@ struct ModePair {
 };
 struct ModeComparison {
   std::vector<ModePair> pairs;
+  // What the record's modes do not say: a free decay that still holds its excitation (api::lead_in_note).
+  std::vector<std::string> notes;
   std::string status = "ok";  // or why the data's modes could not be identified
 };
 // K = the cost's spike count (at most 8) modes in the cost's frequency band.

@@ -73,9 +73,13 @@ std::vector<FlagSpec> merge_flags() {
 int run_merge(const Flags& a, std::ostream& out) {
   const study::StudySpec spec = study::load_study(a.text("STUDY.toml"));
   const std::string output = a.text_or("output", default_output(spec));
-  if (const std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path);
-      !problem.empty())
-    a.require(false, "output", problem);
+  std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path);
+  if (problem.empty()) problem = io::claim_store(output + "/store", spec.path);
+  if (!problem.empty()) {
+    if (a.has("output")) a.require(false, "output", problem);
+    // No --output given: name the default folder, not an empty flag (the seventh pass's S70).
+    throw InputError("beamid merge: " + output + " (the default --output, results/<study name>): " + problem);
+  }
   const study::Store store(output + "/store", io::commit_label());
   // The unit ids of this study file: a shard's record of any other unit is left behind and named (shards run from
   // another study file of the same name said only "N units are missing").

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -64,6 +65,46 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
            "could overwrite; write into a new or empty folder";
+  return "";
+}
+
+namespace {
+
+std::string text_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+std::string claim_store(const std::filesystem::path& store, const std::string& study_file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path mine = fs::weakly_canonical(study_file, ec);
+  if (ec) return "";
+  make_folder(store);
+  const fs::path claim = store / "claim";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    // "x": created only if absent (C11 fopen exclusive mode), so that one of two runs starting together wins.
+    if (std::FILE* f = std::fopen(claim.c_str(), "wx")) {
+      const std::string line = mine.string() + "\n";
+      const bool ok = std::fwrite(line.data(), 1, line.size(), f) == line.size();
+      if (std::fclose(f) != 0 || !ok)
+        throw InputError(claim.string() + ": cannot write (" + std::strerror(errno) + ")");
+      return "";
+    }
+    if (!fs::is_regular_file(claim, ec)) return "";  // unwritable or not a file: the store's own checks say so
+    std::string owner = text_of(claim);
+    while (!owner.empty() && (owner.back() == '\n' || owner.back() == '\r')) owner.pop_back();
+    if (owner == mine.string()) return "";
+    if (fs::exists(owner, ec) && !ec) {
+      if (text_of(owner) == text_of(mine)) return "";
+      return "holds the units of another study file, " + owner + " (" + claim.string() +
+             "), which may be running now; this run would take its units for damaged ones: give this study its own "
+             "[study] name, or its own --output";
+    }
+    fs::remove(claim, ec);  // its study file is gone (renamed): taken over
+  }
   return "";
 }
 

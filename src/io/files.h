@@ -27,6 +27,15 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
                                   const std::string& study_file = "");
 
+// Claims a study's store folder for its study file when a run starts, before any unit runs: the file `claim` in it
+// holds the study file's absolute path, created exclusively (two runs that start together do not both claim it).
+// Returns "" when the folder is free or already this study file's (the same path, or a file of the same text: a copy
+// run from another folder or node); else why not: "holds the units of another study file, PATH, ...". A claim whose
+// file no longer exists (renamed) is taken over. Two study files of one [study] name that ran at overlapping times
+// each moved the other's finished units aside as damaged and ended without tables (the seventh pass's S69), and a
+// manifest's relative study_file did not resolve from another working folder (S73).
+std::string claim_store(const std::filesystem::path& store, const std::string& study_file);
+
 // Whether a relative path stays inside the folder it is joined to: not empty, not absolute, and no ".." part. For
 // names that come from files (a report's block names, the list of tables a study wrote), which must not reach out.
 bool stays_inside(const std::filesystem::path& relative);

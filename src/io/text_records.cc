@@ -468,8 +468,48 @@ bool is_plain_text_path(const std::string& path) {
   return false;
 }
 
-Samples text_samples(const std::string& text, const std::string& path, const ImportOptions& o) {
+namespace {
+
+// The length of the valid UTF-8 sequence at text[i] (1 for ASCII), or 0 when the bytes there are not UTF-8.
+std::size_t utf8_length(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char c = byte(i);
+  const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+  if (n == 0 || (n == 2 && c < 0xc2) || i + n > text.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if ((byte(i + k) >> 6) != 0x2) return 0;
+  return n;
+}
+
+// Names and units are read as UTF-8: a header written in Latin-1 or Windows-1252 (Windows DAQ software's "ANSI")
+// spells the micro sign as the single byte 0xB5, which matched no unit, and "x (\xb5m)" was read as metres, 1e6 x
+// off (the seventh pass's T65). Refused on its line, with the byte.
+void check_utf8(std::string_view text, const std::string& path) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_length(text, i);
+    if (n > 0) {
+      i += n;
+      continue;
+    }
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(i), '\n');
+    const auto u = static_cast<unsigned char>(text[i]);
+    throw InputError(path + ":" + std::to_string(line) + ": byte 0x" + "0123456789ABCDEF"[u >> 4] +
+                     "0123456789ABCDEF"[u & 15] +
+                     " is not UTF-8: the file is likely Latin-1 or Windows-1252 (0xB5 is its micro sign), whose "
+                     "names and units beamid would misread; save it as UTF-8");
+  }
+}
+
+}  // namespace
+
+Samples text_samples(const std::string& given, const std::string& path, const ImportOptions& o) {
+  // A UTF-8 byte order mark (Notepad writes one) is no part of the first line: an LVM file with one was "not a
+  // LabVIEW measurement file" (the seventh pass's L12).
+  const bool bom = given.starts_with("\xEF\xBB\xBF");
+  const std::string stripped = bom ? given.substr(3) : std::string();
+  const std::string& text = bom ? stripped : given;
   if (auto problem = binary_text_problem(text, path)) throw InputError(*problem);
+  check_utf8(text, path);
   // Lines ended by a bare carriage return (classic Mac OS) read as one line of a thousand columns (the third pass's
   // P064); one bare CR among LF lines merged two lines into "3 fields: must be 2" (the sixth pass's S099). Said as
   // such, with its line.

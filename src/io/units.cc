@@ -34,7 +34,11 @@ std::string known_unit(std::string u, bool label) {
   // R008-R017), before the spaces go.
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"\xc2\xb5", "u"},
                                  {"\xce\xbc", "u"},
+                                 {"\xe2\x81\xbb\xc2\xb2", "-2"},
+                                 {"\xe2\x81\xbb\xc2\xb9", "-1"},
                                  {"\xc2\xb2", "^2"},
+                                 {"\xe2\x81\xbb", "-"},  // superscript minus and one: "mm\xc2\xb7s\xe2\x81\xbb\xc2\xb9"
+                                 {"\xc2\xb9", "1"},      // (the seventh pass's U042)
                                  {"**", "^"},
                                  {" per ", "/"},
                                  {"\xc2\xb7", " "},
@@ -153,8 +157,15 @@ bool is_unconverted_unit(const std::string& label, bool in_brackets) {
                            "lsb",
                            "digits",
                            "dm",
-                           "gee"})
+                           "gee",
+                           "knot",
+                           "knots",
+                           "kt",
+                           "g0",
+                           "gravity"})
     if (l == unit) return true;
+  // A degree sign (temperature, angle) is a unit's, never a remark's: "a (\xc2\xb0C)" was read as SI (U095).
+  if (t.find("\xc2\xb0") != std::string::npos) return true;
   // A micro sign or an Angstrom sign is a unit's prefix or symbol, never a remark's: "µg", "µin", "Å" (the sixth
   // pass's S035-S056 read them as SI). "µm" and "µm/s" are known before this is asked.
   if ((t.find("\xc2\xb5") != std::string::npos || t.find("\xce\xbc") != std::string::npos ||
@@ -237,6 +248,26 @@ std::string unit_of_label(const std::string& given) {
 
 std::string unit_of_plain_label(const std::string& given) {
   std::string label = trimmed(given);
+  // A remark beside the unit after ';' or ',' ("mm; tip", "tip, mm"), read as "mm [tip]" is: the one part that states
+  // a unit; two that do are kept as stated, to be refused (the seventh pass's U004, U005 read them as SI).
+  if (label.find_first_of(";,") != std::string::npos) {
+    std::vector<std::string> units;
+    for (std::size_t at = 0; at <= label.size();) {
+      const std::size_t end = std::min(label.find_first_of(";,", at), label.size());
+      if (const std::string unit = unit_of_plain_label(label.substr(at, end - at)); !unit.empty())
+        units.push_back(unit);
+      at = end + 1;
+    }
+    return units.size() == 1 ? units.front() : units.empty() ? "" : label;
+  }
+  // A scale factor is part of the unit ("1e-3 m", "10^-3 m", "x1000 mm"): kept as stated, to be refused (U024 read
+  // "1e-3 m" as metres).
+  const bool numeric_start = !label.empty() && (std::isdigit(static_cast<unsigned char>(label.front())) ||
+                                                label.front() == '.' || label.front() == '-' || label.front() == '+');
+  if (numeric_start && std::any_of(label.begin(), label.end(), [](unsigned char c) {
+        return std::isalpha(c) && c != 'e' && c != 'E';  // a letter beyond an exponent's: a unit after the number
+      }))
+    return label;
   // Peak and RMS qualifiers ("g pk", "pk-pk mm", "mm/s rms") beside one word that is a unit.
   if (const auto space = label.find(' '); space != std::string::npos) {
     std::vector<std::string> words;
@@ -252,6 +283,12 @@ std::string unit_of_plain_label(const std::string& given) {
       if (l != "pk" && l != "peak" && l != "pk-pk" && l != "p-p" && l != "0-pk" && l != "rms") rest.push_back(w);
     }
     if (rest.size() == 1 && rest.size() < words.size()) label = rest.front();
+    // Two units side by side are their product ("m m" is m^2, not mm, which the spaces' removal made it: U028), kept
+    // as stated, to be refused.
+    if (rest.size() >= 2 && std::all_of(rest.begin(), rest.end(), [](const std::string& w) {
+          return !known_unit(w, true).empty() || is_unconverted_unit(w, true);
+        }))
+      return label;
   }
   const std::string unit = is_unconverted_unit(label, true) ? "" : known_unit(label, true);
   if (!unit.empty()) return unit;

@@ -119,7 +119,9 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   const double noise_energy = 2 * residual_sd * residual_sd * std::log(n / kNoiseFalseAlarm);
   std::vector<IdentifiedMode> modes;
   for (int k = 0; k < order; ++k) {
-    if (!(z(k).imag() > 0) || !std::isfinite(std::abs(z(k))) || std::abs(z(k)) == 1) continue;  // one of each pair
+    // One of each pair. A pole on the unit circle is a steady line (a pure sine of amplitude 1 was dropped, and the
+    // note counted only the rounding poles: the seventh pass's F09), kept below with the steady ones.
+    if (!(z(k).imag() > 0) || !std::isfinite(std::abs(z(k)))) continue;
     IdentifiedMode m;
     m.lambda = std::log(z(k)) / dt_s;
     const double magnitude = std::abs(m.lambda);
@@ -162,6 +164,11 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   return modes;
 }
 
+bool is_steady(const IdentifiedMode& m) {
+  const double sd = std::isfinite(m.frequency_sd_hz) ? 2 * std::numbers::pi * m.frequency_sd_hz : 0.0;
+  return -m.lambda.real() <= std::max(3 * sd, kSteadyRounding * std::abs(m.lambda));
+}
+
 double mode_energy(const IdentifiedMode& m, double dt_s, int n) {
   const double r2 = std::exp(2 * m.lambda.real() * dt_s);
   return m.amplitude * m.amplitude * (r2 < 1 ? (1 - std::pow(r2, n)) / (1 - r2) : n);
@@ -171,7 +178,7 @@ std::vector<IdentifiedMode> lightly_damped_modes(const std::vector<double>& deca
                                                  const std::vector<double>& wanted_hz, double window,
                                                  int* heavily_damped, PencilDiagnostics* diagnostics) {
   if (heavily_damped) *heavily_damped = 0;
-  if (!wanted_hz.empty()) return modes_near(decay, dt_s, options, wanted_hz, window, diagnostics);
+  if (!wanted_hz.empty()) return modes_near(decay, dt_s, options, wanted_hz, window, diagnostics, kHeavilyDampedRatio);
   const int k = options.modes;
   options.modes = k + 4;
   PencilDiagnostics unused;
@@ -195,7 +202,7 @@ std::vector<IdentifiedMode> lightly_damped_modes(const std::vector<double>& deca
 
 std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double dt_s, PencilOptions options,
                                        const std::vector<double>& wanted_hz, double window,
-                                       PencilDiagnostics* diagnostics) {
+                                       PencilDiagnostics* diagnostics, double max_damping_ratio) {
   if (wanted_hz.empty()) throw InputError("modes_near: no frequency chosen");
   const auto [low, high] = std::minmax_element(wanted_hz.begin(), wanted_hz.end());
   options.min_frequency_hz = std::max(options.min_frequency_hz, *low * (1 - window));
@@ -208,12 +215,22 @@ std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double 
   std::vector<bool> taken(found.size(), false);
   for (double f : wanted_hz) {
     std::size_t best = found.size();
-    for (std::size_t i = 0; i < found.size(); ++i)
-      if (std::abs(found[i].frequency_hz / f - 1) <= window &&
-          (best == found.size() || found[i].amplitude > found[best].amplitude))
-        best = i;
+    const IdentifiedMode* heavy = nullptr;  // the strongest candidate left out as heavily damped, for the message
+    for (std::size_t i = 0; i < found.size(); ++i) {
+      if (std::abs(found[i].frequency_hz / f - 1) > window) continue;
+      if (found[i].damping_ratio > max_damping_ratio) {
+        if (!heavy || found[i].amplitude > heavy->amplitude) heavy = &found[i];
+        continue;
+      }
+      if (best == found.size() || found[i].amplitude > found[best].amplitude) best = i;
+    }
     if (best == found.size())
-      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz");
+      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz" +
+                       (heavy ? " (the pole at " + format_rounded(heavy->frequency_hz) + " Hz has damping ratio " +
+                                    format_rounded(heavy->damping_ratio, 3) +
+                                    ": the excitation or noise rather than a mode; cut the record after the "
+                                    "excitation, --start)"
+                              : ""));
     chosen.push_back(found[best]);
     taken[best] = true;
   }

@@ -126,6 +126,15 @@ void summarise(MeasuredMode& m) {
 
 }  // namespace
 
+long quiet_lead_in(const std::vector<double>& y) {
+  if (y.empty()) return -1;
+  const auto peak = static_cast<std::size_t>(
+      std::max_element(y.begin(), y.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }) - y.begin());
+  double lead = 0;
+  for (std::size_t i = 0; i < peak / 2; ++i) lead += std::abs(y[i]) / static_cast<double>(peak / 2);
+  return peak > 10 && lead < 0.1 * std::abs(y[peak]) ? static_cast<long>(peak) : -1;
+}
+
 bool MeasuredMode::drifts() const { return std::abs(drift_hz) > 3 * drift_sd_hz; }
 
 std::string uncertainty_note(const MeasuredMode& m) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "api/record_requests.h"
@@ -124,6 +126,8 @@ TEST(RecordRequests, ModalIdSaysWhenAModeSplitsIntoTwoClosePoles) {
     m.frequency_hz = f;
     m.damping_ratio = 0.003;
     m.amplitude = 1;
+    const double w = 2 * std::numbers::pi * f;  // the pole, which says it decays (not a steady line)
+    m.lambda = {-m.damping_ratio * w, w * std::sqrt(1 - m.damping_ratio * m.damping_ratio)};
     return m;
   };
   const auto notes = modal_id_notes({mode(9.406), mode(9.421)}, {}, o);

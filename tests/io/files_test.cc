@@ -95,5 +95,31 @@ TEST(OutputFolder, RefusesAFolderOfTheUsersFilesOrOneThatHoldsAnInput) {
   fs::remove_all(dir);
 }
 
+TEST(Files, AStoreIsClaimedByOneStudyFile) {
+  // The seventh pass's S69 and S73: two study files of one [study] name, run at overlapping times or from another
+  // working folder, each took the other's finished units for damaged ones. The first run claims the store; the same
+  // file (by path, or a copy of the same text elsewhere) is let in, another file is refused naming the owner, and a
+  // claim whose file is gone (renamed) is taken over.
+  const fs::path dir = scratch("claim");
+  const fs::path store = dir / "results" / "store";
+  const auto write = [&](const fs::path& p, const std::string& text) { std::ofstream(p) << text; };
+  write(dir / "a.toml", "seed = 1\n");
+  write(dir / "b.toml", "seed = 2\n");
+  fs::create_directories(dir / "elsewhere");
+  write(dir / "elsewhere" / "a.toml", "seed = 1\n");
+  EXPECT_EQ(claim_store(store, (dir / "a.toml").string()), "");
+  EXPECT_TRUE(fs::exists(store / "claim"));
+  EXPECT_EQ(claim_store(store, (dir / "a.toml").string()), "");
+  EXPECT_EQ(claim_store(store, (dir / "elsewhere" / "a.toml").string()), "");
+  const std::string refused = claim_store(store, (dir / "b.toml").string());
+  EXPECT_NE(refused.find("holds the units of another study file, " + fs::weakly_canonical(dir / "a.toml").string()),
+            std::string::npos)
+      << refused;
+  fs::remove(dir / "a.toml");
+  EXPECT_EQ(claim_store(store, (dir / "b.toml").string()), "");
+  EXPECT_NE(claim_store(store, (dir / "elsewhere" / "a.toml").string()), "");
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace beamid::io

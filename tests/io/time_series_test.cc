@@ -158,6 +158,18 @@ TEST(TimeSeries, ReadsLabViewTextWithRoundedTimesAndConvertsG) {
   EXPECT_NEAR(w.t0_s, 10 * w.dt_s, 1e-12);
 }
 
+TEST(TimeSeries, AByteOrderMarkIsSkippedAndLatin1IsRefusedOnItsLine) {
+  // The seventh pass's L12 (an LVM with a UTF-8 byte order mark was "not a LabVIEW file") and T65 (a CSV header
+  // written in Latin-1, whose micro sign is the single byte 0xB5, was read as metres, 1e6 x off).
+  const auto s = read_time_series(write("bom.lvm", "\xEF\xBB\xBF" + lvm(100)));
+  EXPECT_EQ(s.format, "lvm");
+  EXPECT_EQ(s.values.size(), 100u);
+  std::string latin = "t_s,x (\xB5m)\n";
+  for (int i = 0; i < 64; ++i) latin += std::to_string(i * 1e-3) + "," + std::to_string(0.1 * i) + "\n";
+  const std::string error = error_of(write("latin1.csv", latin));
+  EXPECT_NE(error.find("latin1.csv:1: byte 0xB5 is not UTF-8"), std::string::npos) << error;
+}
+
 TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
   // The fifth pass's R104: a channel named "disp (mm)" under an empty Y_Unit_Label was read as metres, 1e3 off.
   std::string text = lvm(100);
@@ -209,8 +221,7 @@ TEST(TimeSeries, AJumpInTheTimeBaseIsNamedOnItsOwnLine) {
   std::string off = "t_s,displacement_m\n";
   for (int i = 0; i < 400; ++i)
     off += std::to_string(i * 0.001 + (i == 300 ? 0.0004 : 0.0)) + "," + std::to_string(0.1 * (i % 7)) + "\n";
-  EXPECT_NE(error_of(write("off.csv", off)).find("off.csv:302: t_s = 0.3004: non-uniform time base"),
-            std::string::npos)
+  EXPECT_NE(error_of(write("off.csv", off)).find("off.csv:302: t_s = 0.3004: non-uniform time base"), std::string::npos)
       << error_of(write("off.csv", off));
 }
 

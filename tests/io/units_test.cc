@@ -118,6 +118,22 @@ TEST(Units, ConversionsToSiAndQuantities) {
   for (const char* name : {"a (\xc2\xb5g)", "x (\xc2\xb5in)", "x (dm)", "x (\xc3\x85)", "v (counts)"})
     EXPECT_FALSE(is_known_unit(unit_of_column_name(name))) << name << ": " << unit_of_column_name(name);
   for (const char* name : {"a (\xc2\xb5g)", "x (dm)", "v (counts)"}) EXPECT_NE(unit_of_column_name(name), "") << name;
+  // The seventh pass: a remark after ';' or ',' in the unit's bracket (U004, U005), superscript exponents (U042): read
+  // as the unit; a scale factor (U024), knots, g0 and a degree sign (U049, U063, U095), and two units side by side
+  // (U028, "m m" is m^2, which the spaces' removal made mm): kept as stated, so that they are refused, not read as SI.
+  for (const auto& [name, unit] :
+       {std::pair{"x (mm; tip)", "mm"}, std::pair{"x (tip; mm)", "mm"}, std::pair{"x (tip, mm)", "mm"},
+        std::pair{"v (mm\xc2\xb7s\xe2\x81\xbb\xc2\xb9)", "mm/s"},
+        std::pair{"a (m\xc2\xb7s\xe2\x81\xbb\xc2\xb2)", "m/s^2"}})
+    EXPECT_EQ(unit_of_column_name(name), unit) << name;
+  for (const char* name : {"x (1e-3 m)", "x (10^-3 m)", "v (knots)", "a (g0)",
+                           "a (\xc2\xb0"
+                           "C)",
+                           "x (m m)", "x (mm; um)"}) {
+    EXPECT_NE(unit_of_column_name(name), "") << name;
+    EXPECT_FALSE(is_known_unit(unit_of_column_name(name))) << name << ": " << unit_of_column_name(name);
+  }
+  EXPECT_EQ(unit_of_column_name("x (1)"), "");  // a bare number is a remark (a channel's index), not a scale
   // The fifth pass's: a remark after the unit (R005, R043), and time columns labelled after a remark, spelled out,
   // or in no time unit (R061-R074).
   EXPECT_EQ(unit_of_column_name("x (mm) (raw)"), "mm");

@@ -126,5 +126,16 @@ TEST(MeasuredModes, ChosenFrequenciesKeepTheirOrderAndAShortDecayHasNoSegments) 
   EXPECT_EQ(measure_modes(short_record, kDt, o).segments, 0);
 }
 
+TEST(MeasuredModes, AQuietLeadInBeforeTheLargestValueIsFound) {
+  // modal-id, fit and real say when a record is no free decay from its start (signal::quiet_lead_in): 0.2 s of 0.1 %
+  // noise before a 20 Hz decay starting at its crest (cos) is found at the crest; the decay alone is not.
+  const auto decay = tones({{20.0, 0.63, 1.0}}, 2000);
+  std::vector<double> led = gaussian_deviates(16, 200);
+  for (double& v : led) v *= 1e-3;
+  led.insert(led.end(), decay.begin(), decay.end());
+  EXPECT_EQ(quiet_lead_in(led), 200);
+  EXPECT_EQ(quiet_lead_in(decay), -1);
+}
+
 }  // namespace
 }  // namespace beamid::signal

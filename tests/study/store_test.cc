@@ -115,7 +115,7 @@ TEST(Store, DamagedRecordsAreNamedMovedAsideAndRecomputed) {
   r.set("cost", std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8});
   const auto file = [&](const std::string& id) { return dir / (id + ".rec"); };
   const auto text_of = [&](const std::string& id) { return io::read_file(file(id), "record"); };
-  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder"}) store.save(id, r);
+  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder", "loop"}) store.save(id, r);
   const std::string whole = text_of("cut");
   io::write_file_atomic(file("cut"), whole.substr(0, whole.size() / 2));  // a record truncated in half
   std::string flipped = whole;
@@ -125,14 +125,20 @@ TEST(Store, DamagedRecordsAreNamedMovedAsideAndRecomputed) {
   io::write_file_atomic(file("empty"), "");
   fs::remove(file("folder"));
   fs::create_directory(file("folder"));
-  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder"}) {
+  // A symbolic link to itself (the seventh pass's S15: exists() failed on it, so the unit was recomputed and its save
+  // refused to replace the link, which stopped the study).
+  fs::remove(file("loop"));
+  fs::create_symlink(file("loop").filename(), file("loop"));
+  for (const std::string id : {"cut", "flip", "garbage", "empty", "folder", "loop"}) {
     EXPECT_FALSE(store.load(id)) << id;
-    EXPECT_FALSE(fs::exists(file(id))) << id << " must be moved aside";
-    EXPECT_TRUE(fs::exists(dir / "damaged" / (id + ".rec"))) << id;
+    EXPECT_EQ(fs::symlink_status(file(id)).type(), fs::file_type::not_found) << id << " must be moved aside";
+    EXPECT_NE(fs::symlink_status(dir / "damaged" / (id + ".rec")).type(), fs::file_type::not_found) << id;
     EXPECT_NE(log.str().find(file(id).string()), std::string::npos) << "the log must name " << id;
   }
-  store.save("cut", r);  // recomputed: the new record is read back
-  EXPECT_EQ(store.load("cut")->numbers("cost").size(), 8u);
+  for (const std::string id : {"cut", "loop"}) {
+    store.save(id, r);  // recomputed: the new record is read back
+    EXPECT_EQ(store.load(id)->numbers("cost").size(), 8u) << id;
+  }
   fs::remove_all(dir);
 }
 

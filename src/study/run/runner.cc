@@ -114,7 +114,8 @@ std::optional<std::string> validation_error(const RunOptions& o) {
 
 RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostream& log, bool terminal) {
   if (auto e = validation_error(options)) throw InputError("beamid study: " + *e);
-  if (const std::string problem = io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path}, spec.path);
+  if (const std::string problem =
+          io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path}, spec.path);
       !problem.empty())
     throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Plan plan = make_plan(spec);
@@ -135,6 +136,8 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
         << io::seconds_text(kSecondsPerUnit * static_cast<double>(mine.size()) / jobs) << " on " << jobs
         << " thread(s); split it with --shard K/N (beamid merge joins the shards)\n";
   validate_plan(spec, plan);
+  if (const std::string problem = io::claim_store(options.output_dir + "/store", spec.path); !problem.empty())
+    throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Store store(options.output_dir + "/store", io::commit_label(), &log);
   log << "beamid study " << spec.path << " (commit " << io::commit_label() << "): '" << spec.name << "', seed "
       << spec.seed << ", " << plan.truths.size() << " truth record(s), " << plan.units.size() << " units";

@@ -143,30 +143,34 @@ std::string binding_violation(const Record& r, const std::string& id) {
 std::optional<Record> Store::load(const std::string& id, const RecordCheck& check) const {
   const fs::path path = fs::path(directory_) / (id + ".rec");
   std::error_code ec;
-  if (!fs::exists(path, ec)) return std::nullopt;
+  // The entry itself, not what a symbolic link points to: a link to itself made exists() fail (ELOOP), so the unit
+  // was recomputed and its save then refused to replace the link, stopping the study (the seventh pass's S15).
+  const fs::file_type type = fs::symlink_status(path, ec).type();
+  if (ec || type == fs::file_type::not_found) return std::nullopt;
   std::string why;
-  try {
-    const std::string text = io::read_file(path, "cannot read the study record", kMaxRecordBytes);
-    if (const auto body = checked_body(text, why)) {
-      Record r = Record::parse(*body, path.string());
-      if (r.has("code") && r.text("code") != code_version_) return std::nullopt;  // another build's: recomputed
-      why = r.has("code") ? binding_violation(r, id) : "no code version";
-      if (why.empty() && check) why = check(r);
-      if (why.empty()) return r;
-    } else if (text.find(kCheck) == std::string::npos) {
-      // A record of an earlier build, written before records had check lines: not damage, just not ours. Only a
-      // whole one, of complete lines beyond the first: a record cut inside its first line ("code\t55c6710cfb00-d")
-      // reads as another build's code and was recomputed without a word (the fourth pass's Q393).
-      const bool whole = !text.empty() && text.back() == '\n' && std::count(text.begin(), text.end(), '\n') >= 2;
-      try {
-        const Record r = Record::parse(text, path.string());
-        if (whole && r.has("code") && r.text("code") != code_version_) return std::nullopt;
-      } catch (const InputError&) {
+  if (type != fs::file_type::regular) why = "is not a regular file (a symbolic link, a folder, a pipe or a device)";
+  if (why.empty()) try {
+      const std::string text = io::read_file(path, "cannot read the study record", kMaxRecordBytes);
+      if (const auto body = checked_body(text, why)) {
+        Record r = Record::parse(*body, path.string());
+        if (r.has("code") && r.text("code") != code_version_) return std::nullopt;  // another build's: recomputed
+        why = r.has("code") ? binding_violation(r, id) : "no code version";
+        if (why.empty() && check) why = check(r);
+        if (why.empty()) return r;
+      } else if (text.find(kCheck) == std::string::npos) {
+        // A record of an earlier build, written before records had check lines: not damage, just not ours. Only a
+        // whole one, of complete lines beyond the first: a record cut inside its first line ("code\t55c6710cfb00-d")
+        // reads as another build's code and was recomputed without a word (the fourth pass's Q393).
+        const bool whole = !text.empty() && text.back() == '\n' && std::count(text.begin(), text.end(), '\n') >= 2;
+        try {
+          const Record r = Record::parse(text, path.string());
+          if (whole && r.has("code") && r.text("code") != code_version_) return std::nullopt;
+        } catch (const InputError&) {
+        }
       }
+    } catch (const InputError& e) {
+      why = e.what();
     }
-  } catch (const InputError& e) {
-    why = e.what();
-  }
   // Damaged: moved aside (kept for inspection) and recomputed.
   const fs::path aside_dir = fs::path(directory_) / "damaged";
   fs::create_directories(aside_dir, ec);
