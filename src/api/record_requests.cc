@@ -78,6 +78,14 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   if (request.welch && request.window.name)
     refuse(caller, "window", *request.window.name, "Welch's segments are Hann-windowed: leave out --window");
   const std::vector<double> values = signal::detrend(data.values, mode);
+  // What the detrend leaves of a straight line (the time channel chosen as the signal, a drift alone) is rounding,
+  // whose "spikes" were 1e-16 high with negative decay rates (the seventh pass's N22).
+  double before = 0, after = 0;
+  for (double v : data.values) before = std::max(before, std::abs(v));
+  for (double v : values) after = std::max(after, std::abs(v));
+  if (mode != signal::kDetrendNone && after <= 1e-12 * before)
+    refuse(caller, "--data = '" + data.path + "': " + data.value_column + " is a straight line in time (the time " +
+                       "channel itself, or a drift alone): after the " + mode + " detrend nothing is left to analyse");
   SpikesResult r;
   const signal::SpikeOptions options = spike_options(request.spikes, caller);
   if (request.welch) {
@@ -106,6 +114,15 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
   // Two records that state what they measure must measure the same (C021: a velocity record costed against a
   // displacement prediction without a word).
   const std::string measured = io::quantity_of(data.unit), predicted = io::quantity_of(prediction.unit);
+  // A raw sensor signal (V, mV, N, Pa) is no motion to compare a motion with, as fit refuses it (the seventh pass's
+  // U079-U084: a cost was printed without a word); with --unknown-amplitude only its shape is compared.
+  for (const io::TimeSeries* record : {&data, &prediction})
+    if (io::is_non_motion_unit(record->unit) && !request.cost.unknown_amplitude &&
+        !io::is_non_motion_unit((record == &data ? prediction : data).unit))
+      refuse(caller, std::string(record == &data ? "--data" : "--prediction") + " = '" + record->path +
+                         "': " + record->value_column + " is in " + record->unit +
+                         ", a raw sensor signal, not a motion: convert it to m, m/s or m/s^2 with the sensor's "
+                         "sensitivity (or give --unknown-amplitude to compare shapes only)");
   if (!measured.empty() && !predicted.empty() && measured != predicted)
     refuse(caller, "--prediction = '" + prediction.path + "': in " + prediction.unit + ", a " + predicted +
                        ": the data are in " + data.unit + ", a " + measured + " (compare like with like)");

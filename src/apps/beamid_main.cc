@@ -63,7 +63,12 @@ int main(int argc, char** argv) {
   // the command returned.
   std::cout.flush();
   if (!std::cout || output.error() != 0) {
-    std::cerr << "beamid: standard output: cannot write the results: "
+    // Named with the command, as every other error is ("beamid modes: ...": the seventh pass's O07): the first
+    // argument that is no flag.
+    std::string command;
+    for (int i = 1; i < argc && command.empty(); ++i)
+      if (argv[i][0] != '-') command = argv[i];
+    std::cerr << "beamid" << (command.empty() ? "" : " " + command) << ": standard output: cannot write the results: "
               << (output.error() != 0 ? std::strerror(output.error()) : "the write failed") << "\n";
     status = 1;
   }

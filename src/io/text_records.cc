@@ -83,9 +83,12 @@ std::vector<std::string> words_of(const std::string& name) {
 // Whether a column's name says it holds frequencies (a spectrum's axis: "freq_Hz", "bin", "frequency_hz") or times
 // ("time_s", "t"): neither is a record's time column or signal, as their names say (the sixth pass's S070, S137,
 // S477: a spectrum's axis was read as seconds, a time column as the vibration).
+// Only the name before a first comma or semicolon: "v (tip), filtered 2 kHz" holds a remark, not frequencies (the
+// seventh pass's L26); an angular frequency ("omega_rad_s") or a speed in rpm is a frequency too (Q104).
 bool names_frequency(const std::string& name) {
-  for (const std::string& w : words_of(name))
-    if (w == "hz" || w == "khz" || w == "freq" || w == "frequency" || w == "frequencies" || w == "bin" || w == "bins")
+  for (const std::string& w : words_of(name.substr(0, std::min(name.find_first_of(",;"), name.size()))))
+    if (w == "hz" || w == "khz" || w == "freq" || w == "frequency" || w == "frequencies" || w == "bin" || w == "bins" ||
+        w == "omega" || w == "rpm")
       return true;
   return false;
 }
@@ -120,10 +123,14 @@ Table read_csv(std::istream& in, const std::string& path) {
   for (std::size_t j = 0; j < t.names.size(); ++j) {
     std::string name = trim(t.names[j]);
     if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = trim(name.substr(1, name.size() - 2));
+    // A quote left in the name: half of a quoted name that held a comma (split at it), or a quote of its own
+    // ("x (\")", inches as a double prime: the seventh pass's U016 was told of a comma it did not hold).
+    const bool split_at_comma = !name.empty() && (name.front() == '"') != (name.back() == '"');
     if (name.find('"') != std::string::npos)
-      throw InputError(path + ":1: column " + std::to_string(j + 1) + " '" + shown(name) +
-                       "': a quoted name holding a comma is not read (beamid splits the header at every comma): "
-                       "rename the column without commas");
+      throw InputError(path + ":1: column " + std::to_string(j + 1) + " '" + shown(name) + "': " +
+                       (split_at_comma ? "a quoted name holding a comma is not read (beamid splits the header at every "
+                                         "comma): rename the column without commas"
+                                       : "a double quote inside a name is not read (is it inches? write 'in')"));
     if (name.empty())
       throw InputError(path + ":1: column " + std::to_string(j + 1) +
                        " has no name: every column of a record is "
@@ -169,6 +176,45 @@ std::vector<std::string> fields_of(const std::string& line) {
   return out;
 }
 
+// A line whose space- or tab-separated tokens are numbers written with a decimal comma ("0,0010000000 -0,1234"), as
+// a European locale's export writes them: read with the comma as a separator, it had "3 signal columns" or a time
+// "printed to 1 s" (the seventh pass's T10, T62). Two or more such tokens, each digits, one comma, digits.
+bool decimal_commas(const std::string& line) {
+  int found = 0, tokens = 0;
+  std::string token;
+  const auto judge = [&] {
+    if (token.empty()) return;
+    ++tokens;
+    std::size_t i = token[0] == '-' || token[0] == '+' ? 1 : 0;
+    const std::size_t comma = token.find(',');
+    const bool digits_before =
+        comma != std::string::npos && comma > i &&
+        std::all_of(token.begin() + static_cast<long>(i), token.begin() + static_cast<long>(comma),
+                    [](unsigned char c) { return std::isdigit(c); });
+    const std::string after = comma == std::string::npos ? "" : token.substr(comma + 1);
+    const auto exponent = after.find_first_of("eE");
+    const std::string mantissa = after.substr(0, exponent);
+    if (digits_before && !mantissa.empty() &&
+        std::all_of(mantissa.begin(), mantissa.end(), [](unsigned char c) { return std::isdigit(c); }))
+      ++found;
+    token.clear();
+  };
+  for (const char c : line) {
+    if (c == ' ' || c == '\t' || c == '\r')
+      judge();
+    else
+      token += c;
+  }
+  judge();
+  return found >= 2 && found == tokens;
+}
+
+[[noreturn]] void refuse_decimal_commas(const std::string& path, int line, const std::string& text) {
+  throw InputError(path + ":" + std::to_string(line) + ": '" + shown(text, 60) +
+                   "': numbers with a decimal comma; beamid reads a point as the decimal separator (export with a "
+                   "point, or replace the commas)");
+}
+
 bool all_numbers(const std::vector<std::string>& fields) {
   for (const auto& cell : fields) {
     char* end = nullptr;
@@ -194,6 +240,7 @@ Table read_plain(std::istream& in, const std::string& path) {
     ++number;
     const std::string l = trim(line);
     if (l.empty() || l[0] == '#' || l[0] == '%') continue;
+    if (decimal_commas(l)) refuse_decimal_commas(path, number, l);
     first = fields_of(l);
   }
   if (first.empty()) throw InputError(path + ": no rows (expected a table of numbers: time in s, then the signals)");
@@ -204,7 +251,10 @@ Table read_plain(std::istream& in, const std::string& path) {
     for (auto& n : t.names) n = trim(n);
     t.names_line = number;
   } else {
-    for (std::size_t k = 0; k < first.size(); ++k) t.names.push_back("column " + std::to_string(k + 1));
+    // The first column is the time, the others the signals, named as --channel counts them ("signal 2" is
+    // --channel 2; they were "column 3" for --channel 2, and --channel 'column 2' picked another: the seventh pass's
+    // T55).
+    for (std::size_t k = 0; k < first.size(); ++k) t.names.push_back(k == 0 ? "time" : "signal " + std::to_string(k));
     t.names_line = 0;
     t.rows.push_back(first);
     t.line_of.push_back(number);
@@ -227,6 +277,7 @@ Table read_plain(std::istream& in, const std::string& path) {
     ++number;
     const std::string l = trim(line);
     if (l.empty() || l[0] == '#' || l[0] == '%') continue;
+    if (t.rows.empty() && decimal_commas(l)) refuse_decimal_commas(path, number, l);  // the first row after names
     t.rows.push_back(fields_of(l));
     t.line_of.push_back(number);
   }
@@ -287,14 +338,28 @@ void check_x_columns(const std::vector<std::string>& fields, const std::vector<s
 
 // LabVIEW measurement text: a file header and one segment header, each ending in ***End_of_Header***, then a line
 // of column names and the data. Keys read: Separator, Decimal_Separator, X_Columns, Y_Unit_Label, X0, Delta_X.
-Table read_lvm(std::istream& in, const std::string& path) {
-  Table t;
-  t.format = "lvm";
-  std::string line;
-  int number = 0, headers = 0;
+// A positive integer header value ("Samples", "Channels"), or 0.
+long positive_count(const std::string& value) {
+  char* end = nullptr;
+  const long n = std::strtol(value.c_str(), &end, 10);
+  return !value.empty() && end == value.c_str() + value.size() && n > 0 ? n : 0;
+}
+
+// What an LVM header states that the reader uses.
+struct LvmHeader {
   char separator = '\t';
   std::string x_columns = "One";
+  long declared_channels = 0;  // the segment header's Channels (0: not given)
+  int channels_line = 0;
   std::vector<std::string> y_units;
+};
+
+// The header up to its second ***End_of_Header*** line (the time base and sample count go into t), `number` the last
+// line read.
+LvmHeader read_lvm_header(std::istream& in, const std::string& path, int& number, Table& t) {
+  LvmHeader h;
+  std::string line;
+  int headers = 0;
   if (!std::getline(in, line) || line.rfind("LabVIEW Measurement", 0) != 0)
     throw InputError(path +
                      ":1: not a LabVIEW measurement file (the first line must start with 'LabVIEW Measurement')");
@@ -313,7 +378,7 @@ Table read_lvm(std::istream& in, const std::string& path) {
     if (key == "Separator") {
       if (value != "Tab" && value != "Comma")
         throw InputError(path + ":" + std::to_string(number) + ": Separator = '" + value + "': must be Tab or Comma");
-      separator = value == "Tab" ? '\t' : ',';
+      h.separator = value == "Tab" ? '\t' : ',';
     } else if (key == "Decimal_Separator" && value != ".") {
       throw InputError(path + ":" + std::to_string(number) + ": Decimal_Separator = '" + value +
                        "': only '.' is supported (re-export with a point as decimal separator)");
@@ -321,7 +386,7 @@ Table read_lvm(std::istream& in, const std::string& path) {
       if (value != "One" && value != "Multi" && value != "No")
         throw InputError(path + ":" + std::to_string(number) + ": X_Columns = '" + value +
                          "': must be One, Multi or No");
-      x_columns = value;
+      h.x_columns = value;
     } else if (key == "X_Dimension") {
       // One field per channel: each must be Time (a second channel marked Frequency was read as a time series:
       // the sixth pass's S094).
@@ -332,16 +397,27 @@ Table read_lvm(std::istream& in, const std::string& path) {
                            "): must be Time (beamid reads time series; a spectrum's peaks are what `beamid spikes` "
                            "finds in a time record)");
     } else if (key == "Y_Unit_Label") {
-      y_units.assign(fields.begin() + 1, fields.end());
+      h.y_units.assign(fields.begin() + 1, fields.end());
     } else if (key == "X0" || key == "Delta_X") {
       (key == "X0" ? t.x0 : t.delta) = time_base_number(key, value, path, number);
-    } else if (key == "Samples" && !value.empty()) {
-      char* end = nullptr;
-      const long n = std::strtol(value.c_str(), &end, 10);
-      if (end == value.c_str() + value.size() && n > 0) t.declared_samples = n;
+    } else if (key == "Samples") {
+      if (const long n = positive_count(value)) t.declared_samples = n;
+    } else if (key == "Channels") {
+      if (const long n = positive_count(value)) h.declared_channels = n, h.channels_line = number;
     }
   }
   if (headers < 2) throw InputError(path + ": the header does not end (two ***End_of_Header*** lines expected)");
+  return h;
+}
+
+Table read_lvm(std::istream& in, const std::string& path) {
+  Table t;
+  t.format = "lvm";
+  std::string line;
+  int number = 0;
+  const LvmHeader h = read_lvm_header(in, path, number, t);
+  const char separator = h.separator;
+  const std::string& x_columns = h.x_columns;
   // The column-name line.
   while (std::getline(in, line)) {
     ++number;
@@ -367,7 +443,15 @@ Table read_lvm(std::istream& in, const std::string& path) {
   for (int c : keep) kept_names.push_back(names[static_cast<std::size_t>(c)]);
   t.names = kept_names;
   t.names_line = number;
-  set_lvm_units(t, y_units);
+  // The segment header's channel count against the Y columns (a "Channels 2" over one channel was read without a
+  // word, while a Samples count that disagrees is refused: the seventh pass's L10).
+  const long y_columns = static_cast<long>(kept_names.size()) - (t.time_column >= 0 ? 1 : 0);
+  if (h.declared_channels > 0 && h.declared_channels != y_columns)
+    throw InputError(path + ":" + std::to_string(h.channels_line) +
+                     ": Channels = " + std::to_string(h.declared_channels) + ": the data below have " +
+                     std::to_string(y_columns) + " channel column(s) (line " + std::to_string(number) +
+                     "): the header and the data disagree (an edited or a cut file?)");
+  set_lvm_units(t, h.y_units);
   while (std::getline(in, line)) {
     ++number;
     if (trim(line).empty()) continue;

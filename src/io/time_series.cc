@@ -59,7 +59,7 @@ std::size_t choose_channel(const std::vector<std::string>& names, const ImportOp
   for (std::size_t c = 0; c < names.size(); ++c)
     if (names[c] == channel) named.push_back(c);
   if (named.size() > 1)
-    throw InputError(path + ": channel = '" + shown(channel) + "': " + std::to_string(named.size()) + " " + what +
+    throw InputError(path + ": --channel = '" + shown(channel) + "': " + std::to_string(named.size()) + " " + what +
                      " are named so (" + std::to_string(named[0] + 1) + ", " + std::to_string(named[1] + 1) +
                      (named.size() > 2 ? ", ..." : "") + "): choose one with --channel INDEX");
   char* end = nullptr;
@@ -68,13 +68,13 @@ std::size_t choose_channel(const std::vector<std::string>& names, const ImportOp
                         index <= static_cast<long>(names.size());
   // A column named like another column's index ("t_s,2,1" with --channel 2) chose by name without a word.
   if (named.size() == 1 && is_index && named.front() != static_cast<std::size_t>(index - 1))
-    throw InputError(path + ": channel = '" + shown(channel) + "': ambiguous, the name of no. " +
+    throw InputError(path + ": --channel = '" + shown(channel) + "': ambiguous, the name of no. " +
                      std::to_string(named.front() + 1) + " of the " + what + " and the index of no. " +
                      std::to_string(index) + " ('" + shown(names[static_cast<std::size_t>(index - 1)]) +
                      "'): rename the columns so that no name is a number");
   if (named.size() == 1) return named.front();
   if (is_index) return static_cast<std::size_t>(index - 1);
-  throw InputError(path + ": channel = '" + channel + "': must be one of " + list + " (or 1.." +
+  throw InputError(path + ": --channel = '" + channel + "': must be one of " + list + " (or 1.." +
                    std::to_string(names.size()) + ")");
 }
 
@@ -169,15 +169,20 @@ double median_step(const std::vector<double>& t) {
   return steps[steps.size() / 2];
 }
 
-// A time column that counts samples (0, 1, 2, ... under a name such as "sample" or "index") is no time in seconds.
+// A time column that counts samples (0, 1, 2, ...: consecutive integers over its first steps) is no time in seconds,
+// whatever its name, unless the name says seconds ("t_s", "time (s)": a record sampled at 1 Hz). It was refused by
+// its name only ("sample", "idx"), and a nameless table's first column, an array's time channel or a CSV column "x"
+// counting samples gave modes at 1 Hz sampling (the seventh pass's T28, N05, N21, Q102).
 void refuse_sample_counter(const Samples& in, const std::string& path) {
-  std::string name = in.series.time_column;
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-  const bool counter_name = name == "sample" || name == "samples" || name == "index" || name == "idx" || name == "n" ||
-                            name == "i" || name == "k" || name == "sample_index";
-  if (counter_name && in.t[1] - in.t[0] == 1 && in.t.front() == std::floor(in.t.front()))
+  const std::string& name = in.series.time_column;
+  const std::size_t checked = std::min<std::size_t>(in.t.size() - 1, 16);
+  bool counts = in.t.front() == std::floor(in.t.front());
+  for (std::size_t i = 1; counts && i <= checked; ++i) counts = in.t[i] - in.t[i - 1] == 1;
+  if (counts && time_unit_of_column_name(name) != "s")
     throw InputError(path + ": time column '" + name + "' counts samples (" + format_value(in.t[0]) + ", " +
-                     format_value(in.t[1]) + ", ...): beamid reads the time in seconds (write t_s = sample / rate)");
+                     format_value(in.t[1]) +
+                     ", ...): beamid reads the time in seconds (write t_s = sample / rate, or name the column t_s if "
+                     "the record is sampled at 1 Hz)");
 }
 
 // Each step against the median step: a missing or an extra sample is named on its own line (one missing sample of a
@@ -333,7 +338,7 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
   const double start = o.start_s.value_or(t0);
   const double t_end = t0 + static_cast<double>(v.size() - 1) * dt;
   if (!(start >= t0 - 0.5 * dt && start <= t_end))
-    throw InputError(path + ": start = " + format_value(start) + " s: must lie inside the record, [" +
+    throw InputError(path + ": --start = '" + format_value(start) + "' s: must lie inside the record, [" +
                      format_value(t0) + ", " + format_value(t_end) + "] s");
   const double n_total = static_cast<double>(v.size());
   const double first_d = std::max(0.0, std::round((start - t0) / dt));
@@ -342,7 +347,7 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
   const std::size_t last = static_cast<std::size_t>(std::clamp(first_d + count_d, first_d, n_total));
   const std::string spans = "the record spans [" + format_value(t0) + ", " + format_value(t_end) + "] s";
   if (o.duration_s && first_d + count_d > n_total)
-    throw InputError(path + ": duration = " + format_value(*o.duration_s) + " s from " + format_value(start) +
+    throw InputError(path + ": --duration = '" + format_value(*o.duration_s) + "' s from " + format_value(start) +
                      " s runs past the record's end: " + spans + ", so at most " +
                      format_rounded(t_end - start + dt, 6) + " s from there");
   if (last - first < 8)
@@ -436,6 +441,20 @@ TimeSeries array_time_series(const std::string& name, const double* values, std:
                 name, o);
 }
 
+namespace {
+
+// An array file (.npy, .mat) states no unit, as a text table without names does, whose values must then be said to be
+// in g or SI; an array's were taken as SI (one in g compared as m/s^2 without a word: the seventh pass's F15, N31).
+// Asked after the file is read, so that a malformed file's own error comes first.
+void require_units(const std::string& path, const std::string& what, const ImportOptions& o) {
+  if (o.units == "auto")
+    throw InputError(path + ": " + what +
+                     " states no unit: give --units g for an accelerometer in g, or --units as-is to take the "
+                     "values as SI (m, m/s, m/s^2)");
+}
+
+}  // namespace
+
 TimeSeries parse_time_series(const std::string& bytes, const std::string& path, const ImportOptions& o) {
   check_options(o);
   // The format from the content: NumPy's magic, a MAT-file's header text, UFF's "-1" delimiter; else text by the
@@ -447,8 +466,13 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     if (auto problem = binary_text_problem(bytes, path)) throw InputError(*problem);
   if (!mat && (!o.variable.empty() || !o.time_variable.empty()))
     throw InputError(path + ": --variable and --time-variable name variables of a MAT-file; this is not one");
+  // A text table's first column is its time (a one-column table was told "this file has one" while its own error
+  // said it has no time column: the seventh pass's T16).
   if (!npy && !mat && o.sample_rate_hz)
-    throw InputError(path + ": --sample-rate is for records without a time base (.npy, .mat); this file has one");
+    throw InputError(path + ": --sample-rate is for arrays (.npy, .mat), whose rows hold no time; " +
+                     (uff ? std::string("a UFF dataset 58 states its own abscissa")
+                          : std::string("a text record's first column is its time in s (a one-column table: add the "
+                                        "time column, or save the values as .npy)")));
   if (!npy && !mat && !o.time_channel.empty())
     throw InputError(path + ": --time-channel is for arrays (.npy, .mat); this file has its own time column");
   if (npy) {
@@ -458,10 +482,11 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
     // integer types, exact) to 4.4e-16.
     const double precision = a.descr.substr(1) == "f4" ? 2 * std::numeric_limits<float>::epsilon()
                                                        : 2 * std::numeric_limits<double>::epsilon();
-    return finish(array_samples(
-                      path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
-                      nullptr, precision, o),
-                  path, o);
+    Samples samples = array_samples(
+        path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); }, nullptr,
+        precision, o);
+    require_units(path, "a NumPy array", o);
+    return finish(std::move(samples), path, o);
   }
   if (mat) {
     const MatArray a = read_mat_variable(path, bytes, o.variable);
@@ -485,6 +510,7 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
         path, "mat", a.path, a.rows, a.columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); },
         o.time_variable.empty() ? nullptr : &time, o.time_variable.empty() ? a.relative_precision : time_precision, o);
     samples.series.format = "mat v" + a.version;
+    require_units(path, "a MAT-file variable", o);
     return finish(std::move(samples), path, o);
   }
   if (uff) return finish(uff_samples(bytes, path, o), path, o);

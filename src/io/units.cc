@@ -225,6 +225,16 @@ std::string unit_of_label(const std::string& given) {
   std::string label = trimmed(given);
   if (label.find_first_of("([{<") != std::string::npos) {
     if (label.find_first_of("/^") != std::string::npos) {
+      // A remark in its own brackets goes first ("mm/s [tip]": it was read as the unit 'mm/s tip', while "mm [tip]"
+      // was mm: the seventh pass's U054); the brackets that remain only group.
+      for (const std::string& inner : bracketed_labels(label))
+        if (inner.find_first_of("/^") == std::string::npos && unit_of_plain_label(inner).empty()) {
+          for (const char* pair : {"()", "[]", "{}", "<>"}) {
+            const std::string group = std::string(1, pair[0]) + inner + pair[1];
+            if (const auto at = label.find(group); at != std::string::npos) label.erase(at, group.size());
+          }
+        }
+      label = trimmed(label);
       std::erase_if(label, [](char c) { return std::string_view("()[]{}<>").find(c) != std::string_view::npos; });
     } else {
       std::string outside;

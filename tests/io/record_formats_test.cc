@@ -74,9 +74,15 @@ TEST(RecordFormats, NpyArraysOfEveryVersionOrderAndByteOrder) {
     two[2 * i + 1] = one[i];                    // channel 2: the signal
   }
   ImportOptions o;
+  o.units = "as-is";  // an array states no unit (--units is required)
   o.sample_rate_hz = 1000;
   // Version 1, little-endian doubles, samples x channels: exact.
   o.channel = "2";
+  // Without --units an array is refused: it states no unit (the seventh pass's F15 took one in g as m/s^2).
+  ImportOptions unstated = o;
+  unstated.units = "auto";
+  EXPECT_NE(error_of(write("unstated.npy", npy(two, n, 2, 1)), unstated).find("a NumPy array states no unit"),
+            std::string::npos);
   const TimeSeries a = read_time_series(write("two.npy", npy(two, n, 2, 1)), o);
   EXPECT_EQ(a.format, "npy");
   EXPECT_EQ(a.values, one);
@@ -112,6 +118,7 @@ TEST(RecordFormats, AnArraysTimeChannelIsItsTimeBase) {
     rows[n + i] = y[i];
   }
   ImportOptions o;
+  o.units = "as-is";  // an array states no unit (--units is required)
   o.time_channel = "1";
   const TimeSeries a = read_time_series(write("timed.npy", npy(rows, 2, n, 1)), o);
   EXPECT_EQ(a.values, y);
@@ -149,6 +156,7 @@ TEST(RecordFormats, MalformedNpyFilesNameTheByte) {
   std::vector<double> v(64, 1.0);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.3 * static_cast<double>(i));
   ImportOptions o;
+  o.units = "as-is";  // an array states no unit (--units is required)
   o.sample_rate_hz = 100;
   const std::string good = npy(v, 64, 0, 1);
   std::string version = good;
@@ -217,6 +225,7 @@ TEST(RecordFormats, MatFilesOfVersions5And73WithStructsAndTimeVectors) {
   for (const auto& [version, label] : {std::pair{MAT_FT_MAT5, "5"}, std::pair{MAT_FT_MAT73, "7.3"}}) {
     const std::string path = write_mat(std::string("record") + label + ".mat", version, column_major, n, t);
     ImportOptions o;
+    o.units = "as-is";  // an array states no unit (--units is required)
     o.variable = "test.accel.data";
     o.channel = "2";
     o.time_variable = "t";
@@ -270,6 +279,7 @@ TEST(RecordFormats, AFloat32TimeVectorIsUniformToItsPrecision) {
   Mat_VarFree(record);
   Mat_Close(mat);
   ImportOptions o;
+  o.units = "as-is";  // an array states no unit (--units is required)
   o.variable = "y";
   o.time_variable = "t";
   const TimeSeries s = read_time_series(path, o);
@@ -282,6 +292,7 @@ TEST(RecordFormats, MalformedMatFilesAreErrorsNotCrashes) {
   header.resize(124, ' ');
   header += std::string("\x00\x01", 2) + "IM";
   ImportOptions o;
+  o.units = "as-is";  // an array states no unit (--units is required)
   o.sample_rate_hz = 1000;
   // A header and nothing else, a header and garbage, a wrong endian indicator.
   EXPECT_NE(error_of(write("empty.mat", header), o).find("0 numeric variables"), std::string::npos)
@@ -298,6 +309,7 @@ TEST(RecordFormats, MalformedMatFilesAreErrorsNotCrashes) {
   std::ifstream in(write_mat("whole.mat", MAT_FT_MAT5, values, 512, t), std::ios::binary);
   const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ImportOptions named;
+  named.units = "as-is";  // an array states no unit (--units is required)
   named.variable = "record";
   named.sample_rate_hz = 1000;
   named.channel = "1";

@@ -170,6 +170,33 @@ TEST(TimeSeries, AByteOrderMarkIsSkippedAndLatin1IsRefusedOnItsLine) {
   EXPECT_NE(error.find("latin1.csv:1: byte 0xB5 is not UTF-8"), std::string::npos) << error;
 }
 
+TEST(TimeSeries, CountsDecimalCommasAndRemarksAreToldApart) {
+  // The seventh pass's T28 and Q102: a time base of 0, 1, 2, ... is a sample count whatever the column's name (it
+  // gave modes at 1 Hz sampling), unless the name says seconds; T10: decimal commas; L26: "kHz" in a remark after a
+  // comma is no frequency column.
+  std::string counted = "\n", seconds = "t_s,y (m)\n", commas = "\n", remark = "t_s\tv (tip), filtered 2 kHz\n";
+  for (int i = 0; i < 64; ++i) {
+    const std::string v = std::to_string(std::sin(0.3 * i));
+    counted += std::to_string(i) + "\t" + v + "\n";
+    seconds += std::to_string(i) + "," + v + "\n";
+    std::string c = std::to_string(i * 1e-3) + "\t" + v;
+    std::replace(c.begin(), c.end(), '.', ',');
+    commas += c + "\n";
+    remark += std::to_string(i * 1e-3) + "\t" + v + "\n";
+  }
+  ImportOptions g;
+  g.units = "g";
+  EXPECT_NE(error_of(write("counted.txt", counted), g).find("time column 'time' counts samples (0, 1, ...)"),
+            std::string::npos)
+      << error_of(write("counted.txt", counted), g);
+  EXPECT_NEAR(read_time_series(write("seconds.csv", seconds)).dt_s, 1.0, 1e-12);
+  EXPECT_NE(error_of(write("commas.txt", commas), g)
+                .find("commas.txt:2: '0,000000\\x090,000000': numbers with a decimal comma"),
+            std::string::npos)
+      << error_of(write("commas.txt", commas), g);
+  EXPECT_EQ(read_time_series(write("remark.txt", remark), g).values.size(), 64u);
+}
+
 TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
   // The fifth pass's R104: a channel named "disp (mm)" under an empty Y_Unit_Label was read as metres, 1e3 off.
   std::string text = lvm(100);
@@ -244,7 +271,7 @@ TEST(TimeSeries, APlainTextTableIsReadByColumnAndStatesNoUnitOfItsOwn) {
   o.units = "g";
   const auto s = read_time_series(path, o);
   EXPECT_EQ(s.format, "text");
-  EXPECT_EQ(s.value_column, "column 3");
+  EXPECT_EQ(s.value_column, "signal 2");  // as --channel counts the signals
   EXPECT_EQ(s.unit, "m/s^2");
   ASSERT_EQ(s.values.size(), 100u);
   EXPECT_NEAR(s.dt_s, 0.000605, 1e-12);
@@ -319,6 +346,7 @@ TEST(TimeSeries, LabViewChannelsOnOtherTimesAreNotOneRecord) {
     std::string text = lvm(0);
     text.replace(text.find("X_Value\tAcceleration\tComment"), 28, "X_Value\tA\tX_Value\tB\tComment");
     text.replace(text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
+    text.replace(text.find("Channels\t1"), 10, "Channels\t2");  // as many as the columns below (L10)
     for (int i = 0; i < 64; ++i) {
       char line[96];
       std::snprintf(line, sizeof line, "%.6f\t%.6f\t%.6f\t%.6f\n", i * 1e-3, std::sin(0.3 * i), i * 1e-3 + offset_s,
@@ -333,6 +361,12 @@ TEST(TimeSeries, LabViewChannelsOnOtherTimesAreNotOneRecord) {
   EXPECT_NE(error_of(write("shifted.lvm", two_channels(5e-4)), o).find("X column 3 ('X_Value') = 0.000500 s differs"),
             std::string::npos)
       << error_of(write("shifted.lvm", two_channels(5e-4)), o);
+  // A header's Channels that the data contradict (the seventh pass's L10: "Channels 2" over one channel was read).
+  std::string wrong = two_channels(0);
+  wrong.replace(wrong.find("Channels\t2"), 10, "Channels\t3");
+  EXPECT_NE(error_of(write("channels.lvm", wrong), o).find(": Channels = 3: the data below have 2 channel column(s)"),
+            std::string::npos)
+      << error_of(write("channels.lvm", wrong), o);
 }
 
 TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
@@ -376,7 +410,7 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   ImportOptions late;
   late.channel = "2";  // (ax_g is constant, itself refused)
   late.start_s = 5;
-  EXPECT_NE(error_of(write("two.csv", two), late).find("start = 5 s: must lie inside the record, [0, 0.7] s"),
+  EXPECT_NE(error_of(write("two.csv", two), late).find("--start = '5' s: must lie inside the record, [0, 0.7] s"),
             std::string::npos)
       << error_of(write("two.csv", two), late);
   // A window that starts inside and runs past the end.
@@ -385,10 +419,11 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   long_window.start_s = 0.5;
   long_window.duration_s = 10;
   // It is told where the record ends and how long a window from its start can be (round(duration/dt) samples).
-  EXPECT_NE(error_of(write("two.csv", two), long_window)
-                .find("duration = 10 s from 0.5 s runs past the record's end: the record spans [0, 0.7] s, so at most "
-                      "0.3 s from there"),
-            std::string::npos)
+  EXPECT_NE(
+      error_of(write("two.csv", two), long_window)
+          .find("--duration = '10' s from 0.5 s runs past the record's end: the record spans [0, 0.7] s, so at most "
+                "0.3 s from there"),
+      std::string::npos)
       << error_of(write("two.csv", two), long_window);
 }
 

@@ -124,7 +124,8 @@ TEST(Units, ConversionsToSiAndQuantities) {
   for (const auto& [name, unit] :
        {std::pair{"x (mm; tip)", "mm"}, std::pair{"x (tip; mm)", "mm"}, std::pair{"x (tip, mm)", "mm"},
         std::pair{"v (mm\xc2\xb7s\xe2\x81\xbb\xc2\xb9)", "mm/s"},
-        std::pair{"a (m\xc2\xb7s\xe2\x81\xbb\xc2\xb2)", "m/s^2"}})
+        std::pair{"a (m\xc2\xb7s\xe2\x81\xbb\xc2\xb2)", "m/s^2"}, std::pair{"v (mm/s [tip])", "mm/s"},
+        std::pair{"a (m/(s^2) [raw])", "m/s^2"}})
     EXPECT_EQ(unit_of_column_name(name), unit) << name;
   for (const char* name : {"x (1e-3 m)", "x (10^-3 m)", "v (knots)", "a (g0)",
                            "a (\xc2\xb0"

@@ -97,6 +97,28 @@ TEST(Spikes, AModeNearAnIntegerMultipleIsKeptAndHarmonicsOfAnyOrderAreNot) {
   for (const std::string& r : reasons) EXPECT_EQ(r.find("of 46.8"), std::string::npos) << r;
 }
 
+TEST(Spikes, AModeAtAMultipleWithTheSameDampingRatioIsKept) {
+  // The seventh pass's A01: modes at 20 and 60.05 Hz, both at zeta 1 % and of amplitude 1, noise-free. The 60.05 Hz
+  // one decays at 3.0025 x the 20 Hz one's rate, as a third harmonic would, and was skipped as "harmonic 3". As
+  // strong as its "fundamental" (a harmonic is at most half of it), it is a mode.
+  std::vector<double> z(4096);
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double t = static_cast<double>(i) * 1e-3;
+    const auto tone = [&](double f) {
+      const double w = 2 * std::numbers::pi * f;
+      return std::exp(-0.01 * w * t) * std::cos(w * t);
+    };
+    z[i] = tone(20) + tone(60.05);
+  }
+  Dft dft(static_cast<int>(z.size()), 1e-3);
+  SpikeOptions o;
+  o.count = 2;
+  o.reject_artefacts = true;
+  const std::vector<Spike> picked = detect_spikes(dft.transform(z), o);
+  ASSERT_EQ(picked.size(), 2u);
+  EXPECT_NEAR(picked[1].frequency_hz, 60.05, 0.5);
+}
+
 TEST(Spikes, AModeAtAnExactMultipleDecayingFasterThanAHarmonicIsKept) {
   // The fourth pass's Q274: a 50 Hz mode (sigma 0.2 pi) and a genuine mode at exactly 150 Hz decaying 1.5 times as
   // fast as a third harmonic would (sigma 0.9 pi). The old factor-2 decay test called it "harmonic 3 of 50 Hz"; the
