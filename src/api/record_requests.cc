@@ -100,7 +100,17 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   for (const auto& p : r.peaks)
     if (p.skipped.empty()) r.picks.push_back(p.spike);
   std::sort(r.picks.begin(), r.picks.end(), [](const auto& x, const auto& y) { return x.bin < y.bin; });
+  // A chosen frequency with no peak near it (above the Nyquist frequency, say) is an error, as in fit and cost, not
+  // a run with fewer spikes (the eighth pass's E38: exit 0 and no spike).
+  if (!options.frequencies_hz.empty() && r.picks.size() < options.frequencies_hz.size())
+    refuse(caller, "spike-frequencies", format_value(options.frequencies_hz.front()),
+           signal::unmatched_frequencies(r.picks, options, r.spectrum));
   measure_picks(r, values, data.dt_s, options.frequency_window);
+  // The measured frequencies are a free decay's: a record that still holds its hit misleads them (the eighth pass's
+  // P13: 30 Hz measured at 31.35 +- 0.005 Hz without a word).
+  if (!r.picks.empty())
+    if (const std::string note = lead_in_note(data, "the pencil (the measured frequencies)"); !note.empty())
+      r.notes.push_back(note);
   return r;
 }
 

@@ -24,6 +24,7 @@ constexpr std::pair<const char*, const char*> kFlagOfField[] = {
     {"spikes", "spikes"},
     {"spike_rule", "spike-rule"},
     {"mode_weight", "mode-weight"},
+    {"window", "window"},
     {"max_evaluations", "max-evaluations"},
     {"optimizer", "optimizer"},
     {"order M", "order"},

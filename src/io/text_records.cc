@@ -118,6 +118,19 @@ Table read_csv(std::istream& in, const std::string& path) {
     throw InputError(path + ":1: '" + shown(trim(line)) +
                      "': the first line holds numbers, not column names: a CSV record starts with a header such as "
                      "t_s,displacement_m");
+  // A comma inside a name's brackets ("x (mm, tip)") splits it in two: named as such, not counted as two signal
+  // columns (the eighth pass's U_w01).
+  for (std::size_t j = 0; j + 1 < t.names.size(); ++j) {
+    const auto open = [](const std::string& n) {
+      return std::count(n.begin(), n.end(), '(') + std::count(n.begin(), n.end(), '[') -
+             std::count(n.begin(), n.end(), ')') - std::count(n.begin(), n.end(), ']');
+    };
+    if (open(t.names[j]) > 0 && open(t.names[j + 1]) < 0)
+      throw InputError(path + ":1: columns " + std::to_string(j + 1) + " and " + std::to_string(j + 2) + " ('" +
+                       shown(trim(t.names[j])) + "' and '" + shown(trim(t.names[j + 1])) +
+                       "'): a comma inside a name's brackets splits it (CSV separates columns by commas): write the "
+                       "remark with ';' (x (mm; tip)) or without the comma");
+  }
   // Names as pandas and spreadsheets write them, "t_s","accel_g": the quotes are no part of the name. A quoted name
   // holding a comma was split at it: said, not read as two columns. A nameless column is not silently skipped.
   for (std::size_t j = 0; j < t.names.size(); ++j) {
@@ -403,7 +416,11 @@ LvmHeader read_lvm_header(std::istream& in, const std::string& path, int& number
     } else if (key == "Samples") {
       if (const long n = positive_count(value)) t.declared_samples = n;
     } else if (key == "Channels") {
-      if (const long n = positive_count(value)) h.declared_channels = n, h.channels_line = number;
+      h.declared_channels = positive_count(value), h.channels_line = number;
+      // A count that is no positive number says nothing the data can be checked against (the eighth pass's L_lc0).
+      if (h.declared_channels == 0)
+        throw InputError(path + ":" + std::to_string(number) + ": Channels = '" + value +
+                         "': must be a positive whole number (the segment's channel count)");
     }
   }
   if (headers < 2) throw InputError(path + ": the header does not end (two ***End_of_Header*** lines expected)");
@@ -579,7 +596,8 @@ void check_utf8(std::string_view text, const std::string& path) {
     const auto u = static_cast<unsigned char>(text[i]);
     throw InputError(path + ":" + std::to_string(line) + ": byte 0x" + "0123456789ABCDEF"[u >> 4] +
                      "0123456789ABCDEF"[u & 15] +
-                     " is not UTF-8: the file is likely Latin-1 or Windows-1252 (0xB5 is its micro sign), whose "
+                     " is not UTF-8: the file is likely Latin-1 or Windows-1252 (where 0xB5 is the micro sign, 0xB0 "
+                     "the degree sign), whose "
                      "names and units beamid would misread; save it as UTF-8");
   }
 }

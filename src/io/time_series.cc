@@ -151,6 +151,19 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
     }
     y[i] = sum / weights;
   }
+  // A low-pass below all of the record's content leaves the filter's residue, whose "modes" were listed (the eighth
+  // pass's E18): refused when less than 1e-4 of the record's energy per unit time is left (the noise floor of a
+  // 16-bit record is near that).
+  if (rate < fs) {
+    double before = 0, after = 0;
+    for (double v : s.values) before += v * v / n;
+    for (double v : y) after += v * v / count;
+    if (after < 1e-4 * before)
+      throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz: its low-pass at " +
+                       format_value(cutoff) + " Hz leaves " + format_rounded(100 * after / before, 2) +
+                       " % of the record's power: the record's content lies above it (choose a rate above twice its "
+                       "highest mode)");
+  }
   s.notes += "resampled from " + format_value(fs) + " Hz to " + format_value(rate) +
              " Hz by windowed-sinc interpolation" +
              (rate < fs ? " after a low-pass at " + format_value(cutoff) + " Hz" : "") + "; ";
@@ -180,9 +193,10 @@ void refuse_sample_counter(const Samples& in, const std::string& path) {
   for (std::size_t i = 1; counts && i <= checked; ++i) counts = in.t[i] - in.t[i - 1] == 1;
   if (counts && time_unit_of_column_name(name) != "s")
     throw InputError(path + ": time column '" + name + "' counts samples (" + format_value(in.t[0]) + ", " +
-                     format_value(in.t[1]) +
-                     ", ...): beamid reads the time in seconds (write t_s = sample / rate, or name the column t_s if "
-                     "the record is sampled at 1 Hz)");
+                     format_value(in.t[1]) + ", ...): beamid reads the time in seconds (" +
+                     (in.series.format == "text" || in.series.format == "csv" || in.series.format == "lvm"
+                          ? "write t_s = sample / rate, or name the column t_s if the record is sampled at 1 Hz)"
+                          : "divide the time channel by the sampling rate, or give --sample-rate instead)"));
 }
 
 // Each step against the median step: a missing or an extra sample is named on its own line (one missing sample of a
@@ -352,11 +366,11 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
                      format_rounded(t_end - start + dt, 6) + " s from there");
   if (last - first < 8)
     // Without --duration the window runs to the end: said so, not as a length the user never gave.
-    throw InputError(
-        path + ": the window " +
-        (o.duration_s ? "of " + format_value(*o.duration_s) + " s " : std::string("to the record's end ")) + "from " +
-        format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
-        " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
+    throw InputError(path + ": the window " +
+                     (o.duration_s ? "of --duration = '" + format_value(*o.duration_s) + "' s "
+                                   : std::string("to the record's end ")) +
+                     "from " + format_value(start) + " s holds " + std::to_string(last > first ? last - first : 0) +
+                     " samples: at least 8 are needed (" + spans + " at dt = " + format_value(dt) + " s)");
   s.values.assign(v.begin() + static_cast<long>(first), v.begin() + static_cast<long>(last));
   s.t0_s = t0 + static_cast<double>(first) * dt;
   s.dt_s = dt;

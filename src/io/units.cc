@@ -77,25 +77,25 @@ std::string known_unit(std::string u, bool label) {
       {"feet", "ft"},       {"foot", "ft"},
       {"gal", "Gal"},       {"g", "g"},
       {"g's", "g"},         {"gs", "g"},
-      {"gn", "g"},          {"mg", "mg"},
-      {"m", "m"},           {"cm", "cm"},
-      {"mm", "mm"},         {"um", "um"},
-      {"nm", "nm"},         {"in", "in"},
-      {"ft", "ft"},         {"m/s", "m/s"},
-      {"ms^-1", "m/s"},     {"mm/s", "mm/s"},
-      {"in/s", "in/s"},     {"ips", "in/s"},
-      {"ft/s", "ft/s"},     {"km/h", "km/h"},
-      {"m/s^2", "m/s^2"},   {"m/s2", "m/s^2"},
-      {"ms^-2", "m/s^2"},   {"m/s/s", "m/s^2"},
-      {"mm/s^2", "mm/s^2"}, {"mm/s2", "mm/s^2"},
-      {"in/s^2", "in/s^2"}, {"in/s2", "in/s^2"},
-      {"ft/s^2", "ft/s^2"}, {"ft/s2", "ft/s^2"},
-      {"v", "V"},           {"volt", "V"},
-      {"volts", "V"},       {"mv", "mV"},
-      {"n", "N"},           {"newton", "N"},
-      {"newtons", "N"},     {"lbf", "lbf"},
-      {"pa", "Pa"},         {"kn", "kN"},
-      {"um/s", "um/s"},
+      {"gn", "g"},          {"g_n", "g"},
+      {"mg", "mg"},         {"m", "m"},
+      {"cm", "cm"},         {"mm", "mm"},
+      {"um", "um"},         {"nm", "nm"},
+      {"in", "in"},         {"ft", "ft"},
+      {"m/s", "m/s"},       {"ms^-1", "m/s"},
+      {"mm/s", "mm/s"},     {"in/s", "in/s"},
+      {"ips", "in/s"},      {"ft/s", "ft/s"},
+      {"km/h", "km/h"},     {"m/s^2", "m/s^2"},
+      {"m/s2", "m/s^2"},    {"ms^-2", "m/s^2"},
+      {"m/s/s", "m/s^2"},   {"mm/s^2", "mm/s^2"},
+      {"mm/s2", "mm/s^2"},  {"in/s^2", "in/s^2"},
+      {"in/s2", "in/s^2"},  {"ft/s^2", "ft/s^2"},
+      {"ft/s2", "ft/s^2"},  {"v", "V"},
+      {"volt", "V"},        {"volts", "V"},
+      {"mv", "mV"},         {"n", "N"},
+      {"newton", "N"},      {"newtons", "N"},
+      {"lbf", "lbf"},       {"pa", "Pa"},
+      {"kn", "kN"},         {"um/s", "um/s"},
   };
   if (!label && (u == "v" || u == "n" || u == "in")) return "";
   for (const auto& [spelling, unit] : spellings)
@@ -258,12 +258,14 @@ std::string unit_of_label(const std::string& given) {
 
 std::string unit_of_plain_label(const std::string& given) {
   std::string label = trimmed(given);
-  // A remark beside the unit after ';' or ',' ("mm; tip", "tip, mm"), read as "mm [tip]" is: the one part that states
-  // a unit; two that do are kept as stated, to be refused (the seventh pass's U004, U005 read them as SI).
-  if (label.find_first_of(";,") != std::string::npos) {
+  // A remark beside the unit after ';', ',', ':' or '|' ("mm; tip", "tip, mm", "mm: laser"), read as "mm [tip]" is:
+  // the one part that states a unit; two that do are kept as stated, to be refused (the seventh pass's U004, U005
+  // and the eighth's U_w07, U_w08 read them as SI). A spaced dash separates as well ("mm - tip").
+  for (auto dash = label.find(" - "); dash != std::string::npos; dash = label.find(" - ")) label[dash + 1] = ';';
+  if (label.find_first_of(";,:|") != std::string::npos) {
     std::vector<std::string> units;
     for (std::size_t at = 0; at <= label.size();) {
-      const std::size_t end = std::min(label.find_first_of(";,", at), label.size());
+      const std::size_t end = std::min(label.find_first_of(";,:|", at), label.size());
       if (const std::string unit = unit_of_plain_label(label.substr(at, end - at)); !unit.empty())
         units.push_back(unit);
       at = end + 1;
@@ -278,6 +280,9 @@ std::string unit_of_plain_label(const std::string& given) {
         return std::isalpha(c) && c != 'e' && c != 'E';  // a letter beyond an exponent's: a unit after the number
       }))
     return label;
+  // A middle dot between words ("mm\xc2\xb7tip", "g\xc2\xb7s") is a space here; known_unit reads "mm\xc2\xb7s-1".
+  for (auto dot = label.find("\xc2\xb7"); dot != std::string::npos; dot = label.find("\xc2\xb7"))
+    label.replace(dot, 2, " ");
   // Peak and RMS qualifiers ("g pk", "pk-pk mm", "mm/s rms") beside one word that is a unit.
   if (const auto space = label.find(' '); space != std::string::npos) {
     std::vector<std::string> words;
@@ -293,11 +298,37 @@ std::string unit_of_plain_label(const std::string& given) {
       if (l != "pk" && l != "peak" && l != "pk-pk" && l != "p-p" && l != "0-pk" && l != "rms") rest.push_back(w);
     }
     if (rest.size() == 1 && rest.size() < words.size()) label = rest.front();
-    // Two units side by side are their product ("m m" is m^2, not mm, which the spaces' removal made it: U028), kept
-    // as stated, to be refused.
-    if (rest.size() >= 2 && std::all_of(rest.begin(), rest.end(), [](const std::string& w) {
-          return !known_unit(w, true).empty() || is_unconverted_unit(w, true);
-        }))
+    const auto is_unit = [](const std::string& w) {
+      return !known_unit(w, true).empty() || is_unconverted_unit(w, true);
+    };
+    if (rest.size() >= 2 && std::all_of(rest.begin(), rest.end(), is_unit)) return label;  // a product: refused
+    if (rest.size() >= 2 && known_unit(label, true).empty()) {
+      // Two units side by side are their product ("m m" is m^2, not mm, which the spaces' removal made it: U028; "g s"
+      // was read as g), kept as stated, to be refused; one unit beside plain words is the unit and a remark ("mm tip",
+      // "mm\xc2\xb7tip": the eighth pass's U_w05); anything else is kept as stated.
+      int units = 0;
+      std::string unit;
+      bool plain = true;
+      for (const std::string& w : rest) {
+        if (!known_unit(w, true).empty() || is_unconverted_unit(w, true)) {
+          ++units, unit = known_unit(w, true);
+        } else {
+          plain = plain && std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isalpha(c) != 0; });
+        }
+      }
+      if (units == 0) return "";  // a remark ("sensor 1")
+      return units == 1 && plain && !unit.empty() ? unit : label;
+    }
+  }
+  // A product or a power written with '*' or a superscript ("mm*mm", "mm\xc2\xb2"), and a unit with a digit stuck to
+  // it ("mm2", "g0"): no unit beamid converts, kept as stated, to be refused (the eighth pass's U_w24-U_w31).
+  if (known_unit(label, true).empty()) {
+    if (label.find('*') != std::string::npos || label.find("\xc2\xb2") != std::string::npos ||
+        label.find("\xc2\xb3") != std::string::npos)
+      return label;
+    const auto digits = label.find_first_of("0123456789");
+    if (digits != std::string::npos && digits > 0 && label.find('/') == std::string::npos &&
+        !known_unit(label.substr(0, digits), true).empty())
       return label;
   }
   const std::string unit = is_unconverted_unit(label, true) ? "" : known_unit(label, true);

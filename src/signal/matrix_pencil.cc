@@ -225,7 +225,11 @@ std::vector<IdentifiedMode> modes_near(const std::vector<double>& decay, double 
       if (best == found.size() || found[i].amplitude > found[best].amplitude) best = i;
     }
     if (best == found.size())
-      throw InputError("no identified mode within " + format_value(window) + " of " + format_value(f) + " Hz" +
+      throw InputError("no identified mode within " + format_rounded(100 * window, 3) + " % of " + format_value(f) +
+                       " Hz" +
+                       (f * (1 - window) >= 0.5 / dt_s
+                            ? " (above the Nyquist frequency " + format_rounded(0.5 / dt_s) + " Hz of this record)"
+                            : "") +
                        (heavy ? " (the pole at " + format_rounded(heavy->frequency_hz) + " Hz has damping ratio " +
                                     format_rounded(heavy->damping_ratio, 3) +
                                     ": the excitation or noise rather than a mode; cut the record after the "

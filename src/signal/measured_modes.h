@@ -9,13 +9,16 @@
 //   drift: the pencil run again on S consecutive equal segments of the decay, each segment's pole taken near the
 //          whole record's: a frequency that changes as the amplitude decays moves from the first segment to the last
 //          (the ARTS steel bar's modes by 0.1-0.6 % between windows: REPORT 2.8);
+//   order: the pole at another model order of the pencil (a physical mode's pole stays put; one the exponentials
+//          fit only approximately, a heavily damped or a nonlinear one, moves);
 //   split: other lightly damped poles of the whole record within kSplitWindow of the mode and of at least
 //          kCompanionEnergy of its energy: one mode whose changing frequency the pencil fits by several poles (an
 //          aluminium strip's f1 at 9.406 and 9.421 Hz: issue 31; a decay whose frequency falls from 20.2 to 20 Hz
 //          gave poles at 20.0, 20.03 and 20.19 Hz), or two close modes (bending in two planes).
 // A segment's frequency is the energy-weighted mean of its poles near the mode (a single pole for a linear mode, the
 // centre of the several that fit a changing frequency). The reported uncertainty is u = sqrt(noise^2 + (span / 2)^2),
-// with span the largest minus the smallest of the whole record's, the segments' and the companions' frequencies:
+// with span the largest minus the smallest of the whole record's, the segments', the other order's and the
+// companions' frequencies:
 // half the span is how far its ends lie from its centre.
 // A model frequency within 2 u of the measured one fits it (the real-record study's verdict).
 #pragma once
@@ -52,6 +55,9 @@ inline constexpr double kCompanionEnergy = 0.01;
 // less than 1/T, but two poles closer than about 1/T (10 % of the frequency at 10 cycles) merge, and then the
 // segment's frequency is their mean. The steel bar's f1 holds 17.7 cycles in a third of its 8 s record.
 inline constexpr double kMinSegmentCycles = 10;
+// A segment's pole of a mode is searched within this relative distance of the previous segment's frequency (of the
+// whole record's for the first), narrowed to half the distance to a neighbouring mode.
+inline constexpr double kSegmentWindow = 0.1;
 // A segment's poles are the mode's only when their amplitude is within this factor of the whole record's mode
 // decayed to the segment's start: an amplitude-dependent damping changes the decay rate by tens of percent over a
 // record (a factor e^{0.3 x 3} = 2.5 at most over three e-folds), a different mode is another amplitude altogether.
@@ -69,7 +75,10 @@ struct MeasuredMode {
   std::vector<double> segment_decay_1_s;  // the poles' energy-weighted mean decay rate -Re(lambda), per segment
   double drift_hz = std::numeric_limits<double>::quiet_NaN();     // last estimated segment minus the first
   double drift_sd_hz = std::numeric_limits<double>::quiet_NaN();  // its noise sd, from the two segments' bounds
-  std::vector<double> companions_hz;         // the split's other poles (kSplitWindow, kCompanionEnergy), ascending
+  std::vector<double> companions_hz;  // the split's other poles (kSplitWindow, kCompanionEnergy), ascending
+  // The mode's pole at another model order (MeasuredModes::other_order), NaN where none: its change is in the span.
+  double order_hz = std::numeric_limits<double>::quiet_NaN();
+  int segments_due = 0, segments_found = 0;  // segments holding kMinSegmentCycles of it; those that estimated it
   double span_low_hz = 0, span_high_hz = 0;  // the smallest and largest of all the estimates above
   double uncertainty_hz = std::numeric_limits<double>::quiet_NaN();  // u (the file's head)
   // The decay rate's uncertainty, 1/s, alike: sqrt(noise^2 + (span / 2)^2) over the whole record's and the segments'
@@ -86,6 +95,7 @@ struct MeasuredModes {
   PencilDiagnostics diagnostics;    // the whole record's pencil
   int heavily_damped = 0;           // poles left out by ModeSelection::lightly_damped
   int segments = 0;                 // S used (0: the decay is too short for two segments of kMinWindowSamples)
+  int other_order = 0;              // the second model order the modes were sought at (0: none)
 };
 
 // The modes of the decay sampled at dt_s with their uncertainty. InputError as matrix_pencil (and modes_near for a

@@ -133,10 +133,12 @@ std::vector<std::pair<double, int>> ranked_candidates(const Spectrum& s, const S
 // estimates are computed once per bin (`estimates`). Every candidate of an 80 000-sample record against every
 // stronger one, every order and every pair took minutes.
 constexpr std::size_t kArtefactParents = 24;
-// The largest amplitude of a harmonic relative to its fundamental's (-6 dB): a clipped sensor or amplifier puts a few
-// percent to a third of the fundamental into its second and third harmonics (a square wave's third is a third), a
-// rattle as much as 40 % (record_with_artefacts in the tests); a peak half as strong as a lower one is a mode.
-constexpr double kHarmonicAmplitude = 0.5;
+// The largest amplitude of a harmonic relative to its fundamental's (-16 dB): the distortion of a sensor or an
+// amplifier short of hard clipping puts a few percent of the fundamental into its second and third harmonics. A peak
+// stronger than that at an integer multiple is taken for a mode: a mode there of 0.3 to 0.5 of the lower one's
+// amplitude and of the same damping ratio was skipped at 0.5 (the eighth pass's H02, H05); a harmonic kept is listed
+// as a pick, where a user sees it, a mode skipped is not.
+constexpr double kHarmonicAmplitude = 0.15;
 
 std::string artefact(const Spectrum& s, int k, const std::vector<int>& all_stronger, double floor,
                      std::map<int, PoleEstimate>& estimates) {

@@ -70,10 +70,10 @@ std::string unmatched_frequencies(const std::vector<Spike>& picked, const SpikeO
 //   "harmonic n of F Hz":      at n F for any n >= 2 below Nyquist, F a stronger peak not itself skipped, decaying at
 //                              n sigma_F within 25 % or three sd of the rates' estimates (a nonlinearity, a clipped or
 //                              rattling sensor; a beam's own modes are not integer multiples, and a mode near one
-//                              decays at its own rate), of an amplitude at most half F's (from the peaks' heights and
-//                              rates: a mode at n F with F's damping ratio also decays at n sigma_F, and is as strong
-//                              as a mode), and only where a chance coincidence is unlikely (2 x the tolerance below 5 %
-//                              of F);
+//                              decays at its own rate), of an amplitude at most 0.15 of F's (from the peaks' heights
+//                              and rates: a mode at n F with F's damping ratio also decays at n sigma_F, and is as
+//                              strong as a mode), and only where a chance coincidence is unlikely (2 x the tolerance
+//                              below 5 % of F);
 //   "sideband F1 +- F2 Hz":    at F1 + F2 or F1 - F2 for stronger peaks F1 > F2, decaying at sigma_1 + sigma_2 within
 //                              the same tolerance (modulation, beating);
 //   "offset leakage":          bin 1, one cycle in the record (what remains of an offset or a drift after detrending).

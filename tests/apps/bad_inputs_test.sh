@@ -156,7 +156,7 @@ for i in "${!records[@]}"; do
   esac
 done
 "$BEAMID" study "$tmp/mini.toml" --output "$tmp/damaged" >/dev/null 2>"$tmp/err"
-named=$(grep -c "study store: .*moved to" "$tmp/err")
+named=$(grep -c "beamid study: store: .*moved to" "$tmp/err")
 if [ "$named" -eq 8 ] && diff -r -x store -x timings.csv "$tmp/clean" "$tmp/damaged" >/dev/null; then ok
 else bad "damaged store: $named of 8 records named; $(diff -rq -x store -x timings.csv "$tmp/clean" "$tmp/damaged" | head -3)"; fi
 

@@ -125,12 +125,14 @@ TEST(Units, ConversionsToSiAndQuantities) {
        {std::pair{"x (mm; tip)", "mm"}, std::pair{"x (tip; mm)", "mm"}, std::pair{"x (tip, mm)", "mm"},
         std::pair{"v (mm\xc2\xb7s\xe2\x81\xbb\xc2\xb9)", "mm/s"},
         std::pair{"a (m\xc2\xb7s\xe2\x81\xbb\xc2\xb2)", "m/s^2"}, std::pair{"v (mm/s [tip])", "mm/s"},
-        std::pair{"a (m/(s^2) [raw])", "m/s^2"}})
+        std::pair{"a (m/(s^2) [raw])", "m/s^2"}, std::pair{"x (mm: laser)", "mm"}, std::pair{"x (mm | tip)", "mm"},
+        std::pair{"x (mm - tip)", "mm"}, std::pair{"x (mm\xc2\xb7tip)", "mm"}, std::pair{"a (g_n)", "g"},
+        std::pair{"x (mm [sensor 1])", "mm"}})
     EXPECT_EQ(unit_of_column_name(name), unit) << name;
   for (const char* name : {"x (1e-3 m)", "x (10^-3 m)", "v (knots)", "a (g0)",
                            "a (\xc2\xb0"
                            "C)",
-                           "x (m m)", "x (mm; um)"}) {
+                           "x (m m)", "x (mm; um)", "x (mm2)", "x (mm*mm)", "x (mm\xc2\xb2)", "a (g\xc2\xb7s)"}) {
     EXPECT_NE(unit_of_column_name(name), "") << name;
     EXPECT_FALSE(is_known_unit(unit_of_column_name(name))) << name << ": " << unit_of_column_name(name);
   }

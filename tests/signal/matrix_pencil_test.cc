@@ -214,7 +214,7 @@ TEST(MatrixPencil, ModesNearChosenFrequenciesTakeTheStrongestNearEach) {
     modes_near(y, 1e-3, PencilOptions{}, {5.3, 24.0}, 0.05);
     ADD_FAILURE() << "no mode near 24 Hz, yet no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "no identified mode within 0.05 of 24 Hz");
+    EXPECT_EQ(std::string(e.what()), "no identified mode within 5 % of 24 Hz");
   }
 }
 

@@ -79,7 +79,12 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   try {
     found = signal::measure_modes(out.series.values, out.series.dt_s, measure);
   } catch (const InputError& error) {
-    throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + error.what());
+    // The window the record was cut to may be the cause: said with it (the eighth pass's RQ09 blamed peaks_hz alone
+    // for a start_s after the decay had died).
+    const std::string window = " (in the record's " + std::to_string(out.series.values.size()) +
+                               " samples from t = " + format_rounded(out.series.t0_s, 6) + " s" +
+                               (r.start_s ? ", its start_s: a later start leaves less of the decay" : "") + ")";
+    throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + error.what() + window);
   }
   // Each record is fitted as a free decay from its first sample: one that still holds its hit is said to (the seventh
   // pass's RU05: the UnB record without its start_s gave EI 4.5 % off with nothing said).
@@ -89,6 +94,14 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
         format_rounded(out.series.t0_s + static_cast<double>(peak) * out.series.dt_s, 4) +
         " s after a quieter lead-in: it is no free decay from its start, and its fits take the excitation for part "
         "of the decay; set the record's start_s a little after that time");
+  // Two peaks that find one mode would count it twice in every verdict (the eighth pass's RQ15: 14.3 and 14.45 Hz
+  // both took the 14.316 Hz mode, "within 2 u (2/2)").
+  for (std::size_t a = 0; a < found.modes.size(); ++a)
+    for (std::size_t b = a + 1; b < found.modes.size(); ++b)
+      if (found.modes[a].mode.lambda == found.modes[b].mode.lambda)
+        throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + format_value(r.peaks_hz[a]) + " and " +
+                         format_value(r.peaks_hz[b]) + " Hz find the same mode (" +
+                         format_rounded(found.modes[a].mode.frequency_hz, 6) + " Hz): list each measured mode once");
   for (const signal::MeasuredMode& m : found.modes) {
     out.measured_hz.push_back(m.mode.frequency_hz);
     out.measured_zeta.push_back(m.mode.damping_ratio);

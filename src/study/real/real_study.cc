@@ -259,6 +259,9 @@ RealStudySpec load_real_study(const std::string& path) {
     s.max_evaluations = r.integer("max_evaluations", s.max_evaluations, 10, core::kMaxEvaluations);
     s.frequency_weight = r.string("frequency_weight", s.frequency_weight, costs::frequency_weight_names().names());
     s.mode_weight = r.string("mode_weight", s.mode_weight, costs::mode_weight_names().names());
+    // Read by the modal cost only: given without it, it would weigh nothing (the eighth pass's RQ04).
+    if (r.has("mode_weight") && std::find(s.costs.begin(), s.costs.end(), costs::kModalCost) == s.costs.end())
+      r.fail("mode_weight", "'" + s.mode_weight + "'", "is read by the modal cost; fit.costs holds no modal cost");
     s.windows = r.integer("windows", 0, 0, 64);
     if (s.windows == 1) r.fail("windows", "1", "must be 0 (none) or >= 2");
     // Bounds of any key a candidate may estimate; one that no model estimates is refused below.

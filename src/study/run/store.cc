@@ -179,7 +179,7 @@ std::optional<Record> Store::load(const std::string& id, const RecordCheck& chec
   fs::rename(path, aside, ec);
   if (ec) fs::remove_all(path, ec);
   std::lock_guard<std::mutex> lock(log_mutex());
-  (log_ ? *log_ : std::cerr) << "beamid: study store: " << path.string() << ": " << why << ": moved to "
+  (log_ ? *log_ : std::cerr) << "beamid study: store: " << path.string() << ": " << why << ": moved to "
                              << aside.string() << "; the unit is recomputed\n";
   return std::nullopt;
 }
