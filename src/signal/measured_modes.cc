@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "core/errors.h"
 
@@ -26,6 +27,22 @@ double search_window(const std::vector<IdentifiedMode>& modes, std::size_t k, do
   for (std::size_t j = 0; j < modes.size(); ++j)
     if (j != k) w = std::min(w, 0.5 * std::abs(modes[j].frequency_hz / modes[k].frequency_hz - 1));
   return w;
+}
+
+// The pencil's poles of y within [low, high] Hz (narrowed to the options' band), or none where it cannot run (too
+// short a segment for its order, a segment of zeros at the end of a decay): a part of the uncertainty that is not
+// measured, which the notes say, rather than a failed command.
+std::optional<std::vector<IdentifiedMode>> poles_between(const std::vector<double>& y, double dt_s, PencilOptions p,
+                                                         double low, double high) {
+  p.min_frequency_hz = std::max(p.min_frequency_hz, low);
+  p.max_frequency_hz = std::min(p.max_frequency_hz, high);
+  try {
+    return matrix_pencil(y, dt_s, p);
+  } catch (const InputError&) {
+    return std::nullopt;
+  } catch (const NumericalError&) {
+    return std::nullopt;
+  }
 }
 
 // Each mode's pole in segment s of length `length` (its frequency, sd and amplitude), NaN where the segment is too
@@ -57,17 +74,10 @@ void estimate_segment(const std::vector<double>& decay, double dt_s, const Measu
     low = std::min(low, c.frequency_hz * (1 - kSegmentWindow));
     high = std::max(high, c.frequency_hz * (1 + kSegmentWindow));
   }
-  p.min_frequency_hz = std::max(p.min_frequency_hz, low);
-  p.max_frequency_hz = std::min(p.max_frequency_hz, high);
   p.modes = 3 * static_cast<int>(out.modes.size()) + 4;
-  std::vector<IdentifiedMode> found;
-  try {
-    found = matrix_pencil(segment, dt_s, p);
-  } catch (const InputError&) {
-    return;
-  } catch (const NumericalError&) {
-    return;
-  }
+  const auto poles = poles_between(segment, dt_s, p, low, high);
+  if (!poles) return;
+  const std::vector<IdentifiedMode>& found = *poles;
   for (std::size_t k = 0; k < out.modes.size(); ++k) {
     MeasuredMode& m = out.modes[k];
     if (m.mode.frequency_hz * length * dt_s < kMinSegmentCycles) continue;
@@ -127,16 +137,9 @@ void other_order(const std::vector<double>& decay, double dt_s, const MeasureOpt
     low = std::min(low, m.mode.frequency_hz * (1 - o.window));
     high = std::max(high, m.mode.frequency_hz * (1 + o.window));
   }
-  p.min_frequency_hz = std::max(p.min_frequency_hz, low);
-  p.max_frequency_hz = std::min(p.max_frequency_hz, high);
-  std::vector<IdentifiedMode> found;
-  try {
-    found = matrix_pencil(decay, dt_s, p);
-  } catch (const InputError&) {
-    return;
-  } catch (const NumericalError&) {
-    return;
-  }
+  const auto poles = poles_between(decay, dt_s, p, low, high);
+  if (!poles) return;
+  const std::vector<IdentifiedMode>& found = *poles;
   std::vector<IdentifiedMode> modes;
   for (const MeasuredMode& m : out.modes) modes.push_back(m.mode);
   for (std::size_t k = 0; k < out.modes.size(); ++k) {
