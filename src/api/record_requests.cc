@@ -20,10 +20,17 @@ signal::PoleEstimate SpikesResult::subbin(int bin) const {
 
 namespace {
 
+// A list as the flag took it: "31,1000" (the ninth pass's Q: only its first value was quoted).
+std::string joined(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ",") + format_value(v);
+  return text;
+}
+
 // The picks' modes by the shared estimator: one pencil for all of them; when one has no pole nearby, each alone (up to
 // kMaxSeparatelyMeasured of them: a pencil per pick on a long record takes seconds), NaN for those that fail.
 constexpr int kMaxSeparatelyMeasured = 8;
-void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt_s, double window) {
+void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt_s, double window, double df_hz) {
   signal::MeasuredMode none;
   none.mode.frequency_hz = std::nan("");
   r.measured.assign(r.picks.size(), none);
@@ -42,6 +49,10 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
   };
   std::vector<double> wanted;
   for (const auto& p : r.picks) wanted.push_back(p.frequency_hz);
+  // A pick's pole is searched within three bins of it (at most the chosen window): a stronger mode 2 Hz away took a
+  // 50.05 Hz spike's place, "48.000 +- 1e-14 Hz" (the ninth pass's N_f1). Three bins at the lowest pick are at least
+  // three at every other.
+  window = std::min(window, 3 * df_hz / *std::min_element(wanted.begin(), wanted.end()));
   std::string failure;
   try {
     r.measured = measure(wanted);
@@ -53,9 +64,28 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
         } catch (const std::exception&) {
         }
   }
+  // Two picks that find one pole have one measured frequency between them, not each its own: the one nearer the pole
+  // keeps it (the ninth pass: 40 and 40.4 Hz spikes got one value in both rows, without a word).
+  std::string shared;
+  for (std::size_t a = 0; a < r.measured.size(); ++a)
+    for (std::size_t b = a + 1; b < r.measured.size(); ++b) {
+      signal::MeasuredMode &x = r.measured[a], &y = r.measured[b];
+      if (std::isnan(x.mode.frequency_hz) || std::isnan(y.mode.frequency_hz) || x.mode.lambda != y.mode.lambda)
+        continue;
+      const double f = x.mode.frequency_hz;
+      const std::size_t far = std::abs(wanted[a] - f) <= std::abs(wanted[b] - f) ? b : a;
+      shared += (shared.empty() ? "" : "; ") + format_rounded(wanted[far], 6) + " Hz (the pole at " +
+                format_rounded(f, 6) + " Hz is the spike at " + format_rounded(wanted[far == a ? b : a], 6) + " Hz's)";
+      r.measured[far] = none;
+    }
+  if (!shared.empty())
+    r.notes.push_back("no pole of its own for the spike(s) at " + shared +
+                      ": a side lobe, a split peak or a mode the pencil merges with its neighbour; its "
+                      "measured_frequency_hz is nan");
   std::string missing;
   for (std::size_t k = 0; k < r.measured.size(); ++k) {
     if (std::isnan(r.measured[k].mode.frequency_hz)) {
+      if (failure.empty()) continue;  // one without a pole of its own, said above
       missing += (missing.empty() ? "" : ", ") + format_rounded(wanted[k], 6);
       continue;
     }
@@ -103,9 +133,9 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   // A chosen frequency with no peak near it (above the Nyquist frequency, say) is an error, as in fit and cost, not
   // a run with fewer spikes (the eighth pass's E38: exit 0 and no spike).
   if (!options.frequencies_hz.empty() && r.picks.size() < options.frequencies_hz.size())
-    refuse(caller, "spike-frequencies", format_value(options.frequencies_hz.front()),
+    refuse(caller, "spike-frequencies", joined(options.frequencies_hz),
            signal::unmatched_frequencies(r.picks, options, r.spectrum));
-  measure_picks(r, values, data.dt_s, options.frequency_window);
+  measure_picks(r, values, data.dt_s, options.frequency_window, r.spectrum.df_hz());
   // The measured frequencies are a free decay's: a record that still holds its hit misleads them (the eighth pass's
   // P13: 30 Hz measured at 31.35 +- 0.005 Hz without a word).
   if (!r.picks.empty())

@@ -122,8 +122,9 @@ Table read_csv(std::istream& in, const std::string& path) {
   // columns (the eighth pass's U_w01).
   for (std::size_t j = 0; j + 1 < t.names.size(); ++j) {
     const auto open = [](const std::string& n) {
-      return std::count(n.begin(), n.end(), '(') + std::count(n.begin(), n.end(), '[') -
-             std::count(n.begin(), n.end(), ')') - std::count(n.begin(), n.end(), ']');
+      return std::count(n.begin(), n.end(), '(') + std::count(n.begin(), n.end(), '[') +
+             std::count(n.begin(), n.end(), '{') - std::count(n.begin(), n.end(), ')') -
+             std::count(n.begin(), n.end(), ']') - std::count(n.begin(), n.end(), '}');
     };
     if (open(t.names[j]) > 0 && open(t.names[j + 1]) < 0)
       throw InputError(path + ":1: columns " + std::to_string(j + 1) + " and " + std::to_string(j + 2) + " ('" +
@@ -263,6 +264,14 @@ Table read_plain(std::istream& in, const std::string& path) {
     t.names = line.find('\t') != std::string::npos ? split(trim(line), '\t') : first;
     for (auto& n : t.names) n = trim(n);
     t.names_line = number;
+    // Names split at spaces (no tabs) that cut a bracket ("t_s x (mm)" gave the columns x and (mm): the ninth pass's
+    // sp1): the names must not hold spaces there.
+    for (const std::string& n : t.names)
+      if (!n.empty() && (n.front() == '(' || n.front() == '[' || n.front() == '{'))
+        throw InputError(path + ":" + std::to_string(number) + ": '" + shown(trim(line), 60) +
+                         "': the names are separated by spaces, and '" + shown(n) +
+                         "' is a unit or remark cut from its name: separate the names by tabs, or write them "
+                         "without spaces (x_mm)");
   } else {
     // The first column is the time, the others the signals, named as --channel counts them ("signal 2" is
     // --channel 2; they were "column 3" for --channel 2, and --channel 'column 2' picked another: the seventh pass's

@@ -247,6 +247,11 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
   if (in.declared_samples > 0 && static_cast<long>(in.v.size()) < in.declared_samples)
     throw InputError(path + ": " + std::to_string(in.v.size()) + " samples, but the header says Samples = " +
                      std::to_string(in.declared_samples) + ": the file is cut short");
+  // More rows than the header's count: an edited file or one whose header belongs to another run (the ninth pass's
+  // kk/smp.lvm, Samples 5 over 1024 rows, was read without a word).
+  if (in.declared_samples > 0 && static_cast<long>(in.v.size()) > in.declared_samples)
+    throw InputError(path + ": " + std::to_string(in.v.size()) + " samples, but the header says Samples = " +
+                     std::to_string(in.declared_samples) + ": the header and the data disagree (an edited file?)");
   if (in.v.size() < 8) throw InputError(path + ": " + std::to_string(in.v.size()) + " samples: at least 8 are needed");
   const double t0 = t.front();
   const double dt = (t.back() - t0) / static_cast<double>(t.size() - 1);

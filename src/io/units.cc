@@ -256,6 +256,9 @@ std::string unit_of_label(const std::string& given) {
   return unit_of_plain_label(label);
 }
 
+// A character a remark's word is made of: letters, digits, '-' and '_'.
+bool remark_char(unsigned char c) { return std::isalnum(c) != 0 || c == '-' || c == '_'; }
+
 std::string unit_of_plain_label(const std::string& given) {
   std::string label = trimmed(given);
   // A remark beside the unit after ';', ',', ':' or '|' ("mm; tip", "tip, mm", "mm: laser"), read as "mm [tip]" is:
@@ -313,10 +316,10 @@ std::string unit_of_plain_label(const std::string& given) {
         if (!known_unit(w, true).empty() || is_unconverted_unit(w, true)) {
           ++units, unit = known_unit(w, true);
         } else {
-          plain = plain && std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isalpha(c) != 0; });
+          plain = plain && std::all_of(w.begin(), w.end(), [](unsigned char c) { return remark_char(c); });
         }
       }
-      if (units == 0) return "";  // a remark ("sensor 1")
+      if (units == 0) return plain ? "" : label;  // a remark ("sensor 1"), or a unit spelled oddly ("mm/ laser")
       return units == 1 && plain && !unit.empty() ? unit : label;
     }
   }
@@ -334,6 +337,10 @@ std::string unit_of_plain_label(const std::string& given) {
   const std::string unit = is_unconverted_unit(label, true) ? "" : known_unit(label, true);
   if (!unit.empty()) return unit;
   if (is_unconverted_unit(label, true) || label.find_first_of("/^") != std::string::npos) return trimmed(label);
+  // A remark is words of letters and digits; other characters beside them ("mm~tip", "mm#1", "mm.", a superscript
+  // one) spell a unit oddly, which was read as SI (the ninth pass's U-series): kept as stated, to be refused.
+  if (!std::all_of(label.begin(), label.end(), [](unsigned char c) { return remark_char(c) || c == ' '; }))
+    return trimmed(label);
   return "";
 }
 

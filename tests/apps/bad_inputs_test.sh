@@ -125,6 +125,10 @@ expect_error "LVM X0 garbage" "X0 = 'garbage': must be a finite number" spikes -
 # rounding after the detrend, whose "spikes" were printed.
 awk 'BEGIN { print "t_s,y (m)"; for (i = 0; i < 256; i++) printf "%.4f,%.4f\n", i / 1000, i / 1000 }' >"$tmp/ramp.csv"
 expect_error "ramp record" "is a straight line in time" spikes --data "$tmp/ramp.csv" --spikes 2
+# The ninth pass: a space-separated header that cuts a unit from its name, and an LVM header whose Samples is fewer
+# than its rows.
+{ echo "t_s x (mm)"; for i in $(seq 0 63); do echo "0.00$i 1"; done; } >"$tmp/spaced.txt"
+expect_error "space-cut unit" "'(mm)' is a unit or remark cut from its name" spikes --data "$tmp/spaced.txt"
 expect_error "start 1e308" "--start = '1e+308' s: must lie inside the record" spikes --data "$tmp/z.csv" --start 1e308
 
 # A study of 200 000 units says what it is in for before it starts (stopped here once it has said it).

@@ -132,7 +132,8 @@ TEST(Units, ConversionsToSiAndQuantities) {
   for (const char* name : {"x (1e-3 m)", "x (10^-3 m)", "v (knots)", "a (g0)",
                            "a (\xc2\xb0"
                            "C)",
-                           "x (m m)", "x (mm; um)", "x (mm2)", "x (mm*mm)", "x (mm\xc2\xb2)", "a (g\xc2\xb7s)"}) {
+                           "x (m m)", "x (mm; um)", "x (mm2)", "x (mm*mm)", "x (mm~tip)", "x (mm#1)", "x (mm.)",
+                           "x (mm/ laser)", "x (mm\xc2\xb2)", "a (g\xc2\xb7s)"}) {
     EXPECT_NE(unit_of_column_name(name), "") << name;
     EXPECT_FALSE(is_known_unit(unit_of_column_name(name))) << name << ": " << unit_of_column_name(name);
   }
