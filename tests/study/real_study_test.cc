@@ -153,6 +153,16 @@ bounds = { "attachment1.m" = [0.001, 0.02], cDI = [1e-6, 1e-3] }
   EXPECT_NE(text.find("`[false]` some candidate model fits record 'long' within 2 u at every mode"), std::string::npos)
       << text;
   EXPECT_NE(text.find(": no candidate model fits it"), std::string::npos) << text;
+  // A fit whose two measured modes of one record pair with one model mode (A4) fits neither that record nor its
+  // claim, whatever its misfits (the ninth pass: said nowhere).
+  RealResults shared = results;
+  shared.fits[0].shared_mode = "the measured 25.07 and 172.7 Hz of record 2 pair with one model mode, 25.07 Hz (A4)";
+  shared.fits[0].shared_record = 1;
+  const std::string a4 = report(shared);
+  EXPECT_NE(a4.find(", but the measured 25.07 and 172.7 Hz of record 2 pair with one model mode"), std::string::npos)
+      << a4;
+  EXPECT_NE(a4.find("`[false]` some candidate model fits record 'long'"), std::string::npos) << a4;
+  EXPECT_NE(a4.find("`[true]` some candidate model fits record 'short'"), std::string::npos) << a4;
   EXPECT_NE(text.find("`[true]` some candidate model fits record 'short'"), std::string::npos) << text;
 }
 

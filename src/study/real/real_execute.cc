@@ -172,9 +172,17 @@ void identify_modes(const RealStudySpec& spec, const std::vector<RealRecordData>
     f.zeta.emplace_back();
     f.discretisation_hz.emplace_back();
     const RealRecordData& record = all[static_cast<std::size_t>(f.records[k])];
+    std::vector<const galerkin::DampedMode*> partners;
     for (std::size_t m = 0; m < record.measured_hz.size(); ++m) {
       const double measured = record.measured_hz[m];
       const galerkin::DampedMode* best = nearest(damped, measured);
+      for (std::size_t j = 0; j < partners.size(); ++j)
+        if (partners[j] == best && f.shared_mode.empty())
+          f.shared_mode = "the measured " + format_rounded(record.measured_hz[j], 6) + " and " +
+                          format_rounded(measured, 6) + " Hz of record " + std::to_string(f.records[k] + 1) +
+                          " pair with one model mode, " + format_rounded(best->frequency_hz, 6) + " Hz (A4)",
+          f.shared_record = f.records[k];
+      partners.push_back(best);
       const double discretisation = std::abs(nearest(fine, best->frequency_hz)->frequency_hz - best->frequency_hz);
       f.identified_hz.back().push_back(best->frequency_hz);
       f.zeta.back().push_back(best->damping_ratio);

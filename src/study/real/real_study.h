@@ -108,6 +108,11 @@ struct RealFit {
   // RMS and largest |f_identified / f_measured - 1| over every record's modes (NaN for a failed fit), and the largest
   // |f_identified - f_measured| / sqrt(u^2 + d^2) in units of each measured frequency's uncertainty u and the
   // identified one's discretisation error d: a fit fits a record when that is at most 2 on each of its modes.
+  // (A4) in words when two measured modes of a record pair with one model mode ("" when each has its own): a fit
+  // that leaves a measured mode without a partner does not fit the record, whatever its misfits (the ninth pass's
+  // RU: 14.32 and 24.79 Hz both paired with 16.73 Hz, said nowhere).
+  std::string shared_mode;
+  int shared_record = -1;  // the study's record it happened in
   double rms_misfit = std::numeric_limits<double>::quiet_NaN(), worst_misfit = rms_misfit,
          worst_in_uncertainty = rms_misfit;
 };
