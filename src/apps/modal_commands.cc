@@ -10,6 +10,7 @@
 #include "core/limits.h"
 #include "io/provenance.h"
 #include "io/text.h"
+#include "signal/matrix_pencil.h"
 #include "signal/measured_modes.h"
 
 namespace beamid::apps {
@@ -49,7 +50,7 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()
             << " samples at dt = " << data.dt_s << " s; matrix pencil, model order "
-            << (o.order > 0 ? o.order : 2 * o.modes + 8) << "\n";
+            << signal::model_order(o, static_cast<int>(data.values.size())) << "\n";
   return 0;
 }
 

@@ -88,8 +88,8 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
                      std::to_string(core::kMaxPencilSamples) +
                      " (its Hankel matrix and QR grow as Nbar L^2); cut the record (--start, --duration) or lower its "
                      "rate (--resample-rate)");
-  const int pencil = std::min(n / 3, o.max_columns - 1);  // L
-  const int order = o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil);
+  const int pencil = pencil_columns(o, n);  // L
+  const int order = model_order(o, n);
   if (order > pencil || pencil < 2)
     throw InputError(
         "order M = " + std::to_string(order) + ": must be at most the pencil parameter L = " + std::to_string(pencil) +
@@ -162,6 +162,12 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
   by_frequency(d.weaker);
   by_frequency(modes);
   return modes;
+}
+
+int pencil_columns(const PencilOptions& o, int samples) { return std::min(samples / 3, o.max_columns - 1); }
+
+int model_order(const PencilOptions& o, int samples) {
+  return o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil_columns(o, samples));
 }
 
 bool is_steady(const IdentifiedMode& m) {

@@ -32,6 +32,11 @@ struct PencilOptions {
   double max_frequency_hz = std::numeric_limits<double>::infinity();
 };
 
+// The pencil parameter L = min(Nbar / 3, max_columns - 1) and the model order M (options.order, else 2 K + 8 capped
+// at L) for a record of `samples` samples: what matrix_pencil uses, for callers that run it at another order.
+int pencil_columns(const PencilOptions& options, int samples);
+int model_order(const PencilOptions& options, int samples);
+
 struct IdentifiedMode;
 // The modes of chosen frequencies (a record may hold modes a model lacks, such as torsion): the pencil is run over
 // the band the choices span (each widened by +-window, relative) for 3 K + 4 modes, and the strongest within +-window
