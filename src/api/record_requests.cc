@@ -141,6 +141,9 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   if (!r.picks.empty())
     if (const std::string note = lead_in_note(data, "the pencil (the measured frequencies)"); !note.empty())
       r.notes.push_back(note);
+  std::vector<double> picked;
+  for (const auto& p : r.picks) picked.push_back(r.spectrum.frequency_hz(p.bin));
+  if (const std::string note = pass_band_note(data, picked, "spike"); !note.empty()) r.notes.push_back(note);
   return r;
 }
 
@@ -225,7 +228,22 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   for (const signal::MeasuredMode& m : r.measured)
     if (const std::string note = signal::uncertainty_note(m); !note.empty()) r.notes.push_back(note);
   if (const std::string note = lead_in_note(data, "the pencil"); !note.empty()) r.notes.push_back(note);
+  std::vector<double> found;
+  for (const signal::IdentifiedMode& m : r.modes) found.push_back(m.frequency_hz);
+  if (const std::string note = pass_band_note(data, found, "pole"); !note.empty()) r.notes.push_back(note);
   return r;
+}
+
+std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,
+                           const std::string& what) {
+  std::string above;
+  for (double f : frequencies_hz)
+    if (f > data.pass_band_hz) above += (above.empty() ? "" : ", ") + format_rounded(f, 6);
+  if (above.empty()) return "";
+  return "the " + what + "(s) at " + above + " Hz lie above the resampling low-pass's pass band (" +
+         format_rounded(data.pass_band_hz) +
+         " Hz), where the low-pass bends a mode and its edge makes poles of a removed peak's tail: not to be read as "
+         "modes (a higher --resample-rate keeps them in its pass band or removes them)";
 }
 
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {

@@ -74,6 +74,10 @@ struct ModalIdResult {
 ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeries& data);
 // signal::quiet_lead_in in words, naming `what` fits the record ("the pencil", "a free-decay fit"), or "".
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what);
+// The frequencies above a resampled record's pass band (io::TimeSeries::pass_band_hz) named, with why they are no
+// modes ("" when none is); `what` is "pole" or "spike".
+std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,
+                           const std::string& what);
 // The notes of ModalIdResult for the modes the pencil reported and what else it found.
 std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
                                         const signal::PencilDiagnostics& found, const signal::PencilOptions& options);

@@ -21,6 +21,7 @@
 #include "io/resources.h"
 #include "io/uff58.h"
 #include "io/units.h"
+#include "signal/spectrum.h"
 
 namespace beamid::io {
 
@@ -113,6 +114,83 @@ namespace {
 // constant, also at the record's ends.
 constexpr double kMaxUpsampling = 16;
 
+// Below kPassBand x the new rate the low-pass passes a record unchanged; between it and the new Nyquist frequency lies
+// its transition band (the Blackman window's 3/32 of the rate around the cutoff 0.45 rate).
+constexpr double kPassBand = 0.40;
+
+// What a low-pass below a record's content leaves (the ninth pass's #2): the tails of the modes it removes, rising
+// towards the cutoff, with no peak of their own; the pencil then listed that residue as "modes" (a 23 Hz and 141 Hz
+// decay at 10 Hz gave 1.02 and 4.51 Hz; 31 Hz and 173 Hz at 100 Hz kept 31 Hz and added 45.15 Hz, at the cutoff).
+// Judged on the record's periodogram (Hann window, its first 2^20 samples: a decay's content is at its start):
+//  - a peak stands out in the pass band when it is a local maximum over +-1 bin and at least kStandsOut times the
+//    pass band's median power. A periodogram of noise is exponentially distributed bin by bin, so a bin exceeds 100
+//    times the median with probability 2^-100; a removed mode's tail varies smoothly, by its distance to the mode
+//    squared (a factor below 10 over a pass band that ends a tenth of the rate below the mode);
+//  - no such peak: refused, the record's content lies above the new rate;
+//  - a removed peak of at least kRemovedPeak of the strongest kept one's power: said, with the band where the
+//    filter's edge makes poles that are no modes.
+// Whatever it finds, a pole above the pass band of a decimated record is the filter's as much as the record's
+// (TimeSeries::pass_band_hz, which modal-id and spikes check).
+constexpr double kStandsOut = 100;
+constexpr double kRemovedPeak = 1e-2;
+
+void judge_removed_content(TimeSeries& s, double rate, const std::string& path) {
+  const std::size_t n = std::min<std::size_t>(s.values.size(), std::size_t{1} << 20);
+  std::vector<double> head(s.values.begin(), s.values.begin() + static_cast<long>(n));
+  // The offset removed with the window's weights (sum w (v - c) = 0), so that no leakage of it is left at 0 Hz.
+  const std::vector<double> hann = signal::window_weights({.name = "hann"}, static_cast<int>(n));
+  double weighted = 0, weights = 0;
+  for (std::size_t i = 0; i < n; ++i) weighted += hann[i] * head[i], weights += hann[i];
+  for (std::size_t i = 0; i < n; ++i) head[i] = (head[i] - weighted / weights) * hann[i];
+  // Zero-padded until the pass band spans kBandBins bins (a 2 s record at 1 kHz resampled to 10 Hz has 8 bins below
+  // 4 Hz, too few to tell a peak from a tail): the padding interpolates the same periodogram, it adds no resolution.
+  constexpr double kBandBins = 128;
+  const double fs = 1 / s.dt_s;
+  const double padded = std::min(std::max(static_cast<double>(n), kBandBins * fs / (kPassBand * rate)), 0x1p22);
+  head.resize(static_cast<std::size_t>(padded), 0.0);
+  signal::Dft dft(static_cast<int>(head.size()), s.dt_s);
+  const signal::Spectrum spectrum = dft.transform(head);
+  const double df = spectrum.df_hz();
+  const long pass = std::min<long>(spectrum.last_bin(), static_cast<long>(std::floor(kPassBand * rate / df)));
+  std::vector<double> power(static_cast<std::size_t>(spectrum.last_bin() + 1));
+  for (std::size_t k = 0; k < power.size(); ++k) power[k] = std::norm(spectrum.half[k]);
+  // The first two bins of the unpadded record (the Hann window's main lobe at 0 Hz) hold a slow drift: no mode.
+  // A peak is a maximum over +-1 bin of the unpadded record (the Hann main lobe is +-2 bins wide).
+  const double bins_per_bin = static_cast<double>(head.size()) / static_cast<double>(n);
+  const long kFirst = std::lround(2 * bins_per_bin), kSide = std::lround(bins_per_bin);
+  if (pass - kFirst < 3 * kSide) return;  // too few pass-band bins to judge (a record of a few periods)
+  std::vector<double> band(power.begin() + kFirst, power.begin() + pass + 1);
+  std::nth_element(band.begin(), band.begin() + static_cast<long>(band.size() / 2), band.end());
+  const double median = band[band.size() / 2];
+  double kept = 0;
+  for (long k = kFirst + kSide; k <= pass - kSide; ++k) {
+    const double p = power[static_cast<std::size_t>(k)];
+    bool peak = p >= kStandsOut * median;
+    for (long j = k - kSide; peak && j <= k + kSide; ++j) peak = p >= power[static_cast<std::size_t>(j)];
+    if (peak) kept = std::max(kept, p);
+  }
+  long strongest = pass + 1;
+  for (long k = pass + 1; k < static_cast<long>(power.size()); ++k)
+    if (power[static_cast<std::size_t>(k)] > power[static_cast<std::size_t>(strongest)]) strongest = k;
+  if (strongest >= static_cast<long>(power.size())) return;
+  // Nothing that stands out anywhere (noise, or a record of a few periods): nothing to judge.
+  if (kept == 0 && power[static_cast<std::size_t>(strongest)] < kStandsOut * median) return;
+  const double removed_hz = static_cast<double>(strongest) * df;
+  const std::string where = path + ": --resample-rate " + format_value(rate) + " Hz: ";
+  if (kept == 0)
+    throw InputError(where + "no peak stands out below its pass band (" + format_rounded(kPassBand * rate) +
+                     " Hz), and the record's strongest peak, " + format_rounded(removed_hz, 4) +
+                     " Hz, lies above it: what is left is the low-pass's residue, not modes (choose a rate above " +
+                     format_rounded(removed_hz / kPassBand, 3) + " Hz, or none)");
+  if (power[static_cast<std::size_t>(strongest)] < kRemovedPeak * kept) return;
+  const std::string said = "the record's peak at " + format_rounded(removed_hz, 4) + " Hz lies above the pass band (" +
+                           format_rounded(kPassBand * rate) + " Hz) and is removed; a pole between " +
+                           format_rounded(kPassBand * rate) + " and " + format_rounded(rate / 2) +
+                           " Hz is the low-pass's edge, not a mode";
+  std::cerr << "beamid: " << where << said << "\n";
+  s.notes += said + "; ";
+}
+
 void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   const double fs = 1 / s.dt_s;
   const auto n = static_cast<double>(s.values.size());
@@ -163,6 +241,10 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
                        format_value(cutoff) + " Hz leaves " + format_rounded(100 * after / before, 2) +
                        " % of the record's power: the record's content lies above it (choose a rate above twice its "
                        "highest mode)");
+  }
+  if (rate < fs) {
+    judge_removed_content(s, rate, path);
+    s.pass_band_hz = kPassBand * rate;
   }
   s.notes += "resampled from " + format_value(fs) + " Hz to " + format_value(rate) +
              " Hz by windowed-sinc interpolation" +

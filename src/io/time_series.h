@@ -22,6 +22,7 @@
 // falls).
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,10 @@ struct TimeSeries {
   double dt_s = 0;
   std::vector<double> values;
   std::string notes;  // what was done to the record (window, conversion, resampling)
+  // Set by a --resample-rate below the record's rate: the top of its low-pass's pass band; a pole above it is
+  // distorted by the filter, or made by its edge from a removed peak's tail (modal-id and spikes say so). Infinity
+  // otherwise.
+  double pass_band_hz = std::numeric_limits<double>::infinity();
 };
 
 // The format from the content, else from the ending (above).

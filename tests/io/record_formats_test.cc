@@ -501,5 +501,38 @@ TEST(RecordFormats, ResamplingToARateKeepsTheBandAndRemovesWhatAliases) {
   EXPECT_NE(error_of(path, o).find("at least 8 are needed"), std::string::npos);
 }
 
+TEST(RecordFormats, ResamplingBelowARecordsContentIsRefusedOrSaid) {
+  // Decays of two modes, 4 s at 2 kHz (the ninth pass's #2). Resampled to 10 Hz, below both 23 and 141 Hz, only the
+  // low-pass's residue is left: refused (its pencil gave 1.02 and 4.51 Hz "modes"). Resampled to 100 Hz, 31 Hz is
+  // kept and 173 Hz removed: read, with the pass band (0.40 x 100 Hz) set so that a pole at the filter's edge is said.
+  // A 10 Hz decay resampled to 100 Hz removes nothing that stands out: no note (its pass band is set all the same).
+  const auto decay = [](double f1, double f2, double a2) {
+    std::string text = "t_s,a_m_s2\n";
+    char row[96];
+    for (int i = 0; i < 8000; ++i) {
+      const double t = i / 2000.0;
+      const double v = std::exp(-2 * t) * std::sin(2 * std::numbers::pi * f1 * t) +
+                       a2 * std::exp(-6 * t) * std::sin(2 * std::numbers::pi * f2 * t);
+      std::snprintf(row, sizeof row, "%.6f,%.17g\n", t, v);
+      text += row;
+    }
+    return text;
+  };
+  ImportOptions o;
+  o.resample_rate_hz = 10;
+  const std::string refused = error_of(write("w23.csv", decay(23, 141, 0.5)), o);
+  EXPECT_NE(refused.find("--resample-rate 10 Hz: no peak stands out below its pass band (4 Hz)"), std::string::npos)
+      << refused;
+  EXPECT_NE(refused.find("strongest peak, 23"), std::string::npos) << refused;
+  o.resample_rate_hz = 100;
+  const TimeSeries kept = read_time_series(write("rs.csv", decay(31, 173, 2)), o);
+  EXPECT_EQ(kept.pass_band_hz, 40);
+  EXPECT_NE(kept.notes.find("the record's peak at 173 Hz lies above the pass band (40 Hz)"), std::string::npos)
+      << kept.notes;
+  const TimeSeries clean = read_time_series(write("ten.csv", decay(10, 30, 0)), o);
+  EXPECT_EQ(clean.pass_band_hz, 40);
+  EXPECT_EQ(clean.notes.find("pass band"), std::string::npos) << clean.notes;
+}
+
 }  // namespace
 }  // namespace beamid::io
