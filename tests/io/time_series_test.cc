@@ -387,6 +387,30 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   EXPECT_NE(error_of(write("clip.csv", clipped))
                 .find("clip.csv:7: a = 2.5 on 3 or more consecutive samples at the record's peak"),
             std::string::npos);
+  // A dropout: 100 zeros at 0.5 s inside a 30 Hz decay sampled at 1 kHz (the ninth pass's #6), named on its first line
+  // (header line 1, sample i on line i + 2). The same decay quantised to a 16-bit range, whose tail rounds to zero for
+  // the record's last second, is no dropout, nor is a 0.25 Hz swing of 5 % of the peak under it, whose turning point at
+  // 3 s holds one quantised value for about 44 samples: near such runs the signal stays within a few quanta of the
+  // run's value (here about 9), far below 1 % of the peak.
+  const auto record = [](int dropout, double quantum, double slow) {
+    std::string text = "t_s,x_m\n";
+    for (int i = 0; i < 4000; ++i) {
+      const double t = i * 1e-3;
+      double x = std::exp(-4 * t) * std::sin(2 * std::numbers::pi * 30 * t + 0.3) +
+                 slow * std::sin(2 * std::numbers::pi * 0.25 * t);
+      if (quantum > 0) x = quantum * std::round(x / quantum);
+      if (i >= dropout && i < dropout + 100) x = 0;
+      text += format_value(t) + "," + format_value(x) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NE(error_of(write("dropout.csv", record(500, 0, 0)))
+                .find("dropout.csv:502: x_m = 0 on 100 consecutive samples inside the record, with the vibration on "
+                      "both sides: a dropout"),
+            std::string::npos)
+      << error_of(write("dropout.csv", record(500, 0, 0)));
+  EXPECT_NO_THROW(read_time_series(write("tail.csv", record(-1000, 1.0 / 32768, 0))));
+  EXPECT_NO_THROW(read_time_series(write("slow.csv", record(-1000, 1.0 / 32768, 0.05))));
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";
   ImportOptions o;
