@@ -166,6 +166,34 @@ bounds = { "attachment1.m" = [0.001, 0.02], cDI = [1e-6, 1e-3] }
   EXPECT_NE(text.find("`[true]` some candidate model fits record 'short'"), std::string::npos) << text;
 }
 
+// What is found only when a record is read names the key's line too (the eighth pass's RQ08, RQ19: the study file
+// alone): a start after the record's end, a peak above its Nyquist frequency.
+std::string run_error(const std::string& name, const std::string& body) {
+  std::ostringstream log;
+  try {
+    compute_real_study(load_real_study(scratch_study(name, body)), log);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "ran";
+}
+
+TEST(RealStudy, ErrorsFoundWhenARecordIsReadNameTheKeysLine) {
+  const std::string fit = "\n[fit]\nestimate = [\"EI\"]\ncosts = [\"modal\"]\nmax_evaluations = 10\n";
+  std::string late = kTwoRecords;
+  late.replace(late.find("peaks_hz = [25.07"), 0, "start_s = 500.0\n");  // line 16 of the study file
+  const std::string start = run_error("late", late + fit);
+  EXPECT_EQ(start.find(scratch_study("late", late + fit) + ":16: "), 0u) << start;
+  EXPECT_NE(start.find("strip_L300.csv: record 'long'.start_s = '500' s: must lie inside the record"), std::string::npos)
+      << start;
+  std::string high = kTwoRecords;
+  high.replace(high.find("990.0]"), 5, "9e5");  // line 10; the record is sampled at 4 kHz
+  const std::string peak = run_error("high", high + fit);
+  EXPECT_NE(peak.find("study.toml:10: record 'short'.peaks_hz = 9e+05 Hz: must lie below the record's Nyquist"),
+            std::string::npos)
+      << peak;
+}
+
 TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   const std::string fit = "\n[fit]\nestimate = [\"EI\"]\ncosts = [\"modal\"]\n";
   EXPECT_EQ(load_error("good", std::string(kTwoRecords) + fit), "accepted");

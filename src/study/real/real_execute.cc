@@ -25,7 +25,7 @@ namespace {
 
 // The readers name the command line's flags (--sample-rate); a real study's user wrote its keys
 // (record.sample_rate_hz): an error names those, with the study file and the record (the second pass's N519).
-std::string in_study_keys(std::string message, const RealStudySpec& spec, const RealRecordSpec& r) {
+std::string in_study_keys(std::string message, const RealRecordSpec& r) {
   // Longer flags first, so that --resample-rate is not read as --resample.
   const std::pair<const char*, const char*> keys[] = {{"--resample-rate", "resample_rate_hz"},
                                                       {"--time-variable", "time_variable"},
@@ -37,6 +37,14 @@ std::string in_study_keys(std::string message, const RealStudySpec& spec, const 
                                                       {"--start", "start_s"},
                                                       {"--duration", "duration_s"},
                                                       {"--units", "units"}};
+  // The line of the first key the message names (of the record's table when it names none): "study.toml:11: ...".
+  std::string line = r.where.at("");
+  std::size_t first = std::string::npos;
+  for (const auto& [flag, key] : keys)
+    if (const std::size_t at = message.find(flag); at < first && r.where.contains(key)) {
+      first = at;
+      line = r.where.at(key);
+    }
   for (const auto& [flag, key] : keys) {
     const std::string replacement = "record '" + r.name + "'." + key;
     for (std::size_t at = message.find(flag); at != std::string::npos;
@@ -49,7 +57,7 @@ std::string in_study_keys(std::string message, const RealStudySpec& spec, const 
       message.replace(at, end - at, replacement);
     }
   }
-  return spec.path + ": " + message;
+  return line + ": " + message;
 }
 
 RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r) {
@@ -68,11 +76,18 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   try {
     out.series = io::read_time_series(r.file, import);
   } catch (const InputError& error) {
-    throw InputError(in_study_keys(error.what(), spec, r));
+    throw InputError(in_study_keys(error.what(), r));
   }
   out.nominal = config::load_beam_toml(r.beam_file.empty() ? spec.beam_file : r.beam_file);
   // The record's modes near peaks_hz, with their uncertainty, by the estimator every command shares (they had been
   // three-bin DFT estimates, 0.1-0.2 % from what modal-id and fit reported for the same record: issue 31).
+  // A peak the record cannot hold (the eighth pass's RQ19: 900 Hz in a record sampled at 1652 Hz was "no identified
+  // mode within 0.05 of 900 Hz").
+  const double nyquist_hz = 0.5 / out.series.dt_s;
+  for (const double f : r.peaks_hz)
+    if (f >= nyquist_hz)
+      throw InputError(r.where.at("peaks_hz") + ": record '" + r.name + "'.peaks_hz = " + format_value(f) +
+                       " Hz: must lie below the record's Nyquist frequency, " + format_rounded(nyquist_hz, 6) + " Hz");
   signal::MeasureOptions measure;
   measure.wanted_hz = r.peaks_hz;
   signal::MeasuredModes found;
@@ -84,7 +99,7 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
     const std::string window = " (in the record's " + std::to_string(out.series.values.size()) +
                                " samples from t = " + format_rounded(out.series.t0_s, 6) + " s" +
                                (r.start_s ? ", its start_s: a later start leaves less of the decay" : "") + ")";
-    throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + error.what() + window);
+    throw InputError(r.where.at("peaks_hz") + ": record '" + r.name + "'.peaks_hz: " + error.what() + window);
   }
   // Each record is fitted as a free decay from its first sample: one that still holds its hit is said to (the seventh
   // pass's RU05: the UnB record without its start_s gave EI 4.5 % off with nothing said).
@@ -99,8 +114,8 @@ RealRecordData import_record(const RealStudySpec& spec, const RealRecordSpec& r)
   for (std::size_t a = 0; a < found.modes.size(); ++a)
     for (std::size_t b = a + 1; b < found.modes.size(); ++b)
       if (found.modes[a].mode.lambda == found.modes[b].mode.lambda)
-        throw InputError(spec.path + ": record '" + r.name + "'.peaks_hz: " + format_value(r.peaks_hz[a]) + " and " +
-                         format_value(r.peaks_hz[b]) + " Hz find the same mode (" +
+        throw InputError(r.where.at("peaks_hz") + ": record '" + r.name + "'.peaks_hz: " + format_value(r.peaks_hz[a]) +
+                         " and " + format_value(r.peaks_hz[b]) + " Hz find the same mode (" +
                          format_rounded(found.modes[a].mode.frequency_hz, 6) + " Hz): list each measured mode once");
   for (const signal::MeasuredMode& m : found.modes) {
     out.measured_hz.push_back(m.mode.frequency_hz);

@@ -95,8 +95,13 @@ RealRecordSpec read_record(Table r, const std::string& default_name,
   s.variable = r.string("variable", "");
   s.time_variable = r.string("time_variable", "");
   if (r.has("time_channel")) s.time_channel = std::to_string(r.integer("time_channel", std::nullopt, 1, 1 << 20));
-  r.finish({"name", "file", "channel", "units", "start_s", "duration_s", "resample", "peaks_hz", "beam",
-            "sample_rate_hz", "resample_rate_hz", "variable", "time_variable", "time_channel"});
+  const std::vector<std::string> keys = {
+      "name", "file",           "channel",          "units",    "start_s",       "duration_s",  "resample", "peaks_hz",
+      "beam", "sample_rate_hz", "resample_rate_hz", "variable", "time_variable", "time_channel"};
+  r.finish(keys);
+  s.where[""] = r.where();
+  for (const std::string& key : keys)
+    if (r.has(key)) s.where[key] = r.where(key);
   return s;
 }
 

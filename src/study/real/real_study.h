@@ -59,6 +59,8 @@ struct RealRecordSpec {
   // any record.
   std::optional<double> sample_rate_hz, resample_rate_hz;
   std::string variable, time_variable, time_channel;
+  // "file:line" of each key given, and "" -> of the [[record]] table: errors found when the record is read name them.
+  std::map<std::string, std::string> where;
 };
 
 struct CandidateSpec {
