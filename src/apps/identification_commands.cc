@@ -49,7 +49,9 @@ std::vector<FlagSpec> spike_flags() {
 // window, a rate (io/time_series.h).
 std::vector<FlagSpec> import_flags() {
   return {text_flag("channel", "signal column by name or 1-based index (default: the only one)"),
-          text_flag("units", "auto | g | as-is (default auto: records in g, mm, mm/s or mm/s^2 are converted to SI)"),
+          text_flag("units",
+                    "auto | g | as-is (default auto: records in g, mm, mm/s or mm/s^2 are converted to SI; as-is: the "
+                    "values as SI, for a record that states no unit or one beamid does not convert)"),
           number_flag("start", "keep samples from this time, s (default: the first)"),
           number_flag("duration", "keep this many seconds from --start (default: to the end)"),
           switch_flag("resample", "interpolate a non-uniform time base onto a uniform one instead of refusing it"),

@@ -503,7 +503,16 @@ std::size_t cut_window(TimeSeries& s, const std::vector<double>& v, double t0, d
 
 // To SI (io/units.h): the unit the file states ("auto"), or g when the user says so; "as-is" converts nothing.
 void convert_to_si(TimeSeries& s, const ImportOptions& o, const std::string& path) {
-  if (o.units == "as-is") return;  // the numbers as they are, the file's unit kept as its label
+  // --units as-is takes the numbers as they are, the file's unit kept as its label; a unit the file states that beamid
+  // converts (mm, g, in/s) contradicts it, as it does --units g: its values were taken as SI, 1000 times off for mm,
+  // which a fit to a measured force turns into a wrong stiffness (the ninth pass).
+  if (o.units == "as-is") {
+    if (const auto si = si_conversion(s.unit))
+      throw InputError(path + ": --units as-is: the file states that " + s.value_column + " is in " + s.unit +
+                       ", which beamid converts to " + si->unit + " (x " + format_value(si->factor) +
+                       "): leave --units at auto to read it so");
+    return;
+  }
   // A unit the file states that beamid does not know is not taken as SI (nm, ft, degF, furlong/fortnight were read
   // as m or m/s, and fits "converged" 1e9 times off: the third pass's P003-P016).
   if (o.units == "auto" && !s.unit.empty() && !is_known_unit(s.unit))

@@ -146,15 +146,17 @@ TEST(TimeSeries, ReadsLabViewTextWithRoundedTimesAndConvertsG) {
   // dt from the endpoints: the 6-decimal rounding of the last time (<= 5e-7 s) over 99 steps.
   EXPECT_NEAR(s.dt_s, 31.0 / 51200, 5e-7 / 99 + 1e-15);
   EXPECT_NEAR(s.values[3], 9.80665 * std::round(1e6 * std::sin(0.9)) / 1e6, 1e-12);
-  // as-is keeps g; a window keeps t in [start, start + duration).
+  // A window keeps t in [start, start + duration). --units as-is would take the g the file states as m/s^2: refused.
   ImportOptions o;
-  o.units = "as-is";
   o.start_s = 10 * 31.0 / 51200;
   o.duration_s = 20 * 31.0 / 51200;
   const auto w = read_time_series(write("rec.lvm", lvm(100)), o);
-  EXPECT_EQ(w.unit, "g");
+  EXPECT_EQ(w.unit, "m/s^2");
   ASSERT_EQ(w.values.size(), 20u);
-  EXPECT_NEAR(w.values[0], std::round(1e6 * std::sin(3.0)) / 1e6, 1e-12);
+  EXPECT_NEAR(w.values[0], 9.80665 * std::round(1e6 * std::sin(3.0)) / 1e6, 1e-12);
+  o.units = "as-is";
+  EXPECT_NE(error_of(write("rec.lvm", lvm(100)), o).find("--units as-is: the file states that Acceleration is in g"),
+            std::string::npos);
   EXPECT_NEAR(w.t0_s, 10 * w.dt_s, 1e-12);
 }
 

@@ -182,12 +182,28 @@ TEST(Units, ARecordInMillimetresPerSecondIsReadInMetresPerSecond) {
   EXPECT_EQ(s.unit, "m/s");
   EXPECT_EQ(s.values[0], -2e-3);  // -2 mm/s
   EXPECT_NE(s.notes.find("converted from mm/s to m/s (x 0.001)"), std::string::npos) << s.notes;
-  // --units as-is takes the numbers as they are, the file's unit kept as their label.
+  // --units as-is takes the numbers as they are; a unit the file states that beamid converts contradicts it, as it
+  // does --units g (mm/s taken as m/s is 1000 times off). A unit it does not convert (V, or SI) is kept as the label.
   ImportOptions as_is;
   as_is.units = "as-is";
-  const TimeSeries raw = read_time_series(path, as_is);
+  try {
+    read_time_series(path, as_is);
+    ADD_FAILURE() << "mm/s taken as-is";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "--units as-is: the file states that velocity_mm_s is in mm/s, which beamid converts to m/s"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::string volts = testing::TempDir() + "volts.csv";
+  {
+    std::ofstream out(volts);
+    out << "t_s,signal (V)\n";
+    for (int i = 0; i < 16; ++i) out << 0.001 * i << "," << (i % 5) - 2 << "\n";
+  }
+  const TimeSeries raw = read_time_series(volts, as_is);
   EXPECT_EQ(raw.values[0], -2.0);
-  EXPECT_EQ(raw.unit, "mm/s");
+  EXPECT_EQ(raw.unit, "V");
 }
 
 }  // namespace
