@@ -257,7 +257,7 @@ std::vector<FlagSpec> fit_flags() {
                 "(default: the non-damping ones)"),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
-      text_flag("refine", "hybrid: the cost of the second fit, time | freq-band (default time)"),
+      text_flag("refine", "hybrid: the cost of the second fit, time | freq-band | spike-smooth (default time)"),
       number_flag("start-scale", "start of every estimated parameter = S x its --beam value (default 1)"),
       number_flag("bound-factor", "bounds [v/F, v F] around each --beam value v (default 2)"),
       text_flag("bounds", "explicit bounds KEY=LO:HI,... (override --bound-factor)"),

@@ -29,8 +29,8 @@ const core::NameSet& strategy_names() {
                                     {kStaged, "the paper's three stages: stiffness and inertia, damping, all"},
                                     {kContinuation, "record-length continuation: Nbar/16, /8, /4, /2, then all"},
                                     {kHybrid,
-                                     "the fit's cost (spike-smooth) from the start, then --refine (time or "
-                                     "freq-band) from its estimate"}});
+                                     "the fit's cost (spike-smooth, or modal) from the start(s), then --refine "
+                                     "(time, freq-band or spike-smooth) from its estimate"}});
   return names;
 }
 
@@ -182,8 +182,16 @@ std::vector<model::BeamParameters> record_starts(const std::vector<Record>& reco
 
 void validate(const FitOptions& o) {
   if (auto error = strategy_names().violation("strategy", o.strategy)) throw InputError(*error);
-  if (o.strategy == kHybrid && o.refine != costs::kTimeCost && o.refine != costs::kBandCost)
-    throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost);
+  // The refinement is a least-squares cost with a Jacobian (Levenberg-Marquardt from the global estimate): time or
+  // freq-band (the efficient ones with a narrow basin), or spike-smooth (a measured record's, under model error),
+  // after a global cost (spike-smooth, or modal with starts over the bounds: the route from nominal starts, issue 31).
+  if (o.strategy == kHybrid && o.refine != costs::kTimeCost && o.refine != costs::kBandCost &&
+      o.refine != costs::kSpikeSmoothCost)
+    throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost +
+                     ", " + costs::kSpikeSmoothCost);
+  if (o.strategy == kHybrid && o.refine == o.cost.name)
+    throw InputError("refine = '" + o.refine + "': must differ from the cost it refines (cost = '" + o.cost.name +
+                     "')");
   if (auto error = validation_error(o.optimizer)) throw InputError(*error);
   // The paper's spike cost is piecewise constant in the model's frequencies (its spikes sit on DFT bins): a
   // derivative-based method sees a zero gradient on each step and stops where it started, "converged" (EI 9 % off

@@ -7,9 +7,13 @@
 //   "continuation": record-length continuation, all parameters on the first Nbar/16, /8, /4, /2 samples and then
 //             the whole record, each from the previous estimate (not in the paper; a known remedy for the narrow
 //             basins of the time-domain cost);
-//   "hybrid": the fit's cost (a global one with a wide basin: spike-smooth) directly from the start(s), then the
-//             `refine` cost (time or freq-band: efficient, but with a basin of about 1/(2 f T)) by
-//             Levenberg-Marquardt from that estimate;
+//   "hybrid": the fit's cost (a global one with a wide basin: spike-smooth, or modal with starts spread over the
+//             bounds) directly from the start(s), then the `refine` cost (time or freq-band: efficient, but with a
+//             basin of about 1/(2 f T); or spike-smooth, a measured record's) by Levenberg-Marquardt from that
+//             estimate. "modal" with --starts, refined by spike-smooth, is the route from nominal starts: the modal
+//             cost needs no simulation, so many starts are cheap, and its pairing by frequency has the widest basin;
+//             it reached a tip inertia started 10 times off and a length 5 % off where spike-smooth from the nominal
+//             start stalled on its bounds (issue 31, tests/fit/identification_test.cc);
 // each run from the given start and, with starts > 1, from further space-filling starts in the bounds (the lowest
 // final cost wins; ties go to the earlier start, so the outcome does not depend on timing).
 // A failed model evaluation (integration, eigen-decomposition, (A4)) is an infinite cost; a failed fit is a status.
@@ -59,7 +63,7 @@ struct FitOptions {
   std::vector<EstimatedParameter> estimate;
   std::string scaling = "linear";   // "linear" | "log"
   std::string strategy = "direct";  // "direct" | "staged" | "continuation" | "hybrid"
-  std::string refine = "time";      // hybrid only: the cost of the second fit, "time" | "freq-band"
+  std::string refine = "time";      // hybrid only: the second fit's cost, "time" | "freq-band" | "spike-smooth"
   OptimizerOptions optimizer;
   int starts = 1;                    // 1: the given start only; more: plus space-filling starts
   std::string start_design = "lhs";  // "lhs" | "random"

@@ -184,7 +184,8 @@ TEST(RealStudy, ErrorsFoundWhenARecordIsReadNameTheKeysLine) {
   late.replace(late.find("peaks_hz = [25.07"), 0, "start_s = 500.0\n");  // line 16 of the study file
   const std::string start = run_error("late", late + fit);
   EXPECT_EQ(start.find(scratch_study("late", late + fit) + ":16: "), 0u) << start;
-  EXPECT_NE(start.find("strip_L300.csv: record 'long'.start_s = '500' s: must lie inside the record"), std::string::npos)
+  EXPECT_NE(start.find("strip_L300.csv: record 'long'.start_s = '500' s: must lie inside the record"),
+            std::string::npos)
       << start;
   std::string high = kTwoRecords;
   high.replace(high.find("990.0]"), 5, "9e5");  // line 10; the record is sampled at 4 kHz
@@ -248,6 +249,17 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   rate.replace(rate.find("peaks_hz = [25.07"), 0, "sample_rate_hz = 0.0\n");
   EXPECT_NE(load_error("rate", rate + fit).find("record2.sample_rate_hz"), std::string::npos)
       << load_error("rate", rate + fit);
+  // The route's keys: start_from is the first cost, with another after it; a seed without starts seeds nothing.
+  const std::string two_costs = "\n[fit]\nestimate = [\"EI\"]\ncosts = [\"modal\", \"spike-smooth\"]\n";
+  EXPECT_EQ(load_error("route", std::string(kTwoRecords) + two_costs + "starts = 4\nstart_from = \"modal\"\n"),
+            "accepted");
+  EXPECT_NE(load_error("route", std::string(kTwoRecords) + two_costs + "start_from = \"spike-smooth\"\n")
+                .find("fit.start_from = 'spike-smooth': must be the first of fit.costs ('modal')"),
+            std::string::npos);
+  EXPECT_NE(load_error("route", std::string(kTwoRecords) + fit + "start_from = \"modal\"\n").find("fit.start_from"),
+            std::string::npos);
+  EXPECT_NE(load_error("route", std::string(kTwoRecords) + fit + "seed = 3\n").find("seeds fit.starts > 1"),
+            std::string::npos);
   // One window.
   EXPECT_NE(load_error("windows", std::string(kTwoRecords) + fit + "windows = 1\n").find("fit.windows"),
             std::string::npos);

@@ -269,11 +269,20 @@ RealStudySpec load_real_study(const std::string& path) {
       r.fail("mode_weight", "'" + s.mode_weight + "'", "is read by the modal cost; fit.costs holds no modal cost");
     s.windows = r.integer("windows", 0, 0, 64);
     if (s.windows == 1) r.fail("windows", "1", "must be 0 (none) or >= 2");
+    s.starts = r.integer("starts", s.starts, 1, core::kMaxStarts);
+    s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 1 << 30));
+    if (r.has("seed") && s.starts == 1) r.fail("seed", std::to_string(s.seed), "seeds fit.starts > 1; starts is 1");
+    s.start_from = r.string("start_from", "");
+    if (!s.start_from.empty() && (s.costs.size() < 2 || s.start_from != s.costs.front()))
+      r.fail("start_from", "'" + s.start_from + "'",
+             "must be the first of fit.costs ('" + s.costs.front() +
+                 "'), with other costs after it to start from its "
+                 "estimate");
     // Bounds of any key a candidate may estimate; one that no model estimates is refused below.
     given.bounds = read_bounds(r, path, "fit.", {});
     fit_bounds_line = [r](const std::string& key) { return r.where("bounds") + ": fit.bounds." + key; };
     r.finish({"elements", "estimate", "per_record", "costs", "max_evaluations", "frequency_weight", "mode_weight",
-              "bounds", "windows"});
+              "bounds", "windows", "starts", "seed", "start_from"});
   }
   if (const auto items = document.root().array("candidate", false)) {
     for (std::size_t k = 0; k < items->size(); ++k) {

@@ -18,7 +18,11 @@
 //                  costs, bounds (a table KEY = [lo, hi]; default [v/2, 2v] around each record's nominal v),
 //                  max_evaluations, frequency_weight (the spike costs'), mode_weight (the modal cost's; default
 //                  measured: each mode over its measured uncertainty, costs/modal_cost.h), windows (K >= 2: also the
-//                  spread over K disjoint windows, fit/window_spread.h; 0: not done)
+//                  spread over K disjoint windows, fit/window_spread.h; 0: not done), starts (the nominal start
+//                  and starts - 1 space-filling ones over the bounds, the lowest cost kept; default 1), seed (of
+//                  those starts), start_from (the first of costs: the route from nominal starts, fit/identification.h:
+//                  that cost fitted from the starts, every later cost from its estimate, so "modal" with starts and
+//                  then "spike-smooth" globalises with the cheap modal cost and refines with the spike cost)
 //   [[candidate]]  optional alternative models, each fitted with every cost: name, and any of beam (file, replacing
 //                  every record's), values (a table KEY = nominal value, e.g. "support.k_theta" = 6000 makes the
 //                  clamp compliant), estimate, per_record, bounds (over [fit]'s), records (the names of the records
@@ -31,6 +35,7 @@
 // and record), manifest.json, provenance.csv, report.md (the REPORT.md block) and timings.csv.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
@@ -84,7 +89,10 @@ struct RealStudySpec {
   // The modal cost's (costs/cost.h): by default each mode over its measured uncertainty, the maximum-likelihood
   // weighting that the study's verdict (a model frequency within 2 u) also judges by.
   std::string mode_weight = "measured";
-  int windows = 0;  // 0: no window spread
+  int windows = 0;         // 0: no window spread
+  int starts = 1;          // per fit (of start_from's cost alone when given)
+  std::uint64_t seed = 1;  // of the space-filling starts
+  std::string start_from;  // "": every cost from the nominal start; else the first cost, the others from its estimate
 };
 
 // Strict reading, as for synthetic studies (InputError naming file:line, key, value and constraint).

@@ -113,7 +113,18 @@ void real_header(Markdown& md, const RealStudySpec& spec, const RealResults& res
                                                            ? std::string("by their measured uncertainty")
                                                            : std::string("by relative errors"))
              : "")
-     << (spec.windows >= 2 ? "; window sd over " + std::to_string(spec.windows) + " disjoint windows" : "") << ".*\n\n";
+     << (spec.windows >= 2 ? "; window sd over " + std::to_string(spec.windows) + " disjoint windows" : "")
+     << (spec.start_from.empty()
+             ? (spec.starts > 1 ? "; each fit from the nominal start and " + std::to_string(spec.starts - 1) +
+                                      " space-filling starts over the bounds (seed " + std::to_string(spec.seed) + ")"
+                                : std::string("; each fit from the nominal values"))
+             : "; the " + spec.start_from + " cost from the nominal start" +
+                   (spec.starts > 1
+                        ? " and " + std::to_string(spec.starts - 1) + " space-filling starts over the bounds (seed " +
+                              std::to_string(spec.seed) + ")"
+                        : std::string()) +
+                   ", every other cost from its estimate (the route from nominal starts)")
+     << ".*\n\n";
 }
 
 // An identified frequency fits its measured one when it lies within kCoverage times the measured frequency's
