@@ -215,15 +215,8 @@ void identify_modes(const RealStudySpec& spec, const std::vector<RealRecordData>
   f.rms_misfit = std::sqrt(squares / count);
 }
 
-}  // namespace
-
-RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
-  RealResults out;
-  for (const RealRecordSpec& r : spec.records) {
-    out.records.push_back(import_record(spec, r));
-    for (const std::string& note : out.records.back().measured_notes)
-      log << "beamid real: record '" << r.name << "': " << note << "\n";
-  }
+// What the study runs, before it runs (the records, the candidates, the costs, N), and the N^3 warning.
+void log_what_runs(const RealStudySpec& spec, const RealResults& out, std::ostream& log) {
   log << "beamid real " << spec.path << " (commit " << io::commit_label() << "): " << out.records.size()
       << " record(s) (";
   for (std::size_t k = 0; k < out.records.size(); ++k)
@@ -237,19 +230,39 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
     log << "beamid real: fit.elements = " << spec.elements << ": one model evaluation takes about "
         << io::seconds_text(seconds) << " here (it grows as N^3), and a fit takes hundreds\n";
   log << std::flush;
+}
+
+// A candidate's fit options before the cost is chosen: record 1's start and experiment, its spikes, the study's
+// weights and budget, the candidate's estimated keys and bounds.
+fit::FitOptions candidate_options(const RealStudySpec& spec, const CandidateSpec& candidate,
+                                  const std::vector<fit::Record>& records) {
+  fit::FitOptions base;
+  base.start = records.front().start;
+  base.experiment = records.front().experiment;
+  base.elements = spec.elements;
+  base.cost.spikes.frequencies_hz = records.front().spike_frequencies_hz;
+  base.cost.spikes.count = static_cast<int>(base.cost.spikes.frequencies_hz.size());
+  base.cost.frequency_weight = spec.frequency_weight;
+  base.cost.mode_weight = spec.mode_weight;
+  base.optimizer.max_evaluations = spec.max_evaluations;
+  base.estimate = candidate_estimate(candidate, records);
+  return base;
+}
+
+}  // namespace
+
+RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
+  RealResults out;
+  for (const RealRecordSpec& r : spec.records) {
+    out.records.push_back(import_record(spec, r));
+    for (const std::string& note : out.records.back().measured_notes)
+      log << "beamid real: record '" << r.name << "': " << note << "\n";
+  }
+  log_what_runs(spec, out, log);
 
   for (const CandidateSpec& candidate : spec.candidates) {
     const std::vector<fit::Record> records = candidate_records(spec, candidate, out.records);
-    fit::FitOptions base;
-    base.start = records.front().start;
-    base.experiment = records.front().experiment;
-    base.elements = spec.elements;
-    base.cost.spikes.frequencies_hz = records.front().spike_frequencies_hz;
-    base.cost.spikes.count = static_cast<int>(base.cost.spikes.frequencies_hz.size());
-    base.cost.frequency_weight = spec.frequency_weight;
-    base.cost.mode_weight = spec.mode_weight;
-    base.optimizer.max_evaluations = spec.max_evaluations;
-    base.estimate = candidate_estimate(candidate, records);
+    const fit::FitOptions base = candidate_options(spec, candidate, records);
     // The route from nominal starts (start_from): its cost from the starts, every later cost from its estimate.
     std::optional<fit::FitResult> from;
     for (const auto& cost : spec.costs) {
