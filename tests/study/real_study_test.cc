@@ -195,6 +195,24 @@ TEST(RealStudy, ErrorsFoundWhenARecordIsReadNameTheKeysLine) {
       << peak;
 }
 
+TEST(RealStudy, ARecordLeftOutOfAPerRecordParameterKeepsItsNominalValue) {
+  // fixed = { short = ["cDI"] }: record 1's damping is not estimated (its beam file's value stays), record 2's is.
+  const RealStudySpec spec = load_real_study(scratch_study("fixed", std::string(kTwoRecords) + R"(
+[fit]
+estimate = ["EI"]
+per_record = ["cDI"]
+costs = ["modal"]
+max_evaluations = 10
+fixed = { short = ["cDI"] }
+)"));
+  std::ostringstream log;
+  const RealResults results = compute_real_study(spec, log);
+  ASSERT_EQ(results.fits.size(), 1u);
+  std::vector<std::string> keys;
+  for (const auto& p : results.fits.front().parameters) keys.push_back(p.key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"EI", "record2.cDI"})) << log.str();
+}
+
 TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   const std::string fit = "\n[fit]\nestimate = [\"EI\"]\ncosts = [\"modal\"]\n";
   EXPECT_EQ(load_error("good", std::string(kTwoRecords) + fit), "accepted");
@@ -260,6 +278,15 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
             std::string::npos);
   EXPECT_NE(load_error("route", std::string(kTwoRecords) + fit + "seed = 3\n").find("seeds fit.starts > 1"),
             std::string::npos);
+  // A record left out of one per-record parameter (fixed): keyed by a record's name, listing per_record keys.
+  const std::string per_record = "\n[fit]\nestimate = [\"EI\"]\nper_record = [\"cDI\"]\ncosts = [\"modal\"]\n";
+  EXPECT_NE(load_error("fixed", std::string(kTwoRecords) + per_record + "fixed = { medium = [\"cDI\"] }\n")
+                .find("fit.fixed.medium"),
+            std::string::npos);
+  EXPECT_NE(load_error("fixed", std::string(kTwoRecords) + per_record + "fixed = { short = [\"EI\"] }\n")
+                .find("must be one of cDI"),
+            std::string::npos)
+      << load_error("fixed", std::string(kTwoRecords) + per_record + "fixed = { short = [\"EI\"] }\n");
   // One window.
   EXPECT_NE(load_error("windows", std::string(kTwoRecords) + fit + "windows = 1\n").find("fit.windows"),
             std::string::npos);

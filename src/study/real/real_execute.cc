@@ -163,8 +163,12 @@ std::vector<fit::EstimatedParameter> candidate_estimate(const CandidateSpec& c,
   };
   for (const std::string& key : c.estimate) bounded(key, key, records.front().start);
   for (const std::string& key : c.per_record)
-    for (std::size_t k = 0; k < records.size(); ++k)
+    for (std::size_t k = 0; k < records.size(); ++k) {
+      const auto fixed = c.fixed.find(c.records[k]);  // this record keeps its nominal value of key
+      if (fixed != c.fixed.end() && std::find(fixed->second.begin(), fixed->second.end(), key) != fixed->second.end())
+        continue;
       bounded("record" + std::to_string(k + 1) + "." + key, key, records[k].start);
+    }
   return estimate;
 }
 

@@ -67,6 +67,24 @@ std::vector<std::string> estimated_keys(Table& r, const std::string& key) {
   return keys;
 }
 
+// fixed = { "record name" = ["cDI", ...] }: per-record keys that these records keep at their nominal value (a record
+// left out of one parameter: a decay too short to measure its damping, say). Keys must be per_record ones, records
+// the study's; nothing when absent.
+std::map<int, std::vector<std::string>> read_fixed(Table& r, const std::vector<RealRecordSpec>& records,
+                                                   const std::vector<std::string>& per_record) {
+  std::map<int, std::vector<std::string>> fixed;
+  std::optional<Table> t = r.table("fixed");
+  if (!t) return fixed;
+  for (const auto& [name, node] : t->entries()) {
+    const auto found =
+        std::find_if(records.begin(), records.end(), [&](const RealRecordSpec& record) { return record.name == name; });
+    if (found == records.end()) t->fail(name, node.text(), "must be keyed by the name of a [[record]] of the study");
+    if (per_record.empty()) t->fail(name, node.text(), "fixes per_record keys; this model has none");
+    fixed[static_cast<int>(found - records.begin())] = t->strings(name, true, per_record);
+  }
+  return fixed;
+}
+
 RealRecordSpec read_record(Table r, const std::string& default_name,
                            const std::function<std::string(const std::string&)>& relative) {
   const auto positive = [](double v) { return v > 0; };
@@ -176,6 +194,21 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
   for (auto it = c.bounds.begin(); it != c.bounds.end();)  // [fit]'s bounds of keys this candidate does not fit
     it = std::find(all.begin(), all.end(), it->first) == all.end() ? c.bounds.erase(it) : std::next(it);
   for (const auto& [key, b] : read_bounds(r, path, prefix, all)) c.bounds[key] = b;
+  if (r.has("fixed")) {
+    c.fixed = read_fixed(r, s.records, c.per_record);
+  } else {  // [fit]'s, where they still apply: keys this candidate estimates per record, records it fits
+    std::map<int, std::vector<std::string>> kept;
+    for (const auto& [record, keys] : c.fixed)
+      if (c.records.empty() || std::find(c.records.begin(), c.records.end(), record) != c.records.end())
+        for (const std::string& key : keys)
+          if (std::find(c.per_record.begin(), c.per_record.end(), key) != c.per_record.end())
+            kept[record].push_back(key);
+    c.fixed = kept;
+  }
+  for (const auto& [record, keys] : c.fixed)
+    if (!c.records.empty() && std::find(c.records.begin(), c.records.end(), record) == c.records.end())
+      r.fail("fixed", "'" + s.records[static_cast<std::size_t>(record)].name + "'",
+             "is no record of this candidate (its records)");
   // A value set for an estimated key is its start, which must lie inside its bounds (one outside ran, and every fit
   // of the candidate failed: the fourth pass's Q429, Q435, Q437).
   for (const auto& [key, value] : c.values) {
@@ -185,7 +218,7 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
              "is the start of an estimated key: must lie in its bounds [" + format_value(b->second.first) + ", " +
                  format_value(b->second.second) + "]");
   }
-  r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records"});
+  r.finish({"name", "beam", "values", "estimate", "per_record", "bounds", "records", "fixed"});
   return c;
 }
 
@@ -280,9 +313,10 @@ RealStudySpec load_real_study(const std::string& path) {
                  "estimate");
     // Bounds of any key a candidate may estimate; one that no model estimates is refused below.
     given.bounds = read_bounds(r, path, "fit.", {});
+    given.fixed = read_fixed(r, s.records, given.per_record);
     fit_bounds_line = [r](const std::string& key) { return r.where("bounds") + ": fit.bounds." + key; };
     r.finish({"elements", "estimate", "per_record", "costs", "max_evaluations", "frequency_weight", "mode_weight",
-              "bounds", "windows", "starts", "seed", "start_from"});
+              "bounds", "windows", "starts", "seed", "start_from", "fixed"});
   }
   if (const auto items = document.root().array("candidate", false)) {
     for (std::size_t k = 0; k < items->size(); ++k) {

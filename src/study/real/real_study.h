@@ -22,12 +22,14 @@
 //                  and starts - 1 space-filling ones over the bounds, the lowest cost kept; default 1), seed (of
 //                  those starts), start_from (the first of costs: the route from nominal starts, fit/identification.h:
 //                  that cost fitted from the starts, every later cost from its estimate, so "modal" with starts and
-//                  then "spike-smooth" globalises with the cheap modal cost and refines with the spike cost)
+//                  then "spike-smooth" globalises with the cheap modal cost and refines with the spike cost),
+//                  fixed (a table "record name" = [keys]: per_record keys that record keeps at its nominal value,
+//                  a record left out of one parameter)
 //   [[candidate]]  optional alternative models, each fitted with every cost: name, and any of beam (file, replacing
 //                  every record's), values (a table KEY = nominal value, e.g. "support.k_theta" = 6000 makes the
 //                  clamp compliant), estimate, per_record, bounds (over [fit]'s), records (the names of the records
-//                  it fits; default all). Without candidates, [fit] is the one model ("as given"). A position's
-//                  default bounds end at the beam's length.
+//                  it fits; default all), fixed (as in [fit]). Without candidates, [fit] is the one model ("as
+//                  given"). A position's default bounds end at the beam's length.
 //
 // Writes to results/<name>/: fits.csv (candidate, cost, parameter, estimate, three standard errors, nominal, ratio),
 // modes.csv (candidate, cost, record, mode, measured and identified frequency, damping ratio), candidates.csv (fit
@@ -75,6 +77,8 @@ struct CandidateSpec {
   std::vector<std::string> estimate, per_record;       // shared keys; keys estimated for each record
   std::vector<int> records;                            // indices of the records it fits (all by default)
   std::map<std::string, std::pair<double, double>> bounds;
+  // The study's record index -> per_record keys it keeps at its nominal value instead of estimating (`fixed`).
+  std::map<int, std::vector<std::string>> fixed;
 };
 
 struct RealStudySpec {
