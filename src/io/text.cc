@@ -1,6 +1,7 @@
 #include "io/text.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 namespace beamid::io {
 
@@ -40,6 +41,14 @@ std::string csv_quoted(const std::string& text) {
 void write_row(std::ostream& out, const std::vector<double>& values) {
   for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << full_precision(values[i]);
   out << '\n';
+}
+
+std::optional<double> decimal_number(const std::string& text) {
+  if (text.empty() || text.find_first_of("xX") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  return v;
 }
 
 }  // namespace beamid::io

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,6 +21,11 @@ std::string round_trip(double value);
 std::string hex64(std::uint64_t value);
 std::string json_string(const std::string& text);
 std::string csv_quoted(const std::string& text);
+
+// The number a record's field holds: the whole text read by strtod as a decimal number (inf and nan included, for
+// the callers' own finiteness checks), or nothing. strtod also reads hexadecimal ("0x10" as 16, "0x1p3" as 8), which
+// no DAQ writes: a hex literal in a CSV column was taken as a sample (the tenth pass's NF_hex).
+std::optional<double> decimal_number(const std::string& text);
 
 // One CSV row of numbers in full_precision form.
 void write_row(std::ostream& out, const std::vector<double>& values);

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "io/record_samples.h"
+#include "io/text.h"
 #include "io/units.h"
 
 namespace beamid::io {
@@ -109,10 +110,7 @@ Table read_csv(std::istream& in, const std::string& path) {
   // A file without a header would lose its first sample as "names" (issue 30): a first line of numbers is refused.
   bool numbers = true;
   for (const auto& n : t.names) {
-    const std::string cell = trim(n);
-    char* end = nullptr;
-    std::strtod(cell.c_str(), &end);
-    numbers = numbers && !cell.empty() && end == cell.c_str() + cell.size();
+    numbers = numbers && decimal_number(trim(n)).has_value();
   }
   if (numbers)
     throw InputError(path + ":1: '" + shown(trim(line)) +
@@ -230,11 +228,8 @@ bool decimal_commas(const std::string& line) {
 }
 
 bool all_numbers(const std::vector<std::string>& fields) {
-  for (const auto& cell : fields) {
-    char* end = nullptr;
-    std::strtod(cell.c_str(), &end);
-    if (cell.empty() || end != cell.c_str() + cell.size()) return false;
-  }
+  for (const auto& cell : fields)
+    if (!decimal_number(cell)) return false;
   return !fields.empty();
 }
 
@@ -331,9 +326,9 @@ void set_lvm_units(Table& t, const std::vector<std::string>& y_units) {
 // An LVM header's X0 or Delta_X on its line: a finite number, and a step that advances (Delta_X = 0 or -0.001 was
 // accepted beside an X column: the fourth pass's Q218, Q219).
 double time_base_number(const std::string& key, const std::string& value, const std::string& path, int number) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v))
+  const std::optional<double> read = decimal_number(value);
+  const double v = read.value_or(std::nan(""));
+  if (!std::isfinite(v))
     throw InputError(path + ":" + std::to_string(number) + ": " + key + " = '" + shown(value) +
                      "': must be a finite number");
   if (key == "Delta_X" && !(v > 0))
@@ -544,10 +539,10 @@ void use_mean_step_when_coarse(Samples& out, const Table& table, const std::stri
 }
 
 double parse(const std::string& path, int line, const std::string& column, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size())
+  const std::optional<double> read = decimal_number(text);
+  if (!read)
     throw InputError(path + ":" + std::to_string(line) + ": " + column + " = '" + shown(text) + "': must be a number");
+  const double v = *read;
   if (!std::isfinite(v))
     throw InputError(path + ":" + std::to_string(line) + ": " + column + " = " + shown(text) + ": must be finite");
   return v;

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/errors.h"
+#include "io/text.h"
 
 namespace beamid::io {
 namespace {
@@ -65,10 +66,8 @@ long integer_field(const std::string& path, int line, const std::string& text, c
 double number_field(const std::string& path, int line, std::string text, const std::string& what) {
   std::replace(text.begin(), text.end(), 'D', 'E');  // Fortran double-precision exponents
   std::replace(text.begin(), text.end(), 'd', 'e');
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    fail(path, line, what + " = '" + text.substr(0, 40) + "': must be a finite number");
+  const double v = decimal_number(text).value_or(std::nan(""));
+  if (!std::isfinite(v)) fail(path, line, what + " = '" + text.substr(0, 40) + "': must be a finite number");
   return v;
 }
 

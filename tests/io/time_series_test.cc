@@ -383,6 +383,11 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
             std::string::npos);
   EXPECT_NE(error_of(write("not.lvm", "time,value\n")).find("not.lvm:1: not a LabVIEW measurement file"),
             std::string::npos);
+  // A hexadecimal literal, which strtod reads (0x10 as 16), is no sample (the tenth pass's NF_hex).
+  EXPECT_NE(error_of(write("hex.csv", "t_s,x_m\n0,0.1\n0.1,0x10\n0.2,0.3\n"))
+                .find("hex.csv:3: x_m = '0x10': must be a number"),
+            std::string::npos)
+      << error_of(write("hex.csv", "t_s,x_m\n0,0.1\n0.1,0x10\n0.2,0.3\n"));
   // A clipped record: the peak held for 3 samples.
   std::string clipped = "t_s,a\n";
   for (int i = 0; i < 20; ++i) clipped += std::to_string(0.01 * i) + "," + (i >= 5 && i < 8 ? "2.5" : "0.1") + "\n";
