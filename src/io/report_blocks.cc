@@ -53,11 +53,22 @@ std::vector<Block> scan(const std::vector<std::string>& lines, const std::string
   return blocks;
 }
 
+// Lines without their ends: a file written on Windows (CR LF) has its markers found as well (its markers ended in CR
+// and no block was found, "0 generated block(s) refreshed": the tenth pass's RP_6).
 std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
   return lines;
+}
+
+// The file's own line end, kept when it is rewritten: CR LF if its first line ends so.
+std::string line_end(const std::string& text) {
+  const std::size_t first = text.find('\n');
+  return first != std::string::npos && first > 0 && text[first - 1] == '\r' ? "\r\n" : "\n";
 }
 
 }  // namespace
@@ -80,20 +91,20 @@ std::string replace_blocks(const std::string& text, const std::map<std::string, 
                            const std::string& source_name) {
   const std::vector<std::string> lines = split_lines(text);
   const std::vector<Block> blocks = scan(lines, source_name);
+  const std::string eol = line_end(text);
   std::string out;
   std::size_t next = 0;
   for (const auto& b : blocks) {
-    for (; next <= b.begin_line; ++next) out += lines[next] + "\n";
+    for (; next <= b.begin_line; ++next) out += lines[next] + eol;
     auto it = contents.find(b.name);
     if (it == contents.end()) {
-      for (; next < b.end_line; ++next) out += lines[next] + "\n";
+      for (; next < b.end_line; ++next) out += lines[next] + eol;
     } else {
-      out += it->second;
-      if (!it->second.empty() && it->second.back() != '\n') out += "\n";
+      for (const std::string& line : split_lines(it->second)) out += line + eol;
       next = b.end_line;
     }
   }
-  for (; next < lines.size(); ++next) out += lines[next] + "\n";
+  for (; next < lines.size(); ++next) out += lines[next] + eol;
   return out;
 }
 

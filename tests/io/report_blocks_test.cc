@@ -23,6 +23,16 @@ TEST(ReportBlocks, ReplacesOnlyNamedBlocks) {
   EXPECT_EQ(replace_blocks(kReport, {}, "R.md"), kReport);
 }
 
+TEST(ReportBlocks, AFileWithWindowsLineEndsIsUpdatedAndKeepsThem) {
+  // The tenth pass's RP_6: markers ending in CR were no markers, and nothing was refreshed without a word.
+  std::string crlf;
+  for (char c : kReport) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  EXPECT_EQ(block_names(crlf, "R.md"), (std::vector<std::string>{"a/x", "b"}));
+  EXPECT_EQ(replace_blocks(crlf, {{"b", "new b\n"}}, "R.md"),
+            "# Report\r\nprose\r\n<!-- BEGIN GENERATED a/x -->\r\nold x\r\n<!-- END GENERATED a/x -->\r\nmiddle\r\n"
+            "<!-- BEGIN GENERATED b -->\r\nnew b\r\n<!-- END GENERATED b -->\r\nend\r\n");
+}
+
 TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
   EXPECT_THROW(block_names("<!-- BEGIN GENERATED a -->\n", "R.md"), InputError);
   try {
