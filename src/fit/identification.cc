@@ -243,6 +243,15 @@ void validate_records(const FitOptions& o, const std::vector<Record>& records, c
       throw InputError("record " + std::to_string(r + 1) + " (" + records[r].name + "): " + error.what());
     }
   }
+  // One measurement fitted twice (a column pasted twice, a record listed under two names) counts its information
+  // twice: every standard error came out sqrt(2) too small, with nothing said (the tenth pass's RL_02, DC_2).
+  for (std::size_t a = 0; a < records.size(); ++a)
+    for (std::size_t b = a + 1; b < records.size(); ++b)
+      if (records[a].data == records[b].data)
+        throw InputError("records " + std::to_string(a + 1) + " (" + records[a].name + ") and " +
+                         std::to_string(b + 1) + " (" + records[b].name +
+                         ") hold the same samples: one measurement fitted twice counts its information twice (every "
+                         "standard error sqrt(2) too small); fit it once");
 }
 
 // A local derivative-free search (nelder-mead, bobyqa, sbplx) takes a first step of initial_step times each bound

@@ -233,6 +233,12 @@ TEST(JointFit, BadRecordsAreInputErrorsThatNameTheRecord) {
   auto silent = records;
   std::fill(silent[1].data.begin(), silent[1].data.end(), 0.0);
   EXPECT_NE(message(silent).find("all zero"), std::string::npos) << message(silent);
+  // One record under two names: its information would count twice (standard errors sqrt(2) too small).
+  auto twice = records;
+  twice[1] = records[0];
+  twice[1].name = "tip again";
+  EXPECT_NE(message(twice).find("records 1 (tip) and 2 (tip again) hold the same samples"), std::string::npos)
+      << message(twice);
 }
 
 }  // namespace

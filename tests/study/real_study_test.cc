@@ -187,6 +187,11 @@ TEST(RealStudy, ErrorsFoundWhenARecordIsReadNameTheKeysLine) {
   EXPECT_NE(start.find("strip_L300.csv: record 'long'.start_s = '500' s: must lie inside the record"),
             std::string::npos)
       << start;
+  std::string same = kTwoRecords;  // the second record is the first's file and window under another name
+  same.replace(same.find("strip_L300.csv"), 14, "strip_L200.csv");
+  same.replace(same.find("[25.07, 172.7, 473.3]"), 21, "[56.31, 381.3, 990.0]");
+  const std::string twice = run_error("same", same + fit);
+  EXPECT_NE(twice.find("record 'long' holds the same samples as record 'short'"), std::string::npos) << twice;
   std::string high = kTwoRecords;
   high.replace(high.find("990.0]"), 5, "9e5");  // line 10; the record is sampled at 4 kHz
   const std::string peak = run_error("high", high + fit);

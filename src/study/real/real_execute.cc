@@ -261,6 +261,13 @@ RealResults compute_real_study(const RealStudySpec& spec, std::ostream& log) {
     out.records.push_back(import_record(spec, r));
     for (const std::string& note : out.records.back().measured_notes)
       log << "beamid real: record '" << r.name << "': " << note << "\n";
+    // One measurement under two names would count twice in every joint fit (the tenth pass's RL_02: EI's standard
+    // error sqrt(2) too small, exit 0).
+    for (std::size_t k = 0; k + 1 < out.records.size(); ++k)
+      if (out.records[k].series.values == out.records.back().series.values)
+        throw InputError(r.where.at("") + ": record '" + r.name + "' holds the same samples as record '" +
+                         spec.records[k].name + "' (" + spec.records[k].where.at("") +
+                         "): one measurement fitted twice counts its information twice; list it once");
   }
   log_what_runs(spec, out, log);
 
