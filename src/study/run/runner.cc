@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 #include "core/errors.h"
 #include "core/limits.h"
@@ -101,6 +102,21 @@ int job_count(int jobs) {
   return hw > 0 ? static_cast<int>(hw) : 1;
 }
 
+// The command line's N^3 warning here too: a study at truth N = 400 printed its header and then nothing for 2.5
+// minutes (the tenth pass's ST_06). Each truth record is one eigen-analysis at N_truth; each unit hundreds at its N.
+void say_model_cost(const StudySpec& spec, const std::vector<const Unit*>& mine, std::ostream& log) {
+  int fitted = 0;
+  for (const Unit* u : mine) fitted = std::max(fitted, u->elements);
+  for (const auto& [what, n, count] : {std::tuple{"truth.elements", spec.truth.elements, "each truth record"},
+                                       std::tuple{"the largest fitted N", fitted, "each of a fit's hundreds"}}) {
+    const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200.0, 3);
+    if (seconds > 1)
+      log << "beamid study: " << what << " = " << n << ": one model evaluation (" << count << ") takes about "
+          << io::seconds_text(seconds) << " here (it grows as N^3)\n"
+          << std::flush;
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> validation_error(const RunOptions& o) {
@@ -144,6 +160,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   if (options.shard_count > 1)
     log << ", shard " << options.shard_index << "/" << options.shard_count << " = " << mine.size();
   log << ", " << jobs << " thread(s), output " << options.output_dir << "\n" << std::flush;
+  say_model_cost(spec, mine, log);
 
   RunSummary summary;
   summary.units = static_cast<int>(mine.size());
