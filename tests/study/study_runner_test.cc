@@ -291,6 +291,15 @@ TEST_F(StudyRunner, ARerunWithoutASectionRemovesItsOldTables) {
   const auto shrunk = tables(root_ / "shrunk"), expected = tables(root_ / "fresh-without");
   EXPECT_LT(shrunk.size(), reference_.size());
   EXPECT_EQ(shrunk, expected);
+  // The list of written tables removes only what a run wrote: a line added to it (a store record, a user's file) is
+  // refused by its check, and nothing is removed (the eleventh pass's TT3 deleted both).
+  fs::copy(root_ / "one", root_ / "edited", fs::copy_options::recursive);
+  std::ofstream(root_ / "edited" / "mine.txt") << "a user's notes\n";
+  std::ofstream(root_ / "edited" / "store" / "tables.txt", std::ios::app) << "mine.txt\n";
+  o.output_dir = (root_ / "edited").string();
+  ASSERT_TRUE(run_study(without, o, log, false).tables);
+  EXPECT_TRUE(fs::exists(root_ / "edited" / "mine.txt"));
+  EXPECT_NE(log.str().find("tables.txt: fails its check"), std::string::npos);
 }
 
 TEST_F(StudyRunner, ShardsMergeIntoTheTablesOfOneRun) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <mutex>
 #include <thread>
 #include <tuple>
@@ -218,7 +219,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   int present = 0;
   for (const Unit& u : plan.units) present += load_unit(store, u, spec.fit.estimate) ? 1 : 0;
   if (present == static_cast<int>(plan.units.size())) {
-    write_tables(spec, plan, store, options.output_dir);
+    write_tables(spec, plan, store, options.output_dir, log);
     summary.tables = true;
     log << "tables written to " << options.output_dir << "\n";
   } else {
@@ -230,7 +231,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
 
 void write_tables_from_store(const StudySpec& spec, const std::string& output_dir) {
   const Plan plan = make_plan(spec);
-  write_tables(spec, plan, Store(output_dir + "/store", io::commit_label()), output_dir);
+  write_tables(spec, plan, Store(output_dir + "/store", io::commit_label()), output_dir, std::cerr);
 }
 
 }  // namespace beamid::study

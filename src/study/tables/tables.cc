@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/hash.h"
 #include "io/files.h"
 #include "io/text.h"
 #include "study/analysis/claims.h"
@@ -88,29 +89,42 @@ RenderedFiles render_tables(const StudyResults& results) {
   return files;
 }
 
-void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, const std::string& output_dir) {
+void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, const std::string& output_dir,
+                  std::ostream& log) {
   namespace fs = std::filesystem;
   const StudyResults results = load_results(spec, plan, store);
   const RenderedFiles files = render_tables(results);
   for (const Rendered& f : files) io::write_file_atomic(fs::path(output_dir) / f.path, f.text);
   // The tables an earlier run wrote that this one does not (a section removed from the study file) are removed, so
-  // that the folder holds this run's tables only; the list of what was written is kept beside the store. Only
-  // relative paths inside the folder are ever removed.
+  // that the folder holds this run's tables only; the list of what was written is kept beside the store, with a check
+  // line over its content as a record has. Only relative paths inside the folder and outside the store are ever
+  // removed, and only from a list whose check holds: a line added to the list deleted a store record and a user's
+  // file (the eleventh pass's TT3).
   const fs::path list = fs::path(store.directory()) / "tables.txt";
   std::set<std::string> now;
   for (const Rendered& f : files) now.insert(f.path);
+  const auto check = [](const std::string& body) { return "# check " + io::hex64(core::fnv1a64(body)) + "\n"; };
   if (io::is_existing_file(list)) {
-    std::istringstream earlier(io::read_file(list, "cannot read the list of written tables"));
-    std::string path;
-    while (std::getline(earlier, path)) {
-      std::error_code ec;
-      if (io::stays_inside(path) && !now.count(path) && fs::is_regular_file(fs::path(output_dir) / path, ec))
-        fs::remove(fs::path(output_dir) / path, ec);
+    const std::string text = io::read_file(list, "cannot read the list of written tables");
+    const std::size_t at = text.rfind("# check ");
+    const std::string body = at == std::string::npos ? "" : text.substr(0, at);
+    if (at == std::string::npos || text.substr(at) != check(body)) {
+      log << "beamid study: " << list.string()
+          << ": fails its check (edited, or from an older beamid): no earlier table is removed\n";
+    } else {
+      std::istringstream earlier(body);
+      for (std::string path; std::getline(earlier, path);) {
+        std::error_code ec;
+        const bool in_store = fs::path(path).begin() != fs::path(path).end() && *fs::path(path).begin() == "store";
+        if (io::stays_inside(path) && !in_store && !now.count(path) &&
+            fs::is_regular_file(fs::path(output_dir) / path, ec))
+          fs::remove(fs::path(output_dir) / path, ec);
+      }
     }
   }
   std::string text;
   for (const std::string& path : now) text += path + "\n";
-  io::write_file_atomic(list, text);
+  io::write_file_atomic(list, text + check(text));
 }
 
 }  // namespace beamid::study

@@ -11,6 +11,7 @@
 //   timings.csv                     wall-clock seconds of every unit (the only file that differs between runs)
 #pragma once
 
+#include <ostream>
 #include <string>
 
 #include "study/analysis/results.h"
@@ -25,6 +26,8 @@ namespace beamid::study {
 RenderedFiles render_tables(const StudyResults& results);
 
 // Loads the results from the store (InputError when a unit is missing), renders and writes every table.
-void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, const std::string& output_dir);
+// `log` hears what is not done (a list of earlier tables that fails its check).
+void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, const std::string& output_dir,
+                  std::ostream& log);
 
 }  // namespace beamid::study
