@@ -129,9 +129,12 @@ void check_output_file(const Flags& a, const std::string& flag) {
   a.require(!std::filesystem::exists(folder, ec) || io::is_existing_folder(folder), flag,
             "'" + folder.string() + "' is a file, not a folder");
   a.require(io::is_existing_folder(folder), flag, "its folder '" + folder.string() + "' does not exist");
+  // The OS's reason is read after the call: both as arguments of one call, their order is unspecified, and the
+  // reason read first said "(Success)" for a read-only folder (the eleventh pass's WR_8).
   errno = 0;
-  a.require(::access(folder.c_str(), W_OK) == 0, flag,
-            "cannot write in folder '" + folder.string() + "' (" + std::strerror(errno) + ")");
+  const bool writable = ::access(folder.c_str(), W_OK) == 0;
+  const std::string reason = std::strerror(errno);
+  a.require(writable, flag, "cannot write in folder '" + folder.string() + "' (" + reason + ")");
 }
 
 void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& output_flags,

@@ -63,7 +63,13 @@ Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int orde
   // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
   const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
   const Eigen::EigenSolver<Eigen::MatrixXd> eig(pencil_matrix, false);
-  if (eig.info() != Eigen::Success) throw NumericalError("matrix pencil: the eigenvalues did not converge");
+  // The record, not the method, is at fault: one alternating at the Nyquist frequency (x = (-1)^i) made this an
+  // internal error, exit 3 with no file named (the eleventh pass's DG_alt). Said as the record's, which the callers
+  // name.
+  if (eig.info() != Eigen::Success)
+    throw InputError(
+        "the matrix pencil finds no poles in it (its eigenvalues did not converge): a record with no "
+        "decaying oscillation below the Nyquist frequency, such as one alternating sample by sample");
   return eig.eigenvalues();
 }
 
