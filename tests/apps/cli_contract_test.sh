@@ -203,9 +203,13 @@ sed 's/^seed = .*/seed = 777/' "$tmp/mini.toml" >"$tmp/mini_other.toml"
 "$BEAMID" study "$tmp/mini_other.toml" --jobs 1 --shard 2/2 --output "$tmp/s2_other" >/dev/null 2>&1
 expect_error "merge of another study's shard" "record(s) of no unit of $tmp/mini.toml (and no case of it): it is a shard of another study file" merge \
   "$tmp/mini.toml" --shards "$tmp/s1,$tmp/s2_other" --output "$tmp/merged_other"
-# A truth that holds no vibration (the force at the clamp) fails, and its cases with it, saying why; nothing
-# "converges" at cost 0 on a zero record (the second pass's N446-N449, N469, N470).
-sed 's/^force_x_m = 0.32/force_x_m = 0/' "$tmp/mini.toml" >"$tmp/zero.toml"
+# A force at the clamp is refused on its line (every case failed with exit 0: the eleventh pass's TF_24). A truth
+# that holds no vibration all the same (a pulse far longer than the record) fails, and its cases with it, saying why;
+# nothing "converges" at cost 0 on a zero record (the second pass's N446-N449, N469, N470).
+sed 's/^force_x_m = 0.32/force_x_m = 0/' "$tmp/mini.toml" >"$tmp/clamp.toml"
+expect_error "study force at the clamp" "clamp.toml:10: truth.force_x_m = 0: must be > 0 (at the clamp" \
+  study "$tmp/clamp.toml" --output "$tmp/clamp"
+sed 's/^pulse_width_s = 0.004/pulse_width_s = 1e300/' "$tmp/mini.toml" >"$tmp/zero.toml"
 "$BEAMID" study "$tmp/zero.toml" --jobs 2 --output "$tmp/zero" >/dev/null 2>&1
 check "a zero truth fails its cases with the reason" grep -qF "truth simulation failed: the truth record's peak is 0" \
   "$tmp/zero/cases.csv"
