@@ -103,6 +103,9 @@ ModeComparison compare_modes(const FitReportInput& in) {
     // underdamped modes listed "476.10 Hz, zeta 12.8 %", 3e-9 of the record's size, from its overdamped part).
     double largest = 0;
     for (double v : decay) largest = std::max(largest, std::abs(v));
+    constexpr double kBelowResolution = 1e-6;
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      if (partner[i] < 0 && kept[i].mode.amplitude < kBelowResolution * largest) c.pairs[i].set_aside = true;
     for (std::size_t i = 0; i < kept.size(); ++i)
       if (partner[i] < 0)
         c.notes.push_back("the record's pole at " + format_rounded(kept[i].mode.frequency_hz, 6) + " Hz (zeta " +
@@ -132,6 +135,7 @@ std::string modes_mismatch_note(const ModeComparison& c) {
   double worst = 0, excess = 0;  // the largest relative misfit, and its ratio to its pair's tolerance
   const ModePair* at = nullptr;
   for (const ModePair& p : c.pairs) {
+    if (p.set_aside) continue;  // said in the comparison's notes: no mode, no misfit (the eleventh pass's P2_alarm)
     const double off =
         std::isnan(p.model_hz) ? std::numeric_limits<double>::infinity() : std::abs(p.model_hz / p.data_hz - 1);
     const double tolerance = std::max(kModeMismatch, 2 * p.data_uncertainty_hz / p.data_hz);

@@ -31,6 +31,9 @@ struct ModePair {
   // The measured frequency's uncertainty (signal/measured_modes.h) and, when its span is notable, what widens it.
   double data_uncertainty_hz = 0;
   std::string data_note;
+  // A pole no model mode pairs with, below a millionth of the record's largest value (a 20-bit recorder's
+  // resolution): the pencil's fit of what does not oscillate, set aside from the misfit verdict (modes_mismatch_note).
+  bool set_aside = false;
 };
 struct ModeComparison {
   std::vector<ModePair> pairs;
