@@ -123,10 +123,9 @@ namespace {
 // 4.3e-9 s per sample and element) plus the N^3 decomposition. A 6e6-sample free decay and --starts 1000 ran
 // silently past 30 s (the third pass's P302, P491).
 void warn_long_fit(const fit::FitOptions& o, double samples, const Caller& caller, std::ostream& warnings) {
-  constexpr double kSecondsPerSampleAndElement = 4.3e-9;
   const double n = o.elements;
   const double per_evaluation =
-      kSecondsPerSampleAndElement * samples * n + core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+      core::kSecondsPerSampleAndElement * samples * n + core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
   const double evaluations =
       static_cast<double>(o.optimizer.max_evaluations) * std::max(1, o.starts) * (o.strategy == fit::kHybrid ? 2 : 1);
   const double worst = per_evaluation * evaluations;

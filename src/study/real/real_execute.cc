@@ -11,6 +11,7 @@
 #include "config/beam_file.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "costs/cost.h"
 #include "fit/window_spread.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
@@ -233,6 +234,24 @@ void log_what_runs(const RealStudySpec& spec, const RealResults& out, std::ostre
   if (seconds > 1)
     log << "beamid real: fit.elements = " << spec.elements << ": one model evaluation takes about "
         << io::seconds_text(seconds) << " here (it grows as N^3), and a fit takes hundreds\n";
+  // The longest the fits may take, said before they start when over a minute, as fit's command line does: each
+  // cost's budget (times fit.starts for the costs that use them) times one evaluation (the modal cost's is the
+  // eigen-analysis alone; the others simulate every record). 1000 starts ran 7.5 minutes without a word (the
+  // eleventh pass's RV_29).
+  double samples = 0;
+  for (const RealRecordData& r : out.records) samples += static_cast<double>(r.series.values.size());
+  double worst = 0;
+  for (const std::string& cost : spec.costs) {
+    const bool started = spec.start_from.empty() || cost == spec.start_from;
+    const double per_evaluation =
+        seconds + (cost == costs::kModalCost ? 0.0 : core::kSecondsPerSampleAndElement * samples * spec.elements);
+    worst += per_evaluation * spec.max_evaluations * (started ? spec.starts : 1);
+  }
+  worst *= static_cast<double>(spec.candidates.size());
+  if (worst > 60)
+    log << "beamid real: the fits may take up to " << io::seconds_text(worst) << " here (" << spec.candidates.size()
+        << " candidate(s), fit.max_evaluations = " << spec.max_evaluations << ", fit.starts = " << spec.starts
+        << "): lower fit.starts or fit.max_evaluations, or cut the records\n";
   log << std::flush;
 }
 
