@@ -243,11 +243,20 @@ void validate_records(const FitOptions& o, const std::vector<Record>& records, c
       throw InputError("record " + std::to_string(r + 1) + " (" + records[r].name + "): " + error.what());
     }
   }
-  // One measurement fitted twice (a column pasted twice, a record listed under two names) counts its information
-  // twice: every standard error came out sqrt(2) too small, with nothing said (the tenth pass's RL_02, DC_2).
+  // One measurement fitted twice (a column pasted twice, a record listed under two names, a copy rounded: the
+  // eleventh pass's DC_round) counts its information twice: every standard error came out sqrt(2) too small, with
+  // nothing said (the tenth pass's RL_02, DC_2).
+  // Equal to a millionth of the larger peak: a copy rounded to 7 digits or through float32 is the same measurement.
+  const auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
+    if (x.size() != y.size()) return false;
+    double peak = 0, apart = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      peak = std::max({peak, std::abs(x[i]), std::abs(y[i])}), apart = std::max(apart, std::abs(x[i] - y[i]));
+    return apart <= 1e-6 * peak;
+  };
   for (std::size_t a = 0; a < records.size(); ++a)
     for (std::size_t b = a + 1; b < records.size(); ++b)
-      if (records[a].data == records[b].data)
+      if (same(records[a].data, records[b].data))
         throw InputError("records " + std::to_string(a + 1) + " (" + records[a].name + ") and " +
                          std::to_string(b + 1) + " (" + records[b].name +
                          ") hold the same samples: one measurement fitted twice counts its information twice (every "

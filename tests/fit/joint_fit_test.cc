@@ -239,6 +239,8 @@ TEST(JointFit, BadRecordsAreInputErrorsThatNameTheRecord) {
   twice[1].name = "tip again";
   EXPECT_NE(message(twice).find("records 1 (tip) and 2 (tip again) hold the same samples"), std::string::npos)
       << message(twice);
+  for (double& v : twice[1].data) v = static_cast<float>(v);  // a copy through float32 (the eleventh pass's)
+  EXPECT_NE(message(twice).find("hold the same samples"), std::string::npos) << message(twice);
 }
 
 }  // namespace

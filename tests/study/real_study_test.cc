@@ -191,7 +191,10 @@ TEST(RealStudy, ErrorsFoundWhenARecordIsReadNameTheKeysLine) {
   same.replace(same.find("strip_L300.csv"), 14, "strip_L200.csv");
   same.replace(same.find("[25.07, 172.7, 473.3]"), 21, "[56.31, 381.3, 990.0]");
   const std::string twice = run_error("same", same + fit);
-  EXPECT_NE(twice.find("record 'long' holds the same samples as record 'short'"), std::string::npos) << twice;
+  EXPECT_NE(twice.find("record 'long' holds samples of record 'short'"), std::string::npos) << twice;
+  same.replace(same.find("peaks_hz = [56.31, 381.3, 990.0]", same.find("name = \"long\"")), 0, "start_s = 0.01\n");
+  const std::string shifted = run_error("shifted", same + fit);  // the same file and channel from 0.01 s on
+  EXPECT_NE(shifted.find("record 'long' holds samples of record 'short'"), std::string::npos) << shifted;
   std::string high = kTwoRecords;
   high.replace(high.find("990.0]"), 5, "9e5");  // line 10; the record is sampled at 4 kHz
   const std::string peak = run_error("high", high + fit);
