@@ -75,7 +75,8 @@ std::map<int, std::vector<std::string>> read_fixed(Table& r, const std::vector<R
   std::map<int, std::vector<std::string>> fixed;
   std::optional<Table> t = r.table("fixed");
   if (!t) return fixed;
-  for (const auto& [name, node] : t->entries()) {
+  for (const auto& [key, node] : t->entries()) {
+    const std::string name = key;  // Clang 14 does not capture a structured binding in a lambda
     const auto found =
         std::find_if(records.begin(), records.end(), [&](const RealRecordSpec& record) { return record.name == name; });
     if (found == records.end()) t->fail(name, node.text(), "must be keyed by the name of a [[record]] of the study");
