@@ -238,10 +238,10 @@ std::vector<LabelledPeak> label_peaks(const Spectrum& s, const SpikeOptions& opt
   // (16 million samples: 56 s, 20 million: 91 s without a word; the tenth pass's G_05).
   const bool labelling = options.reject_artefacts && options.frequencies_hz.empty();
   std::vector<int> by_height;
-  for (const auto& [score, k] : ranked) by_height.push_back(k);
-  std::stable_sort(by_height.begin(), by_height.end(), [&](int a, int b) { return s.magnitude(a) > s.magnitude(b); });
   double floor = 0;  // the spectrum's median magnitude: the noise (and leakage) each bin of a peak carries
-  if (labelling) {
+  if (labelling) {   // (a spike cost's model spectrum comes here on every evaluation: nothing sorted it does not use)
+    for (const auto& [score, k] : ranked) by_height.push_back(k);
+    std::stable_sort(by_height.begin(), by_height.end(), [&](int a, int b) { return s.magnitude(a) > s.magnitude(b); });
     std::vector<double> magnitudes;
     for (int k = 1; k <= s.last_bin(); ++k) magnitudes.push_back(s.magnitude(k));
     std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<long>(magnitudes.size() / 2),

@@ -97,7 +97,15 @@ std::string check_line(const std::string& body) {
   return kCheck + std::to_string(body.size()) + "\t" + io::hex64(core::fnv1a64(body)) + "\n";
 }
 
-// The body of a stored file when its check line matches; otherwise why not.
+std::mutex& log_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+}  // namespace
+
+std::string with_check_line(const std::string& body) { return body + check_line(body); }
+
 std::optional<std::string> checked_body(const std::string& text, std::string& why) {
   const auto at = text.rfind(kCheck);
   if (at == std::string::npos) {
@@ -111,13 +119,6 @@ std::optional<std::string> checked_body(const std::string& text, std::string& wh
   }
   return body;
 }
-
-std::mutex& log_mutex() {
-  static std::mutex m;
-  return m;
-}
-
-}  // namespace
 
 Store::Store(std::string directory, std::string code_version, std::ostream* log)
     : directory_(std::move(directory)), code_version_(std::move(code_version)), log_(log) {
@@ -188,7 +189,7 @@ void Store::save(const std::string& id, Record record) const {
   record.set("unit", id);
   record.set("code", code_version_);
   const std::string body = record.serialise();
-  io::write_file_atomic(fs::path(directory_) / (id + ".rec"), body + check_line(body));
+  io::write_file_atomic(fs::path(directory_) / (id + ".rec"), with_check_line(body));
 }
 
 Store::Absorbed Store::absorb(const std::string& other, const Belongs& belongs) const {

@@ -39,6 +39,11 @@ class Record {
   std::map<std::string, std::string> fields_;
 };
 
+// A text followed by its check line, and the text back when its check line holds (else nothing, and why): the form
+// every record has, and every file beside the store that must not be trusted when edited (the list of written tables).
+std::string with_check_line(const std::string& body);
+std::optional<std::string> checked_body(const std::string& text, std::string& why);
+
 class Store {
  public:
   // Creates the folder if needed. Damaged records are reported on `log` (one line each; std::cerr when null).

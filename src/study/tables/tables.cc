@@ -4,7 +4,6 @@
 #include <set>
 #include <sstream>
 
-#include "core/hash.h"
 #include "io/files.h"
 #include "io/text.h"
 #include "study/analysis/claims.h"
@@ -103,16 +102,15 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
   const fs::path list = fs::path(store.directory()) / "tables.txt";
   std::set<std::string> now;
   for (const Rendered& f : files) now.insert(f.path);
-  const auto check = [](const std::string& body) { return "# check " + io::hex64(core::fnv1a64(body)) + "\n"; };
   if (io::is_existing_file(list)) {
-    const std::string text = io::read_file(list, "cannot read the list of written tables");
-    const std::size_t at = text.rfind("# check ");
-    const std::string body = at == std::string::npos ? "" : text.substr(0, at);
-    if (at == std::string::npos || text.substr(at) != check(body)) {
-      log << "beamid study: " << list.string()
-          << ": fails its check (edited, or from an older beamid): no earlier table is removed\n";
+    std::string why;
+    const std::optional<std::string> body =
+        checked_body(io::read_file(list, "cannot read the list of written tables"), why);
+    if (!body) {
+      log << "beamid study: " << list.string() << ": fails its check (" << why
+          << "; edited, or from an older beamid): no earlier table is removed\n";
     } else {
-      std::istringstream earlier(body);
+      std::istringstream earlier(*body);
       for (std::string path; std::getline(earlier, path);) {
         std::error_code ec;
         const bool in_store = fs::path(path).begin() != fs::path(path).end() && *fs::path(path).begin() == "store";
@@ -124,7 +122,7 @@ void write_tables(const StudySpec& spec, const Plan& plan, const Store& store, c
   }
   std::string text;
   for (const std::string& path : now) text += path + "\n";
-  io::write_file_atomic(list, text + check(text));
+  io::write_file_atomic(list, with_check_line(text));
 }
 
 }  // namespace beamid::study
