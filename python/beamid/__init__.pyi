@@ -19,6 +19,7 @@ class FitResult:
     evaluations: int
     wall_time_s: float
     covariance_status: str
+    sandwich_status: str
     correlation: np.ndarray
     identifiability: dict
     modes: np.ndarray

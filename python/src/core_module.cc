@@ -318,6 +318,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;
   d["covariance_status"] = r.covariance_status;
+  d["sandwich_status"] = r.sandwich_status;
   d["correlation"] = matrix_array(r.correlation);
   d["beam"] = beam_dict(r.beam);
   d["model_output"] = copied_array(r.model_output);

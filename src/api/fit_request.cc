@@ -264,7 +264,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&on_bound, &explains_nothing, &pairing, &no_errors, &failed, &identifiability})
+  for (const std::string* note :
+       {&on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -329,6 +330,9 @@ FitNotes fit_notes(const fit::FitResult& result) {
     notes.no_errors = result.covariance_status +
                       ": the fit is exactly determined or underdetermined, so its standard errors are not defined "
                       "(NaN); fit more spikes or records, or fewer parameters";
+  if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
+    notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
+                        "; quote the spread over windows (--windows K) instead";
   const fit::Identifiability& i = result.identifiability;
   if (i.status == "ok" && i.verdict != "identifiable") {
     std::ostringstream line;  // numbers as the stream prints them (6 significant digits)

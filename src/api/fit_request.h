@@ -86,7 +86,8 @@ struct FitNotes {
   std::string on_bound, failed, identifiability;
   std::string explains_nothing;  // a least-squares fit that explains under half of a record (fit_notes)
   std::string no_errors;         // no degrees of freedom: the standard errors are not defined
-  std::string pairing;           // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
+  std::string no_sandwich;  // the formal errors are defined but the sandwich ones are not (a residual's leverage 1)
+  std::string pairing;      // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };

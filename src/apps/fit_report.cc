@@ -231,7 +231,7 @@ void result_section(Markdown& md, const FitReportInput& in) {
         "several times larger, or the window sd several times the windows' own formal error (the table of the "
         "windows below), the residuals are model error, not noise: quote the window sd (the conservative one). "
         "Covariance: "
-     << r.covariance_status << ".\n\n";
+     << r.covariance_status << "; sandwich: " << r.sandwich_status << ".\n\n";
 }
 
 // The estimates in each window (--windows).

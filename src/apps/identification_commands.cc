@@ -206,6 +206,7 @@ int run_fit(const Flags& a, std::ostream& out) {
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.explains_nothing.empty()) std::cerr << "beamid fit: " << notes.explains_nothing << "\n";
   if (!notes.no_errors.empty()) std::cerr << "beamid fit: " << notes.no_errors << "\n";
+  if (!notes.no_sandwich.empty()) std::cerr << "beamid fit: " << notes.no_sandwich << "\n";
   if (!notes.failed.empty()) std::cerr << "beamid fit: " << notes.failed << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method

@@ -429,6 +429,7 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
   const Covariance covariance = covariance_at(subproblem(objective, map, all, best.x), best.x,
                                               robust_lags(o.cost.name, objective.residual_count()));
   result.covariance_status = covariance.status;
+  result.sandwich_status = covariance.ok() ? covariance.robust_status : covariance.status;
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd robust_error = standard_error;
   if (covariance.ok()) {
@@ -436,7 +437,10 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
     for (int i = 0; i < map.size(); ++i) d(i) = map.derivative(i, best.x(i));
     const Eigen::MatrixXd physical = d.asDiagonal() * covariance.matrix * d.asDiagonal();
     standard_error = physical.diagonal().cwiseMax(0.0).cwiseSqrt();
-    robust_error = (d.asDiagonal() * covariance.robust * d.asDiagonal()).diagonal().cwiseMax(0.0).cwiseSqrt();
+    if (covariance.robust.size() > 0)
+      robust_error = (d.asDiagonal() * covariance.robust * d.asDiagonal()).diagonal().cwiseMax(0.0).cwiseSqrt();
+    else
+      robust_error.setConstant(std::numeric_limits<double>::quiet_NaN());
     result.correlation = physical;
     for (int i = 0; i < map.size(); ++i)
       for (int j = 0; j < map.size(); ++j) {

@@ -142,6 +142,9 @@ struct FitResult {
   model::BeamParameters beam;   // the estimate with the fixed parameters (record 1's in a joint fit)
   Eigen::MatrixXd correlation;  // of the estimates (empty when the covariance is unavailable)
   std::string covariance_status = "not computed";
+  // "ok", or why the sandwich standard errors are NaN where the formal ones are not (optimizer.h: a residual of
+  // leverage 1); the formal one's status when that is not "ok".
+  std::string sandwich_status = "not computed";
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages

@@ -68,21 +68,30 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
 //
 // Beside it the sandwich (robust) covariance, which holds whatever the residuals' variances and, within `lags`
 // rows, their correlation (White 1980; Newey & West 1987):
-//   robust = m/(m - n) B^-1 S B^-1,  B = J^T J,  S = sum_{|l| <= L} (1 - |l|/(L + 1)) sum_i g_i g_{i+l}^T,
-// g_i = r_i J_i^T (row i's score), L = lags (0: White's HC1, for residuals that are independent but of unequal
-// variance). With independent residuals of equal variance it tends to the formal one; with model error, whose
-// residuals are systematic, it does not, and the ratio says how far the formal one can be trusted. Residuals
+//   robust = B^-1 S B^-1,  B = J^T J,  S = sum_{|l| <= L} (1 - |l|/(L + 1)) sum_i g_i g_{i+l}^T,
+// g_i = r_i J_i^T / sqrt(1 - h_i) (row i's score, corrected for its leverage h_i = J_i B^-1 J_i^T), L = lags (0:
+// the HC2 form of MacKinnon & White 1985, unbiased for independent residuals of equal variance whatever the leverage,
+// for residuals that are independent but of unequal variance). Where a row's leverage exceeds kMaxSandwichLeverage
+// (a modal fit's first-mode frequency: 0.99), under half of its residual's variance is its own noise and no
+// residual-based estimate holds (Chesher & Jewitt 1987: the bias grows without bound with the largest leverage):
+// robust is then left empty and robust_status says why; quote the spread over windows instead.
+// With independent residuals of equal variance it tends to the formal one; with model error, whose residuals are
+// systematic, it does not, and the ratio says how far the formal one can be trusted. Residuals
 // correlated over more than L rows (a model error in a lightly damped mode lasts 1/sigma) are still understated.
 struct Covariance {
-  Eigen::MatrixXd matrix;     // in the optimizer's coordinates
-  Eigen::MatrixXd robust;     // the sandwich, in the same coordinates (empty when matrix is)
-  std::string status = "ok";  // "ok" or why not (no residuals, m <= n, singular information matrix)
+  Eigen::MatrixXd matrix;  // in the optimizer's coordinates
+  Eigen::MatrixXd robust;  // the sandwich, in the same coordinates (empty when matrix is, or when robust_status says)
+  std::string status = "ok";         // "ok" or why not (no residuals, m <= n, singular information matrix)
+  std::string robust_status = "ok";  // "ok" or why the sandwich is not formed where the formal one is
   bool ok() const { return status == "ok"; }
   // J^T J at the estimate and s^2 = |r|^2 / (m - n), kept also when J^T J is singular (empty when J was not formed),
   // so that a caller can say which combination of parameters the data do not determine.
   Eigen::MatrixXd information;
   double residual_variance = 0;
 };
+// The largest leverage at which the sandwich is formed: at h <= 1/2 at least half of every residual's variance (with
+// equal variances) is its own noise.
+inline constexpr double kMaxSandwichLeverage = 0.5;
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x, int lags = 0);
 
 // Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
