@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -190,6 +192,30 @@ std::string StateSpaceModes::doubtful_eigenpair(const Eigen::MatrixXcd& stiffnes
       return "eigenvalue " + text(l) + " has a relative residual of " + format_value(residual);
   }
   return "";
+}
+
+void StateSpaceModes::require_resolved_decay_rates(const Eigen::MatrixXd& c) const {
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double cheap = eps * c.cwiseAbs().rowwise().sum().maxCoeff() * shapes_.squaredNorm();
+  Eigen::MatrixXd abs_c;  // formed only for a mode the cheap bound does not pass
+  for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
+    const complex l = lambda_(k);
+    if (!(l.imag() > 0)) continue;  // (a conjugate partner has the same decay rate; an overdamped pole has no ratio)
+    const double mass_form = 2 * std::abs(q_.col(k).dot(mass_q_.col(k)));  // 2 x^H M x = 2 q^H M~ q
+    const double allowed = kDecayResolution * std::abs(l.real()) * mass_form;
+    if (cheap * q_.col(k).squaredNorm() <= allowed) continue;
+    if (abs_c.size() == 0) abs_c = c.cwiseAbs();
+    const Eigen::VectorXd x = (shapes_ * q_.col(k)).cwiseAbs();
+    const double bound = eps * x.dot(abs_c * x);
+    if (bound > allowed)
+      throw NumericalError("the damped modes cannot be computed accurately in double precision: the mode at " +
+                           format_rounded(l.imag() / (2 * std::numbers::pi)) + " Hz has a decay rate (damping ratio " +
+                           format_rounded(-l.real() / std::abs(l), 3) +
+                           ") that the damping matrix's round-off leaves uncertain by up to " +
+                           format_rounded(100 * bound / mass_form / std::abs(l.real()), 3) +
+                           " % of itself (its entries, up to " + format_rounded(abs_c.maxCoeff(), 2) +
+                           ", cancel in it: damping kAcs or cDI far beyond a real beam's)");
+  }
 }
 
 }  // namespace beamid::galerkin

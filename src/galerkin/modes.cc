@@ -132,6 +132,7 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod m
     const double rcond = finish(stiffness_forms, scale);
     if (rcond > 1e3 * std::numeric_limits<double>::epsilon()) {
       rcond_ = rcond;
+      require_resolved_decay_rates(s.C);
       return;
     }
     iterated_ = false;
@@ -163,6 +164,7 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod m
   if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
     throw NumericalError("state-space modes are (nearly) defective: eigenvalue condition rcond = " +
                          format_value(rcond_));
+  require_resolved_decay_rates(s.C);
 }
 
 void StateSpaceModes::separate_close_modes(const Eigen::VectorXd& omega, Eigen::MatrixXd& mt, Eigen::MatrixXd& kt,
