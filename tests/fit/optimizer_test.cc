@@ -88,16 +88,14 @@ TEST(Optimizers, LevenbergMarquardtEvaluatesNoPointTwice) {
   }
 }
 
-TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
-  // y = a + b t at t = 0..9 with residual pattern e: cov = s^2 (X^T X)^-1, s^2 = |e|^2/(10 - 2).
-  const Eigen::VectorXd e = (Eigen::VectorXd(10) << 0.1, -0.2, 0.05, 0.3, -0.1, 0.0, 0.2, -0.3, 0.1, -0.15).finished();
+// The line y = 1 + 2 t sampled at `times` with noise e, fitted as a + b t: residuals a + b t_i - (1 + 2 t_i + e_i).
+Problem line_problem(const Eigen::VectorXd& e, const Eigen::VectorXd& times) {
   Problem p;
-  p.lower = Eigen::Vector2d(-10, -10);
-  p.upper = Eigen::Vector2d(10, 10);
-  p.residual_count = 10;
-  p.residuals = [e](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-    r.resize(10);
-    for (int t = 0; t < 10; ++t) r(t) = x(0) + x(1) * t - (1 + 2 * t + e(t));
+  p.lower = Eigen::Vector2d(-100, -100);
+  p.upper = Eigen::Vector2d(100, 100);
+  p.residual_count = static_cast<int>(times.size());
+  p.residuals = [e, times](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    r = (x(0) + x(1) * times.array() - (1 + 2 * times.array() + e.array())).matrix();
     return true;
   };
   p.cost = [p](const Eigen::VectorXd& x) {
@@ -105,6 +103,13 @@ TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
     p.residuals(x, r);
     return r.squaredNorm();
   };
+  return p;
+}
+
+TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
+  // y = a + b t at t = 0..9 with residual pattern e: cov = s^2 (X^T X)^-1, s^2 = |e|^2/(10 - 2).
+  const Eigen::VectorXd e = (Eigen::VectorXd(10) << 0.1, -0.2, 0.05, 0.3, -0.1, 0.0, 0.2, -0.3, 0.1, -0.15).finished();
+  const Problem p = line_problem(e, Eigen::VectorXd::LinSpaced(10, 0, 9));
   OptimizerOptions o;
   o.method = "lm";
   const auto fit = minimize(p, Eigen::Vector2d(0, 0), o);
@@ -137,34 +142,19 @@ TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
   EXPECT_LT((lagged.matrix - expected).norm(), 1e-8 * expected.norm()) << "the formal one does not depend on lags";
 }
 
-// y = a + b t at t = (0, 1, 2, 3, 4, 5, 6, 7, 8, 11) with noise e: the last row's leverage is 0.48, just below
-// kMaxSandwichLeverage, the others' 0.10-0.31.
-Problem leveraged_line(const Eigen::VectorXd& e) {
-  Problem p;
-  p.lower = Eigen::Vector2d(-100, -100);
-  p.upper = Eigen::Vector2d(100, 100);
-  p.residual_count = 10;
-  p.residuals = [e](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-    r.resize(10);
-    for (int i = 0; i < 10; ++i) {
-      const double t = i < 9 ? i : 11;
-      r(i) = x(0) + x(1) * t - (1 + 2 * t + e(i));
-    }
-    return true;
-  };
-  return p;
-}
-
 TEST(Optimizers, TheSandwichIsUnbiasedWithEqualVariancesWhateverTheLeverage) {
   // HC2's defining property (optimizer.h): with independent residuals of equal variance, E[robust] is the true
   // covariance sigma^2 (X^T X)^-1 exactly, high leverage or not. Averaged over 4000 noise draws (sigma = 1) at the
   // least-squares solution, the slope's variance must match within the mean's Monte-Carlo error: the estimate's
   // relative sd is at most about sqrt(2) per draw, so 4000 draws give 2.2 %; asserted within 8 % (3.5 sd). HC1, which
-  // ignores the leverage, is 16 % low on this design, and the check fails at 8 %.
+  // ignores the leverage, is 16 % low on this design, and the check fails at 8 %. The times t = 0, 1, ..., 8, 11 give
+  // the last row leverage 0.48, just below kMaxSandwichLeverage, and the others 0.10-0.31.
   std::mt19937_64 engine(5);
   std::normal_distribution<double> normal;
+  Eigen::VectorXd times = Eigen::VectorXd::LinSpaced(10, 0, 9);
+  times(9) = 11;
   Eigen::MatrixXd X(10, 2);
-  for (int i = 0; i < 10; ++i) X(i, 0) = 1, X(i, 1) = i < 9 ? i : 11;
+  X << Eigen::VectorXd::Ones(10), times;
   const Eigen::MatrixXd exact = (X.transpose() * X).inverse();
   double mean_slope_variance = 0;
   const int draws = 4000;
@@ -173,7 +163,7 @@ TEST(Optimizers, TheSandwichIsUnbiasedWithEqualVariancesWhateverTheLeverage) {
     for (int i = 0; i < 10; ++i) e(i) = normal(engine);
     const Eigen::VectorXd y = (X * Eigen::Vector2d(1, 2)) + e;
     const Eigen::VectorXd x = (X.transpose() * X).ldlt().solve(X.transpose() * y);
-    const Covariance c = covariance_at(leveraged_line(e), x);
+    const Covariance c = covariance_at(line_problem(e, times), x);
     ASSERT_TRUE(c.ok()) << c.status;
     ASSERT_EQ(c.robust_status, "ok");
     mean_slope_variance += c.robust(1, 1) / draws;
