@@ -3,6 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <numbers>
 
 #include "core/errors.h"
@@ -40,11 +44,10 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
   return c;
 }
 
-// The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
-// vectors (the file's head), with pencil parameter L.
-Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
+// The right singular vectors of the record's Hankel matrix at pencil parameter L, (L + 1) square, most dominant first.
+Eigen::MatrixXd hankel_right_vectors(const std::vector<double>& y, int pencil) {
   const int n = static_cast<int>(y.size());
-  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its M dominant right singular vectors.
+  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its right singular vectors.
   Eigen::MatrixXd hankel(n - pencil, pencil + 1);
   for (int i = 0; i < n - pencil; ++i)
     for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
@@ -58,7 +61,48 @@ Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int orde
   const Eigen::MatrixXd triangle = qr.matrixQR().topRows(pencil + 1).triangularView<Eigen::Upper>();
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(triangle, Eigen::ComputeThinV);
   if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
-  const Eigen::MatrixXd v = svd.matrixV().leftCols(order);
+  return svd.matrixV();
+}
+
+// hankel_right_vectors, computed once per record and L within the process and shared by every later call: one fit's
+// modal cost and its modes comparison run the pencil on the same free decay, and a real study's costs and windows run
+// it on the same segments (the pencil's QR and SVD, ~Nbar L^2, were most of a measured record's modal fit: 6 pencils
+// for 132 model evaluations on the steel record). A record is its exact bytes, so a hit returns what the
+// computation would: results do not depend on the order in which a study's threads fill the cache. At most
+// kCachedRecords records, each of at most core::kMaxPencilSamples samples (2 MB, and 2.9 MB of vectors at L = 599).
+constexpr std::size_t kCachedRecords = 8;
+class RightVectorCache {
+ public:
+  std::shared_ptr<const Eigen::MatrixXd> get(const std::vector<double>& y, int pencil) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      for (const Entry& e : entries_)
+        if (e.pencil == pencil && e.y.size() == y.size() &&
+            std::memcmp(e.y.data(), y.data(), y.size() * sizeof(double)) == 0)
+          return e.v;
+    }
+    auto v = std::make_shared<const Eigen::MatrixXd>(hankel_right_vectors(y, pencil));  // outside the lock
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (entries_.size() == kCachedRecords) entries_.pop_front();
+    entries_.push_back({y, pencil, v});
+    return v;
+  }
+
+ private:
+  struct Entry {
+    std::vector<double> y;
+    int pencil;
+    std::shared_ptr<const Eigen::MatrixXd> v;
+  };
+  std::mutex mutex_;
+  std::deque<Entry> entries_;
+};
+
+// The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
+// vectors (the file's head), with pencil parameter L.
+Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
+  static RightVectorCache cache;
+  const Eigen::MatrixXd v = cache.get(y, pencil)->leftCols(order);
   const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
   // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
   const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
