@@ -15,6 +15,7 @@
 #include "io/provenance.h"
 #include "io/resources.h"
 #include "study/plan/plan.h"
+#include "study/run/estimate.h"
 #include "study/run/execute.h"
 #include "study/run/record_schema.h"
 #include "study/run/store.h"
@@ -118,6 +119,35 @@ void say_model_cost(const StudySpec& spec, const std::vector<const Unit*>& mine,
   }
 }
 
+// What the store lacks: the truths (their indices; the others are loaded into `truths`) and this shard's units to run,
+// with both in `all` for the plan's estimate.
+struct ToRun {
+  std::vector<int> truths;
+  std::vector<const Unit*> units, all;
+  int reused = 0;
+};
+ToRun to_run(const StudySpec& spec, const Plan& plan, const std::vector<const Unit*>& mine, const Store& store,
+             std::vector<Record>& truths) {
+  ToRun out;
+  for (std::size_t i = 0; i < plan.truths.size(); ++i) {
+    if (auto r = load_unit(store, plan.truths[i], spec.fit.estimate)) {
+      truths[i] = *r;
+    } else {
+      out.truths.push_back(static_cast<int>(i));
+      out.all.push_back(&plan.truths[i]);
+    }
+  }
+  for (const Unit* u : mine) {
+    if (load_unit(store, *u, spec.fit.estimate)) {
+      ++out.reused;
+    } else {
+      out.units.push_back(u);
+      out.all.push_back(u);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<std::string> validation_error(const RunOptions& o) {
@@ -147,10 +177,9 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
                    8.0 * spec.truth.experiment.samples * static_cast<double>(plan.truths.size()) +
                        jobs * core::kRecordBytesPerSample * longest,
                    log);
-  constexpr double kSecondsPerUnit = 1.0;
   if (mine.size() > 20000)
     log << "beamid study: " << mine.size() << " units: at about 1 s each that is "
-        << io::seconds_text(kSecondsPerUnit * static_cast<double>(mine.size()) / jobs) << " on " << jobs
+        << io::seconds_text(kSecondsPerUntimedUnit * static_cast<double>(mine.size()) / jobs) << " on " << jobs
         << " thread(s); split it with --shard K/N (beamid merge joins the shards)\n";
   validate_plan(spec, plan);
   if (const std::string problem = io::claim_store(options.output_dir + "/store", spec.path); !problem.empty())
@@ -167,12 +196,14 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   summary.units = static_cast<int>(mine.size());
   // Truths: every shard needs them; each is saved as soon as it is made, so shards on one file system share them.
   std::vector<Record> truths(plan.truths.size());
-  std::vector<int> missing_truths;
-  for (std::size_t i = 0; i < plan.truths.size(); ++i) {
-    if (auto r = load_unit(store, plan.truths[i], spec.fit.estimate))
-      truths[i] = *r;
-    else
-      missing_truths.push_back(static_cast<int>(i));
+  const ToRun to = to_run(spec, plan, mine, store, truths);
+  const std::vector<int>& missing_truths = to.truths;
+  const std::vector<const Unit*>& pending = to.units;
+  summary.reused = to.reused;
+  if (summary.reused > 0) log << summary.reused << " unit(s) already in the store, " << pending.size() << " to run\n";
+  if (!to.all.empty()) {
+    const std::string timings = options.output_dir + "/timings.csv";
+    log << plan_text(estimate_plan(to.all, timings), jobs, timings) << "\n" << std::flush;
   }
   if (!missing_truths.empty()) {
     // The first truth's CVODE cross-check grows steeply below rtol 1e-10 (measured on the thin beam at N = 48: 2 s at
@@ -193,14 +224,6 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
       progress.tick(r.text("status") != "ok");
     });
   }
-  std::vector<const Unit*> pending;
-  for (const Unit* u : mine) {
-    if (load_unit(store, *u, spec.fit.estimate))
-      ++summary.reused;
-    else
-      pending.push_back(u);
-  }
-  if (summary.reused > 0) log << summary.reused << " unit(s) already in the store, " << pending.size() << " to run\n";
   std::atomic<int> failed{0};
   if (!pending.empty()) {
     Progress progress(log, terminal, spec.name, static_cast<int>(pending.size()));
