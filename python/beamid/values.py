@@ -209,7 +209,8 @@ class FitResult(_Fields):
     standard_errors   {key: formal standard error} (NaN at a bound)
     status            converged | max-evaluations | failed (with "-at-bound" when an estimate ends on a bound)
     termination, cost, evaluations, wall_time_s, covariance_status, correlation (array), identifiability (dict)
-    sandwich_status   "ok", or why robust_standard_error is NaN where standard_error is not (a residual of leverage 1)
+    sandwich_status   "ok", or why robust_standard_error is NaN where standard_error is not (a residual of leverage
+                      above 0.5, or an estimate whose sandwich rests on fewer than 10 residuals' worth)
     modes             structured array: data_hz, data_damping_ratio, model_hz, model_damping_ratio at the estimate,
                       data_uncertainty_hz (the measured frequency's uncertainty, as modal-id's)
     beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)

@@ -330,6 +330,9 @@ FitNotes fit_notes(const fit::FitResult& result) {
     notes.no_errors = result.covariance_status +
                       ": the fit is exactly determined or underdetermined, so its standard errors are not defined "
                       "(NaN); fit more spikes or records, or fewer parameters";
+  else if (result.status != "failed" && result.covariance_status != "ok")
+    // Every other reason the standard errors are NaN is said too (the twelfth pass's P4 printed NaN with no word).
+    notes.no_errors = "the standard errors are not defined (NaN): " + result.covariance_status;
   if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
     notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
                         "; quote the spread over windows (--windows K) instead";

@@ -98,6 +98,20 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
 
 }  // namespace
 
+namespace {
+
+// A band that starts at or above the record's Nyquist frequency holds nothing: modal-id printed an empty table with
+// exit 0 (the twelfth pass's P11).
+void refuse_band_above_nyquist(const Caller& caller, double min_frequency_hz, const io::TimeSeries& data) {
+  const double nyquist_hz = 0.5 / data.dt_s;
+  if (min_frequency_hz >= nyquist_hz)
+    refuse(caller, "min-frequency", format_value(min_frequency_hz),
+           "must be below the Nyquist frequency of --data = '" + data.path + "', " + format_rounded(nyquist_hz, 6) +
+               " Hz (the band would hold nothing)");
+}
+
+}  // namespace
+
 SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& data) {
   const Caller& caller = request.caller;
   // A record read from a file: its offset and trend removed by default (signal/spikes.h), so that their leakage into
@@ -118,6 +132,7 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
                        "channel itself, or a drift alone): after the " + mode + " detrend nothing is left to analyse");
   SpikesResult r;
   const signal::SpikeOptions options = spike_options(request.spikes, caller);
+  refuse_band_above_nyquist(caller, options.min_frequency_hz, data);
   if (request.welch) {
     r.welch = true;
     r.spectrum = signal::welch_spectrum(values, data.dt_s, *request.welch);
@@ -211,6 +226,7 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   if (!(o.max_frequency_hz > o.min_frequency_hz))
     refuse(caller, "max-frequency", format_value(o.max_frequency_hz),
            "must exceed --min-frequency = '" + format_value(o.min_frequency_hz) + "'");
+  refuse_band_above_nyquist(caller, o.min_frequency_hz, data);
   signal::MeasureOptions measure;
   measure.pencil = o;
   measure.selection = signal::ModeSelection::strongest;
@@ -247,6 +263,22 @@ std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>
 }
 
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
+  // One sample above kGlitchRatio times every other one is a glitch of the acquisition, or an impact shorter than a
+  // sample: either way the lead-in advice below ("cut the record after t") would throw away whatever precedes it (the
+  // twelfth pass's P6: one sample at 50x the peak, half the record advised away).
+  constexpr double kGlitchRatio = 10;
+  std::size_t top = 0;
+  double rest = 0;
+  for (std::size_t i = 1; i < data.values.size(); ++i)
+    if (std::abs(data.values[i]) > std::abs(data.values[top])) top = i;
+  for (std::size_t i = 0; i < data.values.size(); ++i)
+    if (i != top) rest = std::max(rest, std::abs(data.values[i]));
+  if (data.values.size() > 2 && std::abs(data.values[top]) > kGlitchRatio * rest)
+    return "sample " + std::to_string(top + 1) +
+           " (t = " + format_rounded(data.t0_s + static_cast<double>(top) * data.dt_s, 6) + " s) is " +
+           format_rounded(std::abs(data.values[top]) / rest, 3) +
+           " times every other sample: a glitch of the acquisition, or an impact shorter than a sample, which " + what +
+           " takes as a mode's content; remove it, or keep the record on one side of it (--start, --duration)";
   const long peak = signal::quiet_lead_in(data.values);
   if (peak < 0) return "";
   const std::string t = format_rounded(data.t0_s + static_cast<double>(peak) * data.dt_s, 4);

@@ -73,7 +73,7 @@ std::vector<FlagSpec> merge_flags() {
 int run_merge(const Flags& a, std::ostream& out) {
   const study::StudySpec spec = study::load_study(a.text("STUDY.toml"));
   const std::string output = a.text_or("output", default_output(spec));
-  std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path);
+  std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path, spec.name);
   if (problem.empty()) problem = io::claim_store(output + "/store", spec.path);
   if (!problem.empty()) {
     if (a.has("output")) a.require(false, "output", problem);

@@ -56,18 +56,26 @@ Problem subproblem(JointObjective& objective, const ParameterMap& map, const std
   auto full = [&map, all](const Eigen::VectorXd& x) { return map.beams(all(x)); };
   p.cost = [&objective, full](const Eigen::VectorXd& x) { return objective.evaluate(full(x)).evaluation.value; };
   p.residual_count = objective.residual_count();
-  p.residuals = [&objective, full](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  p.rejection = std::make_shared<std::string>();
+  p.residuals = [&objective, full, why = p.rejection](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
     auto out = objective.evaluate(full(x));
-    if (!out.evaluation.ok()) return false;
+    if (!out.evaluation.ok()) {
+      *why = out.evaluation.status;
+      return false;
+    }
     r = std::move(out.evaluation.residuals);
     return true;
   };
   if (objective.has_exact_jacobian()) {
     // d r / d x_i = d r / d q_i  d q_i / d x_i (the coordinate map is diagonal).
-    p.jacobian = [&objective, &map, all, active](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& j) {
+    p.jacobian = [&objective, &map, all, active, why = p.rejection](const Eigen::VectorXd& x, Eigen::VectorXd& r,
+                                                                    Eigen::MatrixXd& j) {
       const Eigen::VectorXd coordinates = all(x);
       auto out = objective.evaluate_with_jacobian(map.beams(coordinates), active, j);
-      if (!out.evaluation.ok() || j.size() == 0) return false;
+      if (!out.evaluation.ok() || j.size() == 0) {
+        *why = out.evaluation.ok() ? "no Jacobian" : out.evaluation.status;
+        return false;
+      }
       r = std::move(out.evaluation.residuals);
       for (std::size_t i = 0; i < active.size(); ++i)
         j.col(static_cast<Eigen::Index>(i)) *= map.derivative(active[i], coordinates(active[i]));

@@ -70,6 +70,7 @@ bool guarded_call(GuardedProblem& g, const Eigen::VectorXd& x, Eigen::VectorXd& 
   } catch (...) {
     if (g.first_exception.empty()) g.first_exception = "unknown exception";
   }
+  if (!ok && g.first_rejection.empty() && g.problem.rejection) g.first_rejection = *g.problem.rejection;
   if (ok) {
     const double value = r.squaredNorm();
     if (value < g.best_cost) g.best_cost = value, g.best_x = x;
@@ -96,7 +97,8 @@ void GuardedProblem::finish(OptimizerResult& result, const std::string& what, co
     result.termination = "the objective threw: " + first_exception;
   } else if (!std::isfinite(result.cost)) {
     result.status = "failed";
-    result.termination = "no evaluation gave a finite " + what + " (" + detail + ")";
+    result.termination = "no evaluation gave a finite " + what +
+                         (first_rejection.empty() ? "" : " (the first: " + first_rejection + ")") + " (" + detail + ")";
   }
 }
 
@@ -160,6 +162,62 @@ std::vector<Eigen::VectorXd> space_filling_starts(const Eigen::VectorXd& lower, 
   return points;
 }
 
+namespace {
+
+// The sandwich of covariance_at (optimizer.h), into c.robust, or why not into c.robust_status.
+void form_sandwich(const Eigen::MatrixXd& jacobian, const Eigen::MatrixXd& inverse, const Eigen::VectorXd& r, int lags,
+                   Covariance& c) {
+  const int m = static_cast<int>(jacobian.rows()), n = static_cast<int>(jacobian.cols());
+  // The sandwich (optimizer.h): the scores g_i = r_i J_i / sqrt(1 - h_i) as the rows of G, S = G^T G plus the
+  // weighted lag products. h_i = J_i B^-1 J_i^T is row i's leverage (the hat matrix's diagonal, summing to n). A fit
+  // leaves of row i's own noise e_i the part (1 - h_i) e_i in r_i, and mixes in the others' with weights summing to
+  // h_i (1 - h_i) in variance, so with equal variances E r_i^2 = (1 - h_i) sigma^2: HC2 divides it out (at the time
+  // cost's thousands of rows every h is about n/m, and HC2 is HC1's m/(m - n)). Above kMaxSandwichLeverage most of a
+  // residual's variance is other rows' noise and no r_i-based estimate of row i's variance is sound, in either
+  // direction: the modal cost's first-mode frequency, which alone separates EI from rho on the thin beam, has
+  // h = 0.992; its HC1 sandwich of EI came out 15x below the scatter over 30 noise seeds, HC2's 2.3x below and HC3's
+  // 5x above; spike-smooth's (h = 0.97) 12x above with HC2.
+  const Eigen::VectorXd leverage = (jacobian * inverse).cwiseProduct(jacobian).rowwise().sum();
+  Eigen::Index worst = 0;
+  if (!(leverage.maxCoeff(&worst) <= kMaxSandwichLeverage)) {
+    std::ostringstream why;
+    why << "residual " << worst + 1 << " of " << m << " has leverage "
+        << std::setprecision(leverage(worst) < kMaxSandwichLeverage + 0.01 ? 6 : 3) << leverage(worst) << " (above "
+        << kMaxSandwichLeverage
+        << "): it nearly alone fixes a combination of the parameters, so its residual is mostly the other rows' "
+           "noise and the residuals cannot estimate its variance";
+    c.robust_status = why.str();
+    return;
+  }
+  // Kish's effective count of the terms of each estimate's sandwich variance, (sum_i w_i)^2 / sum_i w_i^2 with
+  // w_i = (B^-1 J_i^T)_j^2, the weight row i's variance has in estimate j's: below kMinSandwichTerms the sandwich is
+  // one or two squared residuals, a chi-square of as many degrees of freedom. Two channels of one beam measure each
+  // mode twice, so that each of the pair had leverage 0.4999, under the bound above, and a joint modal fit's sandwich
+  // of EI came out 2.9x below its scatter over 30 seeds (the twelfth pass's P3): its count was about 2.
+  const Eigen::MatrixXd weights = (jacobian * inverse).cwiseAbs2();  // w_ij, m x n
+  for (int j = 0; j < n; ++j) {
+    const double count = std::pow(weights.col(j).sum(), 2) / weights.col(j).squaredNorm();
+    if (!(count >= kMinSandwichTerms)) {
+      std::ostringstream why;
+      why << "the sandwich of estimated parameter " << j + 1 << " rests on about " << std::setprecision(2) << count
+          << " residuals (the effective count of its terms, below " << kMinSandwichTerms
+          << "): too few squared residuals to estimate a variance";
+      c.robust_status = why.str();
+      return;
+    }
+  }
+  const Eigen::MatrixXd scores = r.cwiseQuotient((1.0 - leverage.array()).sqrt().matrix()).asDiagonal() * jacobian;
+  Eigen::MatrixXd meat = scores.transpose() * scores;
+  const int bandwidth = std::clamp(lags, 0, m - 1);
+  for (int l = 1; l <= bandwidth; ++l) {
+    const Eigen::MatrixXd lagged = scores.topRows(m - l).transpose() * scores.bottomRows(m - l);
+    meat += (1.0 - static_cast<double>(l) / (bandwidth + 1)) * (lagged + lagged.transpose());
+  }
+  c.robust = inverse * meat * inverse;
+}
+
+}  // namespace
+
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int lags) {
   // cov = s^2 (J^T J)^-1 with s^2 = |r|^2 / (m - n), J by central differences with steps 1e-6 max(|x_i|, 1) (the
   // optimizer's coordinates are of order one). Computed here rather than by ceres::Covariance: its dense SVD
@@ -185,14 +243,25 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int 
   }
   Eigen::MatrixXd jacobian(m, n);
   for (int i = 0; i < n; ++i) {
-    const double h = 1e-6 * std::max(std::abs(at(i)), 1.0);
-    Eigen::VectorXd plus = at, minus = at, r_plus, r_minus;
-    plus(i) += h;
-    minus(i) -= h;
-    if (!guarded.residuals(plus, r_plus) || !guarded.residuals(minus, r_minus) || r_plus.size() != m ||
-        r_minus.size() != m) {
-      c.status = "the residual vector is undefined next to the estimate (coordinate " + std::to_string(i) + ")";
-      return c;
+    // The step 1e-6 max(|x|, 1), and where the residuals are undefined at x +- h, 1e-6 of |x| (or of the bounds'
+    // width where x = 0): coordinates are scaled by the start, and an estimate far below its start (cDI 6.6e-6 from a
+    // start of 1e3, x = 6.6e-9) stepped to a negative damping and gave NaN errors with nothing said (the twelfth
+    // pass's P4). The first step is kept where it works, so that no standard error an earlier version gave moves.
+    Eigen::VectorXd r_plus, r_minus;
+    const auto difference = [&](double h) {
+      Eigen::VectorXd plus = at, minus = at;
+      plus(i) += h;
+      minus(i) -= h;
+      return guarded.residuals(plus, r_plus) && guarded.residuals(minus, r_minus) && r_plus.size() == m &&
+             r_minus.size() == m;
+    };
+    double h = 1e-6 * std::max(std::abs(at(i)), 1.0);
+    if (!difference(h)) {
+      h = 1e-6 * (at(i) != 0 ? std::abs(at(i)) : 1e-6 * (problem.upper(i) - problem.lower(i)));
+      if (!(h > 0) || !difference(h)) {
+        c.status = "the residual vector is undefined next to the estimate (coordinate " + std::to_string(i) + ")";
+        return c;
+      }
     }
     jacobian.col(i) = (r_plus - r_minus) / (2 * h);
   }
@@ -212,34 +281,7 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int 
   const Eigen::MatrixXd& v = eigen.eigenvectors();
   const Eigen::MatrixXd inverse = v * lambda.cwiseInverse().asDiagonal() * v.transpose();
   c.matrix = inverse * c.residual_variance;
-  // The sandwich (optimizer.h): the scores g_i = r_i J_i / sqrt(1 - h_i) as the rows of G, S = G^T G plus the
-  // weighted lag products. h_i = J_i B^-1 J_i^T is row i's leverage (the hat matrix's diagonal, summing to n). A fit
-  // leaves of row i's own noise e_i the part (1 - h_i) e_i in r_i, and mixes in the others' with weights summing to
-  // h_i (1 - h_i) in variance, so with equal variances E r_i^2 = (1 - h_i) sigma^2: HC2 divides it out (at the time
-  // cost's thousands of rows every h is about n/m, and HC2 is HC1's m/(m - n)). Above kMaxSandwichLeverage most of a
-  // residual's variance is other rows' noise and no r_i-based estimate of row i's variance is sound, in either
-  // direction: the modal cost's first-mode frequency, which alone separates EI from rho on the thin beam, has
-  // h = 0.992; its HC1 sandwich of EI came out 15x below the scatter over 30 noise seeds, HC2's 2.3x below and HC3's
-  // 5x above; spike-smooth's (h = 0.97) 12x above with HC2.
-  const Eigen::VectorXd leverage = (jacobian * inverse).cwiseProduct(jacobian).rowwise().sum();
-  Eigen::Index worst = 0;
-  if (!(leverage.maxCoeff(&worst) <= kMaxSandwichLeverage)) {
-    std::ostringstream why;
-    why << "residual " << worst + 1 << " of " << m << " has leverage " << std::setprecision(3) << leverage(worst)
-        << " (above " << kMaxSandwichLeverage
-        << "): it nearly alone fixes a combination of the parameters, so its residual is mostly the other rows' "
-           "noise and the residuals cannot estimate its variance";
-    c.robust_status = why.str();
-    return c;
-  }
-  const Eigen::MatrixXd scores = r.cwiseQuotient((1.0 - leverage.array()).sqrt().matrix()).asDiagonal() * jacobian;
-  Eigen::MatrixXd meat = scores.transpose() * scores;
-  const int bandwidth = std::clamp(lags, 0, m - 1);
-  for (int l = 1; l <= bandwidth; ++l) {
-    const Eigen::MatrixXd lagged = scores.topRows(m - l).transpose() * scores.bottomRows(m - l);
-    meat += (1.0 - static_cast<double>(l) / (bandwidth + 1)) * (lagged + lagged.transpose());
-  }
-  c.robust = inverse * meat * inverse;
+  form_sandwich(jacobian, inverse, r, lags, c);
   return c;
 }
 

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ struct Problem {
   // Optional: the residuals and their exact Jacobian (residual_count x dimension) at once; "lm" then uses it instead
   // of central differences. Returns false where undefined.
   std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&, Eigen::MatrixXd&)> jacobian;
+  // Optional: where the residual functions write why they returned false (the model's own status), so that a fit no
+  // point of which was defined says why, not only that (the twelfth pass's P9).
+  std::shared_ptr<std::string> rejection;
   int dimension() const { return static_cast<int>(lower.size()); }
 };
 
@@ -74,7 +78,9 @@ OptimizerResult minimize(const Problem& problem, const Eigen::VectorXd& start, c
 // for residuals that are independent but of unequal variance). Where a row's leverage exceeds kMaxSandwichLeverage
 // (a modal fit's first-mode frequency: 0.99), under half of its residual's variance is its own noise and no
 // residual-based estimate holds (Chesher & Jewitt 1987: the bias grows without bound with the largest leverage):
-// robust is then left empty and robust_status says why; quote the spread over windows instead.
+// robust is then left empty and robust_status says why; quote the spread over windows instead. The same where an
+// estimate's sandwich rests on fewer than kMinSandwichTerms residuals' worth (two channels measuring one mode each
+// carry leverage 0.4999, and the sandwich was 2.9x low).
 // With independent residuals of equal variance it tends to the formal one; with model error, whose residuals are
 // systematic, it does not, and the ratio says how far the formal one can be trusted. Residuals
 // correlated over more than L rows (a model error in a lightly damped mode lasts 1/sigma) are still understated.
@@ -92,6 +98,9 @@ struct Covariance {
 // The largest leverage at which the sandwich is formed: at h <= 1/2 at least half of every residual's variance (with
 // equal variances) is its own noise.
 inline constexpr double kMaxSandwichLeverage = 0.5;
+// The least effective count of squared residuals (Kish's, optimizer.cc) an estimate's sandwich variance may rest on:
+// with fewer its relative sd exceeds sqrt(2/10) = 45 %, and a few modes' residuals decide it.
+inline constexpr double kMinSandwichTerms = 10;
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& x, int lags = 0);
 
 // Space-filling starts in the box: a Latin hypercube (one point per stratum and coordinate, strata shuffled) or
@@ -116,6 +125,7 @@ struct GuardedProblem {
   const Problem& problem;
   long evaluations = 0;
   std::string first_exception;
+  std::string first_rejection;  // Problem::rejection after the first call that returned false
   Eigen::VectorXd best_x;
   double best_cost = std::numeric_limits<double>::infinity();
   // Overrides the adapter's verdict when the objective threw or never gave a finite value; `what` names the

@@ -162,8 +162,11 @@ StateSpaceModes::StateSpaceModes(const SecondOrderSystem& s, DampedModesMethod m
                            " (the damping rates span too many orders of magnitude)");
   }
   if (!(rcond_ > 1e3 * std::numeric_limits<double>::epsilon()))
-    throw NumericalError("state-space modes are (nearly) defective: eigenvalue condition rcond = " +
-                         format_value(rcond_));
+    throw NumericalError(
+        "state-space modes are (nearly) defective: eigenvalue condition rcond = " + format_rounded(rcond_, 2) +
+        " (two damped modes coincide: a mode damped almost exactly critically, which shear damping "
+        "kAcs or cDI far beyond a real beam's makes likely; another N, or smaller damping, avoids "
+        "it)");
   require_resolved_decay_rates(s.C);
 }
 

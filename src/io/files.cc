@@ -21,10 +21,11 @@ void make_folder(const std::filesystem::path& path) {
 namespace {
 
 // The "study_file" string of a manifest.json beamid wrote (io::json_string escapes '"' and '\\'), or "".
-std::string manifest_study_file(const std::filesystem::path& manifest) {
+// The string value of a top-level `field` of a manifest.json ("" when absent).
+std::string manifest_field(const std::filesystem::path& manifest, const std::string& field) {
   std::ifstream in(manifest);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string key = "\"study_file\": \"";
+  const std::string key = "\"" + field + "\": \"";
   auto at = text.find(key);
   if (at == std::string::npos) return "";
   std::string value;
@@ -38,7 +39,7 @@ std::string manifest_study_file(const std::filesystem::path& manifest) {
 }  // namespace
 
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
-                                  const std::string& study_file) {
+                                  const std::string& study_file, const std::string& study_name) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(folder, ec)) return "";
@@ -56,15 +57,27 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
              "name): write into a new or empty folder";
   }
   if (!study_file.empty() && fs::exists(folder / "manifest.json", ec)) {
-    const std::string owner = manifest_study_file(folder / "manifest.json");
+    const std::string owner = manifest_field(folder / "manifest.json", "study_file");
     if (!owner.empty() && fs::exists(owner, ec) && !fs::equivalent(owner, study_file, ec) && !ec)
       return "holds the results of another study file, " + owner +
              " (its manifest.json), whose tables this run would replace: give this study its own [study] name, or "
              "its own --output";
   }
+  if (!study_name.empty() && fs::exists(folder / "manifest.json", ec)) {
+    const std::string owner = manifest_field(folder / "manifest.json", "study");
+    if (!owner.empty() && owner != study_name)
+      return "holds the results of another study, '" + owner +
+             "' (its manifest.json), whose tables this run would replace: give this study its own --output";
+  }
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
            "could overwrite; write into a new or empty folder";
+  return "";
+}
+
+std::string study_name_problem(const std::string& name) {
+  if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
+    return "must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)";
   return "";
 }
 

@@ -23,9 +23,15 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 // where a table of the same name would replace it.
 // With `study_file`, also a folder whose manifest.json names another study file that still exists: two study files of
 // one [study] name wrote into one results/<name>, each replacing the other's tables and recomputing its units (the
-// sixth pass's S420).
+// sixth pass's S420). With `study_name`, also a folder whose manifest.json names another study: the file check
+// resolves the manifest's (relative) study file from the current folder, and run from elsewhere it passed, so that
+// `beamid real` replaced another study's tables (the twelfth pass's P1).
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
-                                  const std::string& study_file = "");
+                                  const std::string& study_file = "", const std::string& study_name = "");
+
+// The constraint a study's [study] name breaks, or "": it names results/<name>/, so it must be a non-empty word of
+// a-z, 0-9, '-', '_' (a real study's name "../victim" wrote its tables outside results/: the twelfth pass's P2).
+std::string study_name_problem(const std::string& name);
 
 // Claims a study's store folder for its study file when a run starts, before any unit runs: the file `claim` in it
 // holds the study file's absolute path, created exclusively (two runs that start together do not both claim it).

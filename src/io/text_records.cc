@@ -662,6 +662,13 @@ Samples text_samples(const std::string& given, const std::string& path, const Im
     throw InputError(path + ": column '" + s.value_column +
                      "': the table names no columns, so it states no unit: give --units g for an accelerometer in g, "
                      "or --units as-is to take the values as SI (m, m/s, m/s^2)");
+  // An LVM states its unit in Y_Unit_Label; a blank label (and no unit in the column's name) states none, and a record
+  // in g was read as m/s^2, 9.81x off, as a table without names had been (the twelfth pass's P8).
+  if (table.format == "lvm" && o.units == "auto" && column < static_cast<int>(table.units.size()) &&
+      table.units[static_cast<std::size_t>(column)].empty())
+    throw InputError(path + ": column '" + s.value_column +
+                     "': its Y_Unit_Label is blank and its name states no unit: give --units g for an accelerometer "
+                     "in g, or --units as-is to take the values as SI (m, m/s, m/s^2)");
   if (o.units == "auto" && column < static_cast<int>(table.unit_problems.size()) &&
       !table.unit_problems[static_cast<std::size_t>(column)].empty())
     throw InputError(path + ":" + std::to_string(table.names_line) + ": column '" + shown(s.value_column) +

@@ -113,6 +113,23 @@ TEST(RecordRequests, SpikesAndModalIdFindTheModesOfASimulatedRecord) {
   pencil.max_frequency_hz = -1;
   EXPECT_EQ(refusal([&] { compute_modal_id(pencil, decay); }),
             "beamid modal-id: --max-frequency = '-1': must exceed --min-frequency = '0'");
+  // A band above the Nyquist frequency (500 Hz here) holds nothing: refused, not an empty table (the twelfth pass's
+  // P11).
+  pencil.min_frequency_hz = 600;
+  pencil.max_frequency_hz = 700;
+  EXPECT_NE(refusal([&] {
+              compute_modal_id(pencil, decay);
+            }).find("--min-frequency = '600': must be below the Nyquist frequency"),
+            std::string::npos);
+  // One sample at 50 times the record's largest is a glitch, said as one rather than as a lead-in to cut away (P6).
+  io::TimeSeries glitch = decay;
+  double peak = 0;
+  for (double v : glitch.values) peak = std::max(peak, std::abs(v));
+  glitch.values[1000] = 50 * peak;
+  EXPECT_NE(lead_in_note(glitch, "the pencil").find("sample 1001 (t = 1 s) is 50 times every other sample: a glitch"),
+            std::string::npos)
+      << lead_in_note(glitch, "the pencil");
+  EXPECT_EQ(lead_in_note(decay, "the pencil"), "");  // the decay itself: largest at its start
 }
 
 TEST(RecordRequests, EachSpikeGetsItsOwnMeasuredPoleOrNone) {

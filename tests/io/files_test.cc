@@ -92,6 +92,14 @@ TEST(OutputFolder, RefusesAFolderOfTheUsersFilesOrOneThatHoldsAnInput) {
   EXPECT_NE(output_folder_problem(dir, {(dir / "study.toml").string()}).find("holds the input"), std::string::npos);
   EXPECT_EQ(output_folder_problem(dir, {(dir.parent_path() / "elsewhere.toml").string()}), "");
   EXPECT_NE(output_folder_problem(dir / "cases.csv", {}).find("not a folder"), std::string::npos);
+  // Another study's results: refused by the manifest's study name, whether or not its study file (relative to the
+  // folder the run started in) can be found from here (the twelfth pass's P1).
+  {
+    std::ofstream(dir / "manifest.json") << "{\n  \"study\": \"paper\",\n  \"study_file\": \"nowhere/paper.toml\"\n}\n";
+  }
+  EXPECT_NE(output_folder_problem(dir, {}, "real.toml", "real-steel").find("another study, 'paper'"),
+            std::string::npos);
+  EXPECT_EQ(output_folder_problem(dir, {}, "paper.toml", "paper"), "");
   fs::remove_all(dir);
 }
 

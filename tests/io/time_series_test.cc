@@ -207,6 +207,14 @@ TEST(TimeSeries, ALabViewChannelsNameStatesItsUnitAndASpectrumIsRefused) {
   const auto mm = read_time_series(write("name_mm.lvm", text));
   EXPECT_EQ(mm.unit, "m");
   EXPECT_NEAR(mm.values[3], 1e-3 * std::round(1e6 * std::sin(0.9)) / 1e6, 1e-15);
+  // A blank Y_Unit_Label under a name that states no unit states none: the user says which (a record in g was read
+  // as m/s^2, 9.81x off: the twelfth pass's P8).
+  std::string blank = lvm(100);
+  blank.replace(blank.find("Y_Unit_Label\tg"), 14, "Y_Unit_Label\t");
+  EXPECT_NE(error_of(write("blank_unit.lvm", blank))
+                .find("column 'Acceleration': its Y_Unit_Label is blank and its name states no unit"),
+            std::string::npos)
+      << error_of(write("blank_unit.lvm", blank));
   // R105: a name and a Y_Unit_Label that disagree are refused on the names' line (16).
   text.replace(text.find("Y_Unit_Label\t"), 13, "Y_Unit_Label\tm");
   const std::string both = error_of(write("name_and_label.lvm", text));
@@ -349,6 +357,7 @@ TEST(TimeSeries, LabViewChannelsOnOtherTimesAreNotOneRecord) {
     text.replace(text.find("X_Value\tAcceleration\tComment"), 28, "X_Value\tA\tX_Value\tB\tComment");
     text.replace(text.find("Delta_X\t0.000605"), 17, "Delta_X\t0.001");
     text.replace(text.find("Channels\t1"), 10, "Channels\t2");  // as many as the columns below (L10)
+    text.replace(text.find("Y_Unit_Label\tg"), 14, "Y_Unit_Label\tg\tg");  // a unit for each (P8)
     for (int i = 0; i < 64; ++i) {
       char line[96];
       std::snprintf(line, sizeof line, "%.6f\t%.6f\t%.6f\t%.6f\n", i * 1e-3, std::sin(0.3 * i), i * 1e-3 + offset_s,

@@ -251,6 +251,14 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
       << load_error("own", shared_and_own);
   EXPECT_NE(load_error("own", shared_and_own).find("is also in estimate"), std::string::npos)
       << load_error("own", shared_and_own);
+  // A study name that is a path, or empty, would write its tables outside results/ or into it (the twelfth pass's P2).
+  for (const char* name : {"../victim", ""}) {
+    std::string text = std::string(kTwoRecords) + fit;
+    text.replace(text.find("\"two-lengths\""), std::string("\"two-lengths\"").size(), std::string("\"") + name + "\"");
+    EXPECT_NE(load_error("named", text).find("study.name = '" + std::string(name) + "': must be a non-empty word"),
+              std::string::npos)
+        << load_error("named", text);
+  }
   // An empty candidate name, and a start value outside the candidate's bounds (the fourth pass's Q429, Q440).
   const std::string unnamed = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"\"\n";
   EXPECT_NE(load_error("unnamed", unnamed).find("must be a non-empty name"), std::string::npos)

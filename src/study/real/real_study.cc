@@ -269,6 +269,8 @@ RealStudySpec load_real_study(const std::string& path) {
   {
     Table r = document.required("study");
     s.name = r.string("name", std::nullopt);
+    if (const std::string problem = io::study_name_problem(s.name); !problem.empty())
+      r.fail("name", "'" + s.name + "'", problem);
     s.question = r.string("question", std::nullopt);
     r.finish({"name", "question"});
   }
@@ -338,7 +340,7 @@ int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std
   std::vector<std::string> inputs = {spec.path, spec.beam_file};
   for (const RealRecordSpec& r : spec.records) inputs.insert(inputs.end(), {r.file, r.beam_file});
   for (const CandidateSpec& c : spec.candidates) inputs.push_back(c.beam_file);
-  if (const std::string problem = io::output_folder_problem(output_dir, inputs, spec.path); !problem.empty())
+  if (const std::string problem = io::output_folder_problem(output_dir, inputs, spec.path, spec.name); !problem.empty())
     throw InputError("beamid real: --output " + output_dir + ": " + problem);
   const RealResults results = compute_real_study(spec, log);
   for (const Rendered& f : render_real_study(spec, results))

@@ -162,7 +162,7 @@ std::optional<std::string> validation_error(const RunOptions& o) {
 RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostream& log, bool terminal) {
   if (auto e = validation_error(options)) throw InputError("beamid study: " + *e);
   if (const std::string problem =
-          io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path}, spec.path);
+          io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path}, spec.path, spec.name);
       !problem.empty())
     throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Plan plan = make_plan(spec);

@@ -66,8 +66,8 @@ namespace {
 void read_study_table(const config::Document& document, StudySpec& spec) {
   Table r = document.required("study");
   spec.name = r.string("name", std::nullopt);
-  if (spec.name.empty() || spec.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_") != std::string::npos)
-    r.fail("name", "'" + spec.name + "'", "must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
+  if (const std::string problem = io::study_name_problem(spec.name); !problem.empty())
+    r.fail("name", "'" + spec.name + "'", problem);
   spec.question = r.string("question", std::nullopt);
   const double seed = r.number(
       "seed", std::nullopt, [](double v) { return v >= 0 && v < 9.007199254740992e15 && v == std::floor(v); },
