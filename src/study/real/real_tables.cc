@@ -225,7 +225,8 @@ void real_candidates(Markdown& md, const RealStudySpec& spec, const RealResults&
 void real_uncertainties(Markdown& md, const RealStudySpec& spec, const RealResults& results) {
   md << "\nThree uncertainties per estimate (REPORT 2.8 says which to quote): formal, sandwich (both from J at the "
         "estimate; no sandwich where a residual's leverage exceeds 0.5, as one mode's frequency often does for the "
-        "modal and spike costs: its residual then tells nothing of its own variance) and the sd over the disjoint "
+        "modal and spike costs, whose residual then tells nothing of its own variance, or where an estimate's rests on "
+        "fewer than 10 residuals' worth) and the sd over the disjoint "
         "windows whose fits converged, each parameter's over those where it is off its bound (none for an estimate "
         "on its bound, or with fewer than two such windows).\n";
   md << "\n| " << (spec.candidates.size() > 1 ? "candidate | " : "")
