@@ -262,9 +262,9 @@ std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>
          "modes (a higher --resample-rate keeps them in its pass band or removes them)";
 }
 
-std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
+std::string glitch_note(const io::TimeSeries& data, const std::string& what) {
   // One sample above kGlitchRatio times every other one is a glitch of the acquisition, or an impact shorter than a
-  // sample: either way the lead-in advice below ("cut the record after t") would throw away whatever precedes it (the
+  // sample: either way lead_in_note's advice ("cut the record after t") would throw away whatever precedes it (the
   // twelfth pass's P6: one sample at 50x the peak, half the record advised away).
   constexpr double kGlitchRatio = 10;
   std::size_t top = 0;
@@ -279,6 +279,11 @@ std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
            format_rounded(std::abs(data.values[top]) / rest, 3) +
            " times every other sample: a glitch of the acquisition, or an impact shorter than a sample, which " + what +
            " takes as a mode's content; remove it, or keep the record on one side of it (--start, --duration)";
+  return "";
+}
+
+std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
+  if (std::string glitch = glitch_note(data, what); !glitch.empty()) return glitch;
   const long peak = signal::quiet_lead_in(data.values);
   if (peak < 0) return "";
   const std::string t = format_rounded(data.t0_s + static_cast<double>(peak) * data.dt_s, 4);

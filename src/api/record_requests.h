@@ -75,6 +75,8 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
 // signal::quiet_lead_in in words, naming `what` fits the record ("the pencil", "a free-decay fit"), or a single
 // sample over 10 times every other (a glitch, which the lead-in advice would misplace), or "".
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what);
+// The glitch part of lead_in_note alone, for a record that is no free decay (a pulse fit's): "" when none.
+std::string glitch_note(const io::TimeSeries& data, const std::string& what);
 // The frequencies above a resampled record's pass band (io::TimeSeries::pass_band_hz) named, with why they are no
 // modes ("" when none is); `what` is "pole" or "spike".
 std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,

@@ -55,8 +55,11 @@ ModeComparison compare_modes(const FitReportInput& in) {
     return c;
   }
   // A free-decay fit takes the record as a decay from its first sample: a hit left in it is fitted as one.
-  if (o.experiment.excitation == simulation::kFreeDecay)
+  if (o.experiment.excitation == simulation::kFreeDecay) {
     if (const std::string note = api::lead_in_note(in.data, "a free-decay fit"); !note.empty()) c.notes.push_back(note);
+  } else if (const std::string note = api::glitch_note(in.data, "the fit"); !note.empty()) {
+    c.notes.push_back(note);  // (the thirteenth pass's 2: said by spikes and modal-id, not by fit)
+  }
   std::vector<galerkin::DampedMode> model;
   try {
     model = galerkin::StateSpaceModes(galerkin::assemble(galerkin::SplineSpace(o.elements), in.result.beam))

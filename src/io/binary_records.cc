@@ -144,6 +144,12 @@ Samples uff_samples(const std::string& bytes, const std::string& path, const Imp
                      std::to_string(f.ordinate_type) + (f.ordinate_type == 13 ? " (excitation force)" : "") +
                      ": a response record is 8 (displacement), 11 (velocity) or 12 (acceleration), or 0 or 1 "
                      "(unknown, general)");
+  // A blank ordinate units label states no unit, as a blank LVM label does: a record exported in g was read as m/s^2
+  // (the thirteenth pass's 4). The user says which.
+  if (normalized_unit(f.unit).empty() && o.units == "auto")
+    throw InputError(path + ":" + std::to_string(f.ordinate_line) +
+                     ": the ordinate's units label is blank, so the record states no unit: give --units g for an "
+                     "accelerometer in g, or --units as-is to take the values as SI (m, m/s, m/s^2)");
   Samples out;
   out.series.path = path;
   out.series.format = "uff58";

@@ -436,6 +436,12 @@ std::string column_unit_problem(std::string_view column) {
       if (const std::string u = known_unit(token, false); !u.empty()) units.push_back(u);
   for (const auto& u : units)
     if (u != units.front()) return "it states two units, " + units.front() + " and " + u + ": name the column with one";
+  // A name ending in "_in" with no other unit: inches, or an input ("force_in")? Read as SI, a displacement in inches
+  // was 25.4x off and its fit silently wrong (the thirteenth pass's 1): the user says which.
+  const std::string l = lower(stem);
+  if (units.empty() && l.size() > 3 && l.compare(l.size() - 3, 3, "_in") == 0)
+    return "its name ends in '_in', inches or an input: write the unit as 'name (in)' for inches (converted to m), "
+           "or rename it";
   return "";
 }
 

@@ -452,6 +452,14 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   EXPECT_NE(error_of(write("v.uff", velocity_label), o).find("ordinate data type 12 (acceleration) with units 'm/s'"),
             std::string::npos)
       << error_of(write("v.uff", velocity_label), o);
+  // A blank ordinate units label states no unit (the thirteenth pass's 4: read as SI, 9.81x off for a record in g).
+  std::string blank = good;
+  blank.replace(ordinate, 50, "        12    1    0    0 Acceleration             ");
+  ImportOptions automatic = o;
+  automatic.units = "auto";
+  EXPECT_NE(error_of(write("blank.uff", blank), automatic).find("the ordinate's units label is blank"),
+            std::string::npos)
+      << error_of(write("blank.uff", blank), automatic);
   // An excitation force (type 13) is no response (the fifth pass's R153).
   std::string force = good;
   force.replace(ordinate, 50, "        13    1    0    0 Force                N   ");

@@ -99,6 +99,12 @@ TEST(Units, ConversionsToSiAndQuantities) {
   EXPECT_NE(column_unit_problem("x (mm) (um)"), "");
   EXPECT_NE(column_unit_problem("x_mm_um"), "");
   EXPECT_NE(column_unit_problem("x_mm (um)"), "");
+  // "_in" alone: inches or an input, said (a displacement in inches was read as metres: the thirteenth pass's 1);
+  // stated as a unit, or beside another, it is no question.
+  EXPECT_NE(column_unit_problem("x_in").find("ends in '_in'"), std::string::npos);
+  EXPECT_NE(column_unit_problem("Displacement_IN").find("ends in '_in'"), std::string::npos);
+  EXPECT_EQ(column_unit_problem("x (in)"), "");
+  EXPECT_EQ(column_unit_problem("v_in_s"), "");
   // Nested brackets pair up: the real Impulse_test.lvm's "Acceleration (FFT - (RMS))" closes (a backward scan called
   // it unclosed); a nested unit is read, and a bracket that closes with the wrong kind is still unclosed.
   EXPECT_EQ(column_unit_problem("Acceleration (FFT - (RMS))"), "");
