@@ -195,6 +195,16 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (!(request.start_scale > 0)) refuse(caller, "start-scale", format_value(request.start_scale), "must be > 0");
   if (request.bound_factor && !(*request.bound_factor > 1))
     refuse(caller, "bound-factor", format_value(*request.bound_factor), "must be > 1");
+  // 1e6 spans twelve orders of magnitude around the start; 1e308 put EI's bound at 4.9e307, past any beam file's
+  // limit, and the multistart's starts there evaluated nothing (the thirteenth pass's 7).
+  if (request.bound_factor && !(*request.bound_factor <= 1e6))
+    refuse(caller, "bound-factor", format_value(*request.bound_factor),
+           "must be at most 1e6 (bounds [v/F, v F] over twelve orders of magnitude; give --bounds for more)");
+  // The amplitude is solved for with --unknown-amplitude: a stated one would be ignored (the thirteenth pass's 9).
+  if (request.cost.unknown_amplitude && request.experiment.force_amplitude_N)
+    refuse(caller,
+           "--unknown-amplitude solves for the excitation's amplitude: --force-amplitude would be ignored "
+           "(leave out one of them)");
   o.estimate = estimated_parameters(request);
   for (const std::string& key : request.of_interest)
     if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))

@@ -88,6 +88,14 @@ TEST(FitRequest, EveryConstraintIsRefusedInTheCommandLinesForm) {
   FitRequest r = request();
   r.bound_factor = 0.5;
   EXPECT_EQ(refusal(r), "beamid fit: --bound-factor = '0.5': must be > 1");
+  // Bounds past twelve orders of magnitude, and an amplitude given beside --unknown-amplitude (the thirteenth pass's 7
+  // and 9).
+  r.bound_factor = 1e308;
+  EXPECT_EQ(refusal(r).rfind("beamid fit: --bound-factor = '1e+308': must be at most 1e6", 0), 0u) << refusal(r);
+  r = request();
+  r.cost.unknown_amplitude = true;
+  r.experiment.force_amplitude_N = 5;
+  EXPECT_NE(refusal(r).find("--force-amplitude would be ignored"), std::string::npos) << refusal(r);
   r = request();
   r.start_scale = 0;
   EXPECT_EQ(refusal(r), "beamid fit: --start-scale = '0': must be > 0");
