@@ -130,12 +130,18 @@ int run_verify(const Flags& a, std::ostream& out) {
 
 int run_report(const Flags& a, std::ostream& out) {
   const std::string path = a.text("update");
-  const std::filesystem::path results = a.text_or("results", "results");
-  if (!std::filesystem::is_directory(results))
-    a.require(false, "results", "must be an existing folder of study results (results/)");
-  // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file).
+  // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file). The report
+  // first: a missing one was blamed on the default --results (the thirteenth pass's 11).
   std::ostringstream text;
   text << io::read_file(path, "cannot read the report given to --update");
+  const std::filesystem::path results = a.text_or("results", "results");
+  if (!std::filesystem::is_directory(results)) {
+    if (!a.has("results"))
+      throw InputError(
+          "beamid report: no results/ folder here (the default of --results): run it in the project's "
+          "folder, or give --results DIR");
+    a.require(false, "results", "must be an existing folder of study results (results/)");
+  }
   // A binary file is no Markdown report (random bytes were "0 generated block(s) refreshed", exit 0: the third pass's
   // P431).
   if (auto problem = io::binary_text_problem(text.str(), path)) {

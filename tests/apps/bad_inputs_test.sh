@@ -331,6 +331,9 @@ expect_error "flag before the command" "'--beam' comes before the command 'simul
   --beam banks-aluminium simulate
 head -c 3000 /dev/urandom | tr '\n' '\0' >"$tmp/binary.md"
 expect_error "binary report" "a binary file, not a Markdown report" report --update "$tmp/binary.md" --results "$tmp"
+# A missing report is named as such, not blamed on the default --results (the thirteenth pass's 11); run where no
+# results/ folder is, the default is said to be missing.
+expect_error "missing report" "nonexistent.md: cannot read the report given to --update" report --update "$tmp/nonexistent.md"
 # Epoch seconds printed to 17 digits are uniform to the doubles' own precision (ulp 2.4e-7 s at 1.7e9 s), not
 # "non-uniform" at a tolerance of 1e-7 s (the third pass's P050).
 awk -F, 'NR == 1 { print; next } { printf "%.17g,%s\n", 1.7e9 + $1, $2 }' "$tmp/z.csv" >"$tmp/epoch.csv"
