@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -94,18 +95,26 @@ class ArrayRecord {
       if (!t || t.ndim() != 1) throw InputError("time: must be a 1-D array of times, s");
       time_.assign(t.data(), t.data() + t.size());
       has_time_ = true;
+      // The times are as precise as the type they came in: float32 (or half) widened to double keeps its rounding.
+      if (py::isinstance<py::array>(time)) {
+        const py::dtype type = time.cast<py::array>().dtype();
+        if (type.kind() == 'f' && type.itemsize() <= 4)
+          time_precision_ = 2.0 * (type.itemsize() == 4 ? std::numeric_limits<float>::epsilon() : 9.765625e-4);
+      }
     }
   }
   // One channel with a command's import options (call without the GIL: it reads the array's memory only).
   io::TimeSeries read(const io::ImportOptions& o) const {
     const std::size_t rows = static_cast<std::size_t>(values_.shape(0));
     const std::size_t columns = values_.ndim() == 2 ? static_cast<std::size_t>(values_.shape(1)) : 1;
-    return io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o);
+    return io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o,
+                                 time_precision_);
   }
 
  private:
   py::array_t<double, py::array::c_style | py::array::forcecast> values_;
   std::vector<double> time_;
+  double time_precision_ = 2 * std::numeric_limits<double>::epsilon();
   bool has_time_ = false;
 };
 

@@ -565,7 +565,7 @@ void check_options(const ImportOptions& o) {
 }  // namespace
 
 TimeSeries array_time_series(const std::string& name, const double* values, std::size_t rows, std::size_t columns,
-                             const std::vector<double>* time, const ImportOptions& o) {
+                             const std::vector<double>* time, const ImportOptions& o, double time_relative_precision) {
   check_options(o);
   if (!o.variable.empty() || !o.time_variable.empty())
     throw InputError(name + ": --variable and --time-variable name variables of a MAT-file; this is an array");
@@ -578,11 +578,11 @@ TimeSeries array_time_series(const std::string& name, const double* values, std:
                      std::to_string(core::kMaxSamples) + " (cut the record, or lower its rate)");
   check_memory(name + ": reading " + std::to_string(samples) + " samples", 32.0 * static_cast<double>(samples),
                std::cerr);
-  // A time vector of doubles: uniform to their precision (as a MAT-file's double time vector).
+  // A time vector uniform to the precision of the type it was given in (as a MAT-file's time vector).
   return finish(array_samples(
                     name, "array", "array", rows, columns,
                     [values, columns](std::size_t i, std::size_t j) { return values[i * columns + j]; }, time,
-                    2 * std::numeric_limits<double>::epsilon(), o),
+                    time_relative_precision, o),
                 name, o);
 }
 

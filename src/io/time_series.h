@@ -70,7 +70,10 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
 // the longer dimension (as for .npy; the channel by options.channel, a 1-based index), the time base from
 // options.sample_rate_hz or `time` (one time per sample, s, uniform to double precision); then the checks and steps
 // every format shares (above). `name` stands for the file in messages; the format reads "array".
+// `time_relative_precision`: the precision of the times as they were given, 2 eps of their type (a float32 time vector
+// widened to double keeps float32's 2.4e-7, and was refused as a time base that jumps: the thirteenth pass's 8).
 TimeSeries array_time_series(const std::string& name, const double* values, std::size_t rows, std::size_t columns,
-                             const std::vector<double>* time, const ImportOptions& options = {});
+                             const std::vector<double>* time, const ImportOptions& options = {},
+                             double time_relative_precision = 2 * std::numeric_limits<double>::epsilon());
 
 }  // namespace beamid::io
