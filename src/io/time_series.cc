@@ -89,7 +89,7 @@ std::string read_text(const std::string& path) {
   // Its first 64 KiB first: a binary file of no format beamid reads is refused before the whole of it is read (a
   // 100 MB file of NUL bytes was read whole, 300 MB resident, before "byte 0 is 0x00").
   const std::string head = read_file_head(path, cannot_read, 1 << 16);
-  if (!is_npy(head) && !is_mat(head) && !is_uff(head))
+  if (!is_npy(head) && !is_mat(head) && !is_uff(head) && uff_without_delimiter(head) == 0)
     if (auto problem = binary_text_problem(head, path)) throw InputError(*problem);
   std::string text = read_file(path, cannot_read);
   // Parsing holds the text, a table of fields and the numbers: about 5 bytes per byte of file (measured: 800 MB
@@ -607,8 +607,13 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
   const bool npy = is_npy(bytes), mat = !npy && is_mat(bytes), uff = !npy && !mat && is_uff(bytes);
   // A binary file of none of these formats is said to be one before any option is weighed against it (a MAT v4 file
   // with --sample-rate was told it "has a time base").
-  if (!npy && !mat && !uff)
+  if (!npy && !mat && !uff) {
+    if (const int line = uff_without_delimiter(bytes))
+      throw InputError(path + ":" + std::to_string(line) +
+                       ": a UFF dataset 58's ID line with no '-1' delimiter line before it: a dataset starts and ends "
+                       "with a line '-1' (add it)");
     if (auto problem = binary_text_problem(bytes, path)) throw InputError(*problem);
+  }
   if (!mat && (!o.variable.empty() || !o.time_variable.empty()))
     throw InputError(path + ": --variable and --time-variable name variables of a MAT-file; this is not one");
   // A text table's first column is its time (a one-column table was told "this file has one" while its own error

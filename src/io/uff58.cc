@@ -85,6 +85,17 @@ bool is_uff(const std::string& bytes) {
   return false;
 }
 
+int uff_without_delimiter(const std::string& bytes) {
+  Cursor c(bytes);
+  for (int line = 1; !c.done() && line <= 10; ++line) {
+    const std::string text = trim(c.next());
+    if (text.empty()) continue;
+    const std::string id = field(text, 0, 6);
+    return trim(id) == "58" || text.rfind("58b", 0) == 0 ? line : 0;
+  }
+  return 0;
+}
+
 namespace {
 
 // A binary dataset's layout from its ID line (58b): byte order, floating-point format, header lines, data bytes.

@@ -23,6 +23,9 @@ namespace beamid::io {
 
 // Whether the text starts, after blank lines, with a "-1" delimiter line followed by a dataset number.
 bool is_uff(const std::string& bytes);
+// The 1-based line of a UFF dataset's ID line ("58", "58b ...") that opens the file without the "-1" delimiter before
+// it, or 0: such a file was read as CSV and told its header '58' names no columns (the thirteenth pass's 12).
+int uff_without_delimiter(const std::string& bytes);
 
 struct UffFunction {
   int dataset_line = 0;   // line of its "-1" delimiter (1-based)

@@ -452,6 +452,14 @@ TEST(RecordFormats, MalformedUffFilesNameTheLineOrByte) {
   EXPECT_NE(error_of(write("v.uff", velocity_label), o).find("ordinate data type 12 (acceleration) with units 'm/s'"),
             std::string::npos)
       << error_of(write("v.uff", velocity_label), o);
+  // A dataset without its opening '-1' line was read as CSV ("header '58': must name at least two columns"): named
+  // as the UFF it is (the thirteenth pass's 12).
+  const std::size_t dataset = good.find("\n    58");  // the first dataset 58's ID line, after its '-1'
+  ASSERT_NE(dataset, std::string::npos);
+  const std::string undelimited = good.substr(dataset + 1);
+  EXPECT_NE(error_of(write("undelimited.uff", undelimited), o).find("undelimited.uff:1: a UFF dataset 58's ID line"),
+            std::string::npos)
+      << error_of(write("undelimited.uff", undelimited), o);
   // A blank ordinate units label states no unit (the thirteenth pass's 4: read as SI, 9.81x off for a record in g).
   std::string blank = good;
   blank.replace(ordinate, 50, "        12    1    0    0 Acceleration             ");
