@@ -96,10 +96,6 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
                       "): the matrix pencil finds no decaying or steady pole there";
 }
 
-}  // namespace
-
-namespace {
-
 // A band that starts at or above the record's Nyquist frequency holds nothing: modal-id printed an empty table with
 // exit 0 (the twelfth pass's P11).
 void refuse_band_above_nyquist(const Caller& caller, double min_frequency_hz, const io::TimeSeries& data) {

@@ -177,7 +177,8 @@ void form_sandwich(const Eigen::MatrixXd& jacobian, const Eigen::MatrixXd& inver
   // direction: the modal cost's first-mode frequency, which alone separates EI from rho on the thin beam, has
   // h = 0.992; its HC1 sandwich of EI came out 15x below the scatter over 30 noise seeds, HC2's 2.3x below and HC3's
   // 5x above; spike-smooth's (h = 0.97) 12x above with HC2.
-  const Eigen::VectorXd leverage = (jacobian * inverse).cwiseProduct(jacobian).rowwise().sum();
+  const Eigen::MatrixXd influence = jacobian * inverse;  // row i: J_i B^-1
+  const Eigen::VectorXd leverage = influence.cwiseProduct(jacobian).rowwise().sum();
   Eigen::Index worst = 0;
   if (!(leverage.maxCoeff(&worst) <= kMaxSandwichLeverage)) {
     std::ostringstream why;
@@ -194,7 +195,7 @@ void form_sandwich(const Eigen::MatrixXd& jacobian, const Eigen::MatrixXd& inver
   // one or two squared residuals, a chi-square of as many degrees of freedom. Two channels of one beam measure each
   // mode twice, so that each of the pair had leverage 0.4999, under the bound above, and a joint modal fit's sandwich
   // of EI came out 2.9x below its scatter over 30 seeds (the twelfth pass's P3): its count was about 2.
-  const Eigen::MatrixXd weights = (jacobian * inverse).cwiseAbs2();  // w_ij, m x n
+  const Eigen::MatrixXd weights = influence.cwiseAbs2();  // w_ij, m x n
   for (int j = 0; j < n; ++j) {
     const double count = std::pow(weights.col(j).sum(), 2) / weights.col(j).squaredNorm();
     if (!(count >= kMinSandwichTerms)) {

@@ -8,17 +8,12 @@
 #include <tuple>
 
 #include "io/resources.h"
+#include "study/analysis/statistics.h"
 
 namespace beamid::study {
 namespace {
 
 using GroupKey = std::tuple<std::string, std::string, int>;  // kind, cost, elements
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct Timings {
   std::map<std::string, double> by_id;
