@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "api/model_notes.h"
 #include "core/errors.h"
 #include "core/limits.h"
 #include "io/resources.h"
@@ -148,6 +149,8 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   fit::FitOptions o;
   check_elements(caller, request.elements);
   o.elements = request.elements;
+  if (const std::string note = attachment_convergence_note(request.beam, o.elements); !note.empty())
+    warnings << caller.label << ": at the start's values, " << note << "\n";
   o.experiment = experiment_of(request.experiment, request.beam.l, caller);
   guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),
                  core::kRecordBytesPerSample, warnings);

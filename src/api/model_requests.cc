@@ -5,6 +5,7 @@
 #include <numbers>
 #include <ostream>
 
+#include "api/model_notes.h"
 #include "core/errors.h"
 #include "core/limits.h"
 #include "galerkin/modes.h"
@@ -20,6 +21,8 @@ ModelRun model_run(const ModelRunRequest& request, double bytes_per_sample, std:
   run.experiment = experiment_of(request.experiment, run.beam.l, request.caller);
   guard_run_size(request.caller, run.elements, bytes_per_sample > 0 ? run.experiment.samples : 0, bytes_per_sample,
                  warnings);
+  if (const std::string note = attachment_convergence_note(run.beam, run.elements); !note.empty())
+    warnings << request.caller.label << ": " << note << "\n";
   return run;
 }
 
@@ -60,12 +63,16 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
   guard_run_size(request.caller, n, 0, 0, warnings);
   const galerkin::SplineSpace space(n);
   const galerkin::SecondOrderSystem system = galerkin::assemble(space, request.beam);
+  const auto add_note = [&r](const std::string& note) {
+    if (!note.empty()) r.note += (r.note.empty() ? "" : "; ") + note;
+  };
   if (request.undamped) {
     r.kind = "undamped";
     const Eigen::VectorXd omega = galerkin::undamped_modes(system).omega_rad_s;
     r.available = static_cast<int>(omega.size());
     const int shown = std::min(r.requested.value_or(r.available), r.available);
     r.note = fewer_modes_note(r, n, "modes");
+    add_note(attachment_convergence_note(request.beam, n));
     for (int k = 0; k < shown; ++k) {
       r.frequency_hz.push_back(omega(k) / (2 * std::numbers::pi));
       r.damping_ratio.push_back(0.0);
@@ -73,10 +80,13 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings) {
     return r;
   }
   r.kind = "damped";
-  const auto modes = galerkin::StateSpaceModes(system).underdamped_modes();
+  const galerkin::StateSpaceModes state_space(system);
+  const auto modes = state_space.underdamped_modes();
   r.available = static_cast<int>(modes.size());
   const int shown = std::min(r.requested.value_or(r.available), r.available);
   r.note = fewer_modes_note(r, n, "underdamped modes");
+  add_note(attachment_convergence_note(request.beam, n));
+  add_note(nearly_defective_note(state_space.eigenvector_rcond()));
   // Overdamped modes (real pole pairs) have no frequency and are not listed. The Galerkin model's highest modes
   // always are (Kelvin-Voigt damping grows as omega^2); said when one lies among the listed ones, i.e. when more
   // undamped modes lie below the highest listed frequency than underdamped ones are listed, since the rows'
@@ -154,6 +164,9 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   // truth): the sensor or the force at a rigid clamp, or no force (the third pass's P216, P218, P219).
   if (std::all_of(r.trace.y.begin(), r.trace.y.end(), [](double v) { return v == 0; }))
     refuse(caller, std::string(kZeroResponse) + "; nothing is written");
+  if (r.trace.stats.integrator == simulation::kFast)
+    if (const std::string note = nearly_defective_note(r.trace.stats.eigenvector_rcond); !note.empty())
+      warnings << caller.label << ": " << note << "\n";
   r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
   return r;
 }
@@ -243,6 +256,10 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
                            format_value(r.bound.sd(i)) + ": the signal and the noise sd differ by more than double " +
                            "can hold (check --noise-sd against the output's size and the force amplitude)");
   for (const std::string& key : r.keys) r.values.push_back(model::parameter_value(beam, key));
+  // The sensitivities come from the same modal closed form as the fast response (crb said "exact (modal closed
+  // form)" at a damping ratio of 0.999999, where that form is 3e-4 off: the thirteenth pass's problem 5).
+  if (const std::string note = nearly_defective_note(beam, r.run.elements); !note.empty())
+    warnings << caller.label << ": " << note << "\n";
   return r;
 }
 

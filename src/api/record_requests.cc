@@ -155,6 +155,7 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
   std::vector<double> picked;
   for (const auto& p : r.picks) picked.push_back(r.spectrum.frequency_hz(p.bin));
   if (const std::string note = pass_band_note(data, picked, "spike"); !note.empty()) r.notes.push_back(note);
+  if (const std::string note = raw_signal_note(data, "magnitudes"); !note.empty()) r.notes.push_back(note);
   return r;
 }
 
@@ -243,7 +244,14 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   std::vector<double> found;
   for (const signal::IdentifiedMode& m : r.modes) found.push_back(m.frequency_hz);
   if (const std::string note = pass_band_note(data, found, "pole"); !note.empty()) r.notes.push_back(note);
+  if (const std::string note = raw_signal_note(data, "amplitudes"); !note.empty()) r.notes.push_back(note);
   return r;
+}
+
+std::string raw_signal_note(const io::TimeSeries& data, const std::string& what) {
+  if (!io::is_non_motion_unit(data.unit)) return "";
+  return "the record is in " + data.unit + ", a raw sensor signal and no motion: its " + what + " are in " + data.unit +
+         " (frequencies and damping ratios do not depend on the unit; beamid fit needs the motion)";
 }
 
 std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,

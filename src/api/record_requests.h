@@ -77,6 +77,9 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what);
 // The glitch part of lead_in_note alone, for a record that is no free decay (a pulse fit's): "" when none.
 std::string glitch_note(const io::TimeSeries& data, const std::string& what);
+// "the record is in V, a raw sensor signal ...: its <what> are in V ..." for a record in a unit of no motion (V, mV, N,
+// Pa), which spikes and modal-id read (their frequencies do not depend on the unit) and report in that unit; else "".
+std::string raw_signal_note(const io::TimeSeries& data, const std::string& what);
 // The frequencies above a resampled record's pass band (io::TimeSeries::pass_band_hz) named, with why they are no
 // modes ("" when none is); `what` is "pole" or "spike".
 std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,

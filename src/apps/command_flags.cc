@@ -93,6 +93,10 @@ io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); 
 io::TimeSeries read_prediction(const Flags& a) {
   io::ImportOptions o;
   o.channel_advice = "a prediction holds one, the model's output beside its time (--channel chooses among --data's)";
+  // The window cuts both records alike: it cut only --data, and the two then differed in length, an error that blamed
+  // the prediction (the thirteenth adversarial pass's problem 13).
+  o.start_s = a.optional_number("start");
+  o.duration_s = a.optional_number("duration");
   try {
     return io::read_time_series(a.text("prediction"), o);
   } catch (const InputError& e) {
@@ -135,6 +139,9 @@ void check_output_file(const Flags& a, const std::string& flag) {
   const bool writable = ::access(folder.c_str(), W_OK) == 0;
   const std::string reason = std::strerror(errno);
   a.require(writable, flag, "cannot write in folder '" + folder.string() + "' (" + reason + ")");
+  // As root, access() says yes in /proc too, and `fit --report /proc/x.md` fitted before it failed: a probe file.
+  const std::string unwritable = io::unwritable_folder_problem(folder);
+  a.require(unwritable.empty(), flag, unwritable);
 }
 
 void refuse_overwriting_inputs(const Flags& a, const std::vector<std::string>& output_flags,

@@ -77,7 +77,10 @@ std::vector<Command> make_commands() {
        joined(joined({text_flag("data",
                                 "record of the data: CSV, LabVIEW .lvm, text table (.txt, .dat), .npy, .mat or UFF 58",
                                 true),
-                      text_flag("prediction", "CSV record of the model prediction, same sampling", true)},
+                      text_flag("prediction",
+                                "CSV record of the model prediction, same sampling (--start and --duration cut it as "
+                                "they cut --data)",
+                                true)},
                      without(cost_flags(true), "welch")),
               import_flags()),
        {},

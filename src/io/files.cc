@@ -1,5 +1,8 @@
 #include "io/files.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -72,6 +75,48 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
            "could overwrite; write into a new or empty folder";
+  // A table's name taken by a folder or a special file failed only when the tables were written, after every unit
+  // had run (the thirteenth adversarial pass's problem 10: a folder named timings.csv).
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string extension = entry.path().extension().string();
+    if (extension != ".csv" && extension != ".md" && extension != ".json") continue;
+    if (const std::string problem = replaceable_output_problem(entry.path()); !problem.empty())
+      return "holds " + entry.path().filename().string() + ", which " + problem +
+             ", where a table of that name is written; remove it or write into a new or empty folder";
+  }
+  return "";
+}
+
+std::string unwritable_folder_problem(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  // The folders this check creates, leaf first, are removed again (when still empty): a command that then fails on
+  // its inputs leaves no empty output folder behind.
+  std::vector<fs::path> created;
+  std::error_code ec;
+  for (fs::path p = folder; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    created.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  struct Cleanup {
+    const std::vector<fs::path>& folders;
+    ~Cleanup() {
+      std::error_code e;
+      for (const fs::path& p : folders) fs::remove(p, e);
+    }
+  } cleanup{created};
+  try {
+    make_folder(folder);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  // access(W_OK) says yes to root everywhere, /proc included: a file is created (exclusively, under a name no output
+  // has) and removed.
+  const std::filesystem::path probe = folder / (".beamid-write-probe-" + std::to_string(::getpid()));
+  errno = 0;
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) return folder.string() + ": cannot write in it (" + std::strerror(errno) + ")";
+  ::close(fd);
+  fs::remove(probe, ec);
   return "";
 }
 

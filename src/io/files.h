@@ -29,6 +29,11 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
                                   const std::string& study_file = "", const std::string& study_name = "");
 
+// Why nothing can be written in `folder`, or "": it is created (with its parents) if missing, and a probe file is
+// created and removed in it. Checked before a command computes, so that an unwritable output costs no compute (a
+// `real --output /proc/rs` fitted its records first).
+std::string unwritable_folder_problem(const std::filesystem::path& folder);
+
 // The constraint a study's [study] name breaks, or "": it names results/<name>/, so it must be a non-empty word of
 // a-z, 0-9, '-', '_' (a real study's name "../victim" wrote its tables outside results/: the twelfth pass's P2).
 std::string study_name_problem(const std::string& name);

@@ -229,7 +229,7 @@ expect_error "study force at the clamp" "clamp.toml:10: truth.force_x_m = 0: mus
   study "$tmp/clamp.toml" --output "$tmp/clamp"
 sed 's/^pulse_width_s = 0.004/pulse_width_s = 1e300/' "$tmp/mini.toml" >"$tmp/zero.toml"
 "$BEAMID" study "$tmp/zero.toml" --jobs 2 --output "$tmp/zero" >/dev/null 2>&1
-check "a zero truth fails its cases with the reason" grep -qF "truth simulation failed: the truth record's peak is 0" \
+check "a zero truth fails its cases with the reason" grep -qF "truth simulation failed: fast: the response's peak 0 is not" \
   "$tmp/zero/cases.csv"
 check "no case of a zero truth converges" bash -c "! grep -q ',converged,' '$tmp/zero/cases.csv'"
 sed 's/^replicates = 2/replicates = 0/' "$tmp/mini.toml" >"$tmp/bad.toml"

@@ -342,6 +342,8 @@ int run_real_study(const RealStudySpec& spec, const std::string& output_dir, std
   for (const CandidateSpec& c : spec.candidates) inputs.push_back(c.beam_file);
   if (const std::string problem = io::output_folder_problem(output_dir, inputs, spec.path, spec.name); !problem.empty())
     throw InputError("beamid real: --output " + output_dir + ": " + problem);
+  if (const std::string problem = io::unwritable_folder_problem(output_dir); !problem.empty())
+    throw InputError("beamid real: --output " + output_dir + ": " + problem);
   const RealResults results = compute_real_study(spec, log);
   for (const Rendered& f : render_real_study(spec, results))
     io::write_file_atomic(std::filesystem::path(output_dir) / f.path, f.text);

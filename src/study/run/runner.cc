@@ -165,6 +165,8 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
           io::output_folder_problem(options.output_dir, {spec.path, spec.truth.beam_path}, spec.path, spec.name);
       !problem.empty())
     throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
+  if (const std::string problem = io::unwritable_folder_problem(options.output_dir); !problem.empty())
+    throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Plan plan = make_plan(spec);
   const int jobs = job_count(options.jobs);
   const std::vector<const Unit*> mine = shard(plan.units, options.shard_index, options.shard_count);
