@@ -146,6 +146,9 @@ class Cost {
   virtual const std::vector<SpikePair>& data_spikes() const = 0;
   // "eps1 = ..., eps2 = ..." as used (empty for "time").
   virtual std::string weights() const = 0;
+  // Whether evaluate reads the model's output y (every cost but modal, which compares eigenvalues alone): a free
+  // decay's least-squares synthesis of y, a record-sized QR, is skipped for a cost that does not (fit/objective.h).
+  virtual bool uses_response() const { return true; }
   // Whether output_jacobian is available: time and freq-band with a known amplitude (residuals linear in y), and
   // spike-smooth with a known amplitude and the model's poles from its DFT (by the chain rule through the 3-bin
   // estimator and the magnitudes).

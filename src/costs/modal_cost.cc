@@ -104,6 +104,7 @@ class ModalCost final : public Cost {
     e.value = e.residuals.squaredNorm();
     return e;
   }
+  bool uses_response() const override { return false; }
   bool has_pole_jacobian() const override { return true; }
   Eigen::MatrixXd pole_jacobian(const ModelResponse& model, const Eigen::MatrixXcd& d_poles) override {
     // r_2l = (|u| - |z|)/s_f and r_2l+1 = (Re u - Re z)/s_d for the partner u of data mode z (s the divisors):

@@ -388,7 +388,7 @@ void reweight_by_noise(JointObjective& objective, const ParameterMap& map, const
 // Each record's own evaluation and output at the estimate (the joint evaluation's parts).
 void record_results(JointObjective& objective, const std::vector<Record>& records,
                     const std::vector<model::BeamParameters>& estimates, FitResult& result) {
-  JointObjective::Output final_output = objective.evaluate(estimates);
+  JointObjective::Output final_output = objective.evaluate(estimates, Objective::Response::always);
   result.final_evaluation = final_output.evaluation;
   for (std::size_t r = 0; r < records.size(); ++r) {
     RecordResult part{records[r].name, estimates[r], {}, {}, objective.weight(static_cast<int>(r))};

@@ -89,10 +89,11 @@ costs::Evaluation JointObjective::stack(std::vector<Objective::Output>& parts) c
   return joint;
 }
 
-JointObjective::Output JointObjective::evaluate(const std::vector<model::BeamParameters>& beams) {
+JointObjective::Output JointObjective::evaluate(const std::vector<model::BeamParameters>& beams,
+                                                Objective::Response response) {
   Output out;
   for (std::size_t r = 0; r < parts_.size(); ++r) {
-    out.records.push_back(parts_[r]->evaluate(beams.at(r)));
+    out.records.push_back(parts_[r]->evaluate(beams.at(r), response));
     if (!out.records.back().evaluation.ok()) break;  // the joint cost is undefined: the other records need not run
   }
   out.evaluation = stack(out.records);

@@ -33,7 +33,8 @@ class JointObjective {
     std::vector<Objective::Output> records;  // each record's output and unweighted evaluation
   };
   // Never throws for admissible options: a failed record makes the joint evaluation fail with its status.
-  Output evaluate(const std::vector<model::BeamParameters>& beams);
+  Output evaluate(const std::vector<model::BeamParameters>& beams,
+                  Objective::Response response = Objective::Response::as_cost_needs);
   // Whether every record has an exact Jacobian for the estimated parameters acting on it.
   bool has_exact_jacobian() const { return exact_jacobian_; }
   // evaluate, and d r / d q for the estimated parameters `active` (indices into the map, in that order): a shared

@@ -53,7 +53,8 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
                                                                        o.cost.model_poles == costs::kEigenvaluePoles),
                                   o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
   const bool fast = o.simulator.integrator == simulation::kFast;
-  impl_->pole_jacobian = cost_->has_pole_jacobian() && o.experiment.excitation != "free-decay" && fast;
+  // A free decay's poles are the model's, whatever its amplitudes: the modal cost's pole Jacobian holds there too.
+  impl_->pole_jacobian = cost_->has_pole_jacobian() && fast;
   std::vector<std::string> keys;
   for (const auto& e : o.estimate) keys.push_back(e.key);
   impl_->exact_jacobian = impl_->pole_jacobian || (cost_->has_output_jacobian() &&
@@ -105,31 +106,51 @@ Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParame
     return out;
   }
   const galerkin::StateSpaceModes& modes = *decomposed;
-  const simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
-  simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
-  if (!trace.ok()) {
-    out.evaluation.status = trace.status;
-    return out;
-  }
-  out.y = std::move(trace.y);
-  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, trace.poles_rad_s});
-  if (!out.evaluation.ok()) return out;
+  // The poles the cost is given, as indices into the modes: a simulated record's underdamped ones in the trace's
+  // order, or a free decay's (those below the Nyquist frequency, ascending), whose output the cost does not read.
   std::vector<Eigen::Index> underdamped;
   for (Eigen::Index k = 0; k < modes.size(); ++k)
     if (modes.eigenvalues()(k).imag() > 0) underdamped.push_back(k);
+  std::vector<std::complex<double>> poles;
+  if (impl_->experiment.excitation == simulation::kFreeDecay) {
+    std::vector<std::complex<double>> all;
+    for (const Eigen::Index k : underdamped) all.push_back(modes.eigenvalues()(k));
+    std::vector<Eigen::Index> kept;
+    for (const std::size_t i : simulation::free_decay_pole_indices(all, impl_->experiment.dt_s)) {
+      kept.push_back(underdamped[i]);
+      poles.push_back(all[i]);
+    }
+    underdamped = std::move(kept);
+    if (poles.empty()) {
+      out.evaluation.status = simulation::kNoFreeDecayMode;
+      return out;
+    }
+  } else {
+    const simulation::ResponseProblem problem =
+        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+    simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
+    if (!trace.ok()) {
+      out.evaluation.status = trace.status;
+      return out;
+    }
+    out.y = std::move(trace.y);
+    poles = std::move(trace.poles_rad_s);
+  }
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
+  if (!out.evaluation.ok()) return out;
   Eigen::MatrixXcd d_poles(static_cast<Eigen::Index>(underdamped.size()), static_cast<Eigen::Index>(keys.size()));
   for (std::size_t q = 0; q < keys.size(); ++q) {
     const Eigen::VectorXcd d = modes.eigenvalue_derivative(galerkin::parameter_derivative(impl_->forms, beam, keys[q]));
     for (std::size_t i = 0; i < underdamped.size(); ++i)
       d_poles(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(q)) = d(underdamped[i]);
   }
-  jacobian = cost_->pole_jacobian(costs::ModelResponse{out.y, trace.poles_rad_s}, d_poles);
+  jacobian = cost_->pole_jacobian(costs::ModelResponse{out.y, poles}, d_poles);
   return out;
 }
 
 Objective::~Objective() = default;
 
-Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
+Objective::Output Objective::evaluate(const model::BeamParameters& beam, Response response) {
   Output out;
   std::vector<std::complex<double>> poles;
   if (auto error = model::validation_error(beam)) {
@@ -142,6 +163,17 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam) {
       // Unknown initial state: the modal amplitudes are solved in closed form against the data.
       std::vector<std::complex<double>> all;
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) all.push_back(mode.lambda);
+      if (response == Response::as_cost_needs && !cost_->uses_response()) {
+        std::vector<std::complex<double>> poles;
+        for (const std::size_t k : simulation::free_decay_pole_indices(all, impl_->experiment.dt_s))
+          poles.push_back(all[k]);
+        if (poles.empty()) {
+          out.evaluation.status = simulation::kNoFreeDecayMode;
+          return out;
+        }
+        out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
+        return out;
+      }
       simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data);
       if (decay.status != "ok") {
         out.evaluation.status = decay.status;

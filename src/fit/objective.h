@@ -24,11 +24,15 @@ class Objective {
     std::vector<double> y;
     costs::Evaluation evaluation;
   };
+  // What an evaluation computes of the model's output: `as_cost_needs` leaves y empty where the cost does not read it
+  // and computing it is work of its own (a free decay's least-squares synthesis, for the modal cost: 60-80 % of a
+  // measured record's evaluation); `always` computes it, for the output a report or table shows.
+  enum class Response { as_cost_needs, always };
   // Never throws for admissible options: a failed simulation is an evaluation with that status.
-  Output evaluate(const model::BeamParameters& beam);
+  Output evaluate(const model::BeamParameters& beam, Response response = Response::as_cost_needs);
   // Whether evaluate_with_jacobian is available: a cost with an output Jacobian (costs/cost.h: time, freq-band,
-  // spike-smooth with a known amplitude) on a pulse, or with a pole Jacobian (modal) on a simulated record; the fast
-  // integrator.
+  // spike-smooth with a known amplitude) on a pulse, or with a pole Jacobian (modal) on a simulated record or a free
+  // decay; the fast integrator.
   bool has_exact_jacobian() const;
   // evaluate, and the exact d residual / d q (residuals x keys) for the parameters `keys`; `jacobian` is empty when
   // the evaluation failed. InputError unless has_exact_jacobian().

@@ -9,18 +9,26 @@
 
 namespace beamid::simulation {
 
+const char* const kNoFreeDecayMode = "free decay: the model has no underdamped mode below the Nyquist frequency";
+
+std::vector<std::size_t> free_decay_pole_indices(const std::vector<std::complex<double>>& poles, double dt) {
+  const double nyquist_rad_s = std::numbers::pi / dt;
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < poles.size(); ++k)
+    if (poles[k].imag() > 0 && poles[k].imag() < nyquist_rad_s && std::isfinite(poles[k].real())) kept.push_back(k);
+  std::stable_sort(kept.begin(), kept.end(),
+                   [&poles](std::size_t a, std::size_t b) { return poles[a].imag() < poles[b].imag(); });
+  return kept;
+}
+
 FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt,
                             const std::vector<double>& data) {
   if (!(dt > 0)) throw InputError("free decay: dt = " + format_value(dt) + ": must be > 0");
   if (data.empty()) throw InputError("free decay: no data");
   FreeDecayFit out;
-  const double nyquist_rad_s = std::numbers::pi / dt;
-  for (const auto& p : poles)
-    if (p.imag() > 0 && p.imag() < nyquist_rad_s && std::isfinite(p.real())) out.poles_rad_s.push_back(p);
-  std::sort(out.poles_rad_s.begin(), out.poles_rad_s.end(),
-            [](const auto& a, const auto& b) { return a.imag() < b.imag(); });
+  for (const std::size_t k : free_decay_pole_indices(poles, dt)) out.poles_rad_s.push_back(poles[k]);
   if (out.poles_rad_s.empty()) {
-    out.status = "free decay: the model has no underdamped mode below the Nyquist frequency";
+    out.status = kNoFreeDecayMode;
     return out;
   }
   const auto n = static_cast<Eigen::Index>(data.size());

@@ -21,6 +21,12 @@ struct FreeDecayFit {
   std::string status = "ok";                      // or why not (no mode below Nyquist, rank-deficient basis)
 };
 
+// The poles a free decay is synthesised from, as indices into `poles_rad_s`: Im > 0, finite, below the Nyquist
+// frequency pi / dt, in ascending frequency (fit_free_decay's poles_rad_s, without its least squares).
+std::vector<std::size_t> free_decay_pole_indices(const std::vector<std::complex<double>>& poles_rad_s, double dt_s);
+// "free decay: the model has no underdamped mode below the Nyquist frequency", the status when that list is empty.
+extern const char* const kNoFreeDecayMode;
+
 // InputError for dt <= 0 or empty data.
 FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles_rad_s, double dt_s,
                             const std::vector<double>& data);

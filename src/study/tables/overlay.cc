@@ -14,7 +14,7 @@ Overlay compute_overlay(const fit::FitOptions& options, const std::vector<double
                         const model::BeamParameters& at) {
   Overlay out;
   fit::Objective objective(options, data);
-  const auto model = objective.evaluate(at);
+  const auto model = objective.evaluate(at, fit::Objective::Response::always);
   const double dt = options.experiment.dt_s;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t i = 0; i < data.size(); ++i) {
