@@ -233,10 +233,17 @@ def _record_flags(data, flags):
     return np.asarray(array, dtype=float), dict(flags, data="<array>")
 
 
+def _warn_lines(r: dict) -> None:
+    """The lines the command prints on stderr beside its result ("beamid simulate: ..."), as warnings at the caller."""
+    for line in r.get("warnings", []):
+        warnings.warn(line, stacklevel=3)
+
+
 def modes(**flags) -> np.ndarray:
     """``beamid modes``: a structured array (mode, frequency_hz, damping_ratio) of the beam's modes."""
     f, toml = _beam_argument(flags)
     r = _call(_core.modes, _arguments(f), toml)
+    _warn_lines(r)
     count = len(r["frequency_hz"])
     if r["note"]:
         warnings.warn("beamid modes: " + r["note"], stacklevel=3)
@@ -253,14 +260,18 @@ def simulate(**flags) -> np.ndarray:
     """``beamid simulate``: the sampled output as a 1-D array (``y[i]`` at ``t = dt * i``), bit-identical to the
     command's second column."""
     f, toml = _beam_argument(flags)
-    return _call(_core.simulate, _arguments(f), toml)["y"]
+    r = _call(_core.simulate, _arguments(f), toml)
+    _warn_lines(r)
+    return r["y"]
 
 
 def system(**flags) -> "System":
     """``beamid system``: the Galerkin matrices M, C, K (arrays) with the experiment's load, sensor, initial state and
     sampling, as a :class:`System`."""
     f, toml = _beam_argument(flags)
-    return System._from_core(_call(_core.system, _arguments(f), toml))
+    r = _call(_core.system, _arguments(f), toml)
+    _warn_lines(r)
+    return System._from_core(r)
 
 
 def spikes(data, time=None, **flags) -> "Spikes":
@@ -314,7 +325,9 @@ def crb(**flags) -> "CramerRao":
     """``beamid crb``: the Cramér-Rao bound, a :class:`CramerRao` with parameters, value, crb_sd, crb_relative_sd
     (arrays in the order of ``estimate``), the noise sd assumed, the covariance of ln q and the method."""
     f, toml = _beam_argument(flags)
-    return CramerRao._from_core(_call(_core.crb, _arguments(f), toml))
+    r = _call(_core.crb, _arguments(f), toml)
+    _warn_lines(r)
+    return CramerRao._from_core(r)
 
 
 def modal_id(data, time=None, **flags) -> np.ndarray:

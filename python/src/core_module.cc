@@ -18,6 +18,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -150,11 +151,24 @@ auto without_gil(const char* command, const std::vector<std::string>& args, Comp
   return compute(flags_of(command, args, beam_toml));
 }
 
+// What a computation wrote to its warnings stream, one line each: the Python package raises them as warnings, as the
+// command line prints them on stderr (they went to the process's stderr: the fourteenth pass's P8).
+py::list warning_lines(const std::ostringstream& warnings) {
+  py::list lines;
+  std::istringstream in(warnings.str());
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.append(line);
+  return lines;
+}
+
 py::dict py_simulate(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
+  std::ostringstream warned;
   api::SimulateResult r = without_gil(
       "simulate", args,
-      [](const apps::Flags& a) { return api::compute_simulate(apps::simulate_request_of(a), std::cerr); }, beam_toml);
+      [&warned](const apps::Flags& a) { return api::compute_simulate(apps::simulate_request_of(a), warned); },
+      beam_toml);
   py::dict d;
+  d["warnings"] = warning_lines(warned);
   d["dt_s"] = r.run.experiment.dt_s;
   d["output"] = r.run.experiment.output;
   d["integrator"] = r.trace.stats.integrator;
@@ -165,10 +179,12 @@ py::dict py_simulate(const std::vector<std::string>& args, const std::optional<s
 }
 
 py::dict py_modes(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
+  std::ostringstream warned;
   const api::ModesResult r = without_gil(
-      "modes", args, [](const apps::Flags& a) { return api::compute_modes(apps::modes_request_of(a), std::cerr); },
+      "modes", args, [&warned](const apps::Flags& a) { return api::compute_modes(apps::modes_request_of(a), warned); },
       beam_toml);
   py::dict d;
+  d["warnings"] = warning_lines(warned);
   d["kind"] = r.kind;
   d["available"] = r.available;
   d["note"] = r.note;
@@ -178,10 +194,13 @@ py::dict py_modes(const std::vector<std::string>& args, const std::optional<std:
 }
 
 py::dict py_system(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
+  std::ostringstream warned;
   const api::SystemResult r = without_gil(
       "system", args,
-      [](const apps::Flags& a) { return api::compute_system(apps::model_run_request_of(a), std::cerr); }, beam_toml);
+      [&warned](const apps::Flags& a) { return api::compute_system(apps::model_run_request_of(a), warned); },
+      beam_toml);
   py::dict d;
+  d["warnings"] = warning_lines(warned);
   d["beam"] = r.run.beam_name;
   d["length_m"] = r.run.beam.l;
   d["elements"] = r.run.elements;
@@ -286,6 +305,7 @@ py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double
 
 py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
                 const py::object& data, const py::object& time) {
+  std::ostringstream warned;
   const auto array = array_record(data, time);
   std::optional<api::FitComputation> c;
   std::vector<io::TimeSeries> channels;
@@ -296,7 +316,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     const apps::Flags a = flags_of("fit", args, beam_toml);
     apps::check_report_outputs(a);
     channels = records_of(a, array);
-    c = api::compute_fit(apps::fit_request_of(a), channels, std::cerr);
+    c = api::compute_fit(apps::fit_request_of(a), channels, warned);
     beam_name = a.text("beam");
     const apps::FitReportInput input{
         c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};
@@ -319,7 +339,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   d["termination"] = r.termination;
   d["a4"] = r.final_evaluation.a4;
   // What the command says on stderr beside its summary line (api::fit_notes), and (A4) when violated.
-  py::list messages;
+  py::list messages = warning_lines(warned);
   const api::FitNotes notes = api::fit_notes(r);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
@@ -372,10 +392,12 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
 }
 
 py::dict py_crb(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
+  std::ostringstream warned;
   const api::CrbResult r = without_gil(
-      "crb", args, [](const apps::Flags& a) { return api::compute_crb(apps::crb_request_of(a), std::cerr); },
+      "crb", args, [&warned](const apps::Flags& a) { return api::compute_crb(apps::crb_request_of(a), warned); },
       beam_toml);
   py::dict d;
+  d["warnings"] = warning_lines(warned);
   d["parameters"] = r.keys;
   d["value"] = copied_array(r.values);
   d["crb_sd"] = vector_array(r.bound.sd);

@@ -7,10 +7,13 @@
 #include "api/model_notes.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "galerkin/second_order_system.h"
+#include "galerkin/spline_space.h"
 #include "io/resources.h"
 #include "io/units.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
+#include "simulation/simulator.h"
 
 namespace beamid::api {
 
@@ -230,6 +233,30 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   return o;
 }
 
+namespace {
+
+// A simulated experiment (pulse or pluck) whose model response is zero at the start, at every record's sensor: the
+// sensor or the force at a rigid clamp, or no force. Every parameter then leaves the cost alone, and the fit
+// "converged" at the start with NaN errors where simulate and crb refuse (the fourteenth pass's P5).
+void refuse_zero_model(const fit::FitOptions& o, const std::vector<fit::Record>& records, const Caller& caller) {
+  if (o.experiment.excitation == simulation::kFreeDecay) return;
+  std::vector<simulation::Experiment> experiments{o.experiment};
+  for (const fit::Record& r : records) experiments.push_back(r.experiment);
+  const galerkin::SplineSpace space(o.elements);
+  const galerkin::BeamForms forms(space, o.start.l, o.start.support);
+  for (const simulation::Experiment& e : experiments) {
+    const simulation::Trace trace = simulation::simulate(forms, o.start, e, {});  // the fast one: zero either way
+    double peak = 0;
+    for (const double y : trace.y) peak = std::max(peak, std::abs(y));
+    if (trace.ok() && !(peak >= 1e-150))
+      refuse(caller, "the model's response at the start is zero at every sample (peak " + format_value(peak) +
+                         "): the sensor or the force is at a rigid clamp (--sensor-x, --force-x 0) or the force is 0 "
+                         "(--force-amplitude), so no parameter moves the cost");
+  }
+}
+
+}  // namespace
+
 FitComputation compute_fit(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
                            std::ostream& warnings) {
   FitComputation c;
@@ -253,6 +280,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
       c.records.push_back(std::move(record));
     }
   }
+  refuse_zero_model(o, c.records, caller);
   const std::vector<double>& data = channels.front().values;
   // The lower layers' input errors ("cost spike: spikes = 8: the data spectrum has only 5 local maxima ...") name
   // the command (they did not: the fifth pass's R258-R263).

@@ -14,8 +14,8 @@ namespace beamid::api {
 // converges only roughly as 1/N (the thirteenth adversarial pass's problem 3: x = 0.2 m, m = 0.01 kg,
 // J = 1e-4 kg m^2 on the thin beam put mode 4 8 % high at N = 16 and 1.6 % high at N = 48, where a point mass converges
 // to 1e-7 by N = 80). Compares the model's first six undamped frequencies at `elements` with the exact ones
-// (model/exact_frequencies.h), and the same for the beam without its attachments, and says so when the attachments
-// add more than kAttachmentExcessGap to a mode's relative error.
+// (model/exact_frequencies.h), and the same for the beam with its bodies as point masses, and says so when the rotary
+// inertia adds more than kAttachmentExcessGap to a mode's relative error.
 std::string attachment_convergence_note(const model::BeamParameters& beam, int elements);
 
 // The damped modes' eigenvalue condition (galerkin::StateSpaceModes::eigenvector_rcond) below

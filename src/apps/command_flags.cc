@@ -90,6 +90,19 @@ io::TimeSeries read_data(const Flags& a, const RecordReader& read) {
 
 io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); }
 
+namespace {
+
+// The first sample's time of --data (with the import flags but the window) and of --prediction, as the files have it.
+std::pair<double, double> first_times_s(const Flags& a, io::ImportOptions prediction) {
+  io::ImportOptions data = read_import_options(a);
+  const std::vector<std::string> channels = a.texts("channel");
+  if (!channels.empty()) data.channel = channels.front();
+  for (io::ImportOptions* o : {&data, &prediction}) o->start_s.reset(), o->duration_s.reset();
+  return {io::read_time_series(a.text("data"), data).t0_s, io::read_time_series(a.text("prediction"), prediction).t0_s};
+}
+
+}  // namespace
+
 io::TimeSeries read_prediction(const Flags& a) {
   io::ImportOptions o;
   o.channel_advice = "a prediction holds one, the model's output beside its time (--channel chooses among --data's)";
@@ -97,11 +110,19 @@ io::TimeSeries read_prediction(const Flags& a) {
   // the prediction (the thirteenth adversarial pass's problem 13).
   o.start_s = a.optional_number("start");
   o.duration_s = a.optional_number("duration");
+  io::TimeSeries prediction;
   try {
-    return io::read_time_series(a.text("prediction"), o);
+    prediction = io::read_time_series(a.text("prediction"), o);
   } catch (const InputError& e) {
     throw InputError("beamid " + a.command() + ": --prediction: " + e.what());
   }
+  if (o.start_s || o.duration_s) {
+    const auto [data_t0, prediction_t0] = first_times_s(a, o);
+    a.require(std::abs(data_t0 - prediction_t0) <= 0.5 * prediction.dt_s, "prediction",
+              "starts at t = " + format_value(prediction_t0) + " s and --data at " + format_value(data_t0) +
+                  " s: --start and --duration cut each by its own times, so the two must start together");
+  }
+  return prediction;
 }
 
 namespace {

@@ -74,6 +74,17 @@ int run_merge(const Flags& a, std::ostream& out) {
   const study::StudySpec spec = study::load_study(a.text("STUDY.toml"));
   const std::string output = a.text_or("output", default_output(spec));
   std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path, spec.name);
+  // A merge refused midway (units missing, a foreign shard) into a folder it created removes that folder: the shards
+  // still hold every record (it left a store of copies and no tables: the fourteenth pass's P11).
+  std::error_code exists_ec;
+  struct RemoveUnlessKept {
+    std::string folder;
+    bool keep;
+    ~RemoveUnlessKept() {
+      std::error_code ec;
+      if (!keep) std::filesystem::remove_all(folder, ec);
+    }
+  } created{output, std::filesystem::exists(output, exists_ec)};
   if (problem.empty()) problem = io::claim_store(output + "/store", spec.path);
   if (!problem.empty()) {
     if (a.has("output")) a.require(false, "output", problem);
@@ -137,6 +148,7 @@ int run_merge(const Flags& a, std::ostream& out) {
                      " shard record(s) were left behind, damaged or of no unit of this study: listed above; rerun "
                      "their shards)");
   }
+  created.keep = true;
   out << "study,records_merged,output\n" << spec.name << "," << records << "," << output << "\n";
   return 0;
 }

@@ -59,6 +59,23 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
              " (an output folder holds what beamid writes, and an output there could replace an input of the same "
              "name): write into a new or empty folder";
   }
+  // A table's name taken by a folder or a special file failed only when the tables were written, after every unit
+  // had run (the thirteenth adversarial pass's problem 10: a folder named timings.csv; the fourteenth's P14: one in
+  // landscape/), and a manifest.json that is a FIFO, a folder or a link to /dev/zero hung or failed the manifest's
+  // read below (its P2, P3): every .csv, .md and .json outside store/ must be a regular file.
+  for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it.depth() == 0 && it->path().filename() == "store") {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const std::string extension = it->path().extension().string();
+    if (extension != ".csv" && extension != ".md" && extension != ".json") continue;
+    if (const std::string problem = replaceable_output_problem(it->path()); !problem.empty())
+      return "holds " + it->path().lexically_relative(folder).string() + ", which " + problem +
+             ", where a table of that name is written; remove it or write into a new or empty folder";
+  }
+  ec.clear();
   if (!study_file.empty() && fs::exists(folder / "manifest.json", ec)) {
     const std::string owner = manifest_field(folder / "manifest.json", "study_file");
     if (!owner.empty() && fs::exists(owner, ec) && !fs::equivalent(owner, study_file, ec) && !ec)
@@ -75,15 +92,6 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
            "could overwrite; write into a new or empty folder";
-  // A table's name taken by a folder or a special file failed only when the tables were written, after every unit
-  // had run (the thirteenth adversarial pass's problem 10: a folder named timings.csv).
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
-    const std::string extension = entry.path().extension().string();
-    if (extension != ".csv" && extension != ".md" && extension != ".json") continue;
-    if (const std::string problem = replaceable_output_problem(entry.path()); !problem.empty())
-      return "holds " + entry.path().filename().string() + ", which " + problem +
-             ", where a table of that name is written; remove it or write into a new or empty folder";
-  }
   return "";
 }
 
@@ -151,7 +159,11 @@ std::string claim_store(const std::filesystem::path& store, const std::string& s
         throw InputError(claim.string() + ": cannot write (" + std::strerror(errno) + ")");
       return "";
     }
-    if (!fs::is_regular_file(claim, ec)) return "";  // unwritable or not a file: the store's own checks say so
+    // Not a regular file (a folder of that name switched the guard off: the fourteenth pass's P10): said.
+    if (const std::string problem = replaceable_output_problem(claim); !problem.empty())
+      return claim.string() + " " + problem + ", where the file that guards the store against another study file " +
+             "goes: remove it";
+    if (!fs::is_regular_file(claim, ec)) return "";  // vanished meanwhile: the store's own checks say so
     std::string owner = text_of(claim);
     while (!owner.empty() && (owner.back() == '\n' || owner.back() == '\r')) owner.pop_back();
     if (owner == mine.string()) return "";

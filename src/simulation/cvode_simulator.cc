@@ -172,6 +172,17 @@ void set_absolute_tolerances(const CvodeOptions& options, const Eigen::VectorXd&
   }
 }
 
+// Why a given absolute tolerance is too loose for displacements of natural size `displacements` (max |w|), or "": above
+// 1e-3 of it, it leaves errors of its own size, as a looser rtol does (--atol 1 was 255 % off the exact response and
+// 1e308 gave 1e34 m, exit 0: the fourteenth pass's P1).
+std::string loose_atol_problem(double atol, const Eigen::VectorXd& displacements) {
+  const double natural_m = displacements.cwiseAbs().maxCoeff();
+  if (atol <= 1e-3 * natural_m) return "";
+  return "cvode: atol = " + format_value(atol) + " is above 1e-3 of the displacements' natural size here (" +
+         format_rounded(natural_m, 3) + ", the static deflection under the load or the pluck's), so the response " +
+         "would carry errors of its size; leave --atol out (rtol sets it)";
+}
+
 // Attaches CvodeOptions::linear_solver to the session: "dense" (the cross-check, with the analytic Jacobian) or the
 // structured solver above (which the caller owns). Returns CVODE's flag.
 int attach_linear_solver(Session& s, StructuredSolver& structured, const galerkin::SecondOrderSystem& system,
@@ -347,6 +358,8 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   y.head(n) = p.w0;
   y.tail(n).setZero();
   if (options_.atol > 0) {
+    trace.status = loose_atol_problem(options_.atol, w_scale.head(block));
+    if (!trace.status.empty()) return trace;
     atol.setConstant(options_.atol);
   } else {
     set_absolute_tolerances(options_, w_scale, rayleigh_rad_s, block, atol);

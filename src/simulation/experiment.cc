@@ -35,6 +35,15 @@ std::optional<std::string> validation_error(const Experiment& e, double length_m
     return bad("force_amplitude_N", e.force_amplitude_N, "must be finite and at most 1e12 N in magnitude");
   if (e.excitation == kPulse && !(e.pulse_width_s > 0 && std::isfinite(e.pulse_width_s)))
     return bad("pulse_width_s", e.pulse_width_s, "must be finite and > 0");
+  // Narrower than 1e-12 s a pulse is an impulse at any step beamid takes (dt >= 1e-9 s), and a denormal width
+  // overflowed its frequency 2 pi / width, blamed on the amplitude (the fourteenth pass's P7).
+  if (e.excitation == kPulse && e.pulse_width_s < 1e-12)
+    return bad("pulse_width_s", e.pulse_width_s,
+               "must be at least 1e-12 s (narrower is an impulse at any dt >= 1e-9 s)");
+  // A force smaller than 1e-150 N, or one within 1e-9 l of the clamp, gives a response below what a record holds
+  // (1e-150, io/time_series.cc): 1e-320 passed the check that refuses 0 and wrote a record of zeros (its P15).
+  if (e.force_amplitude_N != 0 && std::abs(e.force_amplitude_N) < 1e-150)
+    return bad("force_amplitude_N", e.force_amplitude_N, "must be 0 or at least 1e-150 N in magnitude");
   if (!(e.dt_s > 0 && std::isfinite(e.dt_s))) return bad("dt_s", e.dt_s, "must be finite and > 0");
   // The records' own floor (io/time_series.cc): a rate above 1 GHz is a unit mistake, and simulate wrote records at
   // dt = 1e-300 s that no reader takes (the third pass's P209).

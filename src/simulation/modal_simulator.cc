@@ -223,7 +223,8 @@ void require_above_round_off(const std::vector<double>& y, double cancelling, do
   throw NumericalError("the response's peak " + format_rounded(peak, 3) + " is not 1e6 times the closed form's " +
                        "error estimate there (about " + format_rounded(round_off, 2) + ")" +
                        (tau > record_s
-                            ? ": the pulse (" + format_rounded(tau, 3) + " s) is " + format_rounded(tau / record_s, 2) +
+                            ? ": the pulse (" + format_rounded(tau, 3) + " s) is " +
+                                  (std::isfinite(tau / record_s) ? format_rounded(tau / record_s, 2) : "over 1e300") +
                                   " times the record (" + format_rounded(record_s, 3) +
                                   " s), so its force barely starts within it; a shorter pulse or a longer "
                                   "record makes a pulse test"

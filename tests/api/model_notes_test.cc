@@ -47,6 +47,9 @@ TEST(ModelNotes, ABodyWithRotaryInertiaOnTheSpanIsSaidToConvergeSlowlyInN) {
   beam.attachments.back() = {0.2, 0.01, 0.0, 0.0};
   EXPECT_LT(largest_gap(beam, 16), 1e-2);
   EXPECT_TRUE(attachment_convergence_note(beam, 16).empty());
+  // Nor is a rotary inertia too small to matter: J = 1e-20 kg m^2 gives the point mass's frequencies to round-off.
+  beam.attachments.back() = {0.2, 0.01, 1e-20, 0.0};
+  EXPECT_TRUE(attachment_convergence_note(beam, 16).empty());
   beam.attachments.back() = {beam.l, 0.01, 1e-4, 0.0};
   EXPECT_LT(largest_gap(beam, 16), 1e-2);
   EXPECT_TRUE(attachment_convergence_note(beam, 16).empty());

@@ -165,6 +165,47 @@ expect_error "a folder where a table goes" "holds timings.csv, which is a folder
   study "$tmp/mini.toml" --output "$tmp/blocked"
 expect_error "a report in /proc" "/proc: cannot write in it" fit --data "$tmp/record.csv" --beam banks-aluminium \
   --elements 4 --estimate EI --cost time --report /proc/beamid-report.md
+# The fourteenth pass: a manifest.json that is a folder (an internal error) or a FIFO (a hang), and a table's name
+# taken in a subfolder, are refused at the start; a folder named store/claim no longer switches off the claim.
+cp -r "$tmp/clean" "$tmp/blocked2" && rm "$tmp/blocked2/manifest.json" && mkdir "$tmp/blocked2/manifest.json"
+expect_error "a folder named manifest.json" "holds manifest.json, which is a folder" study "$tmp/mini.toml" \
+  --output "$tmp/blocked2"
+rm -r "$tmp/blocked2/manifest.json" && mkfifo "$tmp/blocked2/manifest.json"
+expect_error "a FIFO named manifest.json" "holds manifest.json, which is not a regular file" study "$tmp/mini.toml" \
+  --output "$tmp/blocked2"
+rm "$tmp/blocked2/manifest.json" && mkdir -p "$tmp/blocked2/landscape/x.csv"
+expect_error "a table's name in a subfolder" "holds landscape/x.csv, which is a folder" study "$tmp/mini.toml" \
+  --output "$tmp/blocked2"
+cp -r "$tmp/clean" "$tmp/claimed" && rm "$tmp/claimed/store/claim" && mkdir "$tmp/claimed/store/claim"
+expect_error "a folder named store/claim" "claim is a folder, where the file that guards the store" study \
+  "$tmp/mini.toml" --output "$tmp/claimed"
+# A damaged record where store/damaged is a file is kept beside itself, and the message says where (it claimed a
+# move into damaged/ and the record was gone).
+cp -r "$tmp/clean" "$tmp/dmgfile" && touch "$tmp/dmgfile/store/damaged"
+victim=$(ls "$tmp/dmgfile/store"/*.rec | head -1) && echo A >"$victim"
+"$BEAMID" study "$tmp/mini.toml" --output "$tmp/dmgfile" >/dev/null 2>"$tmp/err"
+if grep -qF "moved to $victim.damaged" "$tmp/err" && [ "$(cat "$victim.damaged")" = A ]; then ok
+else bad "damaged record with store/damaged a file: $(head -c 300 "$tmp/err")"; fi
+# A merge refused for missing units leaves no folder behind (the shards hold every record).
+"$BEAMID" study "$tmp/mini.toml" --shard 1/2 --output "$tmp/half" >/dev/null 2>&1
+expect_error "merge with a shard missing" "missing" merge "$tmp/mini.toml" --shards "$tmp/half" --output "$tmp/merged_half"
+[ ! -e "$tmp/merged_half" ] && ok || bad "a refused merge left $tmp/merged_half behind"
+# Volts in another prefix are a unit of no motion, not metres; a prediction whose times start elsewhere is refused
+# under a window; a CVODE tolerance looser than 1e-3 of the response's size, a denormal pulse width and a force that
+# cannot move the model are refused.
+sed '1s/.*/t_s,sig (uV)/' "$tmp/z.csv" >"$tmp/microvolts.csv"
+expect_error "a record in uV" "a unit beamid does not know" fit --data "$tmp/microvolts.csv" "${S[@]}" --estimate EI \
+  --cost time
+awk -F, 'NR == 1 {print; next} {printf "%.17g,%s\n", $1 + 0.5, $2}' "$tmp/z.csv" >"$tmp/shifted.csv"
+expect_error "a prediction shifted in time" "--prediction = '$tmp/shifted.csv': starts at t = 0.5 s and --data at 0 s" \
+  cost --data "$tmp/z.csv" --prediction "$tmp/shifted.csv" --cost time --start 0.6
+timeout 60 "$BEAMID" simulate "${S[@]}" --samples 64 --integrator cvode --atol 1 >"$tmp/out" 2>"$tmp/err"
+if [ $? -eq 3 ] && grep -qF "atol = 1 is above 1e-3 of the displacements' natural size" "$tmp/err"; then ok
+else bad "a loose --atol: $(cat "$tmp/err")"; fi
+expect_error "a denormal pulse width" "--pulse-width = '1e-310': must be at least 1e-12 s" simulate "${S[@]}" \
+  --pulse-width 1e-310
+expect_error "a zero force in fit" "the model's response at the start is zero at every sample" fit \
+  --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --force-amplitude 0
 
 # Damage to a finished study's store (records cut in half, altered, replaced by garbage, emptied), chosen at random:
 # the rerun names each, recomputes it, and writes the tables of the undisturbed run.

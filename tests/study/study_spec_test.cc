@@ -103,7 +103,8 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 9007199254740993")),  // 2^53 + 1, no double: P361
             "s.toml:4: study.seed = 9007199254740993: an integer beyond 2^53: must be an integer in 0..2^53");
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
-            "s.toml:10: truth.pulse_width_s = -0.004: must be > 0");
+            "s.toml:10: truth.pulse_width_s = -0.004: must be at least 1e-12 s (narrower is an impulse at any dt >= "
+            "1e-9 s)");
   EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
             "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth, freq-band, modal");
   EXPECT_EQ(error_of(replaced(kValid, "elements = [4, 8]", "elements = [4, 48]")),

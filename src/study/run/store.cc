@@ -172,16 +172,33 @@ std::optional<Record> Store::load(const std::string& id, const RecordCheck& chec
     } catch (const InputError& e) {
       why = e.what();
     }
-  // Damaged: moved aside (kept for inspection) and recomputed.
+  // Damaged: moved aside (kept for inspection) and recomputed. Where damaged/ cannot be a folder (a file of that
+  // name), beside the record as <id>.rec.damaged; the message says where it went, or that it could not be kept (it
+  // claimed a move to damaged/ that had not happened, the record gone: the fourteenth pass's P9).
   const fs::path aside_dir = fs::path(directory_) / "damaged";
   fs::create_directories(aside_dir, ec);
-  fs::path aside = aside_dir / (id + ".rec");
-  for (int k = 1; fs::exists(aside, ec); ++k) aside = aside_dir / (id + ".rec." + std::to_string(k));
-  fs::rename(path, aside, ec);
-  if (ec) fs::remove_all(path, ec);
+  const auto free_name = [&ec](const fs::path& base) {
+    fs::path name = base;
+    for (int k = 1; fs::exists(name, ec) || fs::is_symlink(name, ec); ++k)
+      name = base.string() + "." + std::to_string(k);
+    return name;
+  };
+  fs::path aside = free_name(aside_dir / (id + ".rec"));
+  std::error_code moved;
+  fs::rename(path, aside, moved);
+  if (moved) {
+    aside = free_name(fs::path(directory_) / (id + ".rec.damaged"));
+    moved.clear();
+    fs::rename(path, aside, moved);
+  }
+  std::string where = "moved to " + aside.string();
+  if (moved) {
+    fs::remove_all(path, ec);
+    where = "removed, as it could not be moved aside (" + moved.message() + ")";
+  }
   std::lock_guard<std::mutex> lock(log_mutex());
-  (log_ ? *log_ : std::cerr) << "beamid study: store: " << path.string() << ": " << why << ": moved to "
-                             << aside.string() << "; the unit is recomputed\n";
+  (log_ ? *log_ : std::cerr) << "beamid study: store: " << path.string() << ": " << why << ": " << where
+                             << "; the unit is recomputed\n";
   return std::nullopt;
 }
 

@@ -38,11 +38,18 @@ void read_experiment(Table& r, simulation::Experiment& e) {
   e.excitation = r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck});  // simulable
   // At the clamp (x = 0) a force does no work and a sensor reads nothing: every case failed, exit 0, the reason only
   // in cases.csv (the eleventh pass's TF_24).
-  constexpr const char* kAtTheClamp = "must be > 0 (at the clamp, x = 0, a force does no work and a sensor reads 0)";
-  if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, positive, kAtTheClamp);
-  e.force_amplitude_N = r.number("force_amplitude_N", e.force_amplitude_N, positive, "must be > 0");
-  e.pulse_width_s = r.number("pulse_width_s", e.pulse_width_s, positive, "must be > 0");
-  if (r.has("sensor_x_m")) e.sensor_x_m = r.number("sensor_x_m", std::nullopt, positive, kAtTheClamp);
+  // Denormal positions and amplitudes passed "> 0" and failed every case (the fourteenth pass's P7, P15): the floors
+  // are simulation::validation_error's (1e-12 s, 1e-150 N), and 1e-9 m from the clamp.
+  constexpr const char* kAtTheClamp =
+      "must be > 0 (at the clamp, x = 0, a force does no work and a sensor reads 0) and at least 1e-9 m";
+  const auto off_clamp = [](double x) { return x >= 1e-9; };
+  if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, off_clamp, kAtTheClamp);
+  e.force_amplitude_N = r.number(
+      "force_amplitude_N", e.force_amplitude_N, [](double a) { return a >= 1e-150; }, "must be at least 1e-150 N");
+  e.pulse_width_s = r.number(
+      "pulse_width_s", e.pulse_width_s, [](double w) { return w >= 1e-12; },
+      "must be at least 1e-12 s (narrower is an impulse at any dt >= 1e-9 s)");
+  if (r.has("sensor_x_m")) e.sensor_x_m = r.number("sensor_x_m", std::nullopt, off_clamp, kAtTheClamp);
   e.output = r.string("output", e.output, simulation::output_names().names());
 }
 
