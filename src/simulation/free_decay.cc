@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "core/errors.h"
 
@@ -21,6 +22,56 @@ std::vector<std::size_t> free_decay_pole_indices(const std::vector<std::complex<
   return kept;
 }
 
+namespace {
+
+// The columns 1, Re e^{lambda_k t_i}, Im e^{lambda_k t_i} (t_i = i dt), n rows. Each exponential advances by one
+// complex product per sample, re-anchored on the exact exponential every 256 samples, so that round-off cannot
+// accumulate (a few hundred eps at most; the per-sample std::exp it replaces was a quarter of a fit's evaluation).
+Eigen::MatrixXd modal_basis(const std::vector<std::complex<double>>& poles, double dt, Eigen::Index n) {
+  constexpr Eigen::Index kAnchorEvery = 256;
+  const auto k = static_cast<Eigen::Index>(poles.size());
+  Eigen::MatrixXd basis(n, 2 * k + 1);
+  basis.col(0).setOnes();
+  for (Eigen::Index m = 0; m < k; ++m) {
+    const std::complex<double> lambda = poles[static_cast<std::size_t>(m)];
+    const std::complex<double> step = std::exp(lambda * dt);
+    std::complex<double> e;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      e = i % kAnchorEvery == 0 ? std::exp(lambda * (static_cast<double>(i) * dt)) : e * step;
+      basis(i, 1 + 2 * m) = e.real();
+      basis(i, 2 + 2 * m) = e.imag();
+    }
+  }
+  return basis;
+}
+
+// min |B c - z| by the corrected semi-normal equations (Bjorck 1987): the Cholesky factor of the column-scaled Gram
+// matrix S B^T B S, then one step of refinement on the residual z - B c, which restores the accuracy of a QR solve
+// while the basis is well conditioned. The Gram matrix costs n c^2 flops against the QR's 2 n c^2 with column
+// pivoting (unblocked): 0.5 ms against 6.3 ms for the steel record's 13,213 x 17 basis. Nothing when the scaled Gram
+// matrix's reciprocal condition is below 1e-10 (B's condition above 1e5, where squaring it costs digits): the caller
+// then takes the pivoted QR, whose rank also says when the basis is deficient.
+std::optional<Eigen::VectorXd> solve_seminormal(const Eigen::MatrixXd& basis, const Eigen::VectorXd& z) {
+  const Eigen::VectorXd norms = basis.colwise().norm().transpose();
+  if (!(norms.minCoeff() > 0) || !norms.allFinite()) return std::nullopt;
+  const Eigen::VectorXd scale = norms.cwiseInverse();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(basis.cols(), basis.cols());
+  gram.selfadjointView<Eigen::Lower>().rankUpdate(basis.transpose());  // B^T B, its lower triangle
+  gram = gram.selfadjointView<Eigen::Lower>();
+  gram = scale.asDiagonal() * gram * scale.asDiagonal();
+  const Eigen::LLT<Eigen::MatrixXd> cholesky(gram);
+  if (cholesky.info() != Eigen::Success || !(cholesky.rcond() >= 1e-10)) return std::nullopt;
+  const auto solve = [&](const Eigen::VectorXd& rhs) {
+    return Eigen::VectorXd(scale.asDiagonal() * cholesky.solve(scale.asDiagonal() * (basis.transpose() * rhs)));
+  };
+  Eigen::VectorXd c = solve(z);
+  c += solve(z - basis * c);
+  if (!c.allFinite()) return std::nullopt;
+  return c;
+}
+
+}  // namespace
+
 FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt,
                             const std::vector<double>& data) {
   if (!(dt > 0)) throw InputError("free decay: dt = " + format_value(dt) + ": must be > 0");
@@ -33,25 +84,19 @@ FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, doub
   }
   const auto n = static_cast<Eigen::Index>(data.size());
   const auto k = static_cast<Eigen::Index>(out.poles_rad_s.size());
-  Eigen::MatrixXd basis(n, 2 * k + 1);
-  basis.col(0).setOnes();
-  for (Eigen::Index m = 0; m < k; ++m) {
-    const std::complex<double> lambda = out.poles_rad_s[static_cast<std::size_t>(m)];
-    // e^{lambda dt i} by repeated multiplication would drift; the exponential of each t_i is exact to round-off.
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const std::complex<double> e = std::exp(lambda * (static_cast<double>(i) * dt));
-      basis(i, 1 + 2 * m) = e.real();
-      basis(i, 2 + 2 * m) = e.imag();
-    }
-  }
+  const Eigen::MatrixXd basis = modal_basis(out.poles_rad_s, dt, n);
   const Eigen::Map<const Eigen::VectorXd> z(data.data(), n);
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(basis);
-  if (qr.rank() < basis.cols()) {
-    out.status = "free decay: the modal basis is rank-deficient (" + std::to_string(qr.rank()) + " of " +
-                 std::to_string(basis.cols()) + " columns: modes too close or too fast for the record)";
-    return out;
+  std::optional<Eigen::VectorXd> solved = solve_seminormal(basis, z);
+  if (!solved) {
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(basis);
+    if (qr.rank() < basis.cols()) {
+      out.status = "free decay: the modal basis is rank-deficient (" + std::to_string(qr.rank()) + " of " +
+                   std::to_string(2 * k + 1) + " columns: modes too close or too fast for the record)";
+      return out;
+    }
+    solved = qr.solve(z);
   }
-  const Eigen::VectorXd c = qr.solve(z);
+  const Eigen::VectorXd& c = *solved;
   const Eigen::VectorXd y = basis * c;
   out.y.assign(y.data(), y.data() + n);
   out.amplitudes.assign(c.data(), c.data() + c.size());

@@ -39,6 +39,10 @@ TEST(FreeDecay, ClosedFormAmplitudesReproduceDampedModes) {
   EXPECT_NEAR(fit.amplitudes[0], 0.01, 1e-12);               // offset
   EXPECT_NEAR(fit.amplitudes[1], 2 * std::cos(0.4), 1e-11);  // a_1 = 2 cos(phase), b_1 = -2 sin(phase)
   EXPECT_NEAR(fit.amplitudes[2], -2 * std::sin(0.4), 1e-11);
+  // A pole given twice gives two equal column pairs: the semi-normal equations step aside (their Gram matrix is
+  // singular) and the pivoted QR names the deficient rank, as it did alone.
+  const std::vector<std::complex<double>> twins{poles[0], poles[0], poles[1]};
+  EXPECT_NE(simulation::fit_free_decay(twins, dt, z).status.find("rank-deficient"), std::string::npos);
   EXPECT_THROW(simulation::fit_free_decay(poles, 0, z), InputError);
   EXPECT_NE(simulation::fit_free_decay({{-1, 2 * std::numbers::pi * 900}}, dt, z).status, "ok");
 }
