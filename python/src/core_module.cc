@@ -339,7 +339,13 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   d["termination"] = r.termination;
   d["a4"] = r.final_evaluation.a4;
   // What the command says on stderr beside its summary line (api::fit_notes), and (A4) when violated.
-  py::list messages = warning_lines(warned);
+  // fit's own lines without the command's name, which the package's warnings add ("beamid fit: beamid fit: ...").
+  py::list messages;
+  for (const py::handle line : warning_lines(warned)) {
+    std::string text = line.cast<std::string>();
+    if (text.rfind("beamid fit: ", 0) == 0) text.erase(0, 12);
+    messages.append(text);
+  }
   const api::FitNotes notes = api::fit_notes(r);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);

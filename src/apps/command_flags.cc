@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <tuple>
 
 #include "config/beam_file.h"
 #include "core/errors.h"
@@ -110,18 +111,35 @@ io::TimeSeries read_prediction(const Flags& a) {
   // the prediction (the thirteenth adversarial pass's problem 13).
   o.start_s = a.optional_number("start");
   o.duration_s = a.optional_number("duration");
+  // The two files' first times, before a window cuts them: with a window they must agree (checked before the cut,
+  // whose own error hid the cause: the fifteenth pass's P8); without one, the records are paired sample by sample,
+  // and a prediction that starts elsewhere is said.
+  double data_t0 = 0, prediction_t0 = 0;
+  try {
+    std::tie(data_t0, prediction_t0) = first_times_s(a, o);
+  } catch (const InputError&) {
+    // Read again below, where the error names its file.
+  }
   io::TimeSeries prediction;
   try {
+    if (o.start_s || o.duration_s) {
+      io::ImportOptions whole = o;
+      whole.start_s.reset(), whole.duration_s.reset();
+      const double dt_s = io::read_time_series(a.text("prediction"), whole).dt_s;
+      a.require(std::abs(data_t0 - prediction_t0) <= 0.5 * dt_s, "prediction",
+                "starts at t = " + format_value(prediction_t0) + " s and --data at " + format_value(data_t0) +
+                    " s: --start and --duration cut each by its own times, so the two must start together");
+    }
     prediction = io::read_time_series(a.text("prediction"), o);
   } catch (const InputError& e) {
-    throw InputError("beamid " + a.command() + ": --prediction: " + e.what());
+    const std::string what = e.what();
+    if (what.rfind("beamid ", 0) == 0) throw;
+    throw InputError("beamid " + a.command() + ": --prediction: " + what);
   }
-  if (o.start_s || o.duration_s) {
-    const auto [data_t0, prediction_t0] = first_times_s(a, o);
-    a.require(std::abs(data_t0 - prediction_t0) <= 0.5 * prediction.dt_s, "prediction",
-              "starts at t = " + format_value(prediction_t0) + " s and --data at " + format_value(data_t0) +
-                  " s: --start and --duration cut each by its own times, so the two must start together");
-  }
+  if (!(std::abs(data_t0 - prediction_t0) <= 0.5 * prediction.dt_s))
+    std::cerr << "beamid " << a.command() << ": --prediction starts at t = " << format_value(prediction_t0)
+              << " s and --data at " << format_value(data_t0)
+              << " s: the two are compared sample by sample, as if they started together\n";
   return prediction;
 }
 

@@ -77,6 +77,7 @@ int run_merge(const Flags& a, std::ostream& out) {
   // A merge refused midway (units missing, a foreign shard) into a folder it created removes that folder: the shards
   // still hold every record (it left a store of copies and no tables: the fourteenth pass's P11).
   std::error_code exists_ec;
+  // Into a folder that existed, the store it created (the fifteenth pass's P7).
   struct RemoveUnlessKept {
     std::string folder;
     bool keep;
@@ -84,7 +85,8 @@ int run_merge(const Flags& a, std::ostream& out) {
       std::error_code ec;
       if (!keep) std::filesystem::remove_all(folder, ec);
     }
-  } created{output, std::filesystem::exists(output, exists_ec)};
+  } created{std::filesystem::exists(output, exists_ec) ? output + "/store" : output,
+            std::filesystem::exists(output + "/store", exists_ec)};
   if (problem.empty()) problem = io::claim_store(output + "/store", spec.path);
   if (!problem.empty()) {
     if (a.has("output")) a.require(false, "output", problem);

@@ -63,17 +63,29 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   // had run (the thirteenth adversarial pass's problem 10: a folder named timings.csv; the fourteenth's P14: one in
   // landscape/), and a manifest.json that is a FIFO, a folder or a link to /dev/zero hung or failed the manifest's
   // read below (its P2, P3): every .csv, .md and .json outside store/ must be a regular file.
+  // The same for anything that is neither a file nor a folder (a FIFO, a device, a link), any table-like name that is
+  // a folder (.dat, .txt: the fifteenth pass's P6), the table subfolders as files, and the store's list of tables.
+  const auto named = [&folder](const fs::path& path, const std::string& problem) {
+    return "holds " + path.lexically_relative(folder).string() + ", which " + problem +
+           ", where beamid writes a table or a folder of that name; remove it or write into a new or empty folder";
+  };
+  for (const char* sub : {"landscape", "start_distance"})
+    if (fs::exists(fs::symlink_status(folder / sub, ec)) && !fs::is_directory(fs::symlink_status(folder / sub, ec)))
+      return named(folder / sub, "is not a folder");
+  if (const std::string problem = replaceable_output_problem(folder / "store" / "tables.txt"); !problem.empty())
+    return named(folder / "store" / "tables.txt", problem);
   for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec)) {
     if (it.depth() == 0 && it->path().filename() == "store") {
       it.disable_recursion_pending();
       continue;
     }
+    const fs::file_status status = it->symlink_status(ec);
     const std::string extension = it->path().extension().string();
-    if (extension != ".csv" && extension != ".md" && extension != ".json") continue;
-    if (const std::string problem = replaceable_output_problem(it->path()); !problem.empty())
-      return "holds " + it->path().lexically_relative(folder).string() + ", which " + problem +
-             ", where a table of that name is written; remove it or write into a new or empty folder";
+    const bool table_name =
+        extension == ".csv" || extension == ".md" || extension == ".json" || extension == ".dat" || extension == ".txt";
+    if (fs::is_directory(status) ? table_name : !fs::is_regular_file(status))
+      return named(it->path(), replaceable_output_problem(it->path()));
   }
   ec.clear();
   if (!study_file.empty() && fs::exists(folder / "manifest.json", ec)) {

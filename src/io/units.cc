@@ -124,6 +124,22 @@ bool is_unconverted_unit(const std::string& label, bool in_brackets) {
                            "uv", "nv", "kv", "mn", "un", "dn", "gpa", "mile", "miles", "furlong", "fathom", "counts",
                            "count", "cnt", "adc", "lsb", "digits", "dm", "gee", "knot", "knots", "kt", "g0", "gravity"})
     if (l == unit) return true;
+  // Any SI prefix on volts, newtons, pascals, amperes, watts, bars or g, other than the ones beamid knows (V, mV, N,
+  // kN, Pa, g, mg), is a unit beamid does not know, never a remark: a list of prefixed forms left holes ((pV), (daN),
+  // (hPa), (mbar), (ug) were read as metres), and upper case collided with known units ((MV) as mV, (GN) as g: the
+  // fifteenth pass's P5). Case-sensitive, as SI prefixes are (M is mega, m milli).
+  for (const char* base : {"V", "N", "Pa", "A", "W", "bar", "g"}) {
+    const std::string b = base;
+    if (t.size() <= b.size() || t.compare(t.size() - b.size(), b.size(), b) != 0) continue;
+    const std::string prefix = t.substr(0, t.size() - b.size());
+    static const char* const kPrefixes[] = {"y", "z", "a",  "f", "p", "n", "u", "\xc2\xb5", "\xce\xbc", "m",
+                                            "c", "d", "da", "h", "k", "M", "G", "T",        "P",        "E"};
+    const bool prefixed =
+        std::any_of(std::begin(kPrefixes), std::end(kPrefixes), [&prefix](const char* p) { return prefix == p; });
+    const bool known = t == "mV" || t == "kN" || t == "mg";
+    if (prefixed && !known) return true;
+  }
+  if (l == "kgf" || l == "lbm") return true;
   // A degree sign (temperature, angle) is a unit's, never a remark's: "a (\xc2\xb0C)" was read as SI (U095).
   if (t.find("\xc2\xb0") != std::string::npos) return true;
   // A micro sign or an Angstrom sign is a unit's prefix or symbol, never a remark's: "µg", "µin", "Å" (the sixth

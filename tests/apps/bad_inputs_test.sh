@@ -161,7 +161,7 @@ if diff -r -x store -x timings.csv "$tmp/clean" "$tmp/killed" >/dev/null; then o
 # An output that cannot be written is refused before anything runs (the thirteenth pass's problem 10: a folder named
 # timings.csv failed the study after every unit, and a report in /proc failed the fit after it ran).
 cp -r "$tmp/clean" "$tmp/blocked" && rm "$tmp/blocked/timings.csv" && mkdir "$tmp/blocked/timings.csv"
-expect_error "a folder where a table goes" "holds timings.csv, which is a folder, where a table of that name is written" \
+expect_error "a folder where a table goes" "holds timings.csv, which is a folder, where beamid writes a table" \
   study "$tmp/mini.toml" --output "$tmp/blocked"
 expect_error "a report in /proc" "/proc: cannot write in it" fit --data "$tmp/record.csv" --beam banks-aluminium \
   --elements 4 --estimate EI --cost time --report /proc/beamid-report.md
@@ -206,6 +206,28 @@ expect_error "a denormal pulse width" "--pulse-width = '1e-310': must be at leas
   --pulse-width 1e-310
 expect_error "a zero force in fit" "the model's response at the start is zero at every sample" fit \
   --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --force-amplitude 0
+# The fifteenth pass: an accepted --atol runs (the check's empty answer had become the status); one mode named twice
+# is refused by the modal cost as by the others; prefixed and upper-case units are not metres; a table folder that
+# is a file, and a merge into an existing folder, are refused or undone; a shifted prediction without a window is said.
+if timeout 60 "$BEAMID" simulate "${S[@]}" --samples 64 --integrator cvode --atol 1e-9 >"$tmp/out" 2>"$tmp/err" &&
+   [ "$(wc -l <"$tmp/out")" -eq 65 ]; then ok; else bad "an accepted --atol: $(cat "$tmp/err")"; fi
+"$BEAMID" simulate "${S[@]}" --samples 4096 --pulse-width 0.004 --noise-level 0.01 >"$tmp/decay.csv"
+expect_error "one mode named twice" "spike frequencies 2.46 and 2.46 Hz find the same mode" fit --data "$tmp/decay.csv" \
+  "${S[@]}" --estimate EI,cDI --excitation free-decay --start 0.1 --cost modal --spike-frequencies 2.46,2.46
+for unit in hPa MV GN ug daN; do
+  sed "1s/.*/t_s,sig ($unit)/" "$tmp/z.csv" >"$tmp/prefixed.csv"
+  expect_error "a record in $unit" "is in '$unit', a unit beamid does not know" fit --data "$tmp/prefixed.csv" "${S[@]}" \
+    --estimate EI --cost time
+done
+cp -r "$tmp/clean" "$tmp/blocked3" && rm -r "$tmp/blocked3/landscape" && touch "$tmp/blocked3/landscape"
+expect_error "a file named landscape" "holds landscape, which is not a folder" study "$tmp/mini.toml" \
+  --output "$tmp/blocked3"
+mkdir "$tmp/merge_into"
+expect_error "merge into an existing folder" "missing" merge "$tmp/mini.toml" --shards "$tmp/half" --output \
+  "$tmp/merge_into"
+[ -d "$tmp/merge_into" ] && [ ! -e "$tmp/merge_into/store" ] && ok || bad "a refused merge left a store in an existing folder"
+expect_notice "a shifted prediction" "--prediction starts at t = 0.5 s and --data at 0 s: the two are compared sample" \
+  cost --data "$tmp/z.csv" --prediction "$tmp/shifted.csv" --cost time
 
 # Damage to a finished study's store (records cut in half, altered, replaced by garbage, emptied), chosen at random:
 # the rerun names each, recomputes it, and writes the tables of the undisturbed run.

@@ -225,7 +225,7 @@ expect_error "merge of another study's shard" "record(s) of no unit of $tmp/mini
 # that holds no vibration all the same (a pulse far longer than the record) fails, and its cases with it, saying why;
 # nothing "converges" at cost 0 on a zero record (the second pass's N446-N449, N469, N470).
 sed 's/^force_x_m = 0.32/force_x_m = 0/' "$tmp/mini.toml" >"$tmp/clamp.toml"
-expect_error "study force at the clamp" "clamp.toml:10: truth.force_x_m = 0: must be > 0 (at the clamp" \
+expect_error "study force at the clamp" "clamp.toml:10: truth.force_x_m = 0: must be a finite position of at least 1e-9 m (at the clamp" \
   study "$tmp/clamp.toml" --output "$tmp/clamp"
 sed 's/^pulse_width_s = 0.004/pulse_width_s = 1e300/' "$tmp/mini.toml" >"$tmp/zero.toml"
 "$BEAMID" study "$tmp/zero.toml" --jobs 2 --output "$tmp/zero" >/dev/null 2>&1

@@ -119,7 +119,7 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
             "s.toml:9: truth.force_x_m = 0.9: must lie on the beam, 0 <= x <= l = 0.4573");
   // At the clamp every case failed with exit 0 (the eleventh pass's TF_24): refused on its line.
   EXPECT_NE(error_of(replaced(kValid, "force_x_m = 0.32", "force_x_m = 0.0"))
-                .find("s.toml:9: truth.force_x_m = 0: must be > 0 (at the clamp"),
+                .find("s.toml:9: truth.force_x_m = 0: must be a finite position of at least 1e-9 m (at the clamp"),
             std::string::npos)
       << error_of(replaced(kValid, "force_x_m = 0.32", "force_x_m = 0.0"));
   EXPECT_EQ(error_of(replaced(kValid, "method = [\"direct\"]", "method = [\"staged\"]")),

@@ -41,7 +41,7 @@ void read_experiment(Table& r, simulation::Experiment& e) {
   // Denormal positions and amplitudes passed "> 0" and failed every case (the fourteenth pass's P7, P15): the floors
   // are simulation::validation_error's (1e-12 s, 1e-150 N), and 1e-9 m from the clamp.
   constexpr const char* kAtTheClamp =
-      "must be > 0 (at the clamp, x = 0, a force does no work and a sensor reads 0) and at least 1e-9 m";
+      "must be a finite position of at least 1e-9 m (at the clamp, x = 0, a force does no work and a sensor reads 0)";
   const auto off_clamp = [](double x) { return x >= 1e-9; };
   if (r.has("force_x_m")) e.force_x_m = r.number("force_x_m", std::nullopt, off_clamp, kAtTheClamp);
   e.force_amplitude_N = r.number(

@@ -31,7 +31,10 @@ Overlay compute_overlay(const fit::FitOptions& options, const std::vector<double
     out.data_magnitude.push_back(zs.magnitude(k));
     out.model_magnitude.push_back(complete ? us.magnitude(k) : nan);
   }
-  for (const auto& p : objective.cost().data_spikes()) {
+  // The spike costs' data spikes only: the modal cost's pairs are the identified modes, with no bin (spikes.csv listed
+  // them all at bin 0, 0 Hz, when modal was a real study's first cost: the fifteenth pass's P3).
+  const bool spikes = options.cost.name == costs::kSpikeCost || options.cost.name == costs::kSpikeSmoothCost;
+  for (const auto& p : spikes ? objective.cost().data_spikes() : std::vector<costs::SpikePair>{}) {
     out.spike_bins.push_back(p.data.bin);
     out.support_left.push_back(p.data.n_left);
     out.support_right.push_back(p.data.n_right);
