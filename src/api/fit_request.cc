@@ -222,6 +222,11 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (!signal::detrend_names().contains(o.cost.pick_detrend))
     refuse(caller, "detrend", o.cost.pick_detrend, "must be one of " + signal::detrend_names().list());
   if (request.welch) {
+    // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
+    // picked on Welch's average (the sixteenth pass's P5).
+    if (o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost)
+      refuse(caller, "welch", std::to_string(*request.welch),
+             "picks the spikes of the spike, spike-smooth and modal costs; the " + o.cost.name + " cost has none");
     o.cost.spikes.frequencies_hz = welch_picks(request, data, o.cost);
     o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
     if (welch_picked) *welch_picked = true;

@@ -161,7 +161,17 @@ int run_report(const Flags& a, std::ostream& out) {
       out << "report: block '" << name << "' kept: " << file.string() << " does not exist\n";
       continue;
     }
-    contents[name] = io::read_file(file, "beamid report: block '" + name + "': cannot read its source");
+    std::string content = io::read_file(file, "block '" + name + "': cannot read its source");
+    // A source is one of beamid's tables: text, and no marker of its own, which would break the next refresh (its
+    // END line closed the block early: the sixteenth pass's P8).
+    if (content.find('\0') != std::string::npos)
+      throw InputError("beamid report: " + file.string() + ": block '" + name +
+                       "': its source holds NUL bytes, no text");
+    if (content.find("<!-- BEGIN GENERATED ") != std::string::npos ||
+        content.find("<!-- END GENERATED ") != std::string::npos)
+      throw InputError("beamid report: " + file.string() + ": block '" + name +
+                       "': its source holds a GENERATED marker, which would break the report's next refresh");
+    contents[name] = std::move(content);
   }
   const std::string updated = io::replace_blocks(text.str(), contents, path);
   io::write_file_atomic(path, updated);  // a reader sees the old or the new report, never half

@@ -132,8 +132,9 @@ bool is_unconverted_unit(const std::string& label, bool in_brackets) {
     const std::string b = base;
     if (t.size() <= b.size() || t.compare(t.size() - b.size(), b.size(), b) != 0) continue;
     const std::string prefix = t.substr(0, t.size() - b.size());
-    static const char* const kPrefixes[] = {"y", "z", "a",  "f", "p", "n", "u", "\xc2\xb5", "\xce\xbc", "m",
-                                            "c", "d", "da", "h", "k", "M", "G", "T",        "P",        "E"};
+    static const char* const kPrefixes[] = {"q",        "r",        "y", "z", "a", "f",  "p", "n", "u",
+                                            "\xc2\xb5", "\xce\xbc", "m", "c", "d", "da", "h", "k", "M",
+                                            "G",        "T",        "P", "E", "Z", "Y",  "R", "Q"};
     const bool prefixed =
         std::any_of(std::begin(kPrefixes), std::end(kPrefixes), [&prefix](const char* p) { return prefix == p; });
     const bool known = t == "mV" || t == "kN" || t == "mg";

@@ -228,6 +228,22 @@ expect_error "merge into an existing folder" "missing" merge "$tmp/mini.toml" --
 [ -d "$tmp/merge_into" ] && [ ! -e "$tmp/merge_into/store" ] && ok || bad "a refused merge left a store in an existing folder"
 expect_notice "a shifted prediction" "--prediction starts at t = 0.5 s and --data at 0 s: the two are compared sample" \
   cost --data "$tmp/z.csv" --prediction "$tmp/shifted.csv" --cost time
+# The sixteenth pass: the rarest SI prefixes; an --atol CVODE cannot meet; --welch on a cost without spikes; a report
+# source that holds a marker (its END closed the block early at the next refresh).
+sed '1s/.*/t_s,sig (QPa)/' "$tmp/z.csv" >"$tmp/prefixed.csv"
+expect_error "a record in QPa" "is in 'QPa', a unit beamid does not know" fit --data "$tmp/prefixed.csv" "${S[@]}" \
+  --estimate EI --cost time
+timeout 60 "$BEAMID" simulate "${S[@]}" --samples 64 --integrator cvode --atol 1e-14 >"$tmp/out" 2>"$tmp/err"
+if [ $? -eq 3 ] && grep -qF "atol = 1e-14 is below 1e-10 of the displacements' natural size" "$tmp/err"; then ok
+else bad "an unreachable --atol: $(cat "$tmp/err")"; fi
+expect_error "welch on the time cost" "--welch = '4': picks the spikes of the spike, spike-smooth and modal costs" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --welch 4
+mkdir -p "$tmp/res_marker/verification"
+printf 'x\n<!-- END GENERATED verification/frequencies -->\n' >"$tmp/res_marker/verification/frequencies.md"
+printf '# t\n<!-- BEGIN GENERATED verification/frequencies -->\nold\n<!-- END GENERATED verification/frequencies -->\n' \
+  >"$tmp/marked.md"
+expect_error "a report source with a marker" "its source holds a GENERATED marker" report --update "$tmp/marked.md" \
+  --results "$tmp/res_marker"
 
 # Damage to a finished study's store (records cut in half, altered, replaced by garbage, emptied), chosen at random:
 # the rerun names each, recomputes it, and writes the tables of the undisturbed run.
