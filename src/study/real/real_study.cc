@@ -97,8 +97,10 @@ RealRecordSpec read_record(Table r, const std::string& default_name,
   s.units = r.string("units", s.units, {"auto", "g", "as-is"});
   if (r.has("start_s"))
     s.start_s = r.number(
-        "start_s", std::nullopt, [](double v) { return v >= 0; }, "must be >= 0");
-  if (r.has("duration_s")) s.duration_s = r.number("duration_s", std::nullopt, positive, "must be > 0");
+        "start_s", std::nullopt, [](double v) { return v >= 0 && std::isfinite(v); }, "must be finite and >= 0");
+  if (r.has("duration_s"))
+    s.duration_s = r.number(
+        "duration_s", std::nullopt, [](double v) { return v > 0 && std::isfinite(v); }, "must be finite and > 0");
   s.resample = r.boolean("resample", false);
   s.peaks_hz = r.numbers("peaks_hz", positive, "must be > 0 (Hz)");
   if (s.peaks_hz.empty()) r.fail("peaks_hz", "[]", "must list the measured peak frequencies of the modes to fit");
