@@ -55,6 +55,15 @@ namespace {
 // sample), and a --dt or --samples given must agree with the data.
 void match_record(const FitRequest& request, const io::TimeSeries& data, simulation::Experiment& experiment) {
   const Caller& caller = request.caller;
+  // --resample-rate leaves out the low-pass's half-length at each end (io/time_series.h), so a resampled record no
+  // longer starts at the excitation: said by name (the error blamed a cut the user had not made: the seventeenth
+  // pass's P5).
+  if (experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s &&
+      data.notes.find("resampled from") != std::string::npos)
+    refuse(caller, "--data = '" + data.path + "': resampled (--resample-rate), it starts at t = " +
+                       format_value(data.t0_s) + " s, not at the " + experiment.excitation +
+                       "'s t = 0: the resampler leaves out its low-pass's first samples, where the filter is cut "
+                       "short; fit it as a free decay (--excitation free-decay) or resample the record beforehand");
   if (experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
     refuse(caller, "--data = '" + data.path + "': first time " + format_value(data.t0_s) +
                        " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "

@@ -228,6 +228,10 @@ expect_error "merge into an existing folder" "missing" merge "$tmp/mini.toml" --
 [ -d "$tmp/merge_into" ] && [ ! -e "$tmp/merge_into/store" ] && ok || bad "a refused merge left a store in an existing folder"
 expect_notice "a shifted prediction" "--prediction starts at t = 0.5 s and --data at 0 s: the two are compared sample" \
   cost --data "$tmp/z.csv" --prediction "$tmp/shifted.csv" --cost time
+# The seventeenth pass: a resampled record starts after t = 0, so a pulse fit of it is refused naming the flag (the
+# error blamed a cut the user had not made).
+expect_error "a pulse fit of a resampled record" "resampled (--resample-rate), it starts at t = " fit \
+  --data "$tmp/record.csv" --resample-rate 500 "${S[@]}" --estimate EI --cost time
 # The sixteenth pass: the rarest SI prefixes; an --atol CVODE cannot meet; --welch on a cost without spikes; a report
 # source that holds a marker (its END closed the block early at the next refresh).
 sed '1s/.*/t_s,sig (QPa)/' "$tmp/z.csv" >"$tmp/prefixed.csv"
