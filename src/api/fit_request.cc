@@ -190,6 +190,12 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   if (request.refine && o.strategy != fit::kHybrid)
     refuse(caller, "refine", *request.refine, "is the second cost of --strategy hybrid only");
   o.refine = request.refine.value_or(o.refine);
+  // The default refinement is the time cost: a hybrid of --cost time alone was told "refine = 'time': must differ",
+  // naming a flag the user had not given (the seventeenth pass's P8).
+  if (o.strategy == fit::kHybrid && !request.refine && o.refine == o.cost.name)
+    refuse(caller, "strategy", fit::kHybrid,
+           "refines the global --cost " + o.cost.name + " with --refine, whose default is " + o.refine +
+               ", the same cost: give --refine freq-band or spike-smooth, or a global --cost (modal, spike-smooth)");
   o.scaling = request.scaling;
   o.record_weights = request.record_weights.value_or(fit::kRmsWeights);
   if (!fit::record_weight_names().contains(o.record_weights))

@@ -232,6 +232,8 @@ expect_notice "a shifted prediction" "--prediction starts at t = 0.5 s and --dat
 # error blamed a cut the user had not made).
 expect_error "a pulse fit of a resampled record" "resampled (--resample-rate), it starts at t = " fit \
   --data "$tmp/record.csv" --resample-rate 500 "${S[@]}" --estimate EI --cost time
+expect_error "a hybrid of the time cost alone" "--strategy = 'hybrid': refines the global --cost time with --refine, whose" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --strategy hybrid
 # The sixteenth pass: the rarest SI prefixes; an --atol CVODE cannot meet; --welch on a cost without spikes; a report
 # source that holds a marker (its END closed the block early at the next refresh).
 sed '1s/.*/t_s,sig (QPa)/' "$tmp/z.csv" >"$tmp/prefixed.csv"
