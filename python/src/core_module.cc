@@ -276,7 +276,7 @@ py::dict py_cost(const std::vector<std::string>& args, const py::object& data, c
       model.dt_s = record.dt_s;
       model.values.assign(predicted->data(), predicted->data() + predicted->size());
     } else {
-      model = apps::read_prediction(a);
+      model = apps::read_prediction(a, record);
     }
     e = api::compute_cost(apps::cost_evaluation_request_of(a), record, model);
   }

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
-#include <tuple>
+#include <optional>
 
 #include "config/beam_file.h"
 #include "core/errors.h"
@@ -98,52 +98,54 @@ io::TimeSeries read_data(const Flags& a) { return read_data(a, file_reader(a)); 
 
 namespace {
 
-// The first sample's time of --data (with the import flags but the window) and of --prediction, as the files have it.
-std::pair<double, double> first_times_s(const Flags& a, io::ImportOptions prediction) {
+// The first sample's time of the --data and --prediction files as they have it, before --start and --duration cut
+// them (--data with its other import flags), and the prediction's step; nothing when a file cannot be read (the
+// prediction's own read names it).
+struct FirstTimes {
+  double data_s, prediction_s, prediction_dt_s;
+};
+std::optional<FirstTimes> first_times(const Flags& a, io::ImportOptions prediction) {
   io::ImportOptions data = read_import_options(a);
   const std::vector<std::string> channels = a.texts("channel");
   if (!channels.empty()) data.channel = channels.front();
   for (io::ImportOptions* o : {&data, &prediction}) o->start_s.reset(), o->duration_s.reset();
-  return {io::read_time_series(a.text("data"), data).t0_s, io::read_time_series(a.text("prediction"), prediction).t0_s};
+  try {
+    const io::TimeSeries whole = io::read_time_series(a.text("prediction"), prediction);
+    return FirstTimes{io::read_time_series(a.text("data"), data).t0_s, whole.t0_s, whole.dt_s};
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace
 
-io::TimeSeries read_prediction(const Flags& a) {
+io::TimeSeries read_prediction(const Flags& a, const io::TimeSeries& data) {
   io::ImportOptions o;
   o.channel_advice = "a prediction holds one, the model's output beside its time (--channel chooses among --data's)";
   // The window cuts both records alike: it cut only --data, and the two then differed in length, an error that blamed
   // the prediction (the thirteenth adversarial pass's problem 13).
   o.start_s = a.optional_number("start");
   o.duration_s = a.optional_number("duration");
-  // The two files' first times, before a window cuts them: with a window they must agree (checked before the cut,
-  // whose own error hid the cause: the fifteenth pass's P8); without one, the records are paired sample by sample,
-  // and a prediction that starts elsewhere is said.
-  double data_t0 = 0, prediction_t0 = 0;
-  try {
-    std::tie(data_t0, prediction_t0) = first_times_s(a, o);
-  } catch (const InputError&) {
-    // Read again below, where the error names its file.
-  }
+  const bool window = o.start_s || o.duration_s;
   io::TimeSeries prediction;
   try {
-    if (o.start_s || o.duration_s) {
-      io::ImportOptions whole = o;
-      whole.start_s.reset(), whole.duration_s.reset();
-      const double dt_s = io::read_time_series(a.text("prediction"), whole).dt_s;
-      a.require(std::abs(data_t0 - prediction_t0) <= 0.5 * dt_s, "prediction",
-                "starts at t = " + format_value(prediction_t0) + " s and --data at " + format_value(data_t0) +
+    // With a window the two files' first times must agree, checked before the cut, whose own error hid the cause
+    // (the fifteenth pass's P8).
+    if (const std::optional<FirstTimes> first = window ? first_times(a, o) : std::nullopt)
+      a.require(std::abs(first->data_s - first->prediction_s) <= 0.5 * first->prediction_dt_s, "prediction",
+                "starts at t = " + format_value(first->prediction_s) + " s and --data at " +
+                    format_value(first->data_s) +
                     " s: --start and --duration cut each by its own times, so the two must start together");
-    }
     prediction = io::read_time_series(a.text("prediction"), o);
   } catch (const InputError& e) {
     const std::string what = e.what();
     if (what.rfind("beamid ", 0) == 0) throw;
     throw InputError("beamid " + a.command() + ": --prediction: " + what);
   }
-  if (!(std::abs(data_t0 - prediction_t0) <= 0.5 * prediction.dt_s))
-    std::cerr << "beamid " << a.command() << ": --prediction starts at t = " << format_value(prediction_t0)
-              << " s and --data at " << format_value(data_t0)
+  // Without a window the records are paired sample by sample, and a prediction that starts elsewhere is said.
+  if (!window && !(std::abs(data.t0_s - prediction.t0_s) <= 0.5 * prediction.dt_s))
+    std::cerr << "beamid " << a.command() << ": --prediction starts at t = " << format_value(prediction.t0_s)
+              << " s and --data at " << format_value(data.t0_s)
               << " s: the two are compared sample by sample, as if they started together\n";
   return prediction;
 }

@@ -27,8 +27,9 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
 // --prediction (cost): one signal column beside its time, read as it is but for --start and --duration, which cut it
 // as they cut --data (the other import flags are the record's); a file of several columns is told so, not sent to
 // --channel. With a window, the two files' times must start together (each is cut by its own clock: a prediction
-// from t = 0.5 s was cut 500 samples off the data, the fourteenth pass's P6).
-io::TimeSeries read_prediction(const Flags& a);
+// from t = 0.5 s was cut 500 samples off the data, the fourteenth pass's P6); without one, a prediction that starts
+// elsewhere than `data` (the record as read) is said on stderr.
+io::TimeSeries read_prediction(const Flags& a, const io::TimeSeries& data);
 // --beam: a preset or a beam/geometry TOML file (config/beam_file.h), or TOML text given inline (Flags::set_inline);
 // its errors name the command and the flag.
 model::BeamParameters read_beam(const Flags& a);

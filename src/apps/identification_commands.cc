@@ -123,7 +123,7 @@ int run_spikes(const Flags& a, std::ostream& out) {
 int run_cost(const Flags& a, std::ostream& out) {
   // The record and the prediction first, then the flags' request (their errors in that order, as before).
   const io::TimeSeries data = read_data(a);
-  const io::TimeSeries prediction = read_prediction(a);
+  const io::TimeSeries prediction = read_prediction(a, data);
   const costs::Evaluation e = api::compute_cost(cost_evaluation_request_of(a), data, prediction);
   out << "cost,value\n" << a.text("cost") << "," << io::full_precision(e.value) << "\n";
   if (e.a4 != "ok") std::cerr << "beamid cost: " << e.a4 << "\n";

@@ -74,10 +74,10 @@ int run_merge(const Flags& a, std::ostream& out) {
   const study::StudySpec spec = study::load_study(a.text("STUDY.toml"));
   const std::string output = a.text_or("output", default_output(spec));
   std::string problem = io::output_folder_problem(output, {spec.path, spec.truth.beam_path}, spec.path, spec.name);
-  // A merge refused midway (units missing, a foreign shard) into a folder it created removes that folder: the shards
-  // still hold every record (it left a store of copies and no tables: the fourteenth pass's P11).
+  // A merge refused midway (units missing, a foreign shard) removes what it created: the folder, or in a folder that
+  // existed the store. The shards still hold every record (it left a store of copies and no tables: the fourteenth
+  // pass's P11, the fifteenth's P7).
   std::error_code exists_ec;
-  // Into a folder that existed, the store it created (the fifteenth pass's P7).
   struct RemoveUnlessKept {
     std::string folder;
     bool keep;

@@ -164,7 +164,6 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       std::vector<std::complex<double>> all;
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) all.push_back(mode.lambda);
       if (response == Response::as_cost_needs && !cost_->uses_response()) {
-        std::vector<std::complex<double>> poles;
         for (const std::size_t k : simulation::free_decay_pole_indices(all, impl_->experiment.dt_s))
           poles.push_back(all[k]);
         if (poles.empty()) {

@@ -33,12 +33,12 @@ Overlay compute_overlay(const fit::FitOptions& options, const std::vector<double
   }
   // The spike costs' data spikes only: the modal cost's pairs are the identified modes, with no bin (spikes.csv listed
   // them all at bin 0, 0 Hz, when modal was a real study's first cost: the fifteenth pass's P3).
-  const bool spikes = options.cost.name == costs::kSpikeCost || options.cost.name == costs::kSpikeSmoothCost;
-  for (const auto& p : spikes ? objective.cost().data_spikes() : std::vector<costs::SpikePair>{}) {
-    out.spike_bins.push_back(p.data.bin);
-    out.support_left.push_back(p.data.n_left);
-    out.support_right.push_back(p.data.n_right);
-  }
+  if (options.cost.name == costs::kSpikeCost || options.cost.name == costs::kSpikeSmoothCost)
+    for (const auto& p : objective.cost().data_spikes()) {
+      out.spike_bins.push_back(p.data.bin);
+      out.support_left.push_back(p.data.n_left);
+      out.support_right.push_back(p.data.n_right);
+    }
   return out;
 }
 
