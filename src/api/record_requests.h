@@ -77,6 +77,13 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
 std::string lead_in_note(const io::TimeSeries& data, const std::string& what);
 // The glitch part of lead_in_note alone, for a record that is no free decay (a pulse fit's): "" when none.
 std::string glitch_note(const io::TimeSeries& data, const std::string& what);
+// A window that opens after the record's modes have died out: their spikes are then the noise's (magnitudes raised by
+// it, decay rates its), and a spike cost's damping goes light (signal::window_snr_retention). Said for the mode the
+// window serves worst, when it keeps under kWindowRetention of that mode's signal-to-noise ratio; "" otherwise, and
+// for the rectangular window.
+inline constexpr double kWindowRetention = 0.1;
+std::string window_transient_note(const signal::WindowOptions& window, std::size_t samples, double dt_s,
+                                  const std::vector<signal::MeasuredMode>& modes);
 // "the record is in V, a raw sensor signal ...: its <what> are in V ..." for a record in a unit of no motion (V, mV, N,
 // Pa), which spikes and modal-id read (their frequencies do not depend on the unit) and report in that unit; else "".
 std::string raw_signal_note(const io::TimeSeries& data, const std::string& what);

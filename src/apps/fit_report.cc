@@ -47,6 +47,24 @@ std::vector<int> pair_modes(const std::vector<double>& data_hz, const std::vecto
   return partner;
 }
 
+namespace {
+
+// A record's measured mode beside the model's it pairs with (none: NaN).
+ModePair mode_pair(const signal::MeasuredMode& data, const galerkin::DampedMode* model) {
+  ModePair pair;
+  pair.data_hz = data.mode.frequency_hz, pair.data_damping_ratio = data.mode.damping_ratio;
+  pair.data_uncertainty_hz = data.uncertainty_hz, pair.data_note = signal::uncertainty_note(data);
+  pair.data_decay_1_s = -data.mode.lambda.real(), pair.data_decay_uncertainty_1_s = data.decay_uncertainty_1_s;
+  pair.model_hz = pair.model_damping_ratio = std::nan("");
+  if (model) {
+    pair.model_hz = model->frequency_hz, pair.model_damping_ratio = model->damping_ratio;
+    pair.model_decay_1_s = -model->lambda.real();
+  }
+  return pair;
+}
+
+}  // namespace
+
 ModeComparison compare_modes(const FitReportInput& in) {
   ModeComparison c;
   const auto& o = in.options;
@@ -92,15 +110,12 @@ ModeComparison compare_modes(const FitReportInput& in) {
     for (const auto& m : kept) data_hz.push_back(m.mode.frequency_hz);
     for (const auto& m : model) model_hz.push_back(m.frequency_hz);
     std::vector<int> partner = pair_modes(data_hz, model_hz);
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      ModePair pair{kept[i].mode.frequency_hz, kept[i].mode.damping_ratio,       std::nan(""), std::nan(""),
-                    kept[i].uncertainty_hz,    signal::uncertainty_note(kept[i])};
-      if (partner[i] >= 0) {
-        pair.model_hz = model[static_cast<std::size_t>(partner[i])].frequency_hz;
-        pair.model_damping_ratio = model[static_cast<std::size_t>(partner[i])].damping_ratio;
-      }
-      c.pairs.push_back(pair);
-    }
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      c.pairs.push_back(mode_pair(kept[i], partner[i] >= 0 ? &model[static_cast<std::size_t>(partner[i])] : nullptr));
+    if (costs::is_spike_cost(o.cost.name))
+      if (const std::string note = api::window_transient_note(o.cost.window, in.data.values.size(), in.data.dt_s, kept);
+          !note.empty())
+        c.notes.push_back(note);
     // A pole of the record that no model mode pairs with is said, with its size: a mode the model lacks, or the
     // pencil's fit of what does not oscillate (the tenth pass's PH_f3: a noise-free record of a beam with three
     // underdamped modes listed "476.10 Hz, zeta 12.8 %", 3e-9 of the record's size, from its overdamped part).
@@ -177,6 +192,28 @@ std::string modes_mismatch_note(const ModeComparison& c) {
          "other starts (--starts) or another model";
 }
 
+std::string damping_mismatch_note(const ModeComparison& c) {
+  if (c.status != "ok") return "";
+  const ModePair* at = nullptr;
+  double excess = 0;  // the largest |model - data| decay rate over its tolerance
+  for (const ModePair& p : c.pairs) {
+    if (p.set_aside || std::isnan(p.model_decay_1_s) || !(p.data_decay_1_s > 0)) continue;
+    const double off = std::abs(p.model_decay_1_s - p.data_decay_1_s);
+    const double u = std::isnan(p.data_decay_uncertainty_1_s) ? 0 : p.data_decay_uncertainty_1_s;
+    const double tolerance = std::max(kDampingMismatch * p.data_decay_1_s, kDampingMismatchUncertainties * u);
+    if (off / tolerance > excess) excess = off / tolerance, at = &p;
+  }
+  if (!at || excess <= 1) return "";
+  return "the estimate does not reproduce the record's damping: at " + g(at->data_hz) + " Hz the model decays at " +
+         g(at->model_decay_1_s, 3) + " 1/s (zeta " + g(100 * at->model_damping_ratio, 3) + " %), the record at " +
+         g(at->data_decay_1_s, 3) + " +- " + g(at->data_decay_uncertainty_1_s, 2) + " 1/s (zeta " +
+         g(100 * at->data_damping_ratio, 3) + " %), beyond " + g(100 * kDampingMismatch, 2) + " % and " +
+         g(kDampingMismatchUncertainties, 2) +
+         " of its uncertainties: a damping model that cannot follow the record's modes, or a cost whose damping "
+         "estimate is biased (a window that opens after the decay, noise on the spikes' magnitudes); the damping's "
+         "standard errors do not include it";
+}
+
 namespace {
 
 using Markdown = std::ostringstream;
@@ -224,6 +261,8 @@ void modes_section(Markdown& md, const FitReportInput& in) {
     for (const ModePair& pair : modes.pairs)
       if (!pair.data_note.empty()) md << "- The record: " << pair.data_note << ".\n";
     for (const std::string& note : modes.notes) md << "- " << note << ".\n";
+    for (const std::string& note : {modes_mismatch_note(modes), damping_mismatch_note(modes)})
+      if (!note.empty()) md << "- " << note << ".\n";
     md << "\n";
   }
 }

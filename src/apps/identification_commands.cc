@@ -234,6 +234,7 @@ int run_fit(const Flags& a, std::ostream& out) {
     if (!pair.data_note.empty()) std::cerr << "beamid fit: the record: " << pair.data_note << "\n";
   for (const std::string& note : modes.notes) std::cerr << "beamid fit: " << note << "\n";
   if (const std::string note = modes_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
+  if (const std::string note = damping_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
   if (a.has("report")) {
     write_fit_report(a.text("report"), input);
     std::cerr << "beamid fit: report written to " << a.text("report") << " and its full spectra to " << a.text("report")

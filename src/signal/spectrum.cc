@@ -51,6 +51,20 @@ double window_decay_rate(const WindowOptions& options, double record_s) {
   return options.name == "exponential" ? -std::log(options.exponential_end) / record_s : 0.0;
 }
 
+double window_snr_retention(const std::vector<double>& weights, double decay_rate_per_s, double dt_s) {
+  // Envelopes as e^{-sigma t_i} by the recurrence's product, summed with the window's weights and without.
+  const double step = std::exp(-decay_rate_per_s * dt_s);
+  double envelope = 1, windowed = 0, plain = 0, power = 0;
+  for (double w : weights) {
+    windowed += w * envelope;
+    plain += envelope;
+    power += w * w;
+    envelope *= step;
+  }
+  if (power <= 0 || plain <= 0) return 0;
+  return windowed * windowed / power / (plain * plain / static_cast<double>(weights.size()));
+}
+
 std::complex<double> Spectrum::at(long k) const {
   const long n = samples;
   long r = k % n;

@@ -31,6 +31,15 @@ std::vector<double> window_weights(const WindowOptions& options, int samples);
 // The decay rate (1/s) the window adds to every mode of a record of length record_s: the exponential window
 // e^{-alpha t / T}, alpha = -ln(exponential_end), adds alpha / T; the others add none.
 double window_decay_rate(const WindowOptions& options, double record_s);
+// The share of a decaying mode's signal-to-noise ratio at its spike that a window keeps, against the rectangular one.
+// For z_i = A e^{-sigma t_i} cos(omega t_i) + white noise, t_i = i dt, the spike's height goes as |sum_i w_i
+// e^{-sigma t_i}| and the noise's as sqrt(sum_i w_i^2), so the ratio is
+//   rho = (sum_i w_i e^{-sigma t_i})^2 / sum_i w_i^2  /  ((sum_i e^{-sigma t_i})^2 / Nbar).
+// 1 for the rectangular window and a mode that does not decay, above 1 for the exponential window on a mode that does
+// (it follows the envelope, as a matched filter would), and far below 1 for a Hann window on a mode that has died out
+// before the window opens: sigma T = 16 gives rho = 0.016 (4 pi^4 / (sigma T)^4 in the limit), and the spike is then
+// the noise's (the seventeenth pass's P1: spike-smooth with a Hann window halved cDI on a pulse record at 1 % noise).
+double window_snr_retention(const std::vector<double>& weights, double decay_rate_per_s, double dt_s);
 
 struct Spectrum {
   int samples = 0;                         // Nbar

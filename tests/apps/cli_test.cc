@@ -135,5 +135,25 @@ TEST(FitReport, ModesPairOneToOneAndOnlyWithinTwentyPercent) {
   EXPECT_EQ(pair_modes({10.0}, {11.9}), (std::vector<int>{0}));
 }
 
+TEST(FitReport, DampingMismatchNeedsBothTheRelativeAndTheUncertaintyExcess) {
+  // The seventeenth pass's P1: frequencies within 0.07 %, the model's decay rate 5.97 1/s against the record's
+  // 9.75 +- 0.0049 1/s, and nothing was said.
+  ModeComparison c;
+  ModePair p;
+  p.data_hz = 192.703, p.model_hz = 192.565;
+  p.data_decay_1_s = 9.75, p.data_decay_uncertainty_1_s = 0.0049, p.model_decay_1_s = 5.97;
+  c.pairs = {p};
+  EXPECT_NE(damping_mismatch_note(c).find("does not reproduce the record's damping: at 192.703 Hz"), std::string::npos);
+  // 20 % off is within kDampingMismatch (25 %) however precise the record's decay rate.
+  c.pairs[0].model_decay_1_s = 0.8 * 9.75;
+  EXPECT_EQ(damping_mismatch_note(c), "");
+  // 40 % off but within 5 uncertainties (an amplitude-dependent damping, u = 1 1/s): not the model's fault.
+  c.pairs[0].model_decay_1_s = 0.6 * 9.75, c.pairs[0].data_decay_uncertainty_1_s = 1.0;
+  EXPECT_EQ(damping_mismatch_note(c), "");
+  // A pole set aside (the pencil's fit of what does not oscillate) is no damping to miss.
+  c.pairs[0].data_decay_uncertainty_1_s = 0.0049, c.pairs[0].set_aside = true;
+  EXPECT_EQ(damping_mismatch_note(c), "");
+}
+
 }  // namespace
 }  // namespace beamid::apps

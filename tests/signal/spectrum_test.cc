@@ -85,6 +85,27 @@ TEST(Dft, WindowsAreTheDocumentedWeights) {
   EXPECT_THROW(dft.transform(std::vector<double>(15, 0.0)), InputError);
 }
 
+TEST(Dft, WindowSnrRetentionIsOneForRectangularAndTheClosedFormsForHann) {
+  const int n = 65536;
+  const double dt = 1e-4, record_s = n * dt;
+  const auto rectangular = window_weights({"rectangular", 0.01}, n);
+  const auto hann = window_weights({"hann", 0.01}, n);
+  // Rectangular: the definition's ratio is 1 for every decay rate (identity, to round-off).
+  for (double sigma : {0.0, 1.0, 100.0}) EXPECT_NEAR(window_snr_retention(rectangular, sigma, dt), 1, 1e-12);
+  // A mode that does not decay under the periodic Hann window: (sum w)^2 / (Nbar sum w^2) = (Nbar/2)^2 / (Nbar 3
+  // Nbar/8) = 2/3 exactly (sum sin^2 = Nbar/2, sum sin^4 = 3 Nbar/8 over a full period).
+  EXPECT_NEAR(window_snr_retention(hann, 0.0, dt), 2.0 / 3.0, 1e-12);
+  // A mode gone long before the window opens, sigma T = 200: w ~ (pi t/T)^2 where it lives, so the ratio tends to
+  // (32/3) pi^4 / (sigma T)^4 (from sum w e^{-sigma t} ~ 2 (pi/T)^2 / (sigma^3 dt)); the neglected terms are
+  // O((pi/(sigma T))^2 x 30) = 0.7 % from sin^2's next term and O(sigma dt) = 0.3 % from the sum's discreteness.
+  const double sigma_t = 200;
+  const double limit = 32.0 / 3.0 * std::pow(kPi, 4) / std::pow(sigma_t, 4);
+  EXPECT_NEAR(window_snr_retention(hann, sigma_t / record_s, dt) / limit, 1, 0.02);
+  // The exponential window follows a decay: matched to it (alpha / T = sigma) it gains over the rectangular window.
+  const auto exponential = window_weights({"exponential", 0.01}, n);
+  EXPECT_GT(window_snr_retention(exponential, std::log(100.0) / record_s, dt), 1.5);
+}
+
 TEST(Spikes, LocalMaximaRuleOnAHandMadeSpectrum) {
   // |Z| = 0 1 3 3 2 5 1 4 4 (k = 0..8, Nbar = 16): maxima where |Z(k)| > |Z(k-1)| and |Z(k)| >= |Z(k+1)|:
   // k = 2 (3 > 1, 3 >= 3), not k = 3 (3 > 3 fails), k = 5, k = 7 (4 > 1, 4 >= 4), not 8 (4 > 4 fails).
