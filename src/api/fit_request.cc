@@ -151,6 +151,35 @@ void warn_long_fit(const fit::FitOptions& o, double samples, const Caller& calle
                 "(--max-evaluations, --starts)\n";
 }
 
+// Where the spikes are picked: the record less its offset and trend (--detrend), and Welch's average (--welch).
+void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::FitOptions& o, bool* welch_picked) {
+  const Caller& caller = request.caller;
+  // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
+  o.cost.pick_detrend = request.detrend.value_or(
+      o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
+  if (!signal::detrend_names().contains(o.cost.pick_detrend))
+    refuse(caller, "detrend", o.cost.pick_detrend, "must be one of " + signal::detrend_names().list());
+  // Read only where spikes are picked: --detrend with the time, freq-band or modal cost changed nothing while the
+  // user believed the drift removed (the seventeenth pass's P6). Their models fit what they compare: the free
+  // decay's constant c0 (simulation/free_decay.h), the pencil's poles under one cycle, left out as the trend.
+  if (request.detrend && !costs::is_spike_cost(o.cost.name) && !request.welch &&
+      !(o.strategy == fit::kHybrid && costs::is_spike_cost(o.refine)))
+    refuse(caller, "detrend", *request.detrend,
+           "is read where the spike costs (or --welch) pick their spikes; the " + o.cost.name +
+               " cost picks none (a free decay's offset is fitted as its constant, and the modal cost's pencil "
+               "leaves an offset or drift out as poles of under one cycle in the record)");
+  if (request.welch) {
+    // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
+    // picked on Welch's average (the sixteenth pass's P5).
+    if (o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost)
+      refuse(caller, "welch", std::to_string(*request.welch),
+             "picks the spikes of the spike, spike-smooth and modal costs; the " + o.cost.name + " cost has none");
+    o.cost.spikes.frequencies_hz = welch_picks(request, data, o.cost);
+    o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
+    if (welch_picked) *welch_picked = true;
+  }
+}
+
 }  // namespace
 
 fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
@@ -231,21 +260,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
       refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
   o.of_interest = request.of_interest;
-  // A free decay read from a file: its spikes picked without its offset and trend (costs/cost.h).
-  o.cost.pick_detrend = request.detrend.value_or(
-      o.experiment.excitation == simulation::kFreeDecay ? signal::kDetrendLinear : signal::kDetrendNone);
-  if (!signal::detrend_names().contains(o.cost.pick_detrend))
-    refuse(caller, "detrend", o.cost.pick_detrend, "must be one of " + signal::detrend_names().list());
-  if (request.welch) {
-    // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
-    // picked on Welch's average (the sixteenth pass's P5).
-    if (o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost)
-      refuse(caller, "welch", std::to_string(*request.welch),
-             "picks the spikes of the spike, spike-smooth and modal costs; the " + o.cost.name + " cost has none");
-    o.cost.spikes.frequencies_hz = welch_picks(request, data, o.cost);
-    o.cost.spikes.count = static_cast<int>(o.cost.spikes.frequencies_hz.size());
-    if (welch_picked) *welch_picked = true;
-  }
+  pick_spikes(request, data, o, welch_picked);
   o.start = request.beam;
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * request.start_scale);

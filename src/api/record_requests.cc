@@ -342,6 +342,10 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                                "into one damped sinusoid with probability " +
                                format_value(signal::kNoiseFalseAlarm) + " or more)"
                          : ""));
+  if (found.trend > 0)
+    notes.push_back(std::to_string(found.trend) + " pole(s) of under " + format_value(signal::kTrendCycles) +
+                    " cycle in the record left out: its offset or drift (the pencil fits them as poles near 0 Hz), "
+                    "no mode");
   // A record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for. Said, not
   // dropped: a heavily damped structure exists, and the user decides.
   for (const signal::IdentifiedMode& m : modes)

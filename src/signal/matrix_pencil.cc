@@ -193,14 +193,22 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
       d.negligible += kept;
       continue;
     }
+    // Under one cycle in the record a pole is no oscillation the record resolves: an offset and a linear drift are a
+    // double pole at z = 1, which rounding and noise split into a pair near 0 Hz (a drift 0.5 + 0.3 t was modal-id's
+    // mode 1 at 0.004 Hz, zeta -0.08, in place of the 85.6 Hz mode, and the modal cost paired it with the model's
+    // mode 1: the seventeenth pass's P6). Left out as the record's trend, whatever its damping.
+    if (m.frequency_hz * n * dt_s < kTrendCycles) {
+      ++d.trend;
+      continue;
+    }
     if (kept && energy(m) / 2 <= noise_energy) {
       ++d.below_noise;
       continue;
     }
     if (kept)
       modes.push_back(m);
-    else if (m.frequency_hz * n * dt_s >= 2)  // under two cycles in the record it is a trend (an offset and a drift
-      d.growing.push_back(m);                 // were a "growing oscillation at 6.85e-08 Hz": the fifth pass's R183)
+    else if (m.frequency_hz * n * dt_s >= 2)  // under two cycles in the record a growing pole is a trend (an offset
+      d.growing.push_back(m);                 // and a drift were a "growing oscillation at 6.85e-08 Hz": R183)
   }
   // The K strongest, then by frequency. The strength is the mode's energy over the record, so that a heavily damped
   // spurious pole with a large initial amplitude does not outrank a lasting mode.

@@ -78,11 +78,14 @@ inline constexpr double kSteadyRounding = 1e-9;
 bool is_steady(const IdentifiedMode& m);
 
 // What the pencil found besides the modes it reports.
+// A pole of fewer cycles than this over the record is its offset or drift, never a mode (matrix_pencil.cc).
+inline constexpr double kTrendCycles = 1;
 struct PencilDiagnostics {
   // oscillatory poles in the band that grow (damping ratio < 0), not negligible, of two cycles in the record or more
   std::vector<IdentifiedMode> growing;
   int negligible = 0;   // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
   int below_noise = 0;  // decaying poles in the band dropped as below the noise (kNoiseFalseAlarm)
+  int trend = 0;        // poles in the band, not negligible, of under kTrendCycles in the record: its offset or drift
   // Decaying poles in the band, above the noise, that were not reported: weaker than the K reported (ascending in
   // frequency). What measured_modes reads for a mode split into close poles.
   std::vector<IdentifiedMode> weaker;
