@@ -24,7 +24,10 @@ std::vector<FlagSpec> modal_id_flags() {
                 true),
       integer_flag("modes", "number K of modes reported: the K strongest decaying oscillations in the band (default 3)",
                    1, core::kMaxSpikes),
-      integer_flag("order", "model order M, the exponentials kept by the SVD (default 2 K + 8)", 2, 10000),
+      integer_flag("order",
+                   "model order M, the exponentials kept by the SVD (default 2 K + 8, or a clean record's count of "
+                   "exponentials)",
+                   2, 10000),
       number_flag("min-frequency", "lowest frequency reported, Hz (default 0)"),
       number_flag("max-frequency", "highest frequency reported, Hz (default Nyquist)")};
   for (FlagSpec& f : import_flags()) flags.push_back(f);
@@ -50,7 +53,7 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()
             << " samples at dt = " << data.dt_s << " s; matrix pencil, model order "
-            << signal::model_order(o, static_cast<int>(data.values.size())) << "\n";
+            << signal::model_order(o, data.values) << "\n";
   return 0;
 }
 

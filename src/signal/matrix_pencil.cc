@@ -44,8 +44,13 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
   return c;
 }
 
-// The right singular vectors of the record's Hankel matrix at pencil parameter L, (L + 1) square, most dominant first.
-Eigen::MatrixXd hankel_right_vectors(const std::vector<double>& y, int pencil) {
+// The record's Hankel matrix at pencil parameter L: its right singular vectors, (L + 1) square, most dominant first,
+// and its singular values, descending.
+struct HankelBasis {
+  Eigen::MatrixXd v;
+  Eigen::VectorXd singular;
+};
+HankelBasis hankel_basis(const std::vector<double>& y, int pencil) {
   const int n = static_cast<int>(y.size());
   // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its right singular vectors.
   Eigen::MatrixXd hankel(n - pencil, pencil + 1);
@@ -61,10 +66,10 @@ Eigen::MatrixXd hankel_right_vectors(const std::vector<double>& y, int pencil) {
   const Eigen::MatrixXd triangle = qr.matrixQR().topRows(pencil + 1).triangularView<Eigen::Upper>();
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(triangle, Eigen::ComputeThinV);
   if (!(svd.singularValues()(0) > 0)) throw InputError("the record is zero: there is no mode to identify");
-  return svd.matrixV();
+  return {svd.matrixV(), svd.singularValues()};
 }
 
-// hankel_right_vectors, computed once per record and L within the process and shared by every later call: one fit's
+// hankel_basis, computed once per record and L within the process and shared by every later call: one fit's
 // modal cost and its modes comparison run the pencil on the same free decay, and a real study's costs and windows run
 // it on the same segments (the pencil's QR and SVD, ~Nbar L^2, were most of a measured record's modal fit: 6 pencils
 // for 132 model evaluations on the steel record). A record is its exact bytes, so a hit returns what the
@@ -73,7 +78,7 @@ Eigen::MatrixXd hankel_right_vectors(const std::vector<double>& y, int pencil) {
 constexpr std::size_t kCachedRecords = 8;
 class RightVectorCache {
  public:
-  std::shared_ptr<const Eigen::MatrixXd> get(const std::vector<double>& y, int pencil) {
+  std::shared_ptr<const HankelBasis> get(const std::vector<double>& y, int pencil) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       for (const Entry& e : entries_)
@@ -81,7 +86,7 @@ class RightVectorCache {
             std::memcmp(e.y.data(), y.data(), y.size() * sizeof(double)) == 0)
           return e.v;
     }
-    auto v = std::make_shared<const Eigen::MatrixXd>(hankel_right_vectors(y, pencil));  // outside the lock
+    auto v = std::make_shared<const HankelBasis>(hankel_basis(y, pencil));  // outside the lock
     const std::lock_guard<std::mutex> lock(mutex_);
     if (entries_.size() == kCachedRecords) entries_.pop_front();
     entries_.push_back({y, pencil, v});
@@ -92,7 +97,7 @@ class RightVectorCache {
   struct Entry {
     std::vector<double> y;
     int pencil;
-    std::shared_ptr<const Eigen::MatrixXd> v;
+    std::shared_ptr<const HankelBasis> v;
   };
   std::mutex mutex_;
   std::deque<Entry> entries_;
@@ -100,9 +105,13 @@ class RightVectorCache {
 
 // The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
 // vectors (the file's head), with pencil parameter L.
-Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
+RightVectorCache& basis_cache() {
   static RightVectorCache cache;
-  const Eigen::MatrixXd v = cache.get(y, pencil)->leftCols(order);
+  return cache;
+}
+
+Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
+  const Eigen::MatrixXd v = basis_cache().get(y, pencil)->v.leftCols(order);
   const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
   // pinv(V1) V2 by least squares (V1 has orthonormal-ish columns, full column rank M).
   const Eigen::MatrixXd pencil_matrix = v1.colPivHouseholderQr().solve(v2);
@@ -139,7 +148,7 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
                      " (its Hankel matrix and QR grow as Nbar L^2); cut the record (--start, --duration) or lower its "
                      "rate (--resample-rate)");
   const int pencil = pencil_columns(o, n);  // L
-  const int order = model_order(o, n);
+  const int order = model_order(o, y);
   if (order > pencil || pencil < 2)
     throw InputError(
         "order M = " + std::to_string(order) + ": must be at most the pencil parameter L = " + std::to_string(pencil) +
@@ -224,8 +233,26 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
 
 int pencil_columns(const PencilOptions& o, int samples) { return std::min(samples / 3, o.max_columns - 1); }
 
-int model_order(const PencilOptions& o, int samples) {
-  return o.order > 0 ? o.order : std::min(2 * o.modes + 8, pencil_columns(o, samples));
+int significant_order(const std::vector<double>& y, const PencilOptions& o) {
+  const int n = static_cast<int>(y.size()), pencil = pencil_columns(o, n);
+  if (pencil < 2) return 0;
+  const Eigen::VectorXd& s = basis_cache().get(y, pencil)->singular;
+  // The last gap of kSingularGap between neighbours, among values above rounding's (kNegligibleAmplitude of the
+  // largest): a record's exponentials stand above its noise by such a gap when it is clean. A measured record's values
+  // fall gradually (the steel record's by at most 3.4 between neighbours over its first 64: coloured noise, a clamp's
+  // nonlinearity), and a count above a noise floor there took M to 64 and split its modes into close pairs.
+  int count = 0;
+  const int last = std::min(static_cast<int>(s.size()) - 1, kMaxRecordOrder);
+  for (int i = 1; i <= last; ++i)
+    if (s(i - 1) > kNegligibleAmplitude * s(0) && s(i - 1) > kSingularGap * s(i)) count = i;
+  return count;
+}
+
+int model_order(const PencilOptions& o, const std::vector<double>& y) {
+  const int columns = pencil_columns(o, static_cast<int>(y.size()));
+  if (o.order > 0) return o.order;
+  const int floor = 2 * o.modes + 8;
+  return std::min(columns, std::max(floor, std::min(significant_order(y, o), kMaxRecordOrder)));
 }
 
 bool is_steady(const IdentifiedMode& m) {

@@ -111,13 +111,13 @@ void estimate_segment(const std::vector<double>& decay, double dt_s, const Measu
 // poles of a physical mode stay where they are when M changes, a fit of noise or of a decay that is no sum of
 // exponentials moves (a stabilisation diagram's test). The UnB bar's 160 Hz mode, damped at 16 %, came out at 164.2
 // or 165.1 Hz as the other peaks asked for changed M (the eighth pass's KS14.3_26_164).
-int pencil_order(const MeasureOptions& o, int n) {
+int pencil_order(const MeasureOptions& o, const std::vector<double>& decay) {
   PencilOptions asked = o.pencil;  // the modes the selection asks the pencil for (lightly_damped_modes, modes_near)
   const int k = static_cast<int>(o.wanted_hz.size());
   asked.modes = !o.wanted_hz.empty()                      ? 3 * k + 4
                 : o.selection == ModeSelection::strongest ? o.pencil.modes
                                                           : o.pencil.modes + 4;
-  return model_order(asked, n);
+  return model_order(asked, decay);
 }
 
 // Each mode's pole at another model order (M + max(4, M / 2), or fewer when M is already the largest the record
@@ -125,7 +125,7 @@ int pencil_order(const MeasureOptions& o, int n) {
 // record cannot take another order.
 void other_order(const std::vector<double>& decay, double dt_s, const MeasureOptions& o, MeasuredModes& out) {
   const int n = static_cast<int>(decay.size());
-  const int columns = pencil_columns(o.pencil, n), order = pencil_order(o, n);
+  const int columns = pencil_columns(o.pencil, n), order = pencil_order(o, decay);
   int other = std::min(columns, order + std::max(4, order / 2));
   if (other == order) other = std::max(2, order - std::max(4, order / 3));
   if (other == order || out.modes.empty()) return;

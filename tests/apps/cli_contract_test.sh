@@ -188,6 +188,13 @@ printf '[beam]\nl = 0.4573\nrho = 0.093\nrho_r2 = 1.984e-8\nkAG = 7.363e5\nEI = 
 expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/nogamma.toml" --elements 4 --estimate gamma \
   --noise-sd 1e-6
 
+# spikes --welch 8: the lowest pick is Welch's bin at 2.1978 Hz, 12 % from mode 1 (2.4638 Hz), yet within a bin and
+# a half of it (1.95 Hz bins): its measured frequency is mode 1's (to 1e-5: 2.46383 Hz is rounded), where it was nan (the
+# seventeenth adversarial pass's P7).
+"$BEAMID" spikes --data "$tmp/z.csv" --welch 8 --spikes 2 >"$tmp/welch.csv" 2>/dev/null || fail=$((fail + 1))
+check "spikes --welch: the lowest pick is measured" awk -F, 'NR == 2 { r = $10 / 2.46383 - 1; exit !(r < 1e-5 && r > -1e-5) }' \
+  "$tmp/welch.csv"
+
 # modal-id: the header, and mode 1 of the z.csv record (banks, N = 4, fast: exact) after its pulse equal to the
 # model's own (beamid modes at N = 4): frequency to 1e-8, damping ratio to 1e-5 (the matrix pencil is exact up to
 # round-off on a noise-free decay; the tests of signal/matrix_pencil.h measure 1e-14 and 3e-11).
