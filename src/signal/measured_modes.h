@@ -18,7 +18,8 @@
 // A segment's frequency is the energy-weighted mean of its poles near the mode (a single pole for a linear mode, the
 // centre of the several that fit a changing frequency). The reported uncertainty is u = sqrt(noise^2 + (span / 2)^2),
 // with span the largest minus the smallest of the whole record's, the segments', the other order's and the
-// companions' frequencies:
+// companions' frequencies (a segment's by what it differs from the whole record's beyond twice its own Cramér-Rao sd,
+// so that its noise is not counted twice, and only where that sd is within kSegmentMaxSdBins of its bin):
 // half the span is how far its ends lie from its centre.
 // A model frequency within 2 u of the measured one fits it (the real-record study's verdict).
 #pragma once
@@ -62,6 +63,10 @@ inline constexpr double kSegmentWindow = 0.1;
 // decayed to the segment's start: an amplitude-dependent damping changes the decay rate by tens of percent over a
 // record (a factor e^{0.3 x 3} = 2.5 at most over three e-folds), a different mode is another amplitude altogether.
 inline constexpr double kSegmentAmplitudeFactor = 4;
+// A segment's pole estimates the mode only when its Cramér-Rao sd is at most this fraction of the segment's bin 1/T:
+// for a sinusoid sd_f = sqrt(3 / SNR) / (2 pi T) with SNR = A^2 n / (2 sigma^2), so 0.05 asks for SNR >= 30 (15 dB),
+// above the threshold region where the estimate leaves its bound for noise peaks.
+inline constexpr double kSegmentMaxSdBins = 0.05;
 // The segments' pencil parameter L at most: the drift is wanted to a fraction of a percent, not to the noise's 1e-5,
 // and the pencil's cost grows as L^2 (a third of the whole record's L = 599 costs a ninth).
 inline constexpr int kSegmentColumns = 200;
