@@ -65,7 +65,8 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
     // shrink the standard errors by sqrt(2): refused. Two columns are the same when their names and their samples
     // are (columns that share a name, as LVM and UFF channels may, are told apart by their data).
     // --resample's interpolation error is said where the record is used (it was in the notes only Python showed).
-    if (const auto at = records.back().notes.find("resampled linearly"); at != std::string::npos && records.size() == 1)
+    if (const auto at = records.back().notes.find("resampled by a cubic spline");
+        at != std::string::npos && records.size() == 1)
       std::cerr << "beamid " << a.command()
                 << ": --resample: " << records.back().notes.substr(at, records.back().notes.find("; ", at) - at)
                 << "\n";

@@ -14,7 +14,7 @@
 //   at least 8 samples; a uniform time base t_i = t_0 + i dt with dt = (t_last - t_0)/(n - 1), to within one unit
 //   of the last printed decimal of the time column (DAQ exports round or truncate times: the ARTS record prints 6
 //   decimals of a 605.47 us step, and 0.0096875 appears as 0.009687) or 1e-6 dt, whichever is larger; unless `resample`
-//   is set, which instead interpolates the record linearly onto the uniform grid with the mean step (and says so in
+//   is set, which instead interpolates the record by a cubic spline onto the uniform grid with the mean step (and says so in
 //   `notes`); no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was exceeded.
 // Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples), for records in
 // g values are converted to m/s^2 (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3), and with a resample

@@ -232,9 +232,9 @@ expect_notice "a shifted prediction" "--prediction starts at t = 0.5 s and --dat
 # error blamed a cut the user had not made).
 expect_error "a pulse fit of a resampled record" "resampled (--resample-rate), it starts at t = " fit \
   --data "$tmp/record.csv" --resample-rate 500 "${S[@]}" --estimate EI --cost time
-# --resample's linear interpolation, and what it costs a record's high frequencies, is said where the record is used.
+# --resample's cubic spline, and what it costs a record's high frequencies, is said where the record is used.
 awk -F, 'NR == 1 {print; next} NR % 3 == 0 {next} {print}' "$tmp/z.csv" >"$tmp/uneven.csv"
-expect_notice "a resampled record" "--resample: resampled linearly onto a uniform" spikes --data "$tmp/uneven.csv" \
+expect_notice "a resampled record" "--resample: resampled by a cubic spline onto a uniform" spikes --data "$tmp/uneven.csv" \
   --resample --spikes 2
 expect_error "a hybrid of the time cost alone" "--strategy = 'hybrid': refines the global --cost time with --refine, whose" \
   fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --strategy hybrid
