@@ -41,29 +41,32 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
                       "); cut it (--start, --duration) or lower its rate (--resample-rate)";
     return;
   }
-  const auto measure = [&](const std::vector<double>& wanted) {
+  const auto measure = [&](const std::vector<double>& wanted, double relative) {
     signal::MeasureOptions o;
     o.wanted_hz = wanted;
-    o.window = window;
+    o.window = relative;
     return signal::measure_modes(values, dt_s, o).modes;
   };
   std::vector<double> wanted;
   for (const auto& p : r.picks) wanted.push_back(p.frequency_hz);
   // A pick's pole is searched within three bins of it (at most the chosen window): a stronger mode 2 Hz away took a
   // 50.05 Hz spike's place, "48.000 +- 1e-14 Hz" (the ninth pass's N_f1). Three bins at the lowest pick are at least
-  // three at every other. And within a bin and a half at the least, where a bin is wider than the window: a pick is
-  // a bin's centre, and a coarse spectrum's (Welch's, K = 8: 0.27 Hz) put 2.1978 Hz 12 % from the mode at 2.4637
-  // Hz, which went unmeasured (the seventeenth pass's P7).
+  // three at every other.
   const double lowest = *std::min_element(wanted.begin(), wanted.end());
-  window = std::min(std::max(window, 1.5 * df_hz / lowest), 3 * df_hz / lowest);
+  const double joint = std::min(window, 3 * df_hz / lowest);
+  // A pick measured alone is searched within a bin and a half of it at the least, where a bin is wider than the window:
+  // a pick is a bin's centre, and a coarse spectrum's (Welch's, K = 8: 0.27 Hz) put 2.1978 Hz 12 % from the mode at
+  // 2.4637 Hz, which went unmeasured (the seventeenth pass's P7). Per pick: the lowest pick's 18 % applied to every
+  // pick took a 494 Hz pole for the 403.8 Hz mode (the eighteenth pass's P3).
+  const auto alone = [&](double f) { return std::min(std::max(window, 1.5 * df_hz / f), 3 * df_hz / f); };
   std::string failure;
   try {
-    r.measured = measure(wanted);
+    r.measured = measure(wanted, joint);
   } catch (const std::exception& all) {
     failure = all.what();
     if (static_cast<int>(wanted.size()) <= kMaxSeparatelyMeasured)
       for (std::size_t k = 0; k < wanted.size(); ++k) try {
-          r.measured[k] = measure({wanted[k]}).front();
+          r.measured[k] = measure({wanted[k]}, alone(wanted[k])).front();
         } catch (const std::exception&) {
         }
   }
@@ -246,7 +249,7 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   }
   r.measured = measured.modes;
   for (const signal::MeasuredMode& m : r.measured) r.modes.push_back(m.mode);
-  r.notes = modal_id_notes(r.modes, measured.diagnostics, o);
+  r.notes = modal_id_notes(r.modes, measured.diagnostics, o, static_cast<double>(data.values.size()) * data.dt_s);
   for (const signal::MeasuredMode& m : r.measured)
     if (const std::string note = signal::uncertainty_note(m); !note.empty()) r.notes.push_back(note);
   if (const std::string note = lead_in_note(data, "the pencil"); !note.empty()) r.notes.push_back(note);
@@ -330,7 +333,8 @@ std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
 }
 
 std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
-                                        const signal::PencilDiagnostics& found, const signal::PencilOptions& o) {
+                                        const signal::PencilDiagnostics& found, const signal::PencilOptions& o,
+                                        double record_s) {
   std::vector<std::string> notes;
   if (static_cast<int>(modes.size()) < o.modes)
     notes.push_back("--modes " + std::to_string(o.modes) + ": the record shows only " + std::to_string(modes.size()) +
@@ -346,10 +350,14 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                                "into one damped sinusoid with probability " +
                                format_value(signal::kNoiseFalseAlarm) + " or more)"
                          : ""));
-  if (found.trend > 0)
-    notes.push_back(std::to_string(found.trend) + " pole(s) of under " + format_value(signal::kTrendCycles) +
-                    " cycle in the record left out: its offset or drift (the pencil fits them as poles near 0 Hz), "
-                    "no mode");
+  if (!found.trend_hz.empty()) {
+    std::string at;
+    for (double f : found.trend_hz) at += (at.empty() ? "" : ", ") + format_rounded(f, 3);
+    notes.push_back("the pole(s) at " + at + " Hz, under one cycle in the " + format_rounded(record_s, 4) +
+                    " s record, left out: its offset or drift, or a mode below " + format_rounded(1 / record_s, 3) +
+                    " Hz that the record is too short to resolve (the eighteenth pass's P9: a 2.46 Hz mode in a 0.3 s "
+                    "record was called a drift; a longer record measures it)");
+  }
   // A record that still holds its pulse gave a "mode" at 422 Hz with zeta 0.81 among three asked for. Said, not
   // dropped: a heavily damped structure exists, and the user decides.
   for (const signal::IdentifiedMode& m : modes)

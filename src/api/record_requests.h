@@ -91,8 +91,9 @@ std::string raw_signal_note(const io::TimeSeries& data, const std::string& what)
 // modes ("" when none is); `what` is "pole" or "spike".
 std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,
                            const std::string& what);
-// The notes of ModalIdResult for the modes the pencil reported and what else it found.
+// The notes of ModalIdResult for the modes the pencil reported and what else it found, in a record of record_s.
 std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode>& modes,
-                                        const signal::PencilDiagnostics& found, const signal::PencilOptions& options);
+                                        const signal::PencilDiagnostics& found, const signal::PencilOptions& options,
+                                        double record_s);
 
 }  // namespace beamid::api

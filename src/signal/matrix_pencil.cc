@@ -207,7 +207,7 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
     // mode 1 at 0.004 Hz, zeta -0.08, in place of the 85.6 Hz mode, and the modal cost paired it with the model's
     // mode 1: the seventeenth pass's P6). Left out as the record's trend, whatever its damping.
     if (m.frequency_hz * n * dt_s < kTrendCycles) {
-      ++d.trend;
+      d.trend_hz.push_back(m.frequency_hz);
       continue;
     }
     if (kept && energy(m) / 2 <= noise_energy) {

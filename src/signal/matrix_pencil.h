@@ -97,7 +97,9 @@ struct PencilDiagnostics {
   std::vector<IdentifiedMode> growing;
   int negligible = 0;   // decaying poles in the band dropped as negligible (kNegligibleAmplitude)
   int below_noise = 0;  // decaying poles in the band dropped as below the noise (kNoiseFalseAlarm)
-  int trend = 0;        // poles in the band, not negligible, of under kTrendCycles in the record: its offset or drift
+  // Poles in the band, not negligible, of under kTrendCycles in the record (their natural frequencies): its offset or
+  // drift, or a mode too slow for the record to resolve.
+  std::vector<double> trend_hz;
   // Decaying poles in the band, above the noise, that were not reported: weaker than the K reported (ascending in
   // frequency). What measured_modes reads for a mode split into close poles.
   std::vector<IdentifiedMode> weaker;

@@ -167,12 +167,12 @@ TEST(RecordRequests, ModalIdSaysWhenAModeSplitsIntoTwoClosePoles) {
     m.lambda = {-m.damping_ratio * w, w * std::sqrt(1 - m.damping_ratio * m.damping_ratio)};
     return m;
   };
-  const auto notes = modal_id_notes({mode(9.406), mode(9.421)}, {}, o);
+  const auto notes = modal_id_notes({mode(9.406), mode(9.421)}, {}, o, 10);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("9.406 and 9.421 Hz are 0.16 % apart"), std::string::npos) << notes[0];
-  EXPECT_TRUE(modal_id_notes({mode(9.406), mode(10.4)}, {}, o).empty());
+  EXPECT_TRUE(modal_id_notes({mode(9.406), mode(10.4)}, {}, o, 10).empty());
   // The ninth pass's d1: one drifting mode's poles 2.6 % apart are said too.
-  EXPECT_EQ(modal_id_notes({mode(35.89), mode(36.84)}, {}, o).size(), 1u);
+  EXPECT_EQ(modal_id_notes({mode(35.89), mode(36.84)}, {}, o, 10).size(), 1u);
 }
 
 }  // namespace
