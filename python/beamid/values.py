@@ -193,7 +193,8 @@ class Record(_Fields):
 
 
 _MODE_FIELDS = [("data_hz", "f8"), ("data_damping_ratio", "f8"), ("model_hz", "f8"), ("model_damping_ratio", "f8"),
-                ("data_uncertainty_hz", "f8")]
+                ("data_uncertainty_hz", "f8"), ("data_decay_1_s", "f8"), ("data_decay_uncertainty_1_s", "f8"),
+                ("model_decay_1_s", "f8")]
 _PARAMETER_FIELDS = [("parameter", "U"), ("estimate", "f8"), ("standard_error", "f8"), ("start", "f8"),
                      ("lower", "f8"), ("upper", "f8"), ("status", "U"), ("robust_standard_error", "f8"),
                      ("window_sd", "f8"), ("window_standard_error", "f8")]
@@ -212,14 +213,16 @@ class FitResult(_Fields):
     sandwich_status   "ok", or why robust_standard_error is NaN where standard_error is not (a residual of leverage
                       above 0.5, or an estimate whose sandwich rests on fewer than 10 residuals' worth)
     modes             structured array: data_hz, data_damping_ratio, model_hz, model_damping_ratio at the estimate,
-                      data_uncertainty_hz (the measured frequency's uncertainty, as modal-id's)
+                      data_uncertainty_hz (the measured frequency's uncertainty, as modal-id's), data_decay_1_s,
+                      data_decay_uncertainty_1_s and model_decay_1_s (decay rates -Re(lambda), what the damping
+                      mismatch note compares)
     beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)
     model_output      the model's output at the estimate (array)
     records           per record of a joint fit: name, cost, status, weight, amplitude_scale
     a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
     messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
-                      identifiability, a record's frequency that changes with the amplitude, modes the estimate does
-                      not reproduce; fit() also issues each as a warning
+                      identifiability, a record's frequency that changes with the amplitude, modes or damping the
+                      estimate does not reproduce; fit() also issues each as a warning
     """
     estimates: dict
     parameters: np.ndarray

@@ -374,11 +374,16 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     m["model_hz"] = p.model_hz;
     m["model_damping_ratio"] = p.model_damping_ratio;
     m["data_uncertainty_hz"] = p.data_uncertainty_hz;
+    m["data_decay_1_s"] = p.data_decay_1_s;
+    m["data_decay_uncertainty_1_s"] = p.data_decay_uncertainty_1_s;
+    m["model_decay_1_s"] = p.model_decay_1_s;
     mode_rows.append(m);
     if (!p.data_note.empty()) messages.append("the record: " + p.data_note);
   }
-  if (const std::string note = apps::modes_mismatch_note(*modes); !note.empty()) messages.append(note);
+  // The CLI's order and set: both misfit notes (the damping one was dropped here: the eighteenth pass's P2).
   for (const std::string& note : modes->notes) messages.append(note);
+  for (const std::string& note : {apps::modes_mismatch_note(*modes), apps::damping_mismatch_note(*modes)})
+    if (!note.empty()) messages.append(note);
   d["modes"] = mode_rows;
   d["modes_status"] = modes->status;
   d["messages"] = messages;
