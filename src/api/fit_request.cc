@@ -166,8 +166,10 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
       !(o.strategy == fit::kHybrid && costs::is_spike_cost(o.refine)))
     refuse(caller, "detrend", *request.detrend,
            "is read where the spike costs (or --welch) pick their spikes; the " + o.cost.name +
-               " cost picks none (a free decay's offset is fitted as its constant, and the modal cost's pencil "
-               "leaves an offset or drift out as poles of under one cycle in the record)");
+               " cost picks none. The modal cost's pencil leaves an offset or drift out as poles of under one cycle "
+               "in the record; the time and freq-band costs fit a free decay's offset as its constant but no drift "
+               "(a drifting record wants --cost modal, or its drift removed before the fit: the eighteenth pass's "
+               "P5)");
   if (request.welch) {
     // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
     // picked on Welch's average (the sixteenth pass's P5).
