@@ -335,12 +335,13 @@ def modal_id(data, time=None, **flags) -> np.ndarray:
     damping_ratio, amplitude, phase_rad, frequency_sd_hz: the Cramér-Rao bound at the residual's noise level;
     drift_hz, span_low_hz, span_high_hz, frequency_uncertainty_hz: the frequency's change between the record's
     segments, the span of every estimate of it, and the uncertainty that covers them, as every command reports a
-    measured frequency). What the modes do not say (fewer found than asked, a pole more likely the excitation, a
-    growing oscillation, a frequency that changes with the amplitude) is a warning, as the command's stderr."""
+    measured frequency; damping_ratio_uncertainty, the decay rate's over |lambda|). What the modes do not say (fewer
+    found than asked, a pole more likely the excitation, a growing oscillation, a frequency that changes with the
+    amplitude) is a warning, as the command's stderr."""
     array, f = _record_flags(data, flags)
     r = _call(_core.modal_id, _arguments(f), array, time)
     fields = ["frequency_hz", "damping_ratio", "amplitude", "phase_rad", "frequency_sd_hz", "drift_hz",
-              "span_low_hz", "span_high_hz", "frequency_uncertainty_hz"]
+              "span_low_hz", "span_high_hz", "frequency_uncertainty_hz", "damping_ratio_uncertainty"]
     table = np.zeros(len(r["frequency_hz"]), dtype=[("mode", "i8")] + [(name, "f8") for name in fields])
     table["mode"] = np.arange(1, len(table) + 1)
     for name in fields:

@@ -425,7 +425,7 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   const api::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
     return api::compute_modal_id(apps::modal_id_request_of(a), record_of(a, array));
   });
-  std::vector<double> f, zeta, amplitude, phase, f_sd, drift, low, high, uncertainty;
+  std::vector<double> f, zeta, amplitude, phase, f_sd, drift, low, high, uncertainty, zeta_u;
   for (const auto& measured : r.measured) {
     const auto& m = measured.mode;
     f.push_back(m.frequency_hz);
@@ -437,6 +437,7 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
     low.push_back(measured.span_low_hz);
     high.push_back(measured.span_high_hz);
     uncertainty.push_back(measured.uncertainty_hz);
+    zeta_u.push_back(measured.damping_ratio_uncertainty());
   }
   py::dict d;
   d["frequency_hz"] = copied_array(f);
@@ -448,6 +449,7 @@ py::dict py_modal_id(const std::vector<std::string>& args, const py::object& dat
   d["span_low_hz"] = copied_array(low);
   d["span_high_hz"] = copied_array(high);
   d["frequency_uncertainty_hz"] = copied_array(uncertainty);
+  d["damping_ratio_uncertainty"] = copied_array(zeta_u);
   d["notes"] = r.notes;
   return d;
 }

@@ -42,12 +42,13 @@ int run_modal_id(const Flags& a, std::ostream& out) {
   // frequency_sd_hz: the noise's part (the Cramér-Rao bound); drift_hz, span and frequency_uncertainty_hz: the
   // measured-frequency estimator's (signal/measured_modes.h), which spikes, fit and real report alike.
   csv << "mode,frequency_hz,damping_ratio,amplitude,phase_rad,frequency_sd_hz,drift_hz,span_low_hz,span_high_hz,"
-         "frequency_uncertainty_hz\n";
+         "frequency_uncertainty_hz,damping_ratio_uncertainty\n";
   for (std::size_t k = 0; k < r.measured.size(); ++k) {
     const signal::MeasuredMode& m = r.measured[k];
     csv << k + 1 << ",";
-    io::write_row(csv, {m.mode.frequency_hz, m.mode.damping_ratio, m.mode.amplitude, m.mode.phase_rad,
-                        m.mode.frequency_sd_hz, m.drift_hz, m.span_low_hz, m.span_high_hz, m.uncertainty_hz});
+    io::write_row(
+        csv, {m.mode.frequency_hz, m.mode.damping_ratio, m.mode.amplitude, m.mode.phase_rad, m.mode.frequency_sd_hz,
+              m.drift_hz, m.span_low_hz, m.span_high_hz, m.uncertainty_hz, m.damping_ratio_uncertainty()});
   }
   out << csv.str();
   for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";
