@@ -325,6 +325,14 @@ std::string lead_in_note(const io::TimeSeries& data, const std::string& what) {
   const long peak = signal::quiet_lead_in(data.values);
   if (peak < 0) return "";
   const std::string t = format_rounded(data.t0_s + static_cast<double>(peak) * data.dt_s, 4);
+  // Largest in its last tenth: a growing trend (an offset that drifts quadratically: the pencil leaves it out as poles
+  // of under one cycle) or a record that ends at its hit; a cut after it leaves nothing (the eighteenth pass's P8
+  // advised a start at the record's last sample, and called exact damping ratios wrong).
+  if (static_cast<double>(peak) >= 0.9 * static_cast<double>(data.values.size()))
+    return "the record is largest at t = " + t + " s, in its last tenth: a drift that grows (which " + what +
+           " fits as poles of under one cycle and leaves out) or a record that ends at a hit (which leaves no decay "
+           "after it to analyse); look at the record before trusting " +
+           what;
   return "the record is largest at t = " + t + " s after a quieter lead-in: it is no free decay from its start, and " +
          what +
          " fits what comes before the excitation too (its damping ratios and amplitudes are then wrong); cut the "

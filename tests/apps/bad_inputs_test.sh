@@ -651,6 +651,11 @@ expect_notice "modal-id after a lead-in" "after a quieter lead-in: it is no free
   modal-id --data "$tmp/lead.csv" --modes 2
 "$BEAMID" modal-id --data "$tmp/z.csv" --modes 2 >/dev/null 2>"$tmp/err"
 grep -q "lead-in" "$tmp/err" && bad "a decay from rest called a lead-in: $(head -c 300 "$tmp/err")" || ok
+# A quadratic drift makes the record largest at its last sample: no advice to cut there, which would leave nothing
+# (the eighteenth adversarial pass's P8); it is said to be a growing drift or a hit at the end.
+awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, $2 + 1e-2 * $1 * $1 }' "$tmp/z.csv" >"$tmp/quad.csv"
+expect_notice "modal-id on a quadratic drift" "in its last tenth: a drift that grows" modal-id --data "$tmp/quad.csv" \
+  --start 0.01 --modes 2
 
 # The spike cost with a derivative-based optimizer stalled on its flat steps and said "converged" 9 % off (S272).
 expect_error "spike cost with lm" "--optimizer = 'lm': cost spike is piecewise constant" fit --data "$tmp/z.csv" \
