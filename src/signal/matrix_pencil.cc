@@ -103,13 +103,14 @@ class RightVectorCache {
   std::deque<Entry> entries_;
 };
 
-// The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
-// vectors (the file's head), with pencil parameter L.
+// The process's one cache, shared by the poles and the model order (both read a record's basis).
 RightVectorCache& basis_cache() {
   static RightVectorCache cache;
   return cache;
 }
 
+// The M poles z_k of the record y: the eigenvalues of pinv(V1) V2 from the Hankel matrix's M dominant right singular
+// vectors (the file's head), with pencil parameter L.
 Eigen::VectorXcd pencil_poles(const std::vector<double>& y, int pencil, int order) {
   const Eigen::MatrixXd v = basis_cache().get(y, pencil)->v.leftCols(order);
   const Eigen::MatrixXd v1 = v.topRows(pencil), v2 = v.bottomRows(pencil);
