@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "core/limits.h"
+#include "core/scratch.h"
 #include "signal/spikes.h"
 
 namespace beamid::signal {
@@ -52,8 +53,19 @@ struct HankelBasis {
 };
 HankelBasis hankel_basis(const std::vector<double>& y, int pencil) {
   const int n = static_cast<int>(y.size());
-  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its right singular vectors.
-  Eigen::MatrixXd hankel(n - pencil, pencil + 1);
+  // Hankel matrix Y(i, j) = y_{i+j}, (n - L) x (L + 1), and its right singular vectors. Its storage (36 MB at
+  // Nbar = 8192 and L = 599, 60 MB for the steel record's 13,213 samples) is the thread's scratch buffer, kept between
+  // calls up to kKeptHankelBytes (so that one long record does not hold hundreds of MB for the process's life).
+  constexpr std::size_t kKeptHankelBytes = std::size_t{128} << 20;
+  thread_local core::ScratchBuffer scratch;
+  const auto rows = static_cast<Eigen::Index>(n - pencil), cols = static_cast<Eigen::Index>(pencil + 1);
+  Eigen::Map<Eigen::MatrixXd> hankel(scratch.reserve(static_cast<std::size_t>(rows * cols)), rows, cols);
+  struct Release {  // freed on the way out when above the limit, however the call ends
+    core::ScratchBuffer& s;
+    ~Release() {
+      if (s.capacity() * sizeof(double) > kKeptHankelBytes) s.release();
+    }
+  } release{scratch};
   for (int i = 0; i < n - pencil; ++i)
     for (int j = 0; j <= pencil; ++j) hankel(i, j) = y[static_cast<std::size_t>(i + j)];
   // Its right singular vectors are those of R in Y = Q R. Y is tall, n - L >= 2 L >= L + 1 rows for its L + 1 columns

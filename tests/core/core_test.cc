@@ -1,12 +1,37 @@
 // What every layer uses: stable hashes and seeds, one-line errors, name registries that refuse unknown names.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <new>
+
 #include "core/errors.h"
 #include "core/hash.h"
 #include "core/names.h"
+#include "core/scratch.h"
 
 namespace beamid::core {
 namespace {
+
+// The pencil's Hankel buffer: reused while large enough (the point of it), grown when not, aligned for Eigen's
+// vectorised access (and on a 2 MB huge-page boundary), writable over its whole capacity, and returned by release().
+TEST(ScratchBuffer, ReusesGrowsAlignsAndReleases) {
+  ScratchBuffer buffer;
+  EXPECT_EQ(buffer.capacity(), 0u);
+  double* first = buffer.reserve(1000);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(first) % (std::uintptr_t{2} << 20), 0u);
+  for (std::size_t i = 0; i < 1000; ++i) first[i] = static_cast<double>(i);
+  EXPECT_EQ(buffer.reserve(10), first);  // smaller: the same block, contents kept
+  EXPECT_EQ(first[999], 999.0);
+  const std::size_t large = std::size_t{3} << 20;  // 24 MB
+  double* grown = buffer.reserve(large);
+  EXPECT_EQ(buffer.capacity(), large);
+  grown[0] = 1, grown[large - 1] = 2;
+  EXPECT_EQ(grown[0] + grown[large - 1], 3.0);
+  buffer.release();
+  EXPECT_EQ(buffer.capacity(), 0u);
+  EXPECT_THROW(buffer.reserve(SIZE_MAX / 4), std::bad_alloc);
+}
 
 TEST(Hash, SeedsAreMixedAndNamedStreamsDiffer) {
   EXPECT_NE(mix64(1), mix64(2));
