@@ -1,7 +1,6 @@
 // beamid: command-line entry point (apps/cli.h): the subcommands of apps/commands.h; any error is one line on
 // stderr ("beamid: ...") and a non-zero exit status (2 for bad input, 3 for a numerical failure, 1 when the results
 // could not be written: standard output full, closed or on a failing device).
-#include <malloc.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "apps/cli.h"
+#include "core/allocator.h"
 
 namespace {
 
@@ -54,23 +54,10 @@ class RecordingOutput : public std::streambuf {
   int error_ = 0;
 };
 
-// The allocator keeps what the program frees instead of handing it back to the system. Models, fits and pencils
-// allocate and free matrices of a few hundred kB to tens of MB over and over; glibc returns a freed top of the heap
-// above its trim threshold (and an mmapped block at once), so that the next evaluation faults the same pages in
-// again, one fault per 4 kB at about 16 us on the virtual machines this runs on. Measured with perf stat (tables
-// byte-identical): a thick-beam study's 27 time, freq-band and spike-smooth fits 10,860 page faults without these
-// settings, 5,626 with them. (The largest block, the matrix pencil's Hankel matrix, has its own reused buffer:
-// core/scratch.h.) The cost: the process holds its peak heap, plus at most 64 MB, until it exits.
-void keep_freed_memory() {
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);   // never trim the heap's top below 1 GB of free memory
-  mallopt(M_TOP_PAD, 64 << 20);         // and grow it by 64 MB at a time
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // blocks up to 32 MB (glibc's largest) from the heap, not mmap
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  beamid::core::keep_freed_memory();  // core/allocator.h
   RecordingOutput output;
   std::streambuf* const original = std::cout.rdbuf(&output);
   int status = beamid::apps::run_command_line(std::vector<std::string>(argv, argv + argc), std::cout, std::cerr);
