@@ -322,7 +322,9 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     const apps::FitReportInput input{
         c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};
     modes = apps::compare_modes(input);
-    if (a.has("report")) apps::write_fit_report(a.text("report"), input);
+    apps::FitReportInput with_modes = input;
+    with_modes.modes = &*modes;
+    if (a.has("report")) apps::write_fit_report(a.text("report"), with_modes);
   }
   const fit::FitResult& r = c->result;
   py::dict d;

@@ -244,7 +244,7 @@ void header_section(Markdown& md, const FitReportInput& in, const costs::Evaluat
 
 // The record's modes beside the model's at the estimate.
 void modes_section(Markdown& md, const FitReportInput& in) {
-  const ModeComparison modes = compare_modes(in);
+  const ModeComparison modes = in.modes ? *in.modes : compare_modes(in);
   md << "## Modes\n\n";
   if (modes.status != "ok") {
     md << "Not compared: " << modes.status << ".\n\n";

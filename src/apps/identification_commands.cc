@@ -236,7 +236,9 @@ int run_fit(const Flags& a, std::ostream& out) {
   if (const std::string note = modes_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
   if (const std::string note = damping_mismatch_note(modes); !note.empty()) std::cerr << "beamid fit: " << note << "\n";
   if (a.has("report")) {
-    write_fit_report(a.text("report"), input);
+    FitReportInput with_modes = input;
+    with_modes.modes = &modes;
+    write_fit_report(a.text("report"), with_modes);
     std::cerr << "beamid fit: report written to " << a.text("report") << " and its full spectra to " << a.text("report")
               << ".spectra.csv\n";
   }
