@@ -196,19 +196,29 @@ std::string damping_mismatch_note(const ModeComparison& c) {
   if (c.status != "ok") return "";
   const ModePair* at = nullptr;
   double excess = 0;  // the largest |model - data| decay rate over its tolerance
+  int compared = 0;
+  std::vector<const ModePair*> beyond;  // every mode off by more than its tolerance, by frequency
   for (const ModePair& p : c.pairs) {
     if (p.set_aside || std::isnan(p.model_decay_1_s) || !(p.data_decay_1_s > 0)) continue;
+    ++compared;
     const double off = std::abs(p.model_decay_1_s - p.data_decay_1_s);
     const double u = std::isnan(p.data_decay_uncertainty_1_s) ? 0 : p.data_decay_uncertainty_1_s;
     const double tolerance = std::max(kDampingMismatch * p.data_decay_1_s, kDampingMismatchUncertainties * u);
+    if (off > tolerance) beyond.push_back(&p);
     if (off / tolerance > excess) excess = off / tolerance, at = &p;
   }
   if (!at || excess <= 1) return "";
-  return "the estimate does not reproduce the record's damping: at " + g(at->data_hz) + " Hz the model decays at " +
-         g(at->model_decay_1_s, 3) + " 1/s (zeta " + g(100 * at->model_damping_ratio, 3) + " %), the record at " +
-         g(at->data_decay_1_s, 3) + " +- " + g(at->data_decay_uncertainty_1_s, 2) + " 1/s (zeta " +
-         g(100 * at->data_damping_ratio, 3) + " %), beyond " + g(100 * kDampingMismatch, 2) + " % and " +
-         g(kDampingMismatchUncertainties, 2) +
+  // Every mode that misses is named, not only the farthest: on the steel record 3 of 5 did, and the note that named
+  // the 380 Hz mode alone read as one mode's problem (the eighteenth pass's U4).
+  std::string others;
+  for (const ModePair* p : beyond)
+    if (p != at) others += (others.empty() ? "" : ", ") + g(p->data_hz);
+  return "the estimate does not reproduce the record's damping at " + std::to_string(beyond.size()) + " of its " +
+         std::to_string(compared) + " compared modes" + (others.empty() ? "" : " (also at " + others + " Hz)") +
+         "; the farthest: at " + g(at->data_hz) + " Hz the model decays at " + g(at->model_decay_1_s, 3) +
+         " 1/s (zeta " + g(100 * at->model_damping_ratio, 3) + " %), the record at " + g(at->data_decay_1_s, 3) +
+         " +- " + g(at->data_decay_uncertainty_1_s, 2) + " 1/s (zeta " + g(100 * at->data_damping_ratio, 3) +
+         " %), beyond " + g(100 * kDampingMismatch, 2) + " % and " + g(kDampingMismatchUncertainties, 2) +
          " of its uncertainties: a damping model that cannot follow the record's modes, or a cost whose damping "
          "estimate is biased (a window that opens after the decay, noise on the spikes' magnitudes); the damping's "
          "standard errors do not include it";

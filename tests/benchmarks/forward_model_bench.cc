@@ -4,7 +4,6 @@
 // (results/verification/fast_vs_cvode.md), and at 1e-10 (about 1e-8).
 #include <benchmark/benchmark.h>
 
-#include "core/allocator.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
@@ -135,13 +134,4 @@ BENCHMARK(BM_SimulateCvode1e10)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Unit(benchmar
 
 }  // namespace
 
-// BENCHMARK_MAIN with the allocator set as the program sets it (core/allocator.h), so that what is measured is what
-// the program does.
-int main(int argc, char** argv) {
-  beamid::core::keep_freed_memory();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main: bench_main.cc

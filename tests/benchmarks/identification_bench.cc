@@ -4,7 +4,6 @@
 // from `fast` at N = 16 so that the benchmark needs no CVODE run).
 #include <benchmark/benchmark.h>
 
-#include "core/allocator.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
 
@@ -110,13 +109,4 @@ BENCHMARK(BM_TimeJacobian)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
-// BENCHMARK_MAIN with the allocator set as the program sets it (core/allocator.h), so that what is measured is what
-// the program does.
-int main(int argc, char** argv) {
-  beamid::core::keep_freed_memory();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main: bench_main.cc
