@@ -349,7 +349,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     if (text.rfind("beamid fit: ", 0) == 0) text.erase(0, 12);
     messages.append(text);
   }
-  const api::FitNotes notes = api::fit_notes(r);
+  const api::FitNotes notes = api::fit_notes(r, c->options.cost);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   d["cost"] = r.cost;

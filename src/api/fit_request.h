@@ -86,14 +86,16 @@ struct FitNotes {
   std::string on_bound, failed, identifiability;
   std::string explains_nothing;  // a least-squares fit that explains under half of a record (fit_notes)
   std::string no_errors;         // no degrees of freedom: the standard errors are not defined
-  std::string no_sandwich;  // the formal errors are defined but the sandwich ones are not (a residual's leverage 1)
-  std::string pairing;      // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
+  std::string no_sandwich;      // the formal errors are defined but the sandwich ones are not (a residual's leverage 1)
+  std::string pairing;          // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
+  std::string correlated_bins;  // a window correlates the DFT bins the standard errors take as independent
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };
 // A least-squares fit (time or freq-band, of one record or several, or a hybrid's refinement) that explains less than
 // half of a record's sum of squares in what its cost compares (or none of it) is said to: a fit of white noise, of
 // another beam's record, or of a record in counts reported precise "free" estimates with exit 0.
-FitNotes fit_notes(const fit::FitResult& result);
+// `cost` is the fit's cost (its name and window).
+FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost);
 
 }  // namespace beamid::api

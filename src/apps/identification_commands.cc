@@ -202,11 +202,12 @@ int run_fit(const Flags& a, std::ostream& out) {
         << io::full_precision(spread ? spread->sd[i] : std::nan("")) << ","
         << io::full_precision(spread ? spread->standard_error[i] : std::nan("")) << "\n";
   }
-  const api::FitNotes notes = api::fit_notes(result);
+  const api::FitNotes notes = api::fit_notes(result, o.cost);
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.explains_nothing.empty()) std::cerr << "beamid fit: " << notes.explains_nothing << "\n";
   if (!notes.no_errors.empty()) std::cerr << "beamid fit: " << notes.no_errors << "\n";
   if (!notes.no_sandwich.empty()) std::cerr << "beamid fit: " << notes.no_sandwich << "\n";
+  if (!notes.correlated_bins.empty()) std::cerr << "beamid fit: " << notes.correlated_bins << "\n";
   if (!notes.failed.empty()) std::cerr << "beamid fit: " << notes.failed << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method
