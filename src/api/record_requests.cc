@@ -344,6 +344,15 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
                                         const signal::PencilDiagnostics& found, const signal::PencilOptions& o,
                                         double record_s) {
   std::vector<std::string> notes;
+  // A step in the record made mode 1's damping ratio 9x the truth, and only a side pole was noted (the eighteenth
+  // pass's P7): the pencil's residual says when the record is more than decaying exponentials in white noise.
+  if (found.residual_fraction > signal::kUnmodelledFraction && found.residual_lag1 > signal::kUnmodelledLag1)
+    notes.push_back("the pencil's exponentials leave " + format_rounded(100 * found.residual_fraction, 2) +
+                    " % of the record's RMS, and what they leave varies slowly (lag-1 correlation " +
+                    format_rounded(found.residual_lag1, 2) +
+                    "), no white noise: the record holds something that is no sum of decaying oscillations (a step, "
+                    "a clipped or saturated stretch, a drift, a second hit), which the modes above are fitted to as "
+                    "well, their damping ratios first; look at the record");
   if (static_cast<int>(modes.size()) < o.modes)
     notes.push_back("--modes " + std::to_string(o.modes) + ": the record shows only " + std::to_string(modes.size()) +
                     " decaying oscillation(s) in the band: " + std::to_string(modes.size()) + " printed" +

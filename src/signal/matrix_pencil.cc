@@ -21,7 +21,8 @@ namespace {
 // The amplitudes c_k of all M exponentials z_k by least squares on the whole record y (a complex Vandermonde system),
 // and the residual's standard deviation, |y - Re(V c)| / sqrt(n - 2 M) (each exponential has a complex pole and a
 // complex amplitude; conjugate pairs make them M real parameters of each kind).
-Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>& y, int order, double& residual_sd) {
+Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>& y, int order, double& residual_sd,
+                            PencilDiagnostics& d) {
   const int n = static_cast<int>(y.size());
   // A growing pole (|z| > 1, noise or an unmodelled transient at a high order) is anchored at the record's end,
   // column z^(i - n + 1), so that no entry exceeds 1 in modulus: anchored at the start, 1.5^307 overflowed to inf and
@@ -38,7 +39,13 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
   }
   const Eigen::Map<const Eigen::VectorXd> record(y.data(), n);
   const Eigen::VectorXcd c = vandermonde.colPivHouseholderQr().solve(record.cast<std::complex<double>>());
-  residual_sd = (record - (vandermonde * c).real()).norm() / std::sqrt(std::max(1, n - 2 * order));
+  const Eigen::VectorXd residual = record - (vandermonde * c).real();
+  residual_sd = residual.norm() / std::sqrt(std::max(1, n - 2 * order));
+  const double mean = residual.mean(), spread = (residual.array() - mean).matrix().squaredNorm();
+  const double rms = std::sqrt((record.array() - record.mean()).square().mean());
+  d.residual_fraction = rms > 0 ? std::sqrt(spread / n) / rms : 0.0;
+  d.residual_lag1 =
+      spread > 0 ? ((residual.head(n - 1).array() - mean) * (residual.tail(n - 1).array() - mean)).sum() / spread : 0.0;
   if (!c.allFinite())
     throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
                          std::to_string(order) + "): try a lower --order");
@@ -174,8 +181,11 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
 
   const Eigen::VectorXcd z = pencil_poles(y, pencil, order);
 
+  PencilDiagnostics unused;
+  PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
+  d = {};
   double residual_sd = 0;
-  const Eigen::VectorXcd c = amplitudes(z, y, order, residual_sd);
+  const Eigen::VectorXcd c = amplitudes(z, y, order, residual_sd, d);
   // A pole is a mode of the sampled record only if its natural frequency |lambda| / 2 pi is below the Nyquist
   // frequency: a heavily damped pole beyond it (at a high order, fitting the pulse) is not resolvable from samples
   // at this rate, and was listed as the strongest "mode" at 505-989 Hz of a 1 kHz record.
@@ -183,9 +193,6 @@ std::vector<IdentifiedMode> matrix_pencil(const std::vector<double>& y, double d
 
   double largest = 0;
   for (double v : y) largest = std::max(largest, std::abs(v));
-  PencilDiagnostics unused;
-  PencilDiagnostics& d = diagnostics ? *diagnostics : unused;
-  d = {};
 
   auto energy = [n, dt_s](const IdentifiedMode& m) { return mode_energy(m, dt_s, n); };
   const double noise_energy = 2 * residual_sd * residual_sd * std::log(n / kNoiseFalseAlarm);

@@ -53,6 +53,32 @@ TEST(MatrixPencil, RecoversDampedSinusoidsToRoundOff) {
   EXPECT_EQ(matrix_pencil(y, 1e-3, o).size(), 2u);
 }
 
+TEST(MatrixPencil, ItsResidualTellsWhiteNoiseFromAStep) {
+  // Three decaying modes in 1 % white noise: the exponentials leave the noise, 1 % of the record's RMS with no lag-1
+  // correlation (its sd 1/sqrt(n) = 0.016 for n = 4096: 0.1 is 6 sd). The same record with a step of half its RMS a
+  // third of the way in (a sensor's jump, the eighteenth pass's P7): no sum of exponentials follows a step, and what
+  // is left is the step itself, slowly varying (lag-1 correlation near 1) and above kUnmodelledFraction of the RMS.
+  const std::vector<Tone> tones = {{5.3, 0.01, 1.0, 0.3}, {17.1, 0.02, 0.5, -1.1}, {42.7, 0.005, 0.2, 2.0}};
+  auto y = record(tones, 1e-3, 4096);
+  double rms = 0;
+  for (double v : y) rms += v * v;
+  rms = std::sqrt(rms / static_cast<double>(y.size()));
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01 * rms);
+  for (double& v : y) v += noise(rng);
+  PencilOptions o;
+  o.modes = 3;
+  PencilDiagnostics clean;
+  matrix_pencil(y, 1e-3, o, &clean);
+  EXPECT_NEAR(clean.residual_fraction, 0.01, 0.002);
+  EXPECT_LT(std::abs(clean.residual_lag1), 0.1);
+  for (std::size_t i = y.size() / 3; i < y.size(); ++i) y[i] += 0.5 * rms;
+  PencilDiagnostics stepped;
+  matrix_pencil(y, 1e-3, o, &stepped);
+  EXPECT_GT(stepped.residual_fraction, kUnmodelledFraction);
+  EXPECT_GT(stepped.residual_lag1, kUnmodelledLag1);
+}
+
 TEST(MatrixPencil, TheDefaultOrderIsTheRecordsNotTheModesAsked) {
   // Eight modes, no noise, one asked for: 2 K + 8 = 10 exponentials cannot hold the record's 16, and the pole came out
   // biased (the seventeenth pass's P2: zeta 2.3 times the truth). The default order counts the record's singular
@@ -84,7 +110,9 @@ TEST(MatrixPencil, TheDefaultOrderIsTheRecordsNotTheModesAsked) {
     auto noisy = y;
     for (double& v : noisy) v += level * normal(rng);
     const int m = significant_order(noisy, o);
-    if (level < 1e-4) EXPECT_EQ(m, 16);
+    if (level < 1e-4) {
+      EXPECT_EQ(m, 16);
+    }
     EXPECT_LE(m, 16) << level;
   }
 }
