@@ -388,12 +388,22 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   // window multiplies the record before its DFT, which smears each bin's noise over its neighbours: freq-band with the
   // exponential window reported errors 2.7-3.5x below its scatter over 12 noise seeds, below the Cramer-Rao bound
   // (the eighteenth pass's P1; Hann 1.0-1.4x). Said until the covariance carries the window's correlation.
-  if (result.status != "failed" && result.covariance_status == "ok" && cost.window.name != "rectangular" &&
-      (cost.name == costs::kBandCost || costs::is_spike_cost(cost.name)))
-    notes.correlated_bins = "the standard errors take the DFT bins as uncorrelated, which the " + cost.window.name +
-                            " window makes them not: they can understate the estimates' scatter (freq-band with the "
-                            "exponential window: 2.7-3.5x, below the Cramer-Rao bound); quote the spread over "
-                            "windows (--windows K)";
+  // A nearly flat window (--exponential-end 0.999) correlates nothing and gave the rectangular window's errors to 4
+  // digits (the nineteenth pass's U2): said only when the window's equivalent noise bandwidth, Nbar sum w^2 /
+  // (sum w)^2 (1 for a flat window, 1.5 for Hann, 2.3 for the exponential window to 0.01), exceeds 1 by a percent.
+  if (result.status != "failed" && result.covariance_status == "ok" &&
+      (cost.name == costs::kBandCost || costs::is_spike_cost(cost.name))) {
+    const std::vector<double> w = signal::window_weights(cost.window, 4096);
+    double sum = 0, squares = 0;
+    for (double v : w) sum += v, squares += v * v;
+    const double bandwidth = sum > 0 ? static_cast<double>(w.size()) * squares / (sum * sum) : 1.0;
+    if (bandwidth > 1.01)
+      notes.correlated_bins = "the standard errors take the DFT bins as uncorrelated, which the " + cost.window.name +
+                              " window (noise bandwidth " + format_rounded(bandwidth, 3) +
+                              " bins) makes them not: they can understate the estimates' scatter (freq-band with the "
+                              "exponential window to 0.01: 2.7-3.5x, below the Cramer-Rao bound); quote the spread "
+                              "over windows (--windows K)";
+  }
   notes.explains_nothing = explained_note(result);
   // (A4) at the estimate: two data spikes or modes pair with one of the model's, so the cost jumped where the
   // pairing changed and the estimate is no minimum of a smooth cost (the modal cost with --spikes 10 on a record of

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include "core/errors.h"
 #include "core/limits.h"
@@ -168,6 +169,7 @@ SpikesResult compute_spikes(const SpikesRequest& request, const io::TimeSeries& 
         !note.empty())
       r.notes.push_back(note);
   if (const std::string note = raw_signal_note(data, "magnitudes"); !note.empty()) r.notes.push_back(note);
+  if (const std::string note = quantisation_note(data); !note.empty()) r.notes.push_back(note);
   return r;
 }
 
@@ -257,6 +259,7 @@ ModalIdResult compute_modal_id(const ModalIdRequest& request, const io::TimeSeri
   for (const signal::IdentifiedMode& m : r.modes) found.push_back(m.frequency_hz);
   if (const std::string note = pass_band_note(data, found, "pole"); !note.empty()) r.notes.push_back(note);
   if (const std::string note = raw_signal_note(data, "amplitudes"); !note.empty()) r.notes.push_back(note);
+  if (const std::string note = quantisation_note(data); !note.empty()) r.notes.push_back(note);
   return r;
 }
 
@@ -286,6 +289,22 @@ std::string raw_signal_note(const io::TimeSeries& data, const std::string& what)
   if (!io::is_non_motion_unit(data.unit)) return "";
   return "the record is in " + data.unit + ", a raw sensor signal and no motion: its " + what + " are in " + data.unit +
          " (frequencies and damping ratios do not depend on the unit; beamid fit needs the motion)";
+}
+
+std::string quantisation_note(const io::TimeSeries& data) {
+  // The record's quantum: its smallest non-zero step between neighbours (round-off small for floating-point values).
+  double quantum = std::numeric_limits<double>::infinity(), peak = 0;
+  for (std::size_t i = 0; i < data.values.size(); ++i) {
+    peak = std::max(peak, std::abs(data.values[i]));
+    if (i > 0)
+      if (const double step = std::abs(data.values[i] - data.values[i - 1]); step > 0)
+        quantum = std::min(quantum, step);
+  }
+  if (!std::isfinite(quantum) || !(peak / quantum < kCoarseQuantisation)) return "";
+  return "the record is quantised coarsely: its step is " + format_rounded(quantum, 3) + ", 1/" +
+         format_rounded(peak / quantum, 3) + " of its peak (" + format_rounded(std::log2(2 * peak / quantum), 2) +
+         " bits over its range): below a few steps its quantisation error follows the signal instead of being white "
+         "noise, so weak modes and late decay show as steady lines, growing or spurious poles";
 }
 
 std::string pass_band_note(const io::TimeSeries& data, const std::vector<double>& frequencies_hz,
@@ -348,11 +367,11 @@ std::vector<std::string> modal_id_notes(const std::vector<signal::IdentifiedMode
   // pass's P7): the pencil's residual says when the record is more than decaying exponentials in white noise.
   if (found.residual_fraction > signal::kUnmodelledFraction && found.residual_lag1 > signal::kUnmodelledLag1)
     notes.push_back("the pencil's exponentials leave " + format_rounded(100 * found.residual_fraction, 2) +
-                    " % of the record's RMS, and what they leave varies slowly (lag-1 correlation " +
+                    " % of the record's RMS, and what they leave is no white noise (lag-1 correlation " +
                     format_rounded(found.residual_lag1, 2) +
-                    "), no white noise: the record holds something that is no sum of decaying oscillations (a step, "
-                    "a clipped or saturated stretch, a drift, a second hit), which the modes above are fitted to as "
-                    "well, their damping ratios first; look at the record");
+                    "): the record holds what no sum of decaying oscillations does (a mode whose frequency changes "
+                    "with its amplitude, a step, a clipped or saturated stretch, a drift, a second hit), which the "
+                    "modes above are fitted to as well, their damping ratios first; look at the record");
   if (static_cast<int>(modes.size()) < o.modes)
     notes.push_back("--modes " + std::to_string(o.modes) + ": the record shows only " + std::to_string(modes.size()) +
                     " decaying oscillation(s) in the band: " + std::to_string(modes.size()) + " printed" +

@@ -437,11 +437,20 @@ void resample_by_spline(Samples& in, double dt) {
 // quanta over a run's length either side (second order in time), and a quantised tail is that small on both sides;
 // neither is 1 % of the peak (327 quanta of a 16-bit range). Runs at the record's ends (a lead-in, a tail rounded to
 // zero) have one side and are no dropout.
+// A coarsely quantised record (8 bits over its peak: a quantum of 0.8 % of it) holds a slow mode's turning point for
+// 32 samples and leaves it by two quanta, over 1 % of the peak: it was refused as a dropout (the nineteenth pass's
+// P4). So the signal must also leave the value by kDropoutQuanta of the record's quantum, its smallest non-zero step
+// between neighbours (round-off small for a record of floating-point values, which leaves the 1 % rule).
 constexpr std::size_t kDropoutRun = 32;
 constexpr double kDropoutLevel = 1e-2;
+constexpr double kDropoutQuanta = 8;
 
 void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak, const std::string& path) {
   const std::vector<double>& v = s.values;
+  double quantum = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double step = std::abs(v[i] - v[i - 1]); step > 0) quantum = std::min(quantum, step);
+  const double level = std::max(kDropoutLevel * peak, std::isfinite(quantum) ? kDropoutQuanta * quantum : 0.0);
   const auto away = [&](std::size_t from, std::size_t to, double value) {
     double d = 0;
     for (std::size_t i = from; i < to; ++i) d = std::max(d, std::abs(v[i] - value));
@@ -453,7 +462,7 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     const std::size_t run = j - i;
     if (run >= kDropoutRun && i > 0 && j < v.size()) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
-      if (std::min(before, after) >= kDropoutLevel * peak)
+      if (std::min(before, after) >= level)
         throw InputError(in.where(first + i) + ": " + s.value_column + " = " + format_value(in.v[first + i]) + " on " +
                          std::to_string(run) +
                          " consecutive samples inside the record, with the vibration on both sides: a dropout (lost "

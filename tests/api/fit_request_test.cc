@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "../fit/same_model_record.h"
+#include "api/record_requests.h"
 #include "apps/flag_requests.h"
 #include "apps/flags.h"
 #include "core/errors.h"
@@ -174,15 +176,47 @@ TEST(FitNotes, AWindowedDftCostsErrorsAreSaidToIgnoreTheBinsCorrelation) {
   costs::CostOptions cost;
   cost.name = costs::kBandCost;
   cost.window.name = "exponential";
-  EXPECT_NE(fit_notes(result, cost).correlated_bins.find("exponential window makes them not"), std::string::npos);
+  EXPECT_NE(fit_notes(result, cost).correlated_bins.find("exponential window (noise bandwidth 2.3"), std::string::npos);
   cost.name = costs::kSpikeSmoothCost, cost.window.name = "hann";
   EXPECT_FALSE(fit_notes(result, cost).correlated_bins.empty());
   cost.window.name = "rectangular";
   EXPECT_TRUE(fit_notes(result, cost).correlated_bins.empty());
+  // A nearly flat exponential window (noise bandwidth 1 + 8e-8) correlates nothing (the nineteenth pass's U2).
+  cost.window.name = "exponential", cost.window.exponential_end = 0.999;
+  EXPECT_TRUE(fit_notes(result, cost).correlated_bins.empty());
+  cost.window.exponential_end = 0.01, cost.window.name = "rectangular";
   cost.name = costs::kTimeCost, cost.window.name = "hann";  // the time cost reads no window
   EXPECT_TRUE(fit_notes(result, cost).correlated_bins.empty());
   cost.name = costs::kBandCost, result.covariance_status = "no degrees of freedom";
   EXPECT_TRUE(fit_notes(result, cost).correlated_bins.empty());
+}
+
+}  // namespace
+}  // namespace beamid::api
+
+namespace beamid::api {
+namespace {
+
+// The nineteenth pass's P4: a 5-bit record (32 levels over its range) gave steady lines and spurious poles with no
+// word of its quantisation. Said under 10 bits over the range (512 steps over the peak), not for 16 bits or for
+// floating-point values.
+TEST(RecordNotes, ACoarselyQuantisedRecordIsSaidToBe) {
+  io::TimeSeries data;
+  const auto decay = [&](double quantum) {
+    data.values.clear();
+    for (int i = 0; i < 4000; ++i) {
+      const double x = std::exp(-2e-3 * i) * std::sin(0.05 * i + 0.3);
+      data.values.push_back(quantum > 0 ? quantum * std::round(x / quantum) : x);
+    }
+  };
+  decay(1.0 / 16);  // 5 bits over [-1, 1]; the decay peaks at 15/16
+  EXPECT_NE(quantisation_note(data).find("quantised coarsely: its step is 0.0625, 1/15 of its peak (4.9 bits"),
+            std::string::npos)
+      << quantisation_note(data);
+  decay(1.0 / 32768);  // 16 bits
+  EXPECT_EQ(quantisation_note(data), "");
+  decay(0);
+  EXPECT_EQ(quantisation_note(data), "");
 }
 
 }  // namespace

@@ -427,6 +427,11 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
       << error_of(write("dropout.csv", record(500, 0, 0)));
   EXPECT_NO_THROW(read_time_series(write("tail.csv", record(-1000, 1.0 / 32768, 0))));
   EXPECT_NO_THROW(read_time_series(write("slow.csv", record(-1000, 1.0 / 32768, 0.05))));
+  // Quantised to 8 bits (a quantum of 1/128 of the peak), the slow swing's turning point holds one value for about
+  // 360 samples and leaves it by about 4 quanta, 2.8 % of the peak: quantisation, no dropout (the nineteenth pass's
+  // P4). The 8-bit record's real dropout, zeros where the decay is still 0.135, is named as before.
+  EXPECT_NO_THROW(read_time_series(write("coarse.csv", record(-1000, 1.0 / 128, 0.05))));
+  EXPECT_NE(error_of(write("coarse_dropout.csv", record(500, 1.0 / 128, 0))).find("a dropout"), std::string::npos);
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";
   ImportOptions o;
