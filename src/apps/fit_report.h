@@ -63,7 +63,11 @@ std::string modes_line(const ModeComparison& comparison);
 // 15 % apart and 0.4 % errors, nothing said: the sixth pass's S213). A record's mode whose own frequency is uncertain
 // by more (2 u, u its measured uncertainty: a frequency that changes with the amplitude) is judged by that instead.
 // "" when every pair agrees.
+// Within kModeMismatch, the note says when a model mode misses the record's by more than
+// kFrequencyMismatchUncertainties of its measured uncertainty (model error, a second hit), which the standard errors
+// do not include either.
 inline constexpr double kModeMismatch = 0.02;
+inline constexpr double kFrequencyMismatchUncertainties = 10;
 std::string modes_mismatch_note(const ModeComparison& comparison);
 // The same for the damping: a model whose decay rate at a mode is more than kDampingMismatch (relative) and
 // kDampingMismatchUncertainties of the record's own decay-rate uncertainty from the record's. Frequencies can agree to
