@@ -216,13 +216,17 @@ class FitResult(_Fields):
                       data_uncertainty_hz (the measured frequency's uncertainty, as modal-id's), data_decay_1_s,
                       data_decay_uncertainty_1_s and model_decay_1_s (decay rates -Re(lambda), what the damping
                       mismatch note compares)
+    modes_status      "ok" when the record's modes could be compared with the model's (the table above is then
+                      filled), else why not; whether the estimate reproduces them is said in messages, not here
     beam              the fitted beam's parameters (a dict; pass it as beam= to simulate the fit)
     model_output      the model's output at the estimate (array)
     records           per record of a joint fit: name, cost, status, weight, amplitude_scale
     a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
     messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
                       identifiability, a record's frequency that changes with the amplitude, modes or damping the
-                      estimate does not reproduce; fit() also issues each as a warning
+                      estimate does not reproduce (beyond 2 %, or 10 of the record's uncertainties), a window that
+                      correlates the DFT bins the standard errors take as independent, a coarsely quantised record;
+                      fit() also issues each as a warning
     """
     estimates: dict
     parameters: np.ndarray
