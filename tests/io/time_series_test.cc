@@ -403,6 +403,22 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   EXPECT_NE(error_of(write("clip.csv", clipped))
                 .find("clip.csv:7: a = 2.5 on 3 or more consecutive samples at the record's peak"),
             std::string::npos);
+  // Clipped where a fast mode changes sign between samples (the nineteenth pass's P2): a 400 Hz decay at 1 kHz
+  // clipped at 60 % of its peak meets the rail on single samples, never 3 in a row, and is refused as clipped; the
+  // same decay unclipped is read.
+  const auto fast_decay = [](double rail) {
+    std::string text = "t_s,a_m_s2\n";
+    for (int i = 0; i < 2000; ++i) {
+      const double t = i * 1e-3;
+      const double x = std::exp(-2 * t) * std::sin(2 * std::numbers::pi * 400 * t + 0.3);
+      text += format_value(t) + "," + format_value(std::clamp(x, -rail, rail)) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NE(error_of(write("scattered.csv", fast_decay(0.6))).find("separate stretches: the signal is clipped"),
+            std::string::npos)
+      << error_of(write("scattered.csv", fast_decay(0.6)));
+  EXPECT_NO_THROW(read_time_series(write("unclipped.csv", fast_decay(2.0))));
   // A dropout: 100 zeros at 0.5 s inside a 30 Hz decay sampled at 1 kHz (the ninth pass's #6), named on its first line
   // (header line 1, sample i on line i + 2). The same decay quantised to a 16-bit range, whose tail rounds to zero for
   // the record's last second, is no dropout, nor is a 0.25 Hz swing of 5 % of the peak under it, whose turning point at
