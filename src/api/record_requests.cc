@@ -292,15 +292,10 @@ std::string raw_signal_note(const io::TimeSeries& data, const std::string& what)
 }
 
 std::string quantisation_note(const io::TimeSeries& data) {
-  // The record's quantum: its smallest non-zero step between neighbours (round-off small for floating-point values).
-  double quantum = std::numeric_limits<double>::infinity(), peak = 0;
-  for (std::size_t i = 0; i < data.values.size(); ++i) {
-    peak = std::max(peak, std::abs(data.values[i]));
-    if (i > 0)
-      if (const double step = std::abs(data.values[i] - data.values[i - 1]); step > 0)
-        quantum = std::min(quantum, step);
-  }
-  if (!std::isfinite(quantum) || !(peak / quantum < kCoarseQuantisation)) return "";
+  const double quantum = io::record_quantum(data.values);
+  double peak = 0;
+  for (double v : data.values) peak = std::max(peak, std::abs(v));
+  if (!std::isfinite(quantum) || !(peak / quantum < io::kFineQuantisation)) return "";
   return "the record is quantised coarsely: its step is " + format_rounded(quantum, 3) + ", 1/" +
          format_rounded(peak / quantum, 3) + " of its peak (" + format_rounded(std::log2(2 * peak / quantum), 2) +
          " bits over its range): below a few steps its quantisation error follows the signal instead of being white "

@@ -87,10 +87,9 @@ std::string window_transient_note(const signal::WindowOptions& window, std::size
 // "the record is in V, a raw sensor signal ...: its <what> are in V ..." for a record in a unit of no motion (V, mV, N,
 // Pa), which spikes and modal-id read (their frequencies do not depend on the unit) and report in that unit; else "".
 std::string raw_signal_note(const io::TimeSeries& data, const std::string& what);
-// A record of fewer than kCoarseQuantisation steps over its peak (under 10 bits over its range), said with its step:
+// A record of fewer than io::kFineQuantisation steps over its peak (under 10 bits over its range), said with its step:
 // a 5-bit record (32 levels), accepted once it was no longer taken for a dropout (the nineteenth pass's P4), listed a
 // steady 17.2 Hz line, a growing 12.3 Hz one and mode 1 with a negative damping ratio. "" otherwise.
-inline constexpr double kCoarseQuantisation = 512;
 std::string quantisation_note(const io::TimeSeries& data);
 // The frequencies above a resampled record's pass band (io::TimeSeries::pass_band_hz) named, with why they are no
 // modes ("" when none is); `what` is "pole" or "spike".

@@ -445,14 +445,6 @@ constexpr std::size_t kDropoutRun = 32;
 constexpr double kDropoutLevel = 1e-2;
 constexpr double kDropoutQuanta = 8;
 
-// The record's quantum: its smallest non-zero step between neighbours (infinite for a constant record).
-double record_quantum(const std::vector<double>& v) {
-  double quantum = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < v.size(); ++i)
-    if (const double step = std::abs(v[i] - v[i - 1]); step > 0) quantum = std::min(quantum, step);
-  return quantum;
-}
-
 // Clipping the consecutive-samples rule misses: at 1 kHz the thin beam's 192 and 403 Hz modes change sign between
 // samples, so a rail at 50-70 % of the peak was met on 7-18 samples in runs of at most 2, and a time fit's cDI came
 // out 1.3-5.5 % high (2.8-7.6 standard errors) with nothing said (the nineteenth pass's P2). A finely quantised record
@@ -460,7 +452,6 @@ double record_quantum(const std::vector<double>& v) {
 // of the 8 measured records nor the 32 stepped-sine ones has even 3 samples at its peak. A coarse one may, at a
 // slowly decaying mode's turning points, and is left to the quantisation note.
 constexpr int kClippedSamples = 3;
-constexpr double kFineQuantisation = 512;
 
 void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
   const std::vector<double>& v = s.values;
@@ -739,6 +730,13 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
   }
   if (uff) return finish(uff_samples(bytes, path, o), path, o);
   return finish(text_samples(bytes, path, o), path, o);
+}
+
+double record_quantum(const std::vector<double>& v) {
+  double quantum = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double step = std::abs(v[i] - v[i - 1]); step > 0) quantum = std::min(quantum, step);
+  return quantum;
 }
 
 }  // namespace beamid::io

@@ -14,8 +14,9 @@
 //   at least 8 samples; a uniform time base t_i = t_0 + i dt with dt = (t_last - t_0)/(n - 1), to within one unit
 //   of the last printed decimal of the time column (DAQ exports round or truncate times: the ARTS record prints 6
 //   decimals of a 605.47 us step, and 0.0096875 appears as 0.009687) or 1e-6 dt, whichever is larger; unless `resample`
-//   is set, which instead interpolates the record by a cubic spline onto the uniform grid with the mean step (and says so in
-//   `notes`); no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was exceeded.
+//   is set, which instead interpolates the record by a cubic spline onto the uniform grid with the mean step (and says
+//   so in `notes`); no clipping: the largest |value| held for 3 or more consecutive samples means the DAQ range was
+//   exceeded.
 // Then the window is cut out (from the sample nearest to start_s, round(duration_s / dt) samples), for records in
 // g values are converted to m/s^2 (1 g = 9.80665 m/s^2, the standard gravity of ISO 80000-3), and with a resample
 // rate the record is resampled by windowed-sinc interpolation (a low-pass at 0.45 of the new rate first when the rate
@@ -75,5 +76,11 @@ TimeSeries parse_time_series(const std::string& text, const std::string& path, c
 TimeSeries array_time_series(const std::string& name, const double* values, std::size_t rows, std::size_t columns,
                              const std::vector<double>* time, const ImportOptions& options = {},
                              double time_relative_precision = 2 * std::numeric_limits<double>::epsilon());
+
+// A record's quantum: its smallest non-zero step between neighbours (round-off small for floating-point values,
+// infinite for a constant record). Under kFineQuantisation steps over its peak (10 bits over its range) a record is
+// coarsely quantised: the reader's rules for clipping and dropouts allow for it, and api::quantisation_note says so.
+double record_quantum(const std::vector<double>& values);
+inline constexpr double kFineQuantisation = 512;
 
 }  // namespace beamid::io
