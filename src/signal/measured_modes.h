@@ -89,9 +89,13 @@ struct MeasuredMode {
   double span_low_hz = 0, span_high_hz = 0;  // the smallest and largest of all the estimates above
   double uncertainty_hz = std::numeric_limits<double>::quiet_NaN();  // u (the file's head)
   // The decay rate's uncertainty, 1/s, alike: sqrt(noise^2 + (span / 2)^2) over the whole record's and the segments'
-  // decay rates (an amplitude-dependent damping), its noise part the Cramér-Rao bound, which for one damped mode
-  // equals the angular frequency's (matrix_pencil.h: damped_mode_frequency_sd). Companions are not in its span: a
-  // pole that fits a changing frequency takes whatever decay rate fits best.
+  // decay rates (an amplitude-dependent damping; a segment's by what it differs beyond twice its own noise, as for
+  // the frequencies), its noise part the Cramér-Rao bound, which for one damped mode equals the angular frequency's
+  // (matrix_pencil.h: damped_mode_frequency_sd). Companions are not in its span: a pole that fits a changing
+  // frequency takes whatever decay rate fits best. Over 36 noise draws of a four-mode record (1 % noise) u matches
+  // the damping ratios' scatter within 0.9-1.05 for every mode but the weakest, lowest one (2.46 Hz, 1.5 on the full
+  // 8.2 s record): with the pencil's width capped at L = 599 of 8,192 samples (1.5 of its periods) the pencil is
+  // not efficient for it, and its frequency scatters 1.3 times its bound too.
   double decay_uncertainty_1_s = std::numeric_limits<double>::quiet_NaN();
   // |drift| > 3 drift_sd: the frequency changes with the amplitude beyond what noise does.
   bool drifts() const;
