@@ -2,6 +2,8 @@
 BUILD      ?= build
 SAN_BUILD  ?= build-sanitize
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+# Extra CMake settings for the build folder's first configuration, e.g. -DBEAMID_ARCH=x86-64-v3 (CMakeLists.txt).
+CMAKE_ARGS ?=
 BEAMID     := $(BUILD)/beamid
 
 .PHONY: fuzz all deps build binary test test-unit test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
@@ -20,7 +22,7 @@ deps:
 	@bash .ci/deps.sh
 
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)

@@ -13,12 +13,17 @@ bool dirty() { return BEAMID_GIT_DIRTY != 0; }
 std::string commit_label() { return commit() + (dirty() ? "-dirty" : ""); }
 
 std::string compiler() {
-#if defined(__clang__)
-  return "clang " __clang_version__;
-#elif defined(__GNUC__)
-  return "g++ " __VERSION__;
+#if defined(BEAMID_ARCH_NAME)
+  const std::string arch = ", -march=" BEAMID_ARCH_NAME;  // the build's instruction set (CMakeLists.txt: BEAMID_ARCH)
 #else
-  return "unknown";
+  const std::string arch;  // the compiler's portable baseline
+#endif
+#if defined(__clang__)
+  return "clang " __clang_version__ + arch;
+#elif defined(__GNUC__)
+  return "g++ " __VERSION__ + arch;
+#else
+  return "unknown" + arch;
 #endif
 }
 

@@ -12,7 +12,7 @@ std::string version();       // "0.1.0"
 std::string commit();        // 12 hex digits, or "unknown" outside a git work tree
 bool dirty();                // uncommitted changes to the code when it was built
 std::string commit_label();  // commit() with "-dirty" appended when dirty()
-std::string compiler();      // "g++ 12.2.0"
+std::string compiler();      // "g++ 12.2.0", with ", -march=x86-64-v3" when built for an instruction set
 std::string eigen_version();
 
 struct Library {
