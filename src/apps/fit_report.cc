@@ -172,13 +172,20 @@ std::string modes_line(const ModeComparison& c) {
 
 namespace {
 
+// "41.4, 116.9": the data frequencies of the modes in `beyond` but `farthest`, for a note that names the farthest.
+std::string other_frequencies(const std::vector<const ModePair*>& beyond, const ModePair* farthest) {
+  std::string others;
+  for (const ModePair* p : beyond)
+    if (p != farthest) others += (others.empty() ? "" : ", ") + g(p->data_hz);
+  return others;
+}
+
 // Within kModeMismatch but beyond kFrequencyMismatchUncertainties of the record's own uncertainty: a second hit of 5 %
 // at 6 s moved mode 1 by 17 u and EI by 9-13 standard errors with nothing said (the nineteenth pass's P3). Every mode
 // that misses is named, the farthest with its numbers.
 std::string precision_mismatch(const ModeComparison& c) {
   const ModePair* at = nullptr;
   double excess = 0;
-  std::string others;
   std::vector<const ModePair*> beyond;
   for (const ModePair& p : c.pairs) {
     if (p.set_aside || std::isnan(p.model_hz) || !(p.data_uncertainty_hz > 0)) continue;
@@ -187,8 +194,7 @@ std::string precision_mismatch(const ModeComparison& c) {
     if (off > excess) excess = off, at = &p;
   }
   if (!at || excess <= kFrequencyMismatchUncertainties) return "";
-  for (const ModePair* p : beyond)
-    if (p != at) others += (others.empty() ? "" : ", ") + g(p->data_hz);
+  const std::string others = other_frequencies(beyond, at);
   return "the estimate does not reproduce the record's modes to their measured precision: the model's mode at " +
          g(at->model_hz) + " Hz is " + g(excess, 3) + " of the record's uncertainties (" +
          g(100 * std::abs(at->model_hz / at->data_hz - 1), 2) + " %) from its " + g(at->data_hz) + " +- " +
@@ -259,9 +265,7 @@ std::string damping_mismatch_note(const ModeComparison& c) {
   if (!at || excess <= 1) return "";
   // Every mode that misses is named, not only the farthest: on the steel record 3 of 5 did, and the note that named
   // the 380 Hz mode alone read as one mode's problem (the eighteenth pass's U4).
-  std::string others;
-  for (const ModePair* p : beyond)
-    if (p != at) others += (others.empty() ? "" : ", ") + g(p->data_hz);
+  const std::string others = other_frequencies(beyond, at);
   return "the estimate does not reproduce the record's damping at " + std::to_string(beyond.size()) + " of its " +
          std::to_string(compared) + " compared modes" + (others.empty() ? "" : " (also at " + others + " Hz)") +
          "; the farthest: at " + g(at->data_hz) + " Hz the model decays at " + g(at->model_decay_1_s, 3) +

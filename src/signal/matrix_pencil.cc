@@ -95,7 +95,7 @@ HankelBasis hankel_basis(const std::vector<double>& y, int pencil) {
 // computation would: results do not depend on the order in which a study's threads fill the cache. At most
 // kCachedRecords records, each of at most core::kMaxPencilSamples samples (2 MB, and 2.9 MB of vectors at L = 599).
 constexpr std::size_t kCachedRecords = 8;
-class RightVectorCache {
+class HankelBasisCache {
  public:
   std::shared_ptr<const HankelBasis> get(const std::vector<double>& y, int pencil) {
     {
@@ -123,8 +123,8 @@ class RightVectorCache {
 };
 
 // The process's one cache, shared by the poles and the model order (both read a record's basis).
-RightVectorCache& basis_cache() {
-  static RightVectorCache cache;
+HankelBasisCache& basis_cache() {
+  static HankelBasisCache cache;
   return cache;
 }
 
