@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   g++ make cmake pkgconf git
   libeigen3-dev libsundials-dev libnlopt-cxx-dev libceres-dev libfftw3-dev libtomlplusplus-dev
-  libcli11-dev libgtest-dev libbenchmark-dev libmatio-dev
+  libcli11-dev libgtest-dev libbenchmark-dev libmatio-dev zlib1g-dev
   python3 python3-numpy python3-markdown   # the README's .npy example; REPORT.html
   pybind11-dev python3-dev python3-setuptools python3-venv python3-pytest python3-matplotlib   # the Python package
   gnuplot-nox

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/errors.h"
+#include "io/mat_layout.h"
 #include "io/resources.h"
 
 namespace beamid::io {
@@ -116,42 +117,7 @@ bool is_mat(const std::string& bytes) {
   return v5 || v73;
 }
 
-namespace {
-
-// The top-level data elements of a v5 MAT-file (after its 128-byte header: an 8-byte tag, type and byte count, then
-// the data, miMATRIX padded to 8 bytes, miCOMPRESSED not) against the file's size. libmatio reads an element cut
-// short without a word and fills the missing part with zeros: half a file came back as a complete, zero-padded
-// record. An element of another type ends the walk (libmatio judges the rest).
-void check_v5_elements(const std::string& where, const std::string& bytes, bool little_endian) {
-  const auto word = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    for (int b = 0; b < 4; ++b) {
-      const auto byte = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(b)]));
-      v |= byte << (8 * (little_endian ? b : 3 - b));
-    }
-    return v;
-  };
-  constexpr std::uint32_t kMatrix = 14, kCompressed = 15;
-  int element = 0;
-  for (std::size_t at = 128; at + 8 <= bytes.size();) {
-    const std::uint32_t type = word(at), count = word(at + 4);
-    if (type >> 16 != 0) {  // a small data element: tag and data in 8 bytes
-      at += 8;
-      continue;
-    }
-    if (type != kMatrix && type != kCompressed) return;
-    ++element;
-    const std::size_t left = bytes.size() - at - 8;
-    if (count > left)
-      throw InputError(where + "byte " + std::to_string(at) + ": variable " + std::to_string(element) + " declares " +
-                       std::to_string(count) + " bytes of data, but the file ends " + std::to_string(left) +
-                       " bytes later: it is truncated or corrupt");
-    at += 8 + count;
-    if (type == kMatrix) at = (at + 7) / 8 * 8;
-  }
-}
-
-}  // namespace
+namespace {}  // namespace
 
 MatArray read_mat_variable(const std::string& file, const std::string& bytes, const std::string& variable) {
   const std::string where = file + ": ";
@@ -164,7 +130,7 @@ MatArray read_mat_variable(const std::string& file, const std::string& bytes, co
     const std::string endian = bytes.substr(126, 2);
     if (endian != "IM" && endian != "MI")
       throw InputError(where + "byte 126: endian indicator '" + endian + "': must be IM or MI (a v5 MAT-file)");
-    check_v5_elements(where, bytes, endian == "IM");
+    check_v5_layout(where, bytes, endian == "IM");
   }
   Mat_LogInitFunc("beamid", keep_message);
   last_matio_message().clear();

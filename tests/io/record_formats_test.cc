@@ -5,6 +5,7 @@
 // locates the fault (byte offset, line or variable path).
 #include <gtest/gtest.h>
 #include <matio.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdint>
@@ -350,6 +351,77 @@ TEST(RecordFormats, MalformedMatFilesAreErrorsNotCrashes) {
   // --variable on a file that is not a MAT-file.
   o.variable = "x";
   EXPECT_NE(error_of(write("plain.csv", "t_s,y\n0,1\n1,2\n"), o).find("not one"), std::string::npos);
+}
+
+// An array whose dimensions claim more or fewer values than its data element holds: libmatio read past the data
+// (values that changed from call to call), cut it silently, or allocated the claimed size first (an 8 KB file that
+// declared 2^31 - 1 samples took 8 GB: the twentieth adversarial pass's P1). Each is named as corrupt, uncompressed,
+// inside a struct and inside a compressed element, and nothing the dimensions claim is allocated.
+TEST(RecordFormats, MatArraysMustHoldWhatTheirDimensionsDeclare) {
+  std::vector<double> values(2 * 512), t(512);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sin(0.01 * static_cast<double>(i)) + 2;
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = 1e-3 * static_cast<double>(i);
+  std::ifstream in(write_mat("dims.mat", MAT_FT_MAT5, values, 512, t), std::ios::binary);
+  const std::string whole((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ImportOptions o;
+  o.units = "as-is";
+  o.variable = "record";
+  o.sample_rate_hz = 1000;
+  o.channel = "1";
+  const auto put = [](std::string& bytes, std::size_t at, std::uint32_t v) { std::memcpy(&bytes[at], &v, 4); };
+  // The first variable (record, 512 x 2) starts at byte 128: its tag, its array flags (16 bytes), then its dimensions'
+  // tag and the rows at byte 160 (x86-64 is little-endian, as the file says).
+  std::uint32_t rows = 0;
+  std::memcpy(&rows, &whole[160], 4);
+  ASSERT_EQ(rows, 512u);
+  for (const std::uint32_t claimed : {1024u, 256u, 0x7fffffffu}) {
+    std::string forged = whole;
+    put(forged, 160, claimed);
+    const std::string m = error_of(write("forged.mat", forged), o);
+    EXPECT_NE(m.find("variable 1 ('record') declares " + std::to_string(2ull * claimed) + " values"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("holds 8192 bytes of 8-byte values (1024)"), std::string::npos) << m;
+  }
+  // The struct test.accel.data, the last array of 512 x 2: its rows are the last 512 before a 2 in the file.
+  const std::string pattern("\x00\x02\x00\x00\x02\x00\x00\x00", 8);
+  std::size_t nested = whole.rfind(pattern);
+  ASSERT_NE(nested, std::string::npos);
+  nested -= 4;  // the dims tag's type and count, then rows: the rows word ends where the cols word (2) starts
+  std::string inner = whole;
+  put(inner, nested + 4, 1000);
+  ImportOptions field = o;
+  field.variable = "test.accel.data";
+  EXPECT_NE(error_of(write("nested.mat", inner), field).find("variable 3 ('test') declares 2000 values"),
+            std::string::npos)
+      << error_of(write("nested.mat", inner), field);
+  // The first variable compressed (its whole miMATRIX element deflated into an miCOMPRESSED one), as MATLAB's -v7
+  // writes every variable: read when intact, refused with its dimensions forged.
+  std::uint32_t count = 0;
+  std::memcpy(&count, &whole[132], 4);
+  const auto compressed_file = [&](std::string element) {
+    uLongf size = compressBound(static_cast<uLong>(element.size()));
+    std::string deflated(size, '\0');
+    EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(deflated.data()), &size,
+                        reinterpret_cast<const Bytef*>(element.data()), static_cast<uLong>(element.size()), 6),
+              Z_OK);
+    deflated.resize(size);
+    std::string file = whole.substr(0, 128);
+    const std::uint32_t tag[2] = {15, static_cast<std::uint32_t>(size)};
+    file.append(reinterpret_cast<const char*>(tag), 8);
+    return file + deflated;
+  };
+  const std::string element = whole.substr(128, 8 + count);
+  EXPECT_EQ(error_of(write("deflated.mat", compressed_file(element)), o), "no error");
+  std::string forged_element = element;
+  put(forged_element, 32, 1024);
+  const std::string m = error_of(write("deflated-forged.mat", compressed_file(forged_element)), o);
+  EXPECT_NE(m.find("variable 1 ('record') declares 2048 values"), std::string::npos) << m;
+  // A compressed element whose stream is cut: named, not inflated into garbage.
+  std::string cut = compressed_file(element);
+  cut.resize(cut.size() - 40);
+  put(cut, 132, static_cast<std::uint32_t>(cut.size() - 136));
+  EXPECT_NE(error_of(write("deflated-cut.mat", cut), o).find("does not inflate"), std::string::npos)
+      << error_of(write("deflated-cut.mat", cut), o);
 }
 
 // A UFF file: a dataset 151 (a header, skipped), a time response as ASCII double precision with even spacing, and
