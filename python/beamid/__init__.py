@@ -6,7 +6,8 @@ types, defaults and meanings, generated from the program's command registry). A 
 (``--sensor-x`` is ``sensor_x``, ``--pulse-width`` is ``pulse_width``), a switch is ``True``, a list is a list or
 tuple. A keyword the command does not have, or a value of the wrong type, is a ``TypeError``; the values are then
 checked by the program's own parser and requests, so a call and the command line validate alike, fail with the same
-one-line message (as :class:`InputError`, a ``ValueError``, or :class:`NumericalError`, a ``RuntimeError``) and give
+one-line message (as :class:`InputError`, a ``ValueError``, :class:`NumericalError`, a ``RuntimeError``, or
+:class:`OutputError`, an ``OSError``: a report that could not be written) and give
 the same numbers bit for bit. Records (``data``) are a file path, as on the command line, or a NumPy array of samples
 (or samples x channels) with ``sample_rate`` or ``time``; a beam is a preset, a TOML file or a dict (:func:`beam`).
 
@@ -30,11 +31,11 @@ import warnings
 import numpy as np
 
 from . import _core
-from ._core import InputError, NumericalError
+from ._core import InputError, NumericalError, OutputError
 from .results import load_results, read_table
 from .values import CostValue, CramerRao, FitResult, Record, Spikes, System
 
-__all__ = ["InputError", "NumericalError", "FitResult", "Spikes", "CostValue", "CramerRao", "System", "Record", "version", "presets", "beam", "beam_toml", "modes",
+__all__ = ["InputError", "NumericalError", "OutputError", "FitResult", "Spikes", "CostValue", "CramerRao", "System", "Record", "version", "presets", "beam", "beam_toml", "modes",
            "simulate", "system", "spikes", "cost", "fit", "crb", "modal_id", "read_record", "load_results",
            "read_table"]
 

@@ -506,6 +506,7 @@ PYBIND11_MODULE(_core, m) {
   // (seen once in CI: "Segmentation fault" after the last test passed). Leaked on purpose, translated by hand.
   static const auto* input_error = new py::exception<InputError>(m, "InputError", PyExc_ValueError);
   static const auto* numerical_error = new py::exception<NumericalError>(m, "NumericalError", PyExc_RuntimeError);
+  static const auto* output_error = new py::exception<OutputError>(m, "OutputError", PyExc_OSError);
   py::register_exception_translator([](std::exception_ptr p) {
     if (!p) return;
     try {
@@ -514,6 +515,8 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(input_error->ptr(), e.what());
     } catch (const NumericalError& e) {
       PyErr_SetString(numerical_error->ptr(), e.what());
+    } catch (const OutputError& e) {
+      PyErr_SetString(output_error->ptr(), e.what());
     }
   });
   m.def("version", [] { return io::version() + " (commit " + io::commit_label() + ")"; });

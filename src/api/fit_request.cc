@@ -342,8 +342,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note :
-       {&on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich, &correlated_bins, &failed, &identifiability})
+  for (const std::string* note : {&budget, &on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich,
+                                  &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -423,6 +423,13 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
         "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
   if (result.status == "failed")
     notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
+  // The budget ran out before the optimizer converged: --max-evaluations 5 printed EI 35 standard errors from the
+  // minimum as "free" with its standard error, and 1 or 2 evaluations the start itself, said only inside the summary
+  // line (the twentieth pass's P2). The estimate is kept (a study's capped Nelder-Mead fits are results too), and said.
+  if (result.status.rfind("max-evaluations", 0) == 0)
+    notes.budget = "the evaluation budget ran out (" + std::to_string(result.evaluations) +
+                   " evaluations) before the optimizer converged: the estimate is where it stopped, not a minimum of "
+                   "the cost, and its standard errors take it for one; raise --max-evaluations or start nearer";
   // Exactly determined or underdetermined: NaN standard errors were printed with nothing said (only --report did).
   if (result.status != "failed" && result.covariance_status.rfind("no degrees of freedom", 0) == 0)
     notes.no_errors = result.covariance_status +

@@ -89,6 +89,7 @@ struct FitNotes {
   std::string no_sandwich;      // the formal errors are defined but the sandwich ones are not (a residual's leverage 1)
   std::string pairing;          // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
   std::string correlated_bins;  // a window correlates the DFT bins the standard errors take as independent
+  std::string budget;           // the evaluation budget ran out: the estimate is where the optimizer stopped
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };

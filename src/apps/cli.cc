@@ -152,6 +152,9 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
   } catch (const NumericalError& error) {
     err << prefixed(error.what(), command->name) << "\n";
     return 3;
+  } catch (const OutputError& error) {
+    err << prefixed(error.what(), command->name) << "\n";
+    return 1;
   } catch (const std::exception& error) {
     err << "beamid: internal error: " << error.what() << "\n";
     return 1;

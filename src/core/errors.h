@@ -20,6 +20,14 @@ class InputError : public std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(one_line(message)) {}
 };
 
+// OutputError: a result that could not be written for a reason of the machine's, not the input's (a full disk, a
+// folder made read-only, a quota). The message names the path and the OS's reason; programs exit 1 ("the results
+// could not be written"), not 2 (bad input): a full disk gave exit 2 (the twentieth adversarial pass's P3).
+class OutputError : public std::runtime_error {
+ public:
+  explicit OutputError(const std::string& message) : std::runtime_error(one_line(message)) {}
+};
+
 // NumericalError: a computation that could not be carried out for admissible input (a singular matrix, an
 // eigensolver or integrator that did not converge). Inside a study it becomes a row with a status, never a crash.
 class NumericalError : public std::runtime_error {

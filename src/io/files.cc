@@ -168,7 +168,7 @@ std::string claim_store(const std::filesystem::path& store, const std::string& s
       const std::string line = mine.string() + "\n";
       const bool ok = std::fwrite(line.data(), 1, line.size(), f) == line.size();
       if (std::fclose(f) != 0 || !ok)
-        throw InputError(claim.string() + ": cannot write (" + std::strerror(errno) + ")");
+        throw OutputError(claim.string() + ": cannot write (" + std::strerror(errno) + ")");
       return "";
     }
     // Not a regular file (a folder of that name switched the guard off: the fourteenth pass's P10): said.
@@ -242,7 +242,7 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
   // temporary nor a partial file under the final name.
   const auto fail = [&](int error) {
     std::filesystem::remove(temporary, ec);
-    throw InputError(path.string() + ": cannot write (" + os_reason(error) + ")");
+    throw OutputError(path.string() + ": cannot write (" + os_reason(error) + ")");
   };
   {
     errno = 0;
@@ -264,7 +264,7 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
   if (ec) {
     const std::string reason = ec.message();
     std::filesystem::remove(temporary, ec);
-    throw InputError(path.string() + ": cannot write (" + reason + ")");
+    throw OutputError(path.string() + ": cannot write (" + reason + ")");
   }
 }
 

@@ -472,7 +472,7 @@ void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_
                      "distorted");
 }
 
-void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak, const std::string& path) {
+void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
   const std::vector<double>& v = s.values;
   const double quantum = record_quantum(v);
   const double level = std::max(kDropoutLevel * peak, std::isfinite(quantum) ? kDropoutQuanta * quantum : 0.0);
@@ -529,7 +529,7 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
                        " on 3 or more consecutive samples at the record's peak: the signal is "
                        "clipped (the DAQ range was exceeded), so its spectrum is distorted");
   check_scattered_clipping(in, s, first, peak);
-  check_dropouts(in, s, first, peak, path);
+  check_dropouts(in, s, first, peak);
 }
 
 // The window into s: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so

@@ -191,6 +191,26 @@ TEST(FitNotes, AWindowedDftCostsErrorsAreSaidToIgnoreTheBinsCorrelation) {
   EXPECT_TRUE(fit_notes(result, cost).correlated_bins.empty());
 }
 
+// The twentieth pass's P2: a fit stopped by its evaluation budget printed its estimate as "free" with standard errors
+// and exit 0, said only inside the summary line. Its note comes first, whether or not the estimate is on a bound.
+TEST(FitNotes, AFitStoppedByItsBudgetIsSaidNotToBeAMinimum) {
+  fit::FitResult result;
+  result.covariance_status = "ok";
+  result.evaluations = 5;
+  costs::CostOptions cost;
+  for (const std::string status : {"max-evaluations", "max-evaluations-at-bound"}) {
+    result.status = status;
+    const FitNotes notes = fit_notes(result, cost);
+    EXPECT_NE(notes.budget.find("ran out (5 evaluations)"), std::string::npos) << status << ": " << notes.budget;
+    ASSERT_FALSE(notes.lines().empty());
+    EXPECT_EQ(notes.lines().front(), notes.budget);
+  }
+  for (const std::string status : {"converged", "converged-at-bound", "failed"}) {
+    result.status = status;
+    EXPECT_TRUE(fit_notes(result, cost).budget.empty()) << status;
+  }
+}
+
 }  // namespace
 }  // namespace beamid::api
 

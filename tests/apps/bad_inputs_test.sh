@@ -71,6 +71,14 @@ if [ -w /dev/full ]; then
   if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "standard output: cannot write the results: No space" \
      "$tmp/err"; then ok; else bad "stdout on a full device (exit $rc): $(head -c 300 "$tmp/err")"; fi
 fi
+# A report file that cannot be written after the fit (here its spectra's temporary name is taken by a folder, as a full
+# disk or a quota would fail it): exit 1, "the results could not be written", with the path and the OS's reason, not 2
+# (bad input); and no report left pointing at spectra that were not written (the twentieth pass's P3, P4).
+mkdir -p "$tmp/unwritable" "$tmp/unwritable/r.md.spectra.csv.tmp"
+timeout 60 "$BEAMID" fit --data "$tmp/record.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time \
+  --report "$tmp/unwritable/r.md" >/dev/null 2>"$tmp/err"; rc=$?
+if [ $rc -eq 1 ] && grep -qF "r.md.spectra.csv: cannot write (Is a directory)" "$tmp/err" &&
+   [ ! -e "$tmp/unwritable/r.md" ]; then ok; else bad "an unwritable report (exit $rc): $(tail -c 300 "$tmp/err")"; fi
 expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..1000" fit --data "$tmp/z.csv" "${S[@]}" \
   --estimate EI --cost time --starts 1000000000
 

@@ -188,6 +188,13 @@ TEST(FitReport, AModeMissedByManyOfItsUncertaintiesIsSaidWithinTwoPercent) {
       << note;
   c.pairs[0].model_hz = 2.46476 + 5 * 6e-5;  // 5 u: within the scatter of an honest fit
   EXPECT_EQ(modes_mismatch_note(c), "");
+  // A noise-free record's u is round-off (1.5e-13 Hz at 81.74 Hz): a fit 1.3e-11 % off was said to miss by 72 u. The
+  // record's uncertainty is at least the pencil's exactness, 1e-9 of the frequency (the modal cost's floor).
+  c.pairs[0].data_hz = 81.7398, c.pairs[0].data_uncertainty_hz = 1.5e-13;
+  c.pairs[0].model_hz = 81.7398 * (1 + 1.3e-13);
+  EXPECT_EQ(modes_mismatch_note(c), "");
+  c.pairs[0].model_hz = 81.7398 * (1 + 2e-8);  // 20 floors
+  EXPECT_NE(modes_mismatch_note(c), "");
 }
 
 TEST(FitReport, DampingMismatchNamesEveryModeThatMisses) {

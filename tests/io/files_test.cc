@@ -29,6 +29,8 @@ std::string message_of(const std::function<void()>& f) {
     f();
   } catch (const InputError& e) {
     return e.what();
+  } catch (const OutputError& e) {
+    return e.what();
   }
   return "";
 }
@@ -39,6 +41,9 @@ TEST(WriteFileAtomic, AFailedWriteNamesTheReasonAndLeavesNothingBehind) {
   fs::create_directory(dir / "out.csv.tmp");
   const std::string m = message_of([&] { write_file_atomic(dir / "out.csv", "x\n"); });
   EXPECT_NE(m.find("out.csv: cannot write (Is a directory)"), std::string::npos) << m;
+  // The machine's failure, not the input's: programs exit 1 for it, not 2 (the twentieth pass's P3).
+  fs::create_directory(dir / "out.csv.tmp");  // the failed write removed the (empty) folder with its temporary
+  EXPECT_THROW(write_file_atomic(dir / "out.csv", "x\n"), OutputError);
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
   fs::remove_all(dir);
 }
