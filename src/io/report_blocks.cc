@@ -1,5 +1,7 @@
 #include "io/report_blocks.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 #include "core/errors.h"
@@ -78,7 +80,19 @@ std::filesystem::path block_source(const std::filesystem::path& results, const s
   if (!stays_inside(name))
     throw InputError(source_name + ": block '" + name +
                      "': must be a relative name inside the --results folder (not absolute, no '..')");
-  return results / (name + ".md");
+  const std::filesystem::path path = results / (name + ".md");
+  // The name stays inside, and so must the file it reaches: a symbolic link in results/ to a file outside it was
+  // pasted into the report (the twentieth pass's P5). The folder itself may be a link (results -> /data/results).
+  std::error_code ec;
+  const std::filesystem::path base = std::filesystem::weakly_canonical(results, ec);
+  const std::filesystem::path target = ec ? path : std::filesystem::weakly_canonical(path, ec);
+  if (!ec) {
+    const auto [b, t] = std::mismatch(base.begin(), base.end(), target.begin(), target.end());
+    if (b != base.end())
+      throw InputError(source_name + ": block '" + name + "': " + path.string() + " resolves to " + target.string() +
+                       ", outside the --results folder (a symbolic link?): a block is read from inside it only");
+  }
+  return path;
 }
 
 std::vector<std::string> block_names(const std::string& text, const std::string& source_name) {

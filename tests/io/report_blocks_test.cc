@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "core/errors.h"
 
 namespace beamid::io {
@@ -41,6 +44,37 @@ TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "R.md:3: END GENERATED b does not close block 'a'");
   }
+}
+
+}  // namespace
+}  // namespace beamid::io
+
+namespace beamid::io {
+namespace {
+
+// A block's file is read from inside the results folder only: its name may not leave it ('..', absolute), and
+// neither may a symbolic link it reaches (a link res/lnk.md -> ../secret.md was pasted into the report: the twentieth
+// pass's P5). A link within the folder, or the folder itself a link, is fine.
+TEST(ReportBlocks, ABlocksFileOutsideTheResultsFolderIsRefused) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(testing::TempDir()) / "beamid_blocks";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "res" / "study");
+  std::ofstream(dir / "secret.md") << "secret\n";
+  std::ofstream(dir / "res" / "study" / "table.md") << "table\n";
+  fs::create_symlink("../secret.md", dir / "res" / "lnk.md");
+  fs::create_symlink("study/table.md", dir / "res" / "inner.md");
+  fs::create_directory_symlink("res", dir / "linked");
+  EXPECT_THROW(block_source(dir / "res", "../secret", "REPORT.md"), InputError);
+  try {
+    block_source(dir / "res", "lnk", "REPORT.md");
+    ADD_FAILURE() << "a link out of the folder was followed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the --results folder"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(block_source(dir / "res", "inner", "REPORT.md"), dir / "res" / "inner.md");
+  EXPECT_EQ(block_source(dir / "linked", "study/table", "REPORT.md"), dir / "linked" / "study/table.md");
+  fs::remove_all(dir);
 }
 
 }  // namespace
