@@ -134,6 +134,8 @@ def beam_toml(parameters):
     "support.k_w" for a compliant clamp (infinite or absent: rigid)."""
     lines, attachments, support = ["[beam]"], {}, {}
     for key, value in parameters.items():
+        if not isinstance(key, str):  # {1: 2} failed inside str.partition with an AttributeError
+            raise TypeError(f"beam dict: key {key!r}: must be a string, a parameter's name (EI, rho, ...)")
         if not isinstance(value, numbers.Real) or isinstance(value, (bool, np.bool_)):
             raise InputError(f"beam dict: {key} = {value!r}: must be a number")
         head, _, field = key.partition(".")

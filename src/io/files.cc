@@ -291,8 +291,10 @@ std::string read_file(const std::filesystem::path& path, const std::string& cann
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (!ec && size > max_bytes)
+    // Both sizes exact: rounded, a 1,073,741,952-byte file read "more than the 1.1 GB" (the twentieth pass's P11).
     throw InputError(path.string() + ": " + std::to_string(size) + " bytes: more than the " +
-                     bytes_text(static_cast<double>(max_bytes)) + " such a file may have here");
+                     std::to_string(max_bytes) + " bytes (" + bytes_text(static_cast<double>(max_bytes)) +
+                     ") such a file may have here");
   std::ifstream in = open_user_file(path, cannot_read);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }

@@ -437,6 +437,9 @@ def test_odd_arguments_get_clear_errors():
     assert beamid.modes(beam="thick-steel", elements=4, undamped=np.True_)["damping_ratio"][0] == 0
     with pytest.raises(beamid.InputError, match=r"attachmentK"):
         beamid.simulate(beam=dict(beamid.beam("thick-steel"), **{"attachmentA.x": 0.1}), elements=4)
+    # A key that is no name: a TypeError naming it (was an AttributeError from inside; the twentieth pass's P10).
+    with pytest.raises(TypeError, match=r"beam dict: key 1: must be a string"):
+        beamid.simulate(beam={1: 2}, elements=4, samples=64)
     with pytest.raises(beamid.InputError, match=r"EI = 'abc': must be a number"):
         beamid.simulate(beam=dict(beamid.beam("thick-steel"), EI="abc"), elements=4)
     with pytest.raises(TypeError, match=r"not bytes"):

@@ -342,6 +342,12 @@ TEST_F(StudyRunner, ACaseThatCannotRunIsARowWithItsStatus) {
       ++failed_rows;
     }
   EXPECT_EQ(failed_rows, 3);
+  // Run again, every unit reused: the summary counts the failed cases the tables hold, not only those computed now
+  // (a resumed study said 0 beside 2 failed rows: the twentieth pass's P8).
+  std::ostringstream again;
+  const RunSummary resumed = run_study(spec, o, again, false);
+  EXPECT_EQ(resumed.computed, 0);
+  EXPECT_EQ(resumed.failed, 3);
   // The failed cases' records follow the declared schema too (their fields are set to "not run" values first).
   const Plan plan = make_plan(spec);
   const Store store((root_ / "failing" / "store").string(), io::commit_label());

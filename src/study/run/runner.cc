@@ -240,7 +240,12 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
     });
   }
   summary.computed = static_cast<int>(pending.size());
-  summary.failed = failed;
+  // Over every unit of this run, reused ones too: counted only among those computed now, a resumed study said 0 failed
+  // cases beside tables that held 2 (the twentieth pass's P8). `failed` above counts the progress line's.
+  summary.failed = 0;
+  for (const Unit* u : mine)
+    if (const auto r = load_unit(store, *u, spec.fit.estimate); r && r->text("status").rfind("failed", 0) == 0)
+      ++summary.failed;
   int present = 0;
   for (const Unit& u : plan.units) present += load_unit(store, u, spec.fit.estimate) ? 1 : 0;
   if (present == static_cast<int>(plan.units.size())) {

@@ -24,7 +24,7 @@ struct RunSummary {
   int units = 0;        // in this shard
   int computed = 0;     // run now
   int reused = 0;       // found in the store
-  int failed = 0;       // cases whose status is "failed"
+  int failed = 0;       // units (of this shard, computed or reused) whose status is "failed"
   bool tables = false;  // every unit of the study was present, and the tables were written
 };
 
