@@ -40,7 +40,7 @@ TEST(PlanEstimate, UnitsAreTimedByIdThenByTheirKindsMedianThenByTheDefault) {
   const Unit spike = unit(UnitKind::Case, "zzzz", "spike", 16);    // the median of spike N = 16: 4
   const Unit other_n = unit(UnitKind::Case, "yyyy", "spike", 12);  // the median of every case: (2, 4, 9, 0.5) -> 3
   const Unit never = unit(UnitKind::Grid, "xxxx", "time", 8);      // no grid timed: the default
-  const PlanEstimate e = estimate_plan({&truth, &timed, &spike, &other_n, &never}, path.string());
+  const PlanEstimate e = estimate_plan({&truth, &timed, &spike, &other_n, &never}, path.string(), 48);
   EXPECT_EQ(e.units, 5);
   EXPECT_EQ(e.by_id, 2);
   EXPECT_EQ(e.by_median, 2);
@@ -53,9 +53,14 @@ TEST(PlanEstimate, UnitsAreTimedByIdThenByTheirKindsMedianThenByTheDefault) {
   EXPECT_NE(text.find("plan: 5 unit(s) to run"), std::string::npos) << text;
   EXPECT_NE(text.find("1 never timed"), std::string::npos) << text;
   fs::remove(path);
-  const PlanEstimate none = estimate_plan({&truth, &spike}, path.string());  // the file is gone
+  const PlanEstimate none = estimate_plan({&truth, &spike}, path.string(), 48);  // the file is gone
   EXPECT_EQ(none.untimed, 2);
   EXPECT_DOUBLE_EQ(none.compute_s, 2 * kSecondsPerUntimedUnit);
+  // At N_truth = 400 an untimed truth record costs its evaluations (3 x 3.2 s x 8 = 77 s, measured 71 s), not 1 s;
+  // a fit at N = 200 about 100 of its 3.2 s evaluations (the twentieth pass's P7).
+  const Unit large = unit(UnitKind::Case, "wwww", "time", 200);
+  const PlanEstimate big = estimate_plan({&truth, &large}, path.string(), 400);
+  EXPECT_NEAR(big.compute_s, 3 * 3.2 * 8 + 100 * 3.2, 1e-9);
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 #include "study/run/estimate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <tuple>
 
+#include "core/limits.h"
 #include "io/resources.h"
 #include "study/analysis/statistics.h"
 
@@ -60,7 +62,15 @@ std::string label_of(const GroupKey& key) {
 
 }  // namespace
 
-PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::string& timings_path) {
+// An untimed unit's seconds: kSecondsPerUntimedUnit, or its model evaluations' cost where that is more (estimate.h).
+double untimed_seconds(const Unit& u, int truth_elements) {
+  const bool truth = u.kind == UnitKind::Truth;
+  const int n = truth ? truth_elements : u.elements;
+  const double evaluation = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200.0, 3);
+  return std::max(kSecondsPerUntimedUnit, (truth ? kTruthEvaluations : kFitEvaluations) * evaluation);
+}
+
+PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::string& timings_path, int truth_elements) {
   const Timings t = read_timings(timings_path);
   std::map<GroupKey, double> group_median;
   for (const auto& [key, times] : t.by_group) group_median[key] = median(times);
@@ -70,7 +80,7 @@ PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::str
   std::map<GroupKey, PlanEstimate::Group> groups;
   for (const Unit* u : units) {
     const GroupKey key = key_of(*u);
-    double seconds = kSecondsPerUntimedUnit;
+    double seconds = untimed_seconds(*u, truth_elements);
     if (const auto id = t.by_id.find(u->id); id != t.by_id.end()) {
       seconds = id->second;
       ++e.by_id;
@@ -107,7 +117,7 @@ std::string plan_text(const PlanEstimate& e, int jobs, const std::string& timing
     out << e.by_id << " timed by their own id and " << e.by_median << " at their kind's median in " << timings_path;
   if (e.untimed > 0)
     out << (e.by_id + e.by_median > 0 ? "; " : "") << e.untimed << " never timed, counted at " << kSecondsPerUntimedUnit
-        << " s each";
+        << " s each, or their model evaluations' cost at their N where more";
   out << ")";
   if (!e.groups.empty()) {
     out << "; the most: ";

@@ -14,6 +14,13 @@ namespace beamid::study {
 
 // A unit at N = 16 takes about 1 s on this machine (the paper study's 762 units took 6.5 min on 2 threads).
 inline constexpr double kSecondsPerUntimedUnit = 1.0;
+// At a larger N an untimed unit is counted at least at its model evaluations' cost (core::kSecondsPerEvaluationAtN200,
+// growing as N^3): a truth record about kTruthEvaluations of them (the exact closed form, then the first one's CVODE
+// cross-check: measured 71 s at N_truth = 400, where one evaluation takes 26 s), a fit about kFitEvaluations (the
+// modal and spike-smooth fits' medians are 20-170, (3.5)'s up to 1,250). A study at N_truth = 400 planned "about 11 s"
+// just after saying one evaluation takes 26 s (the twentieth adversarial pass's P7).
+inline constexpr double kTruthEvaluations = 3;
+inline constexpr double kFitEvaluations = 100;
 
 struct PlanEstimate {
   int units = 0;
@@ -29,7 +36,8 @@ struct PlanEstimate {
 
 // The estimate for `units` from the timings file at `timings_path` (absent or unreadable: every unit untimed; a line
 // it cannot read is skipped: the file is a previous output, not an input).
-PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::string& timings_path);
+// `truth_elements` is N_truth (a truth unit's own `elements` is not set).
+PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::string& timings_path, int truth_elements);
 
 // "plan: 60 unit(s) to run, about 3 min of compute: 3 s wall on 2 thread(s) ... (largest: ...)", one line.
 std::string plan_text(const PlanEstimate& estimate, int jobs, const std::string& timings_path);

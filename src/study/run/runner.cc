@@ -205,7 +205,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   if (summary.reused > 0) log << summary.reused << " unit(s) already in the store, " << pending.size() << " to run\n";
   if (!to.all.empty()) {
     const std::string timings = options.output_dir + "/timings.csv";
-    log << plan_text(estimate_plan(to.all, timings), jobs, timings) << "\n" << std::flush;
+    log << plan_text(estimate_plan(to.all, timings, spec.truth.elements), jobs, timings) << "\n" << std::flush;
   }
   if (!missing_truths.empty()) {
     // The first truth's CVODE cross-check grows steeply below rtol 1e-10 (measured on the thin beam at N = 48: 2 s at
