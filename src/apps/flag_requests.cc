@@ -103,7 +103,13 @@ std::map<std::string, std::pair<double, double>> bounds_of(const Flags& a) {
   std::map<std::string, std::pair<double, double>> bounds;
   if (!a.has("bounds")) return bounds;
   const std::string where = "beamid " + a.command() + ": ";
-  std::stringstream list(a.text("bounds"));
+  const std::string text = a.text("bounds");
+  // An empty item, at the end too (getline yields none after a trailing comma, which was accepted; --shards refuses
+  // it).
+  if (text.empty() || text.back() == ',')
+    throw InputError(where + "--bounds = '" + text +
+                     "': an empty item: must read KEY=LO:HI,... without a trailing comma");
+  std::stringstream list(text);
   std::string item;
   while (std::getline(list, item, ',')) {
     const auto eq = item.find('='), colon = item.find(':');

@@ -253,6 +253,13 @@ void Table::finish(const std::vector<std::string>& valid) const {
   }
 }
 
+void Table::only_keys(const std::vector<std::string>& valid) const {
+  for (auto&& [key, node] : as_table(table_))
+    if (std::find(valid.begin(), valid.end(), std::string(key.str())) == valid.end())
+      throw InputError(source() + ":" + std::to_string(key.source().begin.line) + ": unknown key " + prefix_ +
+                       std::string(key.str()) + ": valid keys are " + join(valid));
+}
+
 void Table::only_tables(const std::vector<std::string>& valid) const {
   for (auto&& [key, node] : as_table(table_))
     if (std::find(valid.begin(), valid.end(), std::string(key.str())) == valid.end())

@@ -85,6 +85,9 @@ class Table {
   void finish(const std::vector<std::string>& valid) const;
   // For a document root: every key must name one of `valid` tables.
   void only_tables(const std::vector<std::string>& valid) const;
+  // Every key must be one of `valid`, read or not: called before the reads, an unknown key (a misspelling) is named
+  // before a missing one is ("missing key 'EI'" hid the EJ = 1.05 beside it).
+  void only_keys(const std::vector<std::string>& valid) const;
   // The element `item` of array `key` violates `constraint`.
   [[noreturn]] void element_fail(const std::string& key, const Node& item, const std::string& value,
                                  const std::string& constraint) const;

@@ -79,6 +79,8 @@ timeout 60 "$BEAMID" fit --data "$tmp/record.csv" --beam banks-aluminium --eleme
   --report "$tmp/unwritable/r.md" >/dev/null 2>"$tmp/err"; rc=$?
 if [ $rc -eq 1 ] && grep -qF "r.md.spectra.csv: cannot write (Is a directory)" "$tmp/err" &&
    [ ! -e "$tmp/unwritable/r.md" ]; then ok; else bad "an unwritable report (exit $rc): $(tail -c 300 "$tmp/err")"; fi
+expect_error "bounds with a trailing comma" "--bounds = 'EI=0.3:0.7,': an empty item" fit --data "$tmp/z.csv" \
+  "${S[@]}" --estimate EI --cost time --bounds EI=0.3:0.7,
 expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..1000" fit --data "$tmp/z.csv" "${S[@]}" \
   --estimate EI --cost time --starts 1000000000
 

@@ -112,6 +112,9 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(
       error_of(replaced(kValid, "EI = 1.05", "EI = 2.5")),
       "s.toml:16: starts.near.EI = 2.5: must lie strictly inside the bounds, (1/F, F) with F = fit.bound_factor = 2");
+  // A misspelt start key is named before the key it replaces is missed (the twentieth pass: "missing key 'EI'").
+  EXPECT_EQ(error_of(replaced(kValid, "EI = 1.05", "EJ = 1.05")).rfind("s.toml:16: unknown key starts.near.EJ", 0), 0u)
+      << error_of(replaced(kValid, "EI = 1.05", "EJ = 1.05"));
   EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fits]")),
             "s.toml:12: unknown table [fits]: valid tables are study, truth, fit, starts, methods, sweep, landscape, "
             "start_distance, outputs");

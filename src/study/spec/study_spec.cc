@@ -158,6 +158,7 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
     for (const auto& [n, node] : starts->entries()) {
       Table r = node.table("starts." + n + ".", "starts." + n);
       StartSpec s{n, {}};
+      r.only_keys(spec.fit.estimate);
       for (const auto& key : spec.fit.estimate)
         s.factor[key] = r.number(
             key, std::nullopt, [&](double v) { return v > 1 / spec.fit.bound_factor && v < spec.fit.bound_factor; },
