@@ -162,14 +162,26 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
   // Read only where spikes are picked: --detrend with the time, freq-band or modal cost changed nothing while the
   // user believed the drift removed (the seventeenth pass's P6). Their models fit what they compare: the free
   // decay's constant c0 (simulation/free_decay.h), the pencil's poles under one cycle, left out as the trend.
+  // A free decay fitted by the time or freq-band cost: --detrend linear fits a linear trend beside the constant in
+  // the closed-form amplitudes (simulation/free_decay.h), which a drifting sensor needs (the eighteenth pass's P5:
+  // refused, the drift was left in the residual); mean is the constant they always fit.
+  const bool least_squares = o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost;
+  if (request.detrend && least_squares && o.experiment.excitation == simulation::kFreeDecay && !request.welch) {
+    if (*request.detrend == signal::kDetrendNone)
+      refuse(caller, "detrend", *request.detrend,
+             "a free decay's constant (a sensor offset) is always fitted; give mean (that constant) or linear (with a "
+             "trend)");
+    o.experiment.free_decay_trend = *request.detrend == signal::kDetrendLinear;
+    return;
+  }
   if (request.detrend && !costs::is_spike_cost(o.cost.name) && !request.welch &&
       !(o.strategy == fit::kHybrid && costs::is_spike_cost(o.refine)))
     refuse(caller, "detrend", *request.detrend,
-           "is read where the spike costs (or --welch) pick their spikes; the " + o.cost.name +
-               " cost picks none. The modal cost's pencil leaves an offset or drift out as poles of under one cycle "
-               "in the record; the time and freq-band costs fit a free decay's offset as its constant but no drift "
-               "(a drifting record wants --cost modal, or its drift removed before the fit: the eighteenth pass's "
-               "P5)");
+           "is read where the spike costs (or --welch) pick their spikes, and for a free decay by the time and "
+           "freq-band costs (its trend); the " +
+               o.cost.name +
+               " cost here picks none. The modal cost's pencil leaves an offset or drift out as poles of under one "
+               "cycle in the record");
   if (request.welch) {
     // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
     // picked on Welch's average (the sixteenth pass's P5).

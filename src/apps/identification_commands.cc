@@ -280,7 +280,9 @@ std::vector<FlagSpec> fit_flags() {
                 "channel weighted by its own residual noise, maximum likelihood)"),
       text_flag("detrend",
                 "none | mean | linear: removed from the record where the spikes are picked (default linear for a "
-                "free decay, none otherwise)"),
+                "free decay, none otherwise); for a free decay fitted by the time or freq-band cost, mean (the "
+                "default) or linear: what its amplitudes fit beside the modes, a sensor offset or an offset and a "
+                "drift"),
       integer_flag("windows",
                    "also fit K disjoint windows of the record(s) and report the estimates' spread over them, an "
                    "uncertainty that admits model error (default: not done)",

@@ -173,7 +173,8 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
         out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
         return out;
       }
-      simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data);
+      simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data,
+                                                                        impl_->experiment.free_decay_trend);
       if (decay.status != "ok") {
         out.evaluation.status = decay.status;
         return out;

@@ -34,6 +34,9 @@ struct Experiment {
   std::string output = "displacement";  // "displacement" | "velocity" | "acceleration"
   double dt_s = 1e-3;                   // sampling interval
   int samples = 4096;                   // Nbar
+  // Free decay only: a linear trend fitted beside the constant (simulation/free_decay.h; fit --detrend linear with the
+  // time or freq-band cost): a sensor that drifts during the record.
+  bool free_decay_trend = false;
 };
 
 // First violated constraint as "key = value: constraint", e.g. "pulse_width_s = -1: must be > 0", or nothing.

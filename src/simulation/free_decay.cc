@@ -27,19 +27,21 @@ namespace {
 // The columns 1, Re e^{lambda_k t_i}, Im e^{lambda_k t_i} (t_i = i dt), n rows. Each exponential advances by one
 // complex product per sample, re-anchored on the exact exponential every 256 samples, so that round-off cannot
 // accumulate (a few hundred eps at most; the per-sample std::exp it replaces was a quarter of a fit's evaluation).
-Eigen::MatrixXd modal_basis(const std::vector<std::complex<double>>& poles, double dt, Eigen::Index n) {
+Eigen::MatrixXd modal_basis(const std::vector<std::complex<double>>& poles, double dt, Eigen::Index n, bool trend) {
   constexpr Eigen::Index kAnchorEvery = 256;
   const auto k = static_cast<Eigen::Index>(poles.size());
-  Eigen::MatrixXd basis(n, 2 * k + 1);
+  const Eigen::Index first = trend ? 2 : 1;  // the constant, and the trend t / T
+  Eigen::MatrixXd basis(n, 2 * k + first);
   basis.col(0).setOnes();
+  if (trend) basis.col(1) = Eigen::VectorXd::LinSpaced(n, 0.0, 1.0);
   for (Eigen::Index m = 0; m < k; ++m) {
     const std::complex<double> lambda = poles[static_cast<std::size_t>(m)];
     const std::complex<double> step = std::exp(lambda * dt);
     std::complex<double> e;
     for (Eigen::Index i = 0; i < n; ++i) {
       e = i % kAnchorEvery == 0 ? std::exp(lambda * (static_cast<double>(i) * dt)) : e * step;
-      basis(i, 1 + 2 * m) = e.real();
-      basis(i, 2 + 2 * m) = e.imag();
+      basis(i, first + 2 * m) = e.real();
+      basis(i, first + 1 + 2 * m) = e.imag();
     }
   }
   return basis;
@@ -72,8 +74,8 @@ std::optional<Eigen::VectorXd> solve_seminormal(const Eigen::MatrixXd& basis, co
 
 }  // namespace
 
-FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt,
-                            const std::vector<double>& data) {
+FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, double dt, const std::vector<double>& data,
+                            bool trend) {
   if (!(dt > 0)) throw InputError("free decay: dt = " + format_value(dt) + ": must be > 0");
   if (data.empty()) throw InputError("free decay: no data");
   FreeDecayFit out;
@@ -83,15 +85,14 @@ FreeDecayFit fit_free_decay(const std::vector<std::complex<double>>& poles, doub
     return out;
   }
   const auto n = static_cast<Eigen::Index>(data.size());
-  const auto k = static_cast<Eigen::Index>(out.poles_rad_s.size());
-  const Eigen::MatrixXd basis = modal_basis(out.poles_rad_s, dt, n);
+  const Eigen::MatrixXd basis = modal_basis(out.poles_rad_s, dt, n, trend);
   const Eigen::Map<const Eigen::VectorXd> z(data.data(), n);
   std::optional<Eigen::VectorXd> solved = solve_seminormal(basis, z);
   if (!solved) {
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(basis);
     if (qr.rank() < basis.cols()) {
       out.status = "free decay: the modal basis is rank-deficient (" + std::to_string(qr.rank()) + " of " +
-                   std::to_string(2 * k + 1) + " columns: modes too close or too fast for the record)";
+                   std::to_string(basis.cols()) + " columns: modes too close or too fast for the record)";
       return out;
     }
     solved = qr.solve(z);

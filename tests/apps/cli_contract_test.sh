@@ -238,6 +238,12 @@ check "modal-id: the drift's poles are said" grep -q "under one cycle in the .* 
   --excitation free-decay --spikes 3 --start-scale 1.02 >"$tmp/drift_fit.csv" 2>/dev/null || fail=$((fail + 1))
 check "fit: the modal cost leaves a drift out" \
   awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-5 && r > -1e-5) }' "$tmp/drift_fit.csv"
+# The time cost fits the drift beside the constant when asked (--detrend linear; the eighteenth pass's P5), and then
+# recovers EI as the modal cost does.
+"$BEAMID" fit --data "$tmp/drift.csv" --start 0.01 --beam banks-aluminium --elements 4 --estimate EI --cost time \
+  --excitation free-decay --detrend linear --start-scale 1.02 >"$tmp/drift_time.csv" 2>/dev/null || fail=$((fail + 1))
+check "fit: the time cost with --detrend linear fits a drift" \
+  awk -F, 'NR == 2 { r = $2 / 0.491 - 1; exit !(r < 1e-5 && r > -1e-5) }' "$tmp/drift_time.csv"
 expect_error "fit: --detrend where nothing picks spikes" "--detrend = 'linear': is read where the spike costs" \
   fit --data "$tmp/drift.csv" --start 0.01 --beam banks-aluminium --elements 4 --estimate EI --cost modal \
   --excitation free-decay --detrend linear

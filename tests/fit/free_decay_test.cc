@@ -48,6 +48,32 @@ TEST(FreeDecay, ClosedFormAmplitudesReproduceDampedModes) {
   EXPECT_NE(simulation::fit_free_decay({{-1, 2 * std::numbers::pi * 900}}, dt, z).status, "ok");
 }
 
+TEST(FreeDecay, ALinearTrendIsFittedBesideTheConstantWhenAsked) {
+  // A sensor that drifts: 0.5 + 0.3 t under two damped modes (the eighteenth pass's P5). With the trend column the
+  // synthesis is exact to round-off and the amplitudes are the modes' own; without it the drift is left in the
+  // residual (its largest part, 0.3 t against the modes' 1e-11), and the modes' amplitudes absorb some of it.
+  const double dt = 1e-3;
+  const std::vector<std::complex<double>> poles{{-0.3, 2 * std::numbers::pi * 5}, {-1.5, 2 * std::numbers::pi * 40}};
+  std::vector<double> z(2000);
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    const double t = static_cast<double>(i) * dt;
+    z[i] = 0.5 + 0.3 * t + 2 * std::exp(-0.3 * t) * std::cos(2 * std::numbers::pi * 5 * t + 0.4) +
+           0.5 * std::exp(-1.5 * t) * std::sin(2 * std::numbers::pi * 40 * t);
+  }
+  const auto with = simulation::fit_free_decay(poles, dt, z, true);
+  ASSERT_EQ(with.status, "ok");
+  double worst = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) worst = std::max(worst, std::abs(with.y[i] - z[i]));
+  EXPECT_LT(worst, 1e-11);
+  EXPECT_NEAR(with.amplitudes[0], 0.5, 1e-11);
+  EXPECT_NEAR(with.amplitudes[1], 0.3 * 1999 * dt, 1e-11);  // c1 multiplies t / T, T = (n - 1) dt
+  EXPECT_NEAR(with.amplitudes[2], 2 * std::cos(0.4), 1e-10);
+  const auto without = simulation::fit_free_decay(poles, dt, z);
+  double left = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) left = std::max(left, std::abs(without.y[i] - z[i]));
+  EXPECT_GT(left, 0.05);  // a line of 0.6 across the record, fitted by a constant and two decaying modes
+}
+
 TEST(FreeDecay, FitRecoversStiffnessAndDampingFromARecordCutAfterTheImpulse) {
   // banks-aluminium at N = 8: a 4 ms pulse, velocity at the tip; the record kept from t = 0.1 s on is a free decay
   // whose initial state the fit does not know. Data and model share N and the exact propagator (this checks the
