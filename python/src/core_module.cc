@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "api/experiment_request.h"
 #include "apps/cli.h"
 #include "apps/command_flags.h"
 #include "apps/commands.h"
@@ -121,6 +122,9 @@ class ArrayRecord {
     return io::array_time_series("<array>", values_.data(), rows, columns, has_time_ ? &time_ : nullptr, o,
                                  time_precision_);
   }
+
+  // Samples per channel (the array's first dimension).
+  double samples() const { return static_cast<double>(values_.shape(0)); }
 
  private:
   py::array_t<double, py::array::c_style | py::array::forcecast> values_;
@@ -325,6 +329,13 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     py::gil_scoped_release unlocked;
     const apps::Flags a = flags_of("fit", args, beam_toml);
     apps::check_report_outputs(a);
+    // The fit's memory guard before the array is read: reading and checking 2^27 samples took 26 s, and then the
+    // same guard refused the fit (the twentieth pass's P6). Its warnings come from the fit's own guard, later.
+    if (array) {
+      std::ostringstream later;
+      api::guard_run_size(apps::caller_of(a), static_cast<int>(a.integer("elements")), array->samples(),
+                          core::kRecordBytesPerSample, later);
+    }
     channels = records_of(a, array);
     c = api::compute_fit(apps::fit_request_of(a), channels, warned);
     beam_name = a.text("beam");
