@@ -317,6 +317,17 @@ py::dict parameter_row(const fit::ParameterEstimate& p, double window_sd, double
   return d;
 }
 
+// What a fit checks before its record is read: the report's paths, and the memory guard on an array's length (reading
+// and checking 2^27 samples took 26 s, and then the same guard refused the fit: the twentieth pass's P6; its warnings
+// come from the fit's own guard, later).
+void check_before_reading(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
+  apps::check_report_outputs(a);
+  if (!array) return;
+  std::ostringstream later;
+  api::guard_run_size(apps::caller_of(a), static_cast<int>(a.integer("elements")), array->samples(),
+                      core::kRecordBytesPerSample, later);
+}
+
 py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
                 const py::object& data, const py::object& time) {
   std::ostringstream warned;
@@ -328,14 +339,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   {
     py::gil_scoped_release unlocked;
     const apps::Flags a = flags_of("fit", args, beam_toml);
-    apps::check_report_outputs(a);
-    // The fit's memory guard before the array is read: reading and checking 2^27 samples took 26 s, and then the
-    // same guard refused the fit (the twentieth pass's P6). Its warnings come from the fit's own guard, later.
-    if (array) {
-      std::ostringstream later;
-      api::guard_run_size(apps::caller_of(a), static_cast<int>(a.integer("elements")), array->samples(),
-                          core::kRecordBytesPerSample, later);
-    }
+    check_before_reading(a, array);
     channels = records_of(a, array);
     c = api::compute_fit(apps::fit_request_of(a), channels, warned);
     beam_name = a.text("beam");

@@ -154,6 +154,16 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
     refuse(caller, "noise-level", format_value(noise), "must be in [0, 10] (times the signal's RMS)");
   if (request.seed && !request.noise_level)
     refuse(caller, "seed", std::to_string(*request.seed), "seeds the noise: give --noise-level too");
+  if (request.noise_model && !request.noise_level)
+    refuse(caller, "noise-model", *request.noise_model, "colours the noise: give --noise-level too");
+  signal::NoiseModel noise_model;
+  if (request.noise_model) try {
+      noise_model = signal::parse_noise_model(*request.noise_model);
+    } catch (const InputError& e) {
+      const std::string what = e.what();  // "noise model 'x': constraint": the constraint alone after the flag
+      const std::size_t cut = what.find("': ");
+      refuse(caller, "noise-model", *request.noise_model, cut == std::string::npos ? what : what.substr(cut + 3));
+    }
   if (request.seed && *request.seed < 0)
     refuse(caller, "seed", std::to_string(*request.seed), "must be an integer >= 0");
   const galerkin::SplineSpace space(r.run.elements);
@@ -167,7 +177,7 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   if (r.trace.stats.integrator == simulation::kFast)
     if (const std::string note = nearly_defective_note(r.trace.stats.eigenvector_rcond); !note.empty())
       warnings << caller.label << ": " << note << "\n";
-  r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)));
+  r.y = signal::add_noise(r.trace.y, noise, static_cast<std::uint64_t>(request.seed.value_or(1)), noise_model);
   return r;
 }
 

@@ -65,12 +65,13 @@ ModesResult compute_modes(const ModesRequest& request, std::ostream& warnings);
 // beamid simulate: the trace (clean) and the samples with noise_level's noise, if any.
 struct SimulateRequest {
   ModelRunRequest run = ModelRunRequest::labelled("beamid simulate");
-  std::string integrator = "fast";    // --integrator
-  std::optional<double> rtol;         // --rtol (cvode)
-  std::optional<double> atol;         // --atol (cvode)
-  std::optional<int> max_order;       // --max-order (cvode)
-  std::optional<double> noise_level;  // --noise-level: white noise of this times the clean signal's RMS (none: 0)
-  std::optional<long long> seed;      // --seed of the noise (needs noise_level; default 1)
+  std::string integrator = "fast";         // --integrator
+  std::optional<double> rtol;              // --rtol (cvode)
+  std::optional<double> atol;              // --atol (cvode)
+  std::optional<int> max_order;            // --max-order (cvode)
+  std::optional<double> noise_level;       // --noise-level: white noise of this times the clean signal's RMS (none: 0)
+  std::optional<std::string> noise_model;  // --noise-model (signal/noise.h; needs noise_level; default white)
+  std::optional<long long> seed;           // --seed of the noise (needs noise_level; default 1)
 };
 struct SimulateResult {
   ModelRun run;

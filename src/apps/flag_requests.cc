@@ -80,6 +80,7 @@ api::SimulateRequest simulate_request_of(const Flags& a) {
   r.atol = a.optional_number("atol");
   r.max_order = a.optional_integer("max-order");
   r.noise_level = a.optional_number("noise-level");
+  if (a.has("noise-model")) r.noise_model = a.text("noise-model");
   r.seed = a.optional_integer("seed");
   return r;
 }

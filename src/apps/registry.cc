@@ -52,6 +52,9 @@ std::vector<Command> make_commands() {
                        number_flag("noise-level",
                                    "add white Gaussian noise of this many times the signal's RMS, e.g. 0.01 (default "
                                    "0: none)"),
+                       text_flag("noise-model",
+                                 "the noise's colour: white | ar:a1,a2,... | power:alpha (1/f^alpha to "
+                                 "Nyquist), at --noise-level (default white)"),
                        integer_flag("seed", "seed of the noise (default 1)", 0, std::numeric_limits<int>::max()),
                        switch_flag("verbose", "say on stderr what ran, with the integrator statistics")}),
                {},

@@ -1,8 +1,15 @@
 #include "signal/noise.h"
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <complex>
+#include <cstdlib>
 #include <numbers>
 #include <random>
+#include <sstream>
+
+#include "core/errors.h"
+#include "signal/spectrum.h"
 
 namespace beamid::signal {
 
@@ -35,6 +42,141 @@ std::vector<double> add_noise(const std::vector<double>& clean, double level, st
   const std::vector<double> g = gaussian_deviates(seed, clean.size());
   std::vector<double> z(clean.size());
   for (std::size_t i = 0; i < clean.size(); ++i) z[i] = clean[i] + sigma * g[i];
+  return z;
+}
+
+namespace {
+
+constexpr std::size_t kMaxArOrder = 32;
+constexpr double kMaxAlpha = 4;
+
+// The AR filter's impulse response h (h_0 = 1, h_i = sum_j a_j h_{i-j}) until it has stayed below 1e-12 of its peak
+// for p + 1 steps, or `limit` terms.
+std::vector<double> impulse_response(const std::vector<double>& a, std::size_t limit) {
+  std::vector<double> h{1.0};
+  double peak = 1;
+  std::size_t quiet = 0;
+  while (h.size() < limit && quiet <= a.size()) {
+    double v = 0;
+    for (std::size_t j = 0; j < a.size() && j < h.size(); ++j) v += a[j] * h[h.size() - 1 - j];
+    h.push_back(v);
+    peak = std::max(peak, std::abs(v));
+    quiet = std::abs(v) < 1e-12 * peak ? quiet + 1 : 0;
+  }
+  return h;
+}
+
+// The largest root modulus of z^p - a1 z^{p-1} - ... - ap (the companion matrix's spectral radius): the process is
+// stationary when it is below 1.
+double spectral_radius(const std::vector<double>& a) {
+  const auto p = static_cast<Eigen::Index>(a.size());
+  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(p, p);
+  for (Eigen::Index j = 0; j < p; ++j) companion(0, j) = a[static_cast<std::size_t>(j)];
+  for (Eigen::Index i = 1; i < p; ++i) companion(i, i - 1) = 1;
+  return companion.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+std::vector<double> ar_deviates(const std::vector<double>& a, std::uint64_t seed, std::size_t count) {
+  // Unit stationary variance: the innovations scaled by 1 / sqrt(sum h_i^2); a burn-in as long as the impulse
+  // response starts the record in the stationary state (the deviates before it are discarded).
+  const std::vector<double> h = impulse_response(a, 10'000'000);
+  double energy = 0;
+  for (double v : h) energy += v * v;
+  const std::size_t burn = h.size();
+  const std::vector<double> g = gaussian_deviates(seed, burn + count);
+  std::vector<double> e(burn + count, 0.0);
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    double v = g[i];
+    for (std::size_t j = 0; j < a.size() && j < i; ++j) v += a[j] * e[i - 1 - j];
+    e[i] = v;
+  }
+  const double scale = 1 / std::sqrt(energy);
+  std::vector<double> out(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = scale * e[burn + i];
+  return out;
+}
+
+std::vector<double> power_deviates(double alpha, std::uint64_t seed, std::size_t count) {
+  if (count < 4) return gaussian_deviates(seed, count);  // no band to shape
+  // Complex Gaussian bins of unit mean power, shaped by k^(-alpha/2) for k = 1..n/2 (0 at DC), then the inverse DFT:
+  // E[y_i^2] = sum over the whole spectrum of |H_k|^2, by which it is divided.
+  const int n = static_cast<int>(count);
+  const std::vector<double> g = gaussian_deviates(seed, 2 * static_cast<std::size_t>(n / 2 + 1));
+  std::vector<std::complex<double>> half(static_cast<std::size_t>(n / 2 + 1));
+  double power = 0;
+  for (int k = 1; k <= n / 2; ++k) {
+    const double gain = std::pow(static_cast<double>(k), -alpha / 2);
+    const bool nyquist = n % 2 == 0 && k == n / 2;  // a real bin, counted once
+    const auto i = static_cast<std::size_t>(k);
+    half[i] = nyquist ? std::complex<double>(gain * g[2 * i], 0)
+                      : gain * std::complex<double>(g[2 * i], g[2 * i + 1]) / std::sqrt(2.0);
+    power += (nyquist ? 1 : 2) * gain * gain;
+  }
+  std::vector<double> y = inverse_real_dft(half, n);
+  const double scale = 1 / std::sqrt(power);
+  for (double& v : y) v *= scale;
+  return y;
+}
+
+}  // namespace
+
+std::string NoiseModel::text() const {
+  if (kind == "power") return "power:" + format_value(alpha);
+  if (kind != "ar") return "white";
+  std::string out = "ar:";
+  for (std::size_t j = 0; j < ar.size(); ++j) out += (j ? "," : "") + format_value(ar[j]);
+  return out;
+}
+
+NoiseModel parse_noise_model(const std::string& text) {
+  const auto fail = [&](const std::string& constraint) -> NoiseModel {
+    throw InputError("noise model '" + text + "': " + constraint);
+  };
+  NoiseModel m;
+  if (text == "white") return m;
+  const std::size_t colon = text.find(':');
+  const std::string kind = text.substr(0, colon), rest = colon == std::string::npos ? "" : text.substr(colon + 1);
+  const auto number = [&](const std::string& item) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v)) fail("'" + item + "' is not a finite number");
+    return v;
+  };
+  if (kind == "ar") {
+    m.kind = "ar";
+    std::stringstream list(rest);
+    for (std::string item; std::getline(list, item, ',');) m.ar.push_back(number(item));
+    if (m.ar.empty() || rest.back() == ',')
+      fail("must read ar:a1,a2,... with at least one coefficient and no empty one");
+    if (m.ar.size() > kMaxArOrder) fail("at most " + std::to_string(kMaxArOrder) + " coefficients");
+    if (const double r = spectral_radius(m.ar); !(r < 1 - 1e-6))
+      fail("not stationary: a root of z^p - a1 z^(p-1) - ... has modulus " + format_rounded(r, 6) +
+           " (must be below 1)");
+    return m;
+  }
+  if (kind == "power") {
+    m.kind = "power";
+    m.alpha = number(rest);
+    if (!(m.alpha >= 0 && m.alpha <= kMaxAlpha)) fail("alpha must be in [0, 4]");
+    return m;
+  }
+  return fail("must be white, ar:a1,a2,... (autoregressive) or power:alpha (1/f^alpha)");
+}
+
+std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, std::size_t count) {
+  if (model.kind == "ar") return ar_deviates(model.ar, seed, count);
+  if (model.kind == "power") return power_deviates(model.alpha, seed, count);
+  return gaussian_deviates(seed, count);
+}
+
+std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed,
+                              const NoiseModel& model) {
+  if (model.kind == "white") return add_noise(clean, level, seed);
+  if (level == 0) return clean;
+  const double sigma = level * rms(clean);
+  const std::vector<double> e = model_deviates(model, seed, clean.size());
+  std::vector<double> z(clean.size());
+  for (std::size_t i = 0; i < clean.size(); ++i) z[i] = clean[i] + sigma * e[i];
   return z;
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/hash.h"
@@ -24,5 +25,28 @@ double rms(const std::vector<double>& signal);
 // z_i = y_i + level * rms(y) * g_i: white Gaussian noise whose standard deviation is `level` times the clean signal's
 // RMS (level 0 returns y unchanged).
 std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed);
+
+// The colour of synthetic noise (issue 33), by name: "white"; "ar:a1,a2,..." the autoregressive process
+// e_i = g_i + a1 e_{i-1} + a2 e_{i-2} + ... (stationary: every root of 1 - a1 z - a2 z^2 - ... outside the unit
+// circle); "power:alpha" band-limited power-law noise, spectral density ~ 1 / f^alpha from the record's lowest bin,
+// 1 / T, to the Nyquist frequency (alpha 0 white, 1 pink or flicker, 2 red or Brownian within the band).
+struct NoiseModel {
+  std::string kind = "white";  // white | ar | power
+  std::vector<double> ar;      // a1..ap (ar)
+  double alpha = 0;            // (power)
+  std::string text() const;    // the name it was parsed from, canonical ("ar:0.9", "power:1")
+};
+// InputError naming the text and the constraint ("noise model 'ar:1.2': not stationary (a root of ... inside the unit
+// circle)"); at most 32 AR coefficients, alpha in [0, 4].
+NoiseModel parse_noise_model(const std::string& text);
+
+// `count` deviates of the model with unit variance as a process (AR: its stationary variance, sum of the squared
+// impulse response, started in its stationary state by a burn-in until the impulse response is below 1e-12 of its
+// peak; power: its expected variance over the band), deterministic per seed. White is gaussian_deviates itself.
+std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, std::size_t count);
+
+// add_noise with coloured noise: standard deviation `level` times the clean signal's RMS (white: add_noise exactly).
+std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed,
+                              const NoiseModel& model);
 
 }  // namespace beamid::signal

@@ -132,4 +132,31 @@ double fourier_least_squares(const Spectrum& model, const Spectrum& data) {
 
 std::string fftw_library_version() { return fftw_version; }
 
+std::vector<double> inverse_real_dft(const std::vector<std::complex<double>>& half, int samples) {
+  if (samples < 2 || half.size() != static_cast<std::size_t>(samples / 2 + 1))
+    throw InputError("inverse DFT: " + std::to_string(half.size()) + " bins for " + std::to_string(samples) +
+                     " samples: must be samples/2 + 1");
+  fftw_complex* in = nullptr;
+  double* out = nullptr;
+  fftw_plan plan = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    in = fftw_alloc_complex(half.size());
+    out = fftw_alloc_real(static_cast<std::size_t>(samples));
+    if (in && out) plan = fftw_plan_dft_c2r_1d(samples, in, out, FFTW_ESTIMATE);
+  }
+  std::vector<double> y;
+  if (plan) {
+    for (std::size_t k = 0; k < half.size(); ++k) in[k][0] = half[k].real(), in[k][1] = half[k].imag();
+    fftw_execute(plan);  // c2r overwrites its input, which is ours
+    y.assign(out, out + samples);
+  }
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  if (plan) fftw_destroy_plan(plan);
+  fftw_free(in);
+  fftw_free(out);
+  if (y.empty()) throw NumericalError("inverse DFT: FFTW could not plan a transform of " + std::to_string(samples));
+  return y;
+}
+
 }  // namespace beamid::signal

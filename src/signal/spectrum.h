@@ -86,4 +86,10 @@ double fourier_least_squares(const Spectrum& model, const Spectrum& data);
 // FFTW's version string, for provenance.
 std::string fftw_library_version();
 
+// The real signal of `samples` samples whose DFT has the bins `half` (0..samples/2, as Spectrum::half holds them;
+// the imaginary parts of bin 0 and, for an even length, of bin samples/2 are ignored): FFTW's inverse (c2r),
+// unnormalised, y_i = sum over the whole spectrum of Y_k e^{2 pi j i k / samples}. InputError when half.size() is
+// not samples/2 + 1.
+std::vector<double> inverse_real_dft(const std::vector<std::complex<double>>& half, int samples);
+
 }  // namespace beamid::signal

@@ -79,6 +79,11 @@ timeout 60 "$BEAMID" fit --data "$tmp/record.csv" --beam banks-aluminium --eleme
   --report "$tmp/unwritable/r.md" >/dev/null 2>"$tmp/err"; rc=$?
 if [ $rc -eq 1 ] && grep -qF "r.md.spectra.csv: cannot write (Is a directory)" "$tmp/err" &&
    [ ! -e "$tmp/unwritable/r.md" ]; then ok; else bad "an unwritable report (exit $rc): $(tail -c 300 "$tmp/err")"; fi
+# Coloured noise (issue 33): a model that is no stationary process, or one without a level to colour, is refused.
+expect_error "noise model not stationary" "--noise-model = 'ar:1.2': not stationary" simulate "${S[@]}" \
+  --noise-level 0.01 --noise-model ar:1.2
+expect_error "noise model without a level" "--noise-model = 'power:1': colours the noise: give --noise-level" \
+  simulate "${S[@]}" --noise-model power:1
 expect_error "bounds with a trailing comma" "--bounds = 'EI=0.3:0.7,': an empty item" fit --data "$tmp/z.csv" \
   "${S[@]}" --estimate EI --cost time --bounds EI=0.3:0.7,
 expect_error "starts 1e9" "--starts = '1000000000': must be an integer in 1..1000" fit --data "$tmp/z.csv" "${S[@]}" \

@@ -6,7 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <numbers>
 #include <random>
+#include <string>
+
+#include "core/errors.h"
+#include "signal/spectrum.h"
 
 namespace beamid::signal {
 namespace {
@@ -54,6 +60,90 @@ TEST(Noise, LevelIsAFractionOfTheCleanRms) {
   for (std::size_t i = 0; i < e.size(); ++i) e[i] = z[i] - clean[i];
   // rms(clean) = 3/sqrt(2); the noise RMS estimates 0.05 of it with relative sd 1/sqrt(2n) = 3e-3.
   EXPECT_NEAR(rms(e) / rms(clean), 0.05, 0.05 * 0.015);
+}
+
+// Coloured noise (issue 33 item 6): white is add_noise itself; an AR process has unit stationary variance and its
+// autocorrelation; power-law noise has its spectral slope; every model is reproducible per seed; bad names are named.
+double autocorrelation(const std::vector<double>& e, std::size_t lag) {
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < e.size(); ++i) den += e[i] * e[i];
+  for (std::size_t i = lag; i < e.size(); ++i) num += e[i] * e[i - lag];
+  return num / den;
+}
+
+TEST(Noise, WhiteModelIsAddNoiseItself) {
+  std::vector<double> clean(1000);
+  for (std::size_t i = 0; i < clean.size(); ++i) clean[i] = std::cos(0.03 * static_cast<double>(i));
+  EXPECT_EQ(add_noise(clean, 0.01, 5, parse_noise_model("white")), add_noise(clean, 0.01, 5));
+}
+
+TEST(Noise, AnArProcessHasUnitVarianceAndItsAutocorrelation) {
+  constexpr std::size_t n = 1 << 16;
+  // AR(1), a = 0.9: rho_1 = 0.9, sampling sd (1 - a^2) / sqrt(n) = 7e-4; the sample variance's relative sd is
+  // sqrt(2 (1 + a^2) / ((1 - a^2) n)) = 1.7e-2. Tolerances about 6 sd.
+  const auto e = model_deviates(parse_noise_model("ar:0.9"), 3, n);
+  EXPECT_NEAR(rms(e), 1.0, 0.06);
+  EXPECT_NEAR(autocorrelation(e, 1), 0.9, 0.005);
+  // AR(2), a = (0.5, -0.3): rho_1 = a1 / (1 - a2) = 0.3846, rho_2 = a1 rho_1 + a2 = -0.1077 (Yule-Walker).
+  const auto f = model_deviates(parse_noise_model("ar:0.5,-0.3"), 4, n);
+  EXPECT_NEAR(rms(f), 1.0, 0.03);
+  EXPECT_NEAR(autocorrelation(f, 1), 0.5 / 1.3, 0.02);
+  EXPECT_NEAR(autocorrelation(f, 2), 0.5 * 0.5 / 1.3 - 0.3, 0.02);
+  // Started stationary: the first samples are as large as the rest (no transient from zero), over 2000 short draws.
+  double first = 0;
+  for (std::uint64_t seed = 0; seed < 2000; ++seed)
+    first += std::pow(model_deviates(parse_noise_model("ar:0.9"), seed, 1)[0], 2);
+  EXPECT_NEAR(first / 2000, 1.0, 0.2);  // the mean of 2000 chi-square(1) values: sd 0.03
+}
+
+TEST(Noise, PowerLawNoiseHasItsSlope) {
+  // alpha = 1 (pink): the mean periodogram over 32 draws of 4096 samples falls as 1/f; a least-squares slope of
+  // log P against log k over bins 4..1024, each point the mean of 32 exponential variates (relative sd 18 %), has sd
+  // about 0.01.
+  constexpr int n = 4096;
+  std::vector<double> mean_power(n / 2 + 1, 0.0);
+  double variance = 0;
+  Dft dft(n, 1.0);
+  for (std::uint64_t seed = 1; seed <= 32; ++seed) {
+    const auto e = model_deviates(parse_noise_model("power:1"), seed, n);
+    variance += rms(e) * rms(e) / 32;
+    const Spectrum s = dft.transform(e);
+    for (int k = 4; k <= 1024; ++k)
+      mean_power[static_cast<std::size_t>(k)] += std::norm(s.half[static_cast<std::size_t>(k)]) / 32;
+  }
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, m = 0;
+  for (int k = 4; k <= 1024; ++k) {
+    const double x = std::log(k), y = std::log(mean_power[static_cast<std::size_t>(k)]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, ++m;
+  }
+  EXPECT_NEAR((m * sxy - sx * sy) / (m * sxx - sx * sx), -1.0, 0.05);
+  // Unit variance as a process: the mean over 32 draws (pink noise's variance sits in its lowest bins, so one draw's
+  // scatters by about 25 %).
+  EXPECT_NEAR(variance, 1.0, 0.2);
+}
+
+TEST(Noise, ModelsAreReproducibleAndBadOnesNamed) {
+  for (const std::string name : {"ar:0.9", "power:1.5"}) {
+    const NoiseModel model = parse_noise_model(name);
+    EXPECT_EQ(model.text(), name);
+    EXPECT_EQ(model_deviates(model, 9, 777), model_deviates(model, 9, 777)) << name;
+    EXPECT_NE(model_deviates(model, 9, 777), model_deviates(model, 10, 777)) << name;
+  }
+  const auto message = [](const std::string& text) {
+    try {
+      parse_noise_model(text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("ar:1.2").find("noise model 'ar:1.2': not stationary"), std::string::npos) << message("ar:1.2");
+  EXPECT_NE(message("ar:0.5,0.5").find("not stationary"), std::string::npos);  // a unit root: a random walk
+  EXPECT_NE(message("ar:").find("at least one coefficient"), std::string::npos);
+  EXPECT_NE(message("ar:0.5,").find("no empty one"), std::string::npos);
+  EXPECT_NE(message("ar:x").find("'x' is not a finite number"), std::string::npos);
+  EXPECT_NE(message("power:5").find("alpha must be in [0, 4]"), std::string::npos);
+  EXPECT_NE(message("pink").find("must be white, ar:"), std::string::npos);
 }
 
 }  // namespace
