@@ -130,6 +130,19 @@ constexpr const char* kZeroResponse =
     "the force is 0 (--force-amplitude)";
 }  // namespace
 
+namespace {
+// --noise-model, parsed; its error with the constraint alone after the flag ("noise model 'x': constraint").
+signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text) {
+  try {
+    return signal::parse_noise_model(text);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::size_t cut = what.find("': ");
+    refuse(caller, "noise-model", text, cut == std::string::npos ? what : what.substr(cut + 3));
+  }
+}
+}  // namespace
+
 SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings) {
   const Caller& caller = request.run.caller;
   SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}};
@@ -156,14 +169,8 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
     refuse(caller, "seed", std::to_string(*request.seed), "seeds the noise: give --noise-level too");
   if (request.noise_model && !request.noise_level)
     refuse(caller, "noise-model", *request.noise_model, "colours the noise: give --noise-level too");
-  signal::NoiseModel noise_model;
-  if (request.noise_model) try {
-      noise_model = signal::parse_noise_model(*request.noise_model);
-    } catch (const InputError& e) {
-      const std::string what = e.what();  // "noise model 'x': constraint": the constraint alone after the flag
-      const std::size_t cut = what.find("': ");
-      refuse(caller, "noise-model", *request.noise_model, cut == std::string::npos ? what : what.substr(cut + 3));
-    }
+  const signal::NoiseModel noise_model =
+      request.noise_model ? parsed_noise_model(caller, *request.noise_model) : signal::NoiseModel{};
   if (request.seed && *request.seed < 0)
     refuse(caller, "seed", std::to_string(*request.seed), "must be an integer >= 0");
   const galerkin::SplineSpace space(r.run.elements);
@@ -254,6 +261,7 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   } catch (const InputError& error) {
     refuse(caller, "estimate", listed, error.what());
   }
+  if (request.noise_model) r.bound = fit::coloured_bound(r.bound, parsed_noise_model(caller, *request.noise_model));
   // Every sensitivity 0: the output is zero whatever the parameters (the fourth pass's Q299-Q305: "singular Fisher
   // information" for a zero force or a sensor at the clamp, where simulate names the cause).
   if (r.bound.sensitivities.size() > 0 && r.bound.sensitivities.cwiseAbs().maxCoeff() == 0)

@@ -92,10 +92,11 @@ SystemResult compute_system(const ModelRunRequest& request, std::ostream& warnin
 // noise_level (times the clean signal's RMS): one of the two.
 struct CrbRequest {
   ModelRunRequest run = ModelRunRequest::labelled("beamid crb");
-  std::vector<std::string> estimate;  // --estimate (required)
-  std::optional<double> noise_sd;     // --noise-sd
-  std::optional<double> noise_level;  // --noise-level
-  std::optional<double> log_step;     // --log-step of the sensitivities' Ridders extrapolation
+  std::vector<std::string> estimate;       // --estimate (required)
+  std::optional<double> noise_sd;          // --noise-sd
+  std::optional<double> noise_level;       // --noise-level
+  std::optional<double> log_step;          // --log-step of the sensitivities' Ridders extrapolation
+  std::optional<std::string> noise_model;  // --noise-model: the noise's colour (signal/noise.h; default white)
 };
 struct CrbResult {
   ModelRun run;

@@ -23,6 +23,9 @@ std::vector<FlagSpec> crb_flags() {
       text_flag("estimate", "comma-separated keys of the parameters to bound, e.g. EI,rho,cDI,gamma", true),
       number_flag("noise-sd", "standard deviation of the white Gaussian noise on each sample, in the output's units"),
       number_flag("noise-level", "noise standard deviation as a fraction of the clean signal's RMS (as the studies)"),
+      text_flag("noise-model",
+                "the noise's colour at that sd: white | ar:a1,... | power:alpha, as simulate's (default "
+                "white)"),
       number_flag("log-step",
                   "first step in ln q of the sensitivities' Ridders extrapolation, for experiments without exact "
                   "sensitivities (plucks; default 1e-2)")};
@@ -45,7 +48,7 @@ int run_crb(const Flags& a, std::ostream& out) {
   out << csv.str();
   std::cerr << "beamid crb (commit " << io::commit_label() << "): beam " << r.run.beam_name
             << ", N = " << r.run.elements << ", " << e.output << ", " << e.samples << " samples at dt = " << e.dt_s
-            << " s, noise sd " << r.noise_sd << "; sensitivities "
+            << " s, noise sd " << r.noise_sd << " (" << b.noise_model << "); sensitivities "
             << (b.method == "exact" ? std::string("exact (modal closed form)")
                                     : "by Ridders-extrapolated central differences in ln q from step " +
                                           io::round_trip(r.options.log_step) + " (estimated relative error " +

@@ -166,6 +166,7 @@ api::CrbRequest crb_request_of(const Flags& a) {
   r.estimate = a.texts("estimate");
   r.noise_sd = a.optional_number("noise-sd");
   r.noise_level = a.optional_number("noise-level");
+  if (a.has("noise-model")) r.noise_model = a.text("noise-model");
   r.log_step = a.optional_number("log-step");
   return r;
 }

@@ -161,4 +161,15 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   return b;
 }
 
+CramerRaoBound coloured_bound(const CramerRaoBound& b, const signal::NoiseModel& model) {
+  if (model.kind == "white") return b;
+  CramerRaoBound whitened = b;
+  whitened.sensitivities = signal::whiten(model, b.sensitivities);
+  whitened.status = "ok";
+  whitened = bound_from_sensitivities(std::move(whitened));
+  whitened.sensitivities = b.sensitivities;
+  whitened.noise_model = model.text();
+  return whitened;
+}
+
 }  // namespace beamid::fit

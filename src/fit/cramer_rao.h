@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "model/beam_parameters.h"
+#include "signal/noise.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 
@@ -32,17 +33,18 @@ struct SensitivityOptions {
 };
 
 struct CramerRaoBound {
-  std::vector<std::string> keys;   // parameter names, in the order of the vectors below
-  Eigen::VectorXd values;          // q at which the bound holds
-  double noise_sd = 0;             // sigma, in the units of the samples
-  Eigen::MatrixXd sensitivities;   // J: samples x parameters, d y_i / d ln q_k
-  Eigen::MatrixXd covariance;      // F^-1 = sigma^2 (J^T J)^-1, of ln q (empty when F is singular)
-  Eigen::VectorXd relative_sd;     // sqrt(diag F^-1): the bound on sd(q_hat_k) / q_k (NaN when F is singular)
-  Eigen::VectorXd sd;              // relative_sd * values: the bound on sd(q_hat_k) in q's units
-  std::string method = "ridders";  // "exact" (simulation/sensitivities.h) or "ridders" (extrapolated differences)
-  double step_agreement = 0;       // ridders: max over the columns of Ridders' error estimate / max |J_k|
-  double rcond = 0;                // reciprocal condition number of J (smallest / largest singular value)
-  std::string status = "ok";       // "ok" or why the bound is not available (singular Fisher information, ...)
+  std::vector<std::string> keys;      // parameter names, in the order of the vectors below
+  Eigen::VectorXd values;             // q at which the bound holds
+  double noise_sd = 0;                // sigma, in the units of the samples
+  Eigen::MatrixXd sensitivities;      // J: samples x parameters, d y_i / d ln q_k
+  Eigen::MatrixXd covariance;         // F^-1 = sigma^2 (J^T J)^-1, of ln q (empty when F is singular)
+  Eigen::VectorXd relative_sd;        // sqrt(diag F^-1): the bound on sd(q_hat_k) / q_k (NaN when F is singular)
+  Eigen::VectorXd sd;                 // relative_sd * values: the bound on sd(q_hat_k) in q's units
+  std::string method = "ridders";     // "exact" (simulation/sensitivities.h) or "ridders" (extrapolated differences)
+  double step_agreement = 0;          // ridders: max over the columns of Ridders' error estimate / max |J_k|
+  double rcond = 0;                   // reciprocal condition number of J (smallest / largest singular value)
+  std::string status = "ok";          // "ok" or why the bound is not available (singular Fisher information, ...)
+  std::string noise_model = "white";  // the noise's colour (signal/noise.h); noise_sd is its process sd
 };
 
 // The samples of a model as a function of ln q (throws NumericalError when it cannot be evaluated).
@@ -60,5 +62,11 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
                                      const simulation::Experiment& experiment, const std::vector<std::string>& keys,
                                      double noise_sd, const simulation::SimulatorOptions& simulator = {},
                                      const SensitivityOptions& options = {});
+
+// The bound in coloured noise of process sd b.noise_sd (issue 33): F = W^T W / sigma^2 with W the sensitivities
+// whitened for the model (signal::whiten: X^T R^-1 X, R the noise's correlation matrix; time-domain for an AR process,
+// per DFT bin for power-law noise, whose noise-free offset bin carries no information). b.sensitivities stay J itself.
+// White: b unchanged.
+CramerRaoBound coloured_bound(const CramerRaoBound& b, const signal::NoiseModel& model);
 
 }  // namespace beamid::fit

@@ -163,6 +163,60 @@ NoiseModel parse_noise_model(const std::string& text) {
   return fail("must be white, ar:a1,a2,... (autoregressive) or power:alpha (1/f^alpha)");
 }
 
+Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) {
+  const Eigen::Index n = x.rows();
+  if (model.kind == "ar") {
+    const std::vector<double>& a = model.ar;
+    const auto p = static_cast<Eigen::Index>(a.size());
+    const std::vector<double> h = impulse_response(a, 10'000'000);
+    double energy = 0;
+    for (double v : h) energy += v * v;
+    // The autocorrelation rho(l) = sum_m h_m h_{m+l} / sum h^2 of the unit-variance process.
+    const auto rho = [&](Eigen::Index l) {
+      double r = 0;
+      for (std::size_t m = 0; m + static_cast<std::size_t>(l) < h.size(); ++m)
+        r += h[m] * h[m + static_cast<std::size_t>(l)];
+      return r / energy;
+    };
+    Eigen::MatrixXd w(n, x.cols());
+    const Eigen::Index head = std::min(p, n);
+    Eigen::MatrixXd gamma(head, head);
+    for (Eigen::Index i = 0; i < head; ++i)
+      for (Eigen::Index j = 0; j < head; ++j) gamma(i, j) = rho(std::abs(i - j));
+    const Eigen::LLT<Eigen::MatrixXd> first(gamma);
+    w.topRows(head) = first.matrixL().solve(x.topRows(head));
+    const double innovation_sd = 1 / std::sqrt(energy);  // of g_i, for unit process variance
+    for (Eigen::Index i = head; i < n; ++i) {
+      Eigen::RowVectorXd r = x.row(i);
+      for (Eigen::Index j = 0; j < p; ++j) r -= a[static_cast<std::size_t>(j)] * x.row(i - 1 - j);
+      w.row(i) = r / innovation_sd;
+    }
+    return w;
+  }
+  if (model.kind == "power" && n >= 4) {
+    // lambda_k = n |H_k|^2 / P, the unitary DFT's noise variance at bin k (power_deviates), H_k = k^(-alpha/2).
+    double power = 0;
+    for (Eigen::Index k = 1; k <= n / 2; ++k)
+      power += (n % 2 == 0 && k == n / 2 ? 1 : 2) * std::pow(static_cast<double>(k), -model.alpha);
+    Dft dft(static_cast<int>(n), 1.0);
+    Eigen::MatrixXd w(n, x.cols());
+    for (Eigen::Index c = 0; c < x.cols(); ++c) {
+      const std::vector<double> column(x.col(c).data(), x.col(c).data() + n);
+      std::vector<std::complex<double>> half = dft.transform(column).half;
+      half[0] = 0;  // no noise, no information: the offset is left out
+      for (Eigen::Index k = 1; k <= n / 2; ++k) {
+        const double lambda = static_cast<double>(n) * std::pow(static_cast<double>(k), -model.alpha) / power;
+        half[static_cast<std::size_t>(k)] /= std::sqrt(lambda);
+      }
+      const std::vector<double> y = inverse_real_dft(half, static_cast<int>(n));
+      // Dft's bins carry its 1/n, so the unnormalised inverse of the weighted bins is U^H diag(lambda^-1/2) U x.
+      for (Eigen::Index i = 0; i < n; ++i) w(i, c) = y[static_cast<std::size_t>(i)];
+    }
+    return w;
+  }
+  return x;
+}
+
 std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, std::size_t count) {
   if (model.kind == "ar") return ar_deviates(model.ar, seed, count);
   if (model.kind == "power") return power_deviates(model.alpha, seed, count);

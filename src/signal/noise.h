@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "core/hash.h"
 
 namespace beamid::signal {
@@ -44,6 +46,14 @@ NoiseModel parse_noise_model(const std::string& text);
 // impulse response, started in its stationary state by a burn-in until the impulse response is below 1e-12 of its
 // peak; power: its expected variance over the band), deterministic per seed. White is gaussian_deviates itself.
 std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, std::size_t count);
+
+// The columns of `columns` (samples x k) whitened for the model's noise of unit process variance: W with
+// W^T W = X^T R^-1 X, R the noise's correlation matrix, so that the Fisher information of a signal with sensitivities
+// X in noise of process sd s is W^T W / s^2 (fit/cramer_rao.h). AR(p): exactly, the first p samples by the Cholesky
+// factor of their stationary correlation and every later one by the prediction-error filter over the innovations'
+// sd. Power: in the DFT (the model is circulant), each bin divided by its noise sd; the offset bin, where the model
+// has no noise, is left out (it carries no information: an unknown offset). White: X itself.
+Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& columns);
 
 // add_noise with coloured noise: standard deviation `level` times the clean signal's RMS (white: add_noise exactly).
 std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed,

@@ -106,6 +106,28 @@ TEST(CramerRao, RefusesWhatHasNoBound) {
   EXPECT_THROW(beam_cramer_rao_bound(undamped, 4, e, {"gamma"}, 1e-6), InputError);
 }
 
+// The bound in coloured noise (issue 33): AR(1) with a = 0 is white noise, so its bound equals the white one to
+// round-off; noise whose power sits at low frequencies (AR(1), a = 0.9: 19 times the white level at 0 Hz) bounds the
+// stiffness and mass, which the low modes carry, less tightly than white noise of the same sd, and noise that sits
+// high (a = -0.5) more tightly. The raw sensitivities are kept.
+TEST(CramerRao, ColouredNoiseBoundsAsItsSpectrumSays) {
+  const auto beam = model::preset("banks-aluminium");
+  simulation::Experiment e;
+  e.pulse_width_s = 0.004;
+  const CramerRaoBound white = beam_cramer_rao_bound(beam, 8, e, {"EI", "rho", "cDI"}, 1e-5);
+  const CramerRaoBound same = coloured_bound(white, signal::parse_noise_model("ar:0"));
+  EXPECT_LT((same.relative_sd - white.relative_sd).cwiseAbs().maxCoeff(), 1e-12 * white.relative_sd.maxCoeff());
+  EXPECT_EQ(same.noise_model, "ar:0");
+  const CramerRaoBound red = coloured_bound(white, signal::parse_noise_model("ar:0.9"));
+  const CramerRaoBound blue = coloured_bound(white, signal::parse_noise_model("ar:-0.5"));
+  for (Eigen::Index k : {0, 1}) {
+    EXPECT_GT(red.relative_sd(k), 1.5 * white.relative_sd(k)) << k;
+    EXPECT_LT(blue.relative_sd(k), white.relative_sd(k)) << k;
+  }
+  EXPECT_EQ(red.sensitivities, white.sensitivities);
+  EXPECT_EQ(coloured_bound(white, signal::parse_noise_model("white")).relative_sd, white.relative_sd);
+}
+
 TEST(CramerRao, LeastSquaresFromTheTruthReachesTheBoundOnTheBeam) {
   // Least squares on the samples is the maximum-likelihood estimator for white Gaussian noise, so at high SNR (here
   // noise at 1e-3 of the RMS: the estimates move by < 1 %, where the model is linear in them) its spread equals the

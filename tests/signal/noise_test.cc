@@ -148,3 +148,67 @@ TEST(Noise, ModelsAreReproducibleAndBadOnesNamed) {
 
 }  // namespace
 }  // namespace beamid::signal
+
+namespace beamid::signal {
+namespace {
+
+// whiten() against the dense definition X^T R^-1 X, R the unit-variance noise's correlation matrix: for AR(p) the
+// Toeplitz matrix of its autocorrelations (from its impulse response), for power-law noise the circulant matrix of its
+// bin variances (the offset bin, noise-free, left out: the pseudo-inverse). Round-off tolerances.
+Eigen::MatrixXd sensitivities_like(Eigen::Index n) {
+  Eigen::MatrixXd x(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(n);
+    x(i, 0) = std::exp(-2 * t) * std::sin(40 * t);
+    x(i, 1) = t * std::cos(25 * t);
+    x(i, 2) = 1 + 0.3 * std::sin(7 * t);  // with an offset, which power-law noise leaves out
+  }
+  return x;
+}
+
+TEST(Noise, WhiteningMatchesTheNoisesCorrelationMatrix) {
+  constexpr Eigen::Index n = 96;
+  const Eigen::MatrixXd x = sensitivities_like(n);
+  EXPECT_EQ(whiten(parse_noise_model("white"), x), x);
+  for (const std::string name : {"ar:0.9", "ar:0.5,-0.3", "ar:1.2,-0.5,0.1"}) {
+    const NoiseModel m = parse_noise_model(name);
+    // rho(l) from a long simulated impulse response: h_0 = 1, h_i = sum_j a_j h_{i-j}.
+    std::vector<double> h{1.0};
+    for (int i = 1; i < 4000; ++i) {
+      double v = 0;
+      for (std::size_t j = 0; j < m.ar.size() && j < h.size(); ++j) v += m.ar[j] * h[h.size() - 1 - j];
+      h.push_back(v);
+    }
+    double energy = 0;
+    for (double v : h) energy += v * v;
+    Eigen::MatrixXd r(n, n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j) {
+        double s = 0;
+        for (std::size_t k = 0; k + static_cast<std::size_t>(std::abs(i - j)) < h.size(); ++k)
+          s += h[k] * h[k + static_cast<std::size_t>(std::abs(i - j))];
+        r(i, j) = s / energy;
+      }
+    const Eigen::MatrixXd exact = x.transpose() * r.llt().solve(x);
+    const Eigen::MatrixXd w = whiten(m, x);
+    EXPECT_LT((w.transpose() * w - exact).norm(), 1e-9 * exact.norm()) << name;
+  }
+  // Power law, alpha = 1.5: R = F^H diag(lambda) F / n (circulant), lambda_k = n k^-alpha / P, lambda_0 = 0.
+  const NoiseModel m = parse_noise_model("power:1.5");
+  double power = 0;
+  for (Eigen::Index k = 1; k <= n / 2; ++k) power += (k == n / 2 ? 1 : 2) * std::pow(static_cast<double>(k), -1.5);
+  Eigen::MatrixXd pseudo_inverse = Eigen::MatrixXd::Zero(n, n);  // sum over bins of (1 / lambda_k) u_k u_k^H
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index k = 1; k < n; ++k) {
+        const Eigen::Index folded = std::min(k, n - k);
+        const double lambda = static_cast<double>(n) * std::pow(static_cast<double>(folded), -1.5) / power;
+        pseudo_inverse(i, j) += std::cos(2 * std::numbers::pi * static_cast<double>(k * (i - j)) / n) / lambda / n;
+      }
+  const Eigen::MatrixXd exact = x.transpose() * pseudo_inverse * x;
+  const Eigen::MatrixXd w = whiten(m, x);
+  EXPECT_LT((w.transpose() * w - exact).norm(), 1e-9 * exact.norm());
+}
+
+}  // namespace
+}  // namespace beamid::signal
