@@ -48,7 +48,7 @@ void guard_run_size(const Caller& caller, int elements, double samples, double b
   io::check_memory(caller.label + ": N = " + std::to_string(elements) + " and " +
                        std::to_string(static_cast<long long>(samples)) + " samples",
                    bytes, warnings);
-  const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  const double seconds = core::seconds_per_evaluation(n);
   if (seconds > 10)
     warnings << caller.label << ": N = " << elements << ": one model evaluation takes about "
              << io::seconds_text(seconds) << " here (it grows as N^3)\n";

@@ -137,8 +137,7 @@ namespace {
 // silently past 30 s (the third pass's P302, P491).
 void warn_long_fit(const fit::FitOptions& o, double samples, const Caller& caller, std::ostream& warnings) {
   const double n = o.elements;
-  const double per_evaluation =
-      core::kSecondsPerSampleAndElement * samples * n + core::kSecondsPerEvaluationAtN200 * std::pow(n / 200, 3);
+  const double per_evaluation = core::kSecondsPerSampleAndElement * samples * n + core::seconds_per_evaluation(n);
   const double evaluations =
       static_cast<double>(o.optimizer.max_evaluations) * std::max(1, o.starts) * (o.strategy == fit::kHybrid ? 2 : 1);
   const double worst = per_evaluation * evaluations;

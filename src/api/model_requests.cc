@@ -128,9 +128,7 @@ namespace {
 constexpr const char* kZeroResponse =
     "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, --force-x 0) or "
     "the force is 0 (--force-amplitude)";
-}  // namespace
 
-namespace {
 // --noise-model, parsed; its error with the constraint alone after the flag ("noise model 'x': constraint").
 signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text) {
   try {

@@ -26,6 +26,14 @@ namespace {
 const toml::node& as_node(const void* p) { return *static_cast<const toml::node*>(p); }
 const toml::table& as_table(const void* p) { return *static_cast<const toml::table*>(p); }
 
+// The first key of the table not among `valid`, with its line; an empty key when every one is.
+std::pair<std::string, int> first_unknown(const void* table, const std::vector<std::string>& valid) {
+  for (auto&& [key, node] : as_table(table))
+    if (std::find(valid.begin(), valid.end(), std::string(key.str())) == valid.end())
+      return {std::string(key.str()), static_cast<int>(key.source().begin.line)};
+  return {"", 0};
+}
+
 std::string range_text(int min, int max) {
   return max == std::numeric_limits<int>::max() ? "must be >= " + std::to_string(min)
                                                 : "must be in " + std::to_string(min) + ".." + std::to_string(max);
@@ -254,17 +262,15 @@ void Table::finish(const std::vector<std::string>& valid) const {
 }
 
 void Table::only_keys(const std::vector<std::string>& valid) const {
-  for (auto&& [key, node] : as_table(table_))
-    if (std::find(valid.begin(), valid.end(), std::string(key.str())) == valid.end())
-      throw InputError(source() + ":" + std::to_string(key.source().begin.line) + ": unknown key " + prefix_ +
-                       std::string(key.str()) + ": valid keys are " + join(valid));
+  if (const auto [key, line] = first_unknown(table_, valid); !key.empty())
+    throw InputError(source() + ":" + std::to_string(line) + ": unknown key " + prefix_ + key + ": valid keys are " +
+                     join(valid));
 }
 
 void Table::only_tables(const std::vector<std::string>& valid) const {
-  for (auto&& [key, node] : as_table(table_))
-    if (std::find(valid.begin(), valid.end(), std::string(key.str())) == valid.end())
-      throw InputError(source() + ":" + std::to_string(key.source().begin.line) + ": unknown table [" +
-                       std::string(key.str()) + "]: valid tables are " + join(valid));
+  if (const auto [key, line] = first_unknown(table_, valid); !key.empty())
+    throw InputError(source() + ":" + std::to_string(line) + ": unknown table [" + key + "]: valid tables are " +
+                     join(valid));
 }
 
 void Table::element_fail(const std::string& key, const Node& item, const std::string& value,

@@ -37,6 +37,11 @@ inline constexpr double kMaxStudyUnits = 1e6;
 // Measured resource use (peak RSS and wall time on this machine, `/usr/bin/time`), for the estimates that guard a
 // run before it starts (apps/command_flags.cc, study/run/runner.cc):
 inline constexpr double kSecondsPerEvaluationAtN200 = 3.2;  // one model evaluation, growing as N^3
+// One model evaluation's decomposition at order N, s: kSecondsPerEvaluationAtN200 (N / 200)^3.
+inline double seconds_per_evaluation(double elements) {
+  const double r = elements / 200.0;
+  return kSecondsPerEvaluationAtN200 * r * r * r;
+}
 // A simulated record's share of one evaluation, per sample and element (measured: 0.034 s for 1e6 samples at N = 8,
 // time cost).
 inline constexpr double kSecondsPerSampleAndElement = 4.3e-9;

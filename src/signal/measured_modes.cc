@@ -172,6 +172,13 @@ std::vector<double> companions(const IdentifiedMode& mode, const PencilDiagnosti
   return found;
 }
 
+// A segment's estimate moved toward the whole record's by twice its own sd: what of its difference its noise cannot
+// explain (an sd that is not finite counts as 0).
+double beyond_noise(double whole, double segment, double sd) {
+  const double d = segment - whole, noise = std::isfinite(sd) ? sd : 0;
+  return whole + std::copysign(std::max(0.0, std::abs(d) - 2 * noise), d);
+}
+
 // Drift, span and uncertainty from the estimates gathered (the header's formulas).
 void summarise(MeasuredMode& m) {
   double low = m.mode.frequency_hz, high = low;
@@ -184,9 +191,7 @@ void summarise(MeasuredMode& m) {
     // By what it differs beyond twice its own noise: a weak mode's later segments scattered by their noise alone and
     // took u to 4.5 times the scatter over noise draws (26.6 Hz; the seventeenth pass's P3), while a drift many times
     // its noise (a nonlinear clamp's) is kept whole but for 2 sd.
-    const double f = m.mode.frequency_hz, d = m.segment_hz[s] - f;
-    const double sd = std::isfinite(m.segment_sd_hz[s]) ? m.segment_sd_hz[s] : 0;
-    widen(f + std::copysign(std::max(0.0, std::abs(d) - 2 * sd), d));
+    widen(beyond_noise(m.mode.frequency_hz, m.segment_hz[s], m.segment_sd_hz[s]));
     if (first < 0) first = static_cast<int>(s);
     last = static_cast<int>(s);
   }
@@ -207,9 +212,7 @@ void summarise(MeasuredMode& m) {
   double slow = whole, fast = whole;
   for (std::size_t s = 0; s < m.segment_decay_1_s.size(); ++s) {
     if (!std::isfinite(m.segment_decay_1_s[s])) continue;
-    const double d = m.segment_decay_1_s[s] - whole;
-    const double sd = std::isfinite(m.segment_sd_hz[s]) ? 2 * std::numbers::pi * m.segment_sd_hz[s] : 0;
-    const double beyond = whole + std::copysign(std::max(0.0, std::abs(d) - 2 * sd), d);
+    const double beyond = beyond_noise(whole, m.segment_decay_1_s[s], 2 * std::numbers::pi * m.segment_sd_hz[s]);
     slow = std::min(slow, beyond), fast = std::max(fast, beyond);
   }
   m.decay_uncertainty_1_s = std::hypot(2 * std::numbers::pi * noise, 0.5 * (fast - slow));

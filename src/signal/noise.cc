@@ -37,12 +37,7 @@ double rms(const std::vector<double>& signal) {
 }
 
 std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed) {
-  if (level == 0) return clean;
-  const double sigma = level * rms(clean);
-  const std::vector<double> g = gaussian_deviates(seed, clean.size());
-  std::vector<double> z(clean.size());
-  for (std::size_t i = 0; i < clean.size(); ++i) z[i] = clean[i] + sigma * g[i];
-  return z;
+  return add_noise(clean, level, seed, NoiseModel{});
 }
 
 namespace {
@@ -51,19 +46,41 @@ constexpr std::size_t kMaxArOrder = 32;
 constexpr double kMaxAlpha = 4;
 
 // The AR filter's impulse response h (h_0 = 1, h_i = sum_j a_j h_{i-j}) until it has stayed below 1e-12 of its peak
-// for p + 1 steps, or `limit` terms.
-std::vector<double> impulse_response(const std::vector<double>& a, std::size_t limit) {
-  std::vector<double> h{1.0};
+// for p + 1 steps, with its energy sum h_i^2, the variance of the process driven by unit innovations.
+struct ArResponse {
+  std::vector<double> h;
+  double energy = 0;
+};
+ArResponse ar_response(const std::vector<double>& a) {
+  constexpr std::size_t kLimit = 10'000'000;
+  ArResponse r{{1.0}, 1.0};
   double peak = 1;
   std::size_t quiet = 0;
-  while (h.size() < limit && quiet <= a.size()) {
+  while (r.h.size() < kLimit && quiet <= a.size()) {
     double v = 0;
-    for (std::size_t j = 0; j < a.size() && j < h.size(); ++j) v += a[j] * h[h.size() - 1 - j];
-    h.push_back(v);
+    for (std::size_t j = 0; j < a.size() && j < r.h.size(); ++j) v += a[j] * r.h[r.h.size() - 1 - j];
+    r.h.push_back(v);
+    r.energy += v * v;
     peak = std::max(peak, std::abs(v));
     quiet = std::abs(v) < 1e-12 * peak ? quiet + 1 : 0;
   }
-  return h;
+  return r;
+}
+
+// Power-law noise's bin gains H_k = k^(-alpha/2), k = 0..n/2 (0 at DC), and P, the sum of |H_k|^2 over the whole
+// spectrum (the bins 1..n/2 - 1 twice, Nyquist once for an even n): y = c2r(H Z) has E[y_i^2] = P.
+struct PowerGains {
+  std::vector<double> gain;
+  double power = 0;
+};
+PowerGains power_gains(double alpha, int n) {
+  PowerGains g{std::vector<double>(static_cast<std::size_t>(n / 2 + 1), 0.0), 0.0};
+  for (int k = 1; k <= n / 2; ++k) {
+    const double h = std::pow(static_cast<double>(k), -alpha / 2);
+    g.gain[static_cast<std::size_t>(k)] = h;
+    g.power += (n % 2 == 0 && k == n / 2 ? 1 : 2) * h * h;
+  }
+  return g;
 }
 
 // The largest root modulus of z^p - a1 z^{p-1} - ... - ap (the companion matrix's spectral radius): the process is
@@ -79,10 +96,8 @@ double spectral_radius(const std::vector<double>& a) {
 std::vector<double> ar_deviates(const std::vector<double>& a, std::uint64_t seed, std::size_t count) {
   // Unit stationary variance: the innovations scaled by 1 / sqrt(sum h_i^2); a burn-in as long as the impulse
   // response starts the record in the stationary state (the deviates before it are discarded).
-  const std::vector<double> h = impulse_response(a, 10'000'000);
-  double energy = 0;
-  for (double v : h) energy += v * v;
-  const std::size_t burn = h.size();
+  const ArResponse response = ar_response(a);
+  const std::size_t burn = response.h.size();
   const std::vector<double> g = gaussian_deviates(seed, burn + count);
   std::vector<double> e(burn + count, 0.0);
   for (std::size_t i = 0; i < e.size(); ++i) {
@@ -90,7 +105,7 @@ std::vector<double> ar_deviates(const std::vector<double>& a, std::uint64_t seed
     for (std::size_t j = 0; j < a.size() && j < i; ++j) v += a[j] * e[i - 1 - j];
     e[i] = v;
   }
-  const double scale = 1 / std::sqrt(energy);
+  const double scale = 1 / std::sqrt(response.energy);
   std::vector<double> out(count);
   for (std::size_t i = 0; i < count; ++i) out[i] = scale * e[burn + i];
   return out;
@@ -98,22 +113,21 @@ std::vector<double> ar_deviates(const std::vector<double>& a, std::uint64_t seed
 
 std::vector<double> power_deviates(double alpha, std::uint64_t seed, std::size_t count) {
   if (count < 4) return gaussian_deviates(seed, count);  // no band to shape
-  // Complex Gaussian bins of unit mean power, shaped by k^(-alpha/2) for k = 1..n/2 (0 at DC), then the inverse DFT:
-  // E[y_i^2] = sum over the whole spectrum of |H_k|^2, by which it is divided.
+  // Complex Gaussian bins of unit mean power, shaped by k^(-alpha/2) for k = 1..n/2 (0 at DC), then the inverse DFT,
+  // divided by the square root of its expected power.
   const int n = static_cast<int>(count);
+  const PowerGains shape = power_gains(alpha, n);
   const std::vector<double> g = gaussian_deviates(seed, 2 * static_cast<std::size_t>(n / 2 + 1));
   std::vector<std::complex<double>> half(static_cast<std::size_t>(n / 2 + 1));
-  double power = 0;
   for (int k = 1; k <= n / 2; ++k) {
-    const double gain = std::pow(static_cast<double>(k), -alpha / 2);
-    const bool nyquist = n % 2 == 0 && k == n / 2;  // a real bin, counted once
+    const double gain = shape.gain[static_cast<std::size_t>(k)];
+    const bool nyquist = n % 2 == 0 && k == n / 2;  // a real bin
     const auto i = static_cast<std::size_t>(k);
     half[i] = nyquist ? std::complex<double>(gain * g[2 * i], 0)
                       : gain * std::complex<double>(g[2 * i], g[2 * i + 1]) / std::sqrt(2.0);
-    power += (nyquist ? 1 : 2) * gain * gain;
   }
   std::vector<double> y = inverse_real_dft(half, n);
-  const double scale = 1 / std::sqrt(power);
+  const double scale = 1 / std::sqrt(shape.power);
   for (double& v : y) v *= scale;
   return y;
 }
@@ -168,9 +182,9 @@ Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) {
   if (model.kind == "ar") {
     const std::vector<double>& a = model.ar;
     const auto p = static_cast<Eigen::Index>(a.size());
-    const std::vector<double> h = impulse_response(a, 10'000'000);
-    double energy = 0;
-    for (double v : h) energy += v * v;
+    const ArResponse response = ar_response(a);
+    const std::vector<double>& h = response.h;
+    const double energy = response.energy;
     // The autocorrelation rho(l) = sum_m h_m h_{m+l} / sum h^2 of the unit-variance process.
     const auto rho = [&](Eigen::Index l) {
       double r = 0;
@@ -194,10 +208,8 @@ Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) {
     return w;
   }
   if (model.kind == "power" && n >= 4) {
-    // lambda_k = n |H_k|^2 / P, the unitary DFT's noise variance at bin k (power_deviates), H_k = k^(-alpha/2).
-    double power = 0;
-    for (Eigen::Index k = 1; k <= n / 2; ++k)
-      power += (n % 2 == 0 && k == n / 2 ? 1 : 2) * std::pow(static_cast<double>(k), -model.alpha);
+    // lambda_k = n |H_k|^2 / P, the unitary DFT's noise variance at bin k (power_deviates).
+    const PowerGains shape = power_gains(model.alpha, static_cast<int>(n));
     Dft dft(static_cast<int>(n), 1.0);
     Eigen::MatrixXd w(n, x.cols());
     for (Eigen::Index c = 0; c < x.cols(); ++c) {
@@ -205,7 +217,8 @@ Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) {
       std::vector<std::complex<double>> half = dft.transform(column).half;
       half[0] = 0;  // no noise, no information: the offset is left out
       for (Eigen::Index k = 1; k <= n / 2; ++k) {
-        const double lambda = static_cast<double>(n) * std::pow(static_cast<double>(k), -model.alpha) / power;
+        const double gain = shape.gain[static_cast<std::size_t>(k)];
+        const double lambda = static_cast<double>(n) * gain * gain / shape.power;
         half[static_cast<std::size_t>(k)] /= std::sqrt(lambda);
       }
       const std::vector<double> y = inverse_real_dft(half, static_cast<int>(n));
@@ -225,7 +238,6 @@ std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, 
 
 std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed,
                               const NoiseModel& model) {
-  if (model.kind == "white") return add_noise(clean, level, seed);
   if (level == 0) return clean;
   const double sigma = level * rms(clean);
   const std::vector<double> e = model_deviates(model, seed, clean.size());

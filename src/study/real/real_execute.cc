@@ -231,7 +231,7 @@ void log_what_runs(const RealStudySpec& spec, const RealResults& out, std::ostre
   log << "), " << spec.candidates.size() << " candidate(s) x " << spec.costs.size()
       << " cost(s) at N = " << spec.elements << "\n";
   // The command line's N^3 warning (api/experiment_request.cc), here too: at N = 400 the study was silent for minutes.
-  const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(spec.elements / 200.0, 3);
+  const double seconds = core::seconds_per_evaluation(spec.elements);
   if (seconds > 1)
     log << "beamid real: fit.elements = " << spec.elements << ": one model evaluation takes about "
         << io::seconds_text(seconds) << " here (it grows as N^3), and a fit takes hundreds\n";

@@ -1,7 +1,6 @@
 #include "study/run/estimate.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -60,15 +59,14 @@ std::string label_of(const GroupKey& key) {
   return label;
 }
 
-}  // namespace
-
 // An untimed unit's seconds: kSecondsPerUntimedUnit, or its model evaluations' cost where that is more (estimate.h).
 double untimed_seconds(const Unit& u, int truth_elements) {
   const bool truth = u.kind == UnitKind::Truth;
-  const int n = truth ? truth_elements : u.elements;
-  const double evaluation = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200.0, 3);
+  const double evaluation = core::seconds_per_evaluation(truth ? truth_elements : u.elements);
   return std::max(kSecondsPerUntimedUnit, (truth ? kTruthEvaluations : kFitEvaluations) * evaluation);
 }
+
+}  // namespace
 
 PlanEstimate estimate_plan(const std::vector<const Unit*>& units, const std::string& timings_path, int truth_elements) {
   const Timings t = read_timings(timings_path);

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <unordered_set>
 
 #include "core/errors.h"
 #include "core/limits.h"
@@ -111,7 +112,7 @@ void say_model_cost(const StudySpec& spec, const std::vector<const Unit*>& mine,
   for (const Unit* u : mine) fitted = std::max(fitted, u->elements);
   for (const auto& [what, n, count] : {std::tuple{"truth.elements", spec.truth.elements, "each truth record"},
                                        std::tuple{"the largest fitted N", fitted, "each of a fit's hundreds"}}) {
-    const double seconds = core::kSecondsPerEvaluationAtN200 * std::pow(n / 200.0, 3);
+    const double seconds = core::seconds_per_evaluation(n);
     if (seconds > 1)
       log << "beamid study: " << what << " = " << n << ": one model evaluation (" << count << ") takes about "
           << io::seconds_text(seconds) << " here (it grows as N^3)\n"
@@ -146,6 +147,21 @@ ToRun to_run(const StudySpec& spec, const Plan& plan, const std::vector<const Un
     }
   }
   return out;
+}
+
+// The units of the plan in the store, and how many of this run's (`mine`, computed now or reused) failed: counted only
+// among those computed now, a resumed study said 0 failed cases beside tables that held 2 (the twentieth pass's P8).
+// One read of each record serves both counts.
+std::pair<int, int> present_and_failed(const StudySpec& spec, const Plan& plan, const std::vector<const Unit*>& mine,
+                                       const Store& store) {
+  const std::unordered_set<const Unit*> own(mine.begin(), mine.end());
+  int present = 0, failed = 0;
+  for (const Unit& u : plan.units)
+    if (const auto r = load_unit(store, u, spec.fit.estimate)) {
+      ++present;
+      if (own.count(&u) && r->text("status").rfind("failed", 0) == 0) ++failed;
+    }
+  return {present, failed};
 }
 
 }  // namespace
@@ -240,14 +256,8 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
     });
   }
   summary.computed = static_cast<int>(pending.size());
-  // Over every unit of this run, reused ones too: counted only among those computed now, a resumed study said 0 failed
-  // cases beside tables that held 2 (the twentieth pass's P8). `failed` above counts the progress line's.
-  summary.failed = 0;
-  for (const Unit* u : mine)
-    if (const auto r = load_unit(store, *u, spec.fit.estimate); r && r->text("status").rfind("failed", 0) == 0)
-      ++summary.failed;
-  int present = 0;
-  for (const Unit& u : plan.units) present += load_unit(store, u, spec.fit.estimate) ? 1 : 0;
+  const auto [present, failed_units] = present_and_failed(spec, plan, mine, store);
+  summary.failed = failed_units;
   if (present == static_cast<int>(plan.units.size())) {
     write_tables(spec, plan, store, options.output_dir, log);
     summary.tables = true;
