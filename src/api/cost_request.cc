@@ -35,6 +35,16 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
   return o;
 }
 
+signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text) {
+  try {
+    return signal::parse_noise_model(text);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::size_t cut = what.find("': ");
+    refuse(caller, "noise-model", text, cut == std::string::npos ? what : what.substr(cut + 3));
+  }
+}
+
 signal::WindowOptions window_options(const WindowRequest& request, const Caller& caller) {
   signal::WindowOptions w;
   w.name = request.name.value_or(w.name);
@@ -80,6 +90,8 @@ void refuse_unused(const CostRequest& request, const Caller& caller, const std::
             request.model_poles.value_or(""), "the spike-smooth cost");
   refuse_if(request.mode_weight.has_value(), &costs::CostUses::mode_weight, "mode-weight",
             request.mode_weight.value_or(""), "the modal cost");
+  refuse_if(request.noise_model.has_value(), &costs::CostUses::noise_model, "noise-model",
+            request.noise_model.value_or(""), "the time and freq-ml costs");
   if (request.unknown_amplitude && !uses(&costs::CostUses::unknown_amplitude))
     refuse(caller, "--unknown-amplitude frees the amplitude of a cost that compares amplitudes; cost " + named +
                        " compares frequencies and decay rates only");
@@ -113,6 +125,7 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.model_poles = request.model_poles.value_or(o.model_poles);
   o.mode_weight = request.mode_weight.value_or(o.mode_weight);
   o.frequency_weight = request.frequency_weight.value_or(costs::kRelativeWeight);
+  if (request.noise_model) o.noise_model = parsed_noise_model(caller, *request.noise_model).text();
   if (auto error = costs::validation_error(o)) refuse(caller, *error);
   return o;
 }

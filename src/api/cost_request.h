@@ -9,6 +9,7 @@
 
 #include "api/request.h"
 #include "costs/cost.h"
+#include "signal/noise.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 
@@ -42,11 +43,15 @@ struct CostRequest {
   // records keep the paper's Hz.
   // (unset: relative).
   std::optional<std::string> frequency_weight;
+  std::optional<std::string> noise_model;  // --noise-model: the noise time and freq-ml assume (default white)
 };
 
 // The options a request gives, validated (InputError naming the field, value and constraint).
 signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& caller);
 signal::WindowOptions window_options(const WindowRequest& request, const Caller& caller);
+// --noise-model, parsed (signal/noise.h); its error with the constraint alone after the flag ("noise model 'x':
+// constraint").
+signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text);
 // `also`: the other costs the same request configures (a hybrid fit's refinement), so that an option either cost
 // reads is not refused as unused.
 costs::CostOptions cost_options(const CostRequest& request, const Caller& caller,

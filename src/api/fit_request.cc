@@ -164,7 +164,7 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
   // A free decay fitted by the time or freq-band cost: --detrend linear fits a linear trend beside the constant in
   // the closed-form amplitudes (simulation/free_decay.h), which a drifting sensor needs (the eighteenth pass's P5:
   // refused, the drift was left in the residual); mean is the constant they always fit.
-  const bool least_squares = o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost;
+  const bool least_squares = o.cost.name == costs::kTimeCost || costs::is_band_cost(o.cost.name);
   if (request.detrend && least_squares && o.experiment.excitation == simulation::kFreeDecay && !request.welch) {
     if (*request.detrend == signal::kDetrendNone)
       refuse(caller, "detrend", *request.detrend,
@@ -184,7 +184,7 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
   if (request.welch) {
     // The time and freq-band costs pick no spike: --welch changed nothing there, while stderr said the spikes were
     // picked on Welch's average (the sixteenth pass's P5).
-    if (o.cost.name == costs::kTimeCost || o.cost.name == costs::kBandCost)
+    if (o.cost.name == costs::kTimeCost || costs::is_band_cost(o.cost.name))
       refuse(caller, "welch", std::to_string(*request.welch),
              "picks the spikes of the spike, spike-smooth and modal costs; the " + o.cost.name + " cost has none");
     o.cost.spikes.frequencies_hz = welch_picks(request, data, o.cost);
@@ -222,6 +222,14 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     refuse(caller,
            "--unknown-amplitude frees the excitation's amplitude; a free decay has none, and its modal amplitudes are "
            "solved against the record already");
+  // The free decay's modal amplitudes are solved by unweighted least squares against the record
+  // (simulation/free_decay.h): with a coloured noise model that synthesis is not the generalised one the cost assumes,
+  // so the fit would be neither least squares nor maximum likelihood. Refused until the synthesis is whitened too.
+  if (request.cost.noise_model && o.experiment.excitation == simulation::kFreeDecay &&
+      parsed_noise_model(caller, *request.cost.noise_model).kind != "white")
+    refuse(caller, "noise-model", *request.cost.noise_model,
+           "needs a modelled excitation (pulse, pluck): a free decay's modal amplitudes are fitted unweighted, which "
+           "a coloured noise model's likelihood does not allow");
   // A hybrid fit's refinement reads the same request's options (its window, its spikes).
   o.cost = cost_options(request.cost, caller,
                         request.strategy == fit::kHybrid ? std::vector<std::string>{request.refine.value_or(o.refine)}

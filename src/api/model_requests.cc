@@ -5,6 +5,7 @@
 #include <numbers>
 #include <ostream>
 
+#include "api/cost_request.h"
 #include "api/model_notes.h"
 #include "core/errors.h"
 #include "core/limits.h"
@@ -129,16 +130,6 @@ constexpr const char* kZeroResponse =
     "the response is zero at every sample: the sensor or the force is at a rigid clamp (--sensor-x, --force-x 0) or "
     "the force is 0 (--force-amplitude)";
 
-// --noise-model, parsed; its error with the constraint alone after the flag ("noise model 'x': constraint").
-signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text) {
-  try {
-    return signal::parse_noise_model(text);
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    const std::size_t cut = what.find("': ");
-    refuse(caller, "noise-model", text, cut == std::string::npos ? what : what.substr(cut + 3));
-  }
-}
 }  // namespace
 
 SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings) {

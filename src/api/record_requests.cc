@@ -203,7 +203,7 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
            "use it in fit");
   // What picks spikes (their number, chosen frequencies) and their band, where the cost reads neither: in fit they
   // also choose the modes compared at the estimate; here nothing reads them (the fourth pass's Q511, Q524-Q537).
-  const bool picks = costs::is_spike_cost(request.cost.name), band = picks || request.cost.name == costs::kBandCost;
+  const bool picks = costs::is_spike_cost(request.cost.name), band = picks || costs::is_band_cost(request.cost.name);
   const SpikeRequest& spikes = request.cost.spikes;
   if (!picks && spikes.count)
     refuse(caller, "spikes", std::to_string(*spikes.count),

@@ -58,6 +58,7 @@ api::CostRequest cost_request_of(const Flags& a) {
   if (a.has("model-poles")) r.model_poles = a.text("model-poles");
   if (a.has("mode-weight")) r.mode_weight = a.text("mode-weight");
   if (a.has("frequency-weight")) r.frequency_weight = a.text("frequency-weight");
+  if (a.has("noise-model")) r.noise_model = a.text("noise-model");
   return r;
 }
 

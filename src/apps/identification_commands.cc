@@ -83,6 +83,9 @@ std::vector<FlagSpec> cost_flags(bool required) {
   flags.push_back(
       text_flag("frequency-weight", "spike costs: " + costs::frequency_weight_names().alternatives() +
                                         " (default relative: a record read from a file is a measured one)"));
+  flags.push_back(text_flag("noise-model",
+                            "time, freq-ml: the noise assumed, white | ar:a1,... | power:alpha (time: least squares "
+                            "on the prewhitened record; freq-ml: each bin over its variance; default white)"));
   return flags;
 }
 

@@ -8,6 +8,7 @@
 #include "costs/least_squares.h"
 #include "costs/modal_cost.h"
 #include "costs/spike_costs.h"
+#include "signal/noise.h"
 
 namespace beamid::costs {
 namespace {
@@ -41,6 +42,7 @@ const core::NameSet& cost_names() {
        {kSpikeCost, "the paper's DFT spike cost (3.5), as written"},
        {kSpikeSmoothCost, "sub-bin frequencies, decay rates and magnitudes of the spikes"},
        {kBandCost, "least squares on the complex DFT bins of a frequency band (the transient modelled)"},
+       {kMaxLikelihoodCost, "freq-band weighted by the noise's variance at each bin (maximum likelihood)"},
        {kModalCost, "relative eigenvalue errors against the modes the matrix pencil identifies in the data"}});
   return names;
 }
@@ -67,15 +69,18 @@ const core::NameSet& model_pole_names() {
 }
 
 bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
+bool is_band_cost(const std::string& name) { return name == kBandCost || name == kMaxLikelihoodCost; }
 
 CostUses cost_uses(const std::string& name) {
   CostUses u;
+  // freq-ml's weights are the noise's variance through the rectangular window (signal::model_bin_variance).
   u.window = is_spike_cost(name) || name == kBandCost;
   u.spike_rule = is_spike_cost(name);
   u.frequency_weight = is_spike_cost(name);
   u.model_poles = name == kSpikeSmoothCost;
   u.unknown_amplitude = name != kModalCost;
   u.mode_weight = name == kModalCost;
+  u.noise_model = name == kTimeCost || name == kMaxLikelihoodCost;
   return u;
 }
 
@@ -103,6 +108,11 @@ std::optional<std::string> validation_error(const CostOptions& o) {
       return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
   if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
   if (auto error = mode_weight_names().violation("mode_weight", o.mode_weight)) return error;
+  try {
+    signal::parse_noise_model(o.noise_model);
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
   return std::nullopt;
 }
 
@@ -114,7 +124,8 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
       throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
   if (options.name == kTimeCost) return make_time_cost(options, std::move(data));
   if (options.name == kSpikeCost) return make_spike_cost(options, std::move(data), dt_s);
-  if (options.name == kBandCost) return make_band_cost(options, std::move(data), dt_s);
+  if (options.name == kBandCost || options.name == kMaxLikelihoodCost)
+    return make_band_cost(options, std::move(data), dt_s);
   if (options.name == kModalCost) return make_modal_cost(options, std::move(data), dt_s);
   if (options.name == kSpikeSmoothCost) return make_smooth_spike_cost(options, std::move(data), dt_s);
   throw std::logic_error("make_cost: cost '" + options.name + "' is in cost_names() but has no constructor");

@@ -13,6 +13,9 @@
 //                   swap when model peaks trade heights.
 //   "freq-band"     J_B = sum_{k in band} w_k |a U(k) - Z(k)|^2, least squares on the complex DFT bins of
 //                   [min_frequency, max_frequency] (costs/least_squares.h); J_T / Nbar on the full band.
+//   "freq-ml"       J_ML = sum_{k in band} w_k |a U(k) - Z(k)|^2 / sigma^2(k): freq-band weighted by the noise's
+//                   variance at each bin, the frequency-domain maximum-likelihood (output-error) cost for Gaussian
+//                   noise (costs/least_squares.h); sigma^2(k) from the noise model ("noise_model").
 //   "modal"         relative errors of the model's eigenvalues against the modes the matrix pencil identifies in the
 //                   data's free decay (costs/modal_cost.h).
 // Data spikes k^z_l and their 20 % supports (n_l, N_l) come from the data only, once; for "spike", model spikes k^u_l
@@ -56,8 +59,9 @@ namespace beamid::costs {
 inline const std::string kTimeCost = "time";
 inline const std::string kSpikeCost = "spike";
 inline const std::string kSpikeSmoothCost = "spike-smooth";
-inline const std::string kBandCost = "freq-band";  // costs/least_squares.h
-inline const std::string kModalCost = "modal";     // costs/modal_cost.h
+inline const std::string kBandCost = "freq-band";         // costs/least_squares.h
+inline const std::string kModalCost = "modal";            // costs/modal_cost.h
+inline const std::string kMaxLikelihoodCost = "freq-ml";  // costs/least_squares.h
 const core::NameSet& cost_names();
 
 // The spike costs' frequency weightings by name (above).
@@ -91,17 +95,24 @@ struct CostOptions {
   // ("linear", signal/spikes.h), so that their leakage into the lowest bins is not taken for a mode; the picked
   // bins' magnitudes and supports are then read from the record as it is, which the model is compared with.
   std::string pick_detrend = "none";
+  // The noise the least-squares costs assume (signal/noise.h: white, ar:a1,..., power:alpha): "time" is then least
+  // squares on the record prewhitened by it (generalised least squares, the time-domain maximum likelihood), and
+  // "freq-ml" weighs each bin by its variance (signal::model_bin_variance). Its level does not matter: the estimate
+  // depends on the noise's colour alone, and the standard errors take the level from the residuals.
+  std::string noise_model = "white";
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);
 bool is_spike_cost(const std::string& name);
+// The costs on the complex DFT bins of a band (freq-band, freq-ml).
+bool is_band_cost(const std::string& name);
 // Which of the options a cost reads, so that one it does not read is refused rather than ignored (a --window hann on
 // the time cost gave the same fit as without it). The DFT costs (spike, spike-smooth, freq-band) read the window; the
 // spike costs pick peaks by a rule with artefacts skipped and weigh frequencies; spike-smooth alone may take its model
 // poles from the eigenvalues; every cost but modal (frequencies and decay rates only) may leave the amplitude free.
 struct CostUses {
   bool window = false, spike_rule = false, frequency_weight = false, model_poles = false, unknown_amplitude = false;
-  bool mode_weight = false;
+  bool mode_weight = false, noise_model = false;
 };
 CostUses cost_uses(const std::string& name);
 

@@ -3,13 +3,24 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "signal/noise.h"
 
 namespace beamid::costs {
 namespace {
 
 class TimeCost final : public Cost {
  public:
-  TimeCost(CostOptions options, std::vector<double> data) : options_(std::move(options)), z_(std::move(data)) {}
+  // With a coloured noise model, everything is compared after the whitening W (W^T W = R^-1, signal::Whitener), so
+  // that |W (a y - z)|^2 is the Gaussian negative log-likelihood's quadratic form: generalised least squares.
+  TimeCost(CostOptions options, std::vector<double> data) : options_(std::move(options)), z_(std::move(data)) {
+    const signal::NoiseModel noise = signal::parse_noise_model(options_.noise_model);
+    if (noise.kind != "white") {
+      whitener_ = std::make_unique<signal::Whitener>(noise, static_cast<Eigen::Index>(z_.size()));
+      const Eigen::Map<const Eigen::VectorXd> z(z_.data(), static_cast<Eigen::Index>(z_.size()));
+      const Eigen::MatrixXd zw = whitener_->apply(z);
+      z_.assign(zw.data(), zw.data() + zw.size());
+    }
+  }
   const CostOptions& options() const override { return options_; }
   int residual_count() const override { return static_cast<int>(z_.size()); }
   const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
@@ -21,7 +32,8 @@ class TimeCost final : public Cost {
       e.status = *why;
       return e;
     }
-    const Eigen::Map<const Eigen::VectorXd> y(model.y.data(), static_cast<Eigen::Index>(model.y.size()));
+    const Eigen::Map<const Eigen::VectorXd> raw(model.y.data(), static_cast<Eigen::Index>(model.y.size()));
+    const Eigen::VectorXd y = whitener_ ? Eigen::VectorXd(whitener_->apply(raw)) : Eigen::VectorXd(raw);
     const Eigen::Map<const Eigen::VectorXd> z(z_.data(), static_cast<Eigen::Index>(z_.size()));
     if (options_.unknown_amplitude) {
       // min_a |a y - z|^2: the response is linear in the excitation amplitude.
@@ -34,7 +46,7 @@ class TimeCost final : public Cost {
   }
   bool has_output_jacobian() const override { return !options_.unknown_amplitude; }
   Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
-    return dy;  // r = y - z
+    return whitener_ ? whitener_->apply(dy) : dy;  // r = W (y - z)
   }
   std::optional<double> zero_model_value() const override {
     double sum = 0;
@@ -44,7 +56,8 @@ class TimeCost final : public Cost {
 
  private:
   CostOptions options_;
-  std::vector<double> z_;
+  std::vector<double> z_;  // W z with a coloured noise model
+  std::unique_ptr<signal::Whitener> whitener_;
   std::vector<SpikePair> no_spikes_;
 };
 
@@ -53,16 +66,24 @@ class BandCost final : public Cost {
   BandCost(CostOptions options, const std::vector<double>& data, double dt_s)
       : options_(std::move(options)), dft_(static_cast<int>(data.size()), dt_s, options_.window) {
     data_ = dft_.transform(data);
+    // freq-ml: each bin over its noise variance; a bin without noise (power-law noise's offset) carries no
+    // likelihood term and is left out.
+    const bool ml = options_.name == kMaxLikelihoodCost;
+    const std::vector<double> variance =
+        ml ? signal::model_bin_variance(signal::parse_noise_model(options_.noise_model), data_.samples)
+           : std::vector<double>(static_cast<std::size_t>(data_.last_bin() + 1), 1.0);
     for (int k = 0; k <= data_.last_bin(); ++k) {
       const double f = data_.frequency_hz(k);
       if (f < options_.spikes.min_frequency_hz || f > options_.spikes.max_frequency_hz) continue;
+      const double v = variance[static_cast<std::size_t>(k)];
+      if (!(v > 0)) continue;
       bins_.push_back(k);
       const bool single = k == 0 || (data_.samples % 2 == 0 && k == data_.last_bin());
-      weights_.push_back(single ? 1.0 : std::sqrt(2.0));
+      weights_.push_back(std::sqrt((single ? 1.0 : 2.0) / v));
     }
     if (bins_.empty())
-      throw InputError("cost freq-band: the band [" + format_value(options_.spikes.min_frequency_hz) + ", " +
-                       format_value(options_.spikes.max_frequency_hz) +
+      throw InputError("cost " + options_.name + ": the band [" + format_value(options_.spikes.min_frequency_hz) +
+                       ", " + format_value(options_.spikes.max_frequency_hz) +
                        "] Hz holds no DFT bin (df = " + format_value(data_.df_hz()) + " Hz, Nyquist " +
                        format_value(data_.frequency_hz(data_.last_bin())) + " Hz)");
   }
@@ -71,7 +92,8 @@ class BandCost final : public Cost {
   const std::vector<SpikePair>& data_spikes() const override { return no_spikes_; }
   std::string weights() const override {
     return "band " + format_value(data_.frequency_hz(bins_.front())) + ".." +
-           format_value(data_.frequency_hz(bins_.back())) + " Hz, " + std::to_string(bins_.size()) + " bins";
+           format_value(data_.frequency_hz(bins_.back())) + " Hz, " + std::to_string(bins_.size()) + " bins" +
+           (options_.name == kMaxLikelihoodCost ? ", each over its " + options_.noise_model + " noise variance" : "");
   }
 
   Evaluation evaluate(const ModelResponse& model) override {

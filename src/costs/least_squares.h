@@ -7,6 +7,13 @@
 // the same window on data and model. w_k counts the conjugate bins above Nbar/2, so on the full band with the
 // rectangular window J_B = J_T / Nbar (Parseval with the 1/Nbar scaling). a = 1, or with an unknown excitation
 // amplitude the closed-form a = Re <U, Z>_w / <U, U>_w. Residuals: sqrt(w_k) (Re, Im) of a U(k) - Z(k).
+//
+// "freq-ml" is the same sum with each bin over the noise's variance there, w_k / sigma^2(k) (signal::model_bin_variance
+// for the cost's noise model, rectangular window): the frequency-domain maximum-likelihood output-error cost for
+// Gaussian noise whose DFT bins are uncorrelated (exactly so for circulant noise, asymptotically for AR noise in a long
+// record; Pintelon and Schoukens ch. 10). With white noise it is Nbar times freq-band. "time" with a coloured noise
+// model compares W y with W z, W the whitening (signal::Whitener): generalised least squares, the exact time-domain
+// maximum likelihood for Gaussian noise of that colour.
 #pragma once
 
 #include <memory>

@@ -193,10 +193,10 @@ void validate(const FitOptions& o) {
   // The refinement is a least-squares cost with a Jacobian (Levenberg-Marquardt from the global estimate): time or
   // freq-band (the efficient ones with a narrow basin), or spike-smooth (a measured record's, under model error),
   // after a global cost (spike-smooth, or modal with starts over the bounds: the route from nominal starts, issue 31).
-  if (o.strategy == kHybrid && o.refine != costs::kTimeCost && o.refine != costs::kBandCost &&
+  if (o.strategy == kHybrid && o.refine != costs::kTimeCost && !costs::is_band_cost(o.refine) &&
       o.refine != costs::kSpikeSmoothCost)
     throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost +
-                     ", " + costs::kSpikeSmoothCost);
+                     ", " + costs::kMaxLikelihoodCost + ", " + costs::kSpikeSmoothCost);
   if (o.strategy == kHybrid && o.refine == o.cost.name)
     throw InputError("refine = '" + o.refine + "': must differ from the cost it refines (cost = '" + o.cost.name +
                      "')");

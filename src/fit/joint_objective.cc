@@ -25,9 +25,10 @@ FitOptions record_options(const FitOptions& options, const Record& record, const
 namespace {
 
 // The factor on a record's residuals in a joint fit (joint_objective.h): time-domain residuals relative to the RMS of
-// the record's data, the dimensionless costs' as they are.
+// the record's data, the dimensionless costs' as they are. freq-band's bins carry the DFT's 1/Nbar, whose residual
+// norm is the time domain's over sqrt(Nbar) (Parseval); freq-ml's are over the bins' noise sd, which restores it.
 double record_weight(const std::string& cost, const std::vector<double>& data) {
-  if (cost != costs::kTimeCost && cost != costs::kBandCost) return 1;
+  if (cost != costs::kTimeCost && !costs::is_band_cost(cost)) return 1;
   double sum = 0;
   for (const double z : data) sum += z * z;
   const double rms = std::sqrt(sum / static_cast<double>(data.size()));

@@ -177,57 +177,117 @@ NoiseModel parse_noise_model(const std::string& text) {
   return fail("must be white, ar:a1,a2,... (autoregressive) or power:alpha (1/f^alpha)");
 }
 
-Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) {
-  const Eigen::Index n = x.rows();
-  if (model.kind == "ar") {
-    const std::vector<double>& a = model.ar;
-    const auto p = static_cast<Eigen::Index>(a.size());
+struct Whitener::Plan {
+  // AR: the first p rows by the Cholesky factor of their stationary correlation, the rest by the prediction-error
+  // filter over the innovations' sd.
+  Eigen::LLT<Eigen::MatrixXd> head;
+  double innovation_sd = 1;
+  // Power: each bin divided by its noise sd in the unitary DFT, sqrt(n |H_k|^2 / P) (power_deviates); the offset bin,
+  // which has none, set to 0.
+  std::vector<double> bin_scale;
+  std::unique_ptr<Dft> dft;
+};
+
+Whitener::Whitener(NoiseModel model, Eigen::Index samples)
+    : model_(std::move(model)), samples_(samples), plan_(std::make_unique<Plan>()) {
+  if (model_.kind == "ar") {
+    const std::vector<double>& a = model_.ar;
     const ArResponse response = ar_response(a);
     const std::vector<double>& h = response.h;
-    const double energy = response.energy;
     // The autocorrelation rho(l) = sum_m h_m h_{m+l} / sum h^2 of the unit-variance process.
     const auto rho = [&](Eigen::Index l) {
       double r = 0;
       for (std::size_t m = 0; m + static_cast<std::size_t>(l) < h.size(); ++m)
         r += h[m] * h[m + static_cast<std::size_t>(l)];
-      return r / energy;
+      return r / response.energy;
     };
-    Eigen::MatrixXd w(n, x.cols());
-    const Eigen::Index head = std::min(p, n);
+    const Eigen::Index head = std::min(static_cast<Eigen::Index>(a.size()), samples_);
     Eigen::MatrixXd gamma(head, head);
     for (Eigen::Index i = 0; i < head; ++i)
       for (Eigen::Index j = 0; j < head; ++j) gamma(i, j) = rho(std::abs(i - j));
-    const Eigen::LLT<Eigen::MatrixXd> first(gamma);
-    w.topRows(head) = first.matrixL().solve(x.topRows(head));
-    const double innovation_sd = 1 / std::sqrt(energy);  // of g_i, for unit process variance
+    plan_->head.compute(gamma);
+    plan_->innovation_sd = 1 / std::sqrt(response.energy);  // of g_i, for unit process variance
+  } else if (model_.kind == "power" && samples_ >= 4) {
+    const PowerGains shape = power_gains(model_.alpha, static_cast<int>(samples_));
+    plan_->bin_scale.assign(static_cast<std::size_t>(samples_ / 2 + 1), 0.0);
+    for (Eigen::Index k = 1; k <= samples_ / 2; ++k) {
+      const double gain = shape.gain[static_cast<std::size_t>(k)];
+      plan_->bin_scale[static_cast<std::size_t>(k)] =
+          1 / std::sqrt(static_cast<double>(samples_) * gain * gain / shape.power);
+    }
+    plan_->dft = std::make_unique<Dft>(static_cast<int>(samples_), 1.0);
+  }
+}
+
+Whitener::~Whitener() = default;
+
+Eigen::MatrixXd Whitener::apply(const Eigen::MatrixXd& x) const {
+  if (x.rows() != samples_)
+    throw InputError("whiten: " + std::to_string(x.rows()) + " rows for a whitener of " + std::to_string(samples_) +
+                     " samples");
+  const Eigen::Index n = samples_;
+  if (model_.kind == "ar") {
+    const std::vector<double>& a = model_.ar;
+    const auto p = static_cast<Eigen::Index>(a.size());
+    Eigen::MatrixXd w(n, x.cols());
+    const Eigen::Index head = std::min(p, n);
+    w.topRows(head) = plan_->head.matrixL().solve(x.topRows(head));
     for (Eigen::Index i = head; i < n; ++i) {
       Eigen::RowVectorXd r = x.row(i);
       for (Eigen::Index j = 0; j < p; ++j) r -= a[static_cast<std::size_t>(j)] * x.row(i - 1 - j);
-      w.row(i) = r / innovation_sd;
+      w.row(i) = r / plan_->innovation_sd;
     }
     return w;
   }
-  if (model.kind == "power" && n >= 4) {
-    // lambda_k = n |H_k|^2 / P, the unitary DFT's noise variance at bin k (power_deviates).
-    const PowerGains shape = power_gains(model.alpha, static_cast<int>(n));
-    Dft dft(static_cast<int>(n), 1.0);
+  if (plan_->dft) {
     Eigen::MatrixXd w(n, x.cols());
+    std::vector<double> column(static_cast<std::size_t>(n));
     for (Eigen::Index c = 0; c < x.cols(); ++c) {
-      const std::vector<double> column(x.col(c).data(), x.col(c).data() + n);
-      std::vector<std::complex<double>> half = dft.transform(column).half;
-      half[0] = 0;  // no noise, no information: the offset is left out
-      for (Eigen::Index k = 1; k <= n / 2; ++k) {
-        const double gain = shape.gain[static_cast<std::size_t>(k)];
-        const double lambda = static_cast<double>(n) * gain * gain / shape.power;
-        half[static_cast<std::size_t>(k)] /= std::sqrt(lambda);
-      }
+      Eigen::Map<Eigen::VectorXd>(column.data(), n) = x.col(c);
+      std::vector<std::complex<double>> half = plan_->dft->transform(column).half;
+      for (std::size_t k = 0; k < half.size(); ++k) half[k] *= plan_->bin_scale[k];
       const std::vector<double> y = inverse_real_dft(half, static_cast<int>(n));
       // Dft's bins carry its 1/n, so the unnormalised inverse of the weighted bins is U^H diag(lambda^-1/2) U x.
-      for (Eigen::Index i = 0; i < n; ++i) w(i, c) = y[static_cast<std::size_t>(i)];
+      w.col(c) = Eigen::Map<const Eigen::VectorXd>(y.data(), n);
     }
     return w;
   }
   return x;
+}
+
+Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& x) { return Whitener(model, x.rows()).apply(x); }
+
+std::vector<double> model_bin_variance(const NoiseModel& model, int samples) {
+  const auto n = static_cast<std::size_t>(samples);
+  const double nd = samples;
+  std::vector<double> variance(n / 2 + 1, 1 / nd);
+  if (model.kind == "power" && samples >= 4) {
+    const PowerGains shape = power_gains(model.alpha, samples);
+    for (std::size_t k = 0; k < variance.size(); ++k) variance[k] = shape.gain[k] * shape.gain[k] / shape.power;
+    return variance;
+  }
+  if (model.kind != "ar" || samples < 2) return variance;
+  // rho(0..p) from the impulse response, the rest by the Yule-Walker recursion.
+  const std::vector<double>& a = model.ar;
+  const ArResponse response = ar_response(a);
+  std::vector<double> rho(n, 0.0);
+  for (std::size_t l = 0; l <= a.size() && l < n; ++l) {
+    double r = 0;
+    for (std::size_t m = 0; m + l < response.h.size(); ++m) r += response.h[m] * response.h[m + l];
+    rho[l] = r / response.energy;
+  }
+  for (std::size_t l = a.size() + 1; l < n; ++l)
+    for (std::size_t j = 0; j < a.size(); ++j) rho[l] += a[j] * rho[l - 1 - j];
+  // The lags folded modulo Nbar: c(m) = ((Nbar - m) rho(m) + m rho(Nbar - m)) / Nbar^2, symmetric in m <-> Nbar - m,
+  // so that its DFT (Dft's 1/Nbar times Nbar) is real.
+  std::vector<double> c(n);
+  c[0] = 1 / nd;
+  for (std::size_t m = 1; m < n; ++m)
+    c[m] = ((nd - static_cast<double>(m)) * rho[m] + static_cast<double>(m) * rho[n - m]) / (nd * nd);
+  Dft dft(samples, 1.0);
+  const Spectrum s = dft.transform(c);
+  for (std::size_t k = 0; k < variance.size(); ++k) variance[k] = nd * s.half[k].real();
+  return variance;
 }
 
 std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, std::size_t count) {

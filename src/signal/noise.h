@@ -8,11 +8,11 @@
 // Seeds are mixed with SplitMix64 (core/hash.h) so that nearby seeds (1, 2, 3, ...) give unrelated streams.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "core/hash.h"
 
@@ -54,6 +54,34 @@ std::vector<double> model_deviates(const NoiseModel& model, std::uint64_t seed, 
 // sd. Power: in the DFT (the model is circulant), each bin divided by its noise sd; the offset bin, where the model
 // has no noise, is left out (it carries no information: an unknown offset). White: X itself.
 Eigen::MatrixXd whiten(const NoiseModel& model, const Eigen::MatrixXd& columns);
+// whiten() prepared once for records of `samples` samples (the AR head's Cholesky factor, the power law's bin scales
+// and its DFT plan), for a cost that whitens every model output. Not thread-safe (it owns a DFT plan).
+class Whitener {
+ public:
+  Whitener(NoiseModel model, Eigen::Index samples);
+  ~Whitener();
+  Whitener(const Whitener&) = delete;
+  Whitener& operator=(const Whitener&) = delete;
+  // InputError unless columns.rows() == samples.
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& columns) const;
+  const NoiseModel& model() const { return model_; }
+
+ private:
+  struct Plan;
+  NoiseModel model_;
+  Eigen::Index samples_;
+  std::unique_ptr<Plan> plan_;
+};
+
+// E|N(k)|^2, k = 0..samples/2, the variance of the noise's DFT bins with the paper's scaling N(k) = (1/Nbar) sum_i
+// n_i e^{-j 2 pi k i / Nbar} (signal/spectrum.h, rectangular window), for the model's noise of unit process variance in
+// a record of `samples` samples: the weights of the frequency-domain maximum-likelihood cost (costs/least_squares.h).
+// White: 1/Nbar. AR, with rho(l) its autocorrelation (Yule-Walker: rho(l) = sum_j a_j rho(l - j) for l >= 1):
+//   E|N(k)|^2 = (1/Nbar^2) sum_{|l| < Nbar} (Nbar - |l|) rho(l) e^{-j 2 pi k l / Nbar}        (exact for the record)
+// which tends to S(f_k)/Nbar, S the spectral density over the sampling rate, for a long record (the triangle is the
+// Fejer kernel's smoothing of S). Power-law noise is circulant by construction, so its bins are independent with
+// E|N(k)|^2 = |H_k|^2 / P exactly, and 0 at the offset bin.
+std::vector<double> model_bin_variance(const NoiseModel& model, int samples);
 
 // add_noise with coloured noise: standard deviation `level` times the clean signal's RMS (white: add_noise exactly).
 std::vector<double> add_noise(const std::vector<double>& clean, double level, std::uint64_t seed,

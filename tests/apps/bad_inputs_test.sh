@@ -498,6 +498,14 @@ expect_error "spikes exponential end without its window" "is the exponential win
   spikes --data "$tmp/z.csv" --exponential-end 0.01
 expect_error "model poles with spike" "--model-poles = 'eigenvalues': is read by the spike-smooth cost" fit "${Z[@]}" \
   --cost spike --model-poles eigenvalues
+# The assumed noise model is read by time and freq-ml alone; a free decay's amplitudes are fitted unweighted, so a
+# coloured model there is refused; a bad model names its constraint (issue 33).
+expect_error "noise model with spike-smooth" "--noise-model = 'ar:0.9': is read by the time and freq-ml costs" \
+  fit "${Z[@]}" --cost spike-smooth --noise-model ar:0.9
+expect_error "coloured noise model, free decay" "--noise-model = 'ar:0.9': needs a modelled excitation" \
+  fit "${Z[@]}" --cost freq-ml --noise-model ar:0.9 --excitation free-decay
+expect_error "unstationary noise model" "--noise-model = 'ar:1': not stationary" fit "${Z[@]}" --cost time \
+  --noise-model ar:1
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
 # The fourth pass's: a bound factor where --bounds gives every key (Q110), a free amplitude on a free decay (Q116),
 # and cost's flags that pick spikes or a band on a cost that has neither, and --welch, which cost never read (Q511,

@@ -164,7 +164,7 @@ check "joint fit: each channel's cost" grep -q "record 2 'tip' (sensor at 0.4573
 check "joint fit report: the records' table" grep -q "^| 2 | tip | ok |" "$tmp/fit2.md"
 expect_error "fit unknown key" "'EJ' is not a parameter of this beam" fit --data "$tmp/z.csv" --beam banks-aluminium \
   --elements 4 --estimate EJ --cost time
-expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band, modal" fit --data "$tmp/z.csv" \
+expect_error "fit bad cost" "cost = 'freq': must be one of time, spike, spike-smooth, freq-band, freq-ml, modal" fit --data "$tmp/z.csv" \
   --beam banks-aluminium --elements 4 --estimate EI --cost freq
 expect_error "refine without hybrid" "--refine = 'time': is the second cost of --strategy hybrid only" fit \
   --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --refine time

@@ -256,7 +256,7 @@ TEST(SpikeCost, FrequencyWeightingsScaleEachSpikesFrequencyError) {
 TEST(CostOptions, InvalidChoicesAreNamed) {
   CostOptions o;
   o.name = "frequency";
-  EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band, modal");
+  EXPECT_EQ(*validation_error(o), "cost = 'frequency': must be one of time, spike, spike-smooth, freq-band, freq-ml, modal");
   o.name = "spike";
   o.eps1 = -1.0;
   EXPECT_EQ(*validation_error(o), "eps1 = -1: must be 0 or in [1e-100, 1e100]");

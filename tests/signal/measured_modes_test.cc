@@ -97,7 +97,7 @@ TEST(MeasuredModes, ASegmentsNoisyDecayRateIsNotCountedAsADampingThatChanges) {
   std::vector<double> over;  // u / the whole record's noise sd of the decay rate
   for (std::uint64_t seed : {21, 22, 23, 24}) {
     const auto y = add_noise(tones({{20.0, 0.2, 1.0}, {60.0, 3.0, 1.0}}, 6000), 1e-3, seed);
-    const MeasuredMode& m = measure_modes(y, kDt, o).modes.at(1);
+    const MeasuredMode m = measure_modes(y, kDt, o).modes.at(1);  // a copy: the result is a temporary
     const double noise_1_s = 2 * std::numbers::pi * m.mode.frequency_sd_hz;
     EXPECT_NEAR(-m.mode.lambda.real(), 3.0, 5 * noise_1_s) << seed;
     over.push_back(m.decay_uncertainty_1_s / noise_1_s);

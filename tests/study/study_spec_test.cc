@@ -105,8 +105,9 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
             "s.toml:10: truth.pulse_width_s = -0.004: must be at least 1e-12 s (narrower is an impulse at any dt >= "
             "1e-9 s)");
-  EXPECT_EQ(error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
-            "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth, freq-band, modal");
+  EXPECT_EQ(
+      error_of(replaced(kValid, "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"spiky\"]")),
+      "s.toml:24: sweep.cost element 'spiky': must be one of time, spike, spike-smooth, freq-band, freq-ml, modal");
   EXPECT_EQ(error_of(replaced(kValid, "elements = [4, 8]", "elements = [4, 48]")),
             "s.toml:23: sweep.elements element 48: must be in 1..47");  // coarser than N_truth: no inverse crime
   EXPECT_EQ(
@@ -207,6 +208,35 @@ TEST(StudyPlan, IdsAreStableSeedsDeriveFromThemAndNoiseIsShared) {
   EXPECT_NE(reseeded.units[3].seed, plan.units[3].seed);
 }
 
+TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInTheIds) {
+  // [truth] noise_model colours every record; a method's noise_model ("truth": the records' own) is what the time
+  // and freq-ml costs assume. Bad values name the line; a method's model with no cost that reads it is refused.
+  const std::string coloured =
+      replaced(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"ar:0.9\""),
+               "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"truth\"");
+  const StudySpec s = parse_study(coloured, "s.toml", ".");
+  EXPECT_EQ(s.truth.noise_model, "ar:0.9");
+  EXPECT_EQ(s.methods.at(0).noise_model, "truth");
+  EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"ar:1.1\"")),
+            "s.toml:11: truth.noise_model = 'ar:1.1': not stationary: a root of z^p - a1 z^(p-1) - ... has modulus "
+            "1.1 (must be below 1)");
+  EXPECT_EQ(
+      error_of(replaced(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"ar:0.5\""),
+                        "cost = [\"time\", \"spike-smooth\"]", "cost = [\"spike-smooth\"]")),
+      "s.toml:21: methods.direct.noise_model is read by the time and freq-ml costs; this method runs only "
+      "spike-smooth");
+  // White records keep the ids they had before the key existed; a colour or an assumed model changes them.
+  const Plan white = make_plan(parse_study(kValid, "s.toml", "."));
+  const Plan explicit_white = make_plan(parse_study(
+      replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"white\""), "s.toml", "."));
+  const Plan ar = make_plan(s);
+  ASSERT_EQ(white.units.size(), ar.units.size());
+  for (std::size_t i = 0; i < white.units.size(); ++i) {
+    EXPECT_EQ(white.units[i].id, explicit_white.units[i].id);
+    if (white.units[i].kind == UnitKind::Case) EXPECT_NE(white.units[i].id, ar.units[i].id);
+  }
+}
+
 // A truth beam read from a file enters the units' identity by its values, not only its path: editing the file changes
 // every unit's id (so the store recomputes them instead of reusing records of the old beam), rewriting it unchanged
 // keeps them; a preset's units keep ids that name the preset alone.
@@ -260,7 +290,7 @@ TEST(StudySpec, StartDistanceRunsAreCostSlashMethod) {
             "[methods.NAME] tables (direct)");
   EXPECT_EQ(error_of(base + "runs = [\"spiky/direct\"]\n"),
             "s.toml:33: start_distance.runs element 'spiky/direct': cost 'spiky' must be one of time, spike, "
-            "spike-smooth, freq-band, modal");
+            "spike-smooth, freq-band, freq-ml, modal");
   EXPECT_EQ(error_of(replaced(base, "[0.001, 0.01]", "[0.01, 0.001]") + "runs = [\"time/direct\"]\n"),
             "s.toml:31: start_distance.offsets = [...]: must be in increasing order");
   EXPECT_EQ(error_of(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nrefine = \"time\"")),

@@ -40,6 +40,11 @@ std::vector<double> clean_record(const Record& truth, int samples) {
   return y;
 }
 
+// The record a unit fits: the clean record plus the study's noise (its colour, the unit's level and seed).
+std::vector<double> noisy_record(const StudySpec& spec, const std::vector<double>& clean, const Unit& unit) {
+  return signal::add_noise(clean, unit.noise, unit.noise_seed, signal::parse_noise_model(spec.truth.noise_model));
+}
+
 // The fit options of a unit with `spikes` spikes: the truth gives the fixed parameters, the bounds [v/F, v F] and,
 // for landscape units, the start; a case adds its method and its start factors. The optimizer is the cost's default
 // unless the method names one.
@@ -76,6 +81,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
     if (!m.frequency_weight.empty()) o.cost.frequency_weight = m.frequency_weight;
     o.cost.eps1_factor = m.eps1_factor;
     o.cost.eps2_factor = m.eps2_factor;
+    if (!m.noise_model.empty()) o.cost.noise_model = m.noise_model == "truth" ? spec.truth.noise_model : m.noise_model;
   }
   if (unit.kind == UnitKind::Case)
     for (const auto& [key, factor] : spec.start(unit.start).factor) set(o.start, key, value(o.start, key) * factor);
@@ -144,7 +150,7 @@ void record_unrun_fit(Record& r, const std::vector<std::string>& keys) {
 
 Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& truth, const Record& result) {
   const std::vector<double> clean = clean_record(truth, unit.samples);
-  const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+  const std::vector<double> data = noisy_record(spec, clean, unit);
   int modes = 0, spikes = 0;
   fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
   model::BeamParameters estimate = spec.truth.parameters;
@@ -251,7 +257,7 @@ Record run_case(const StudySpec& spec, const Unit& unit, const Record& truth) {
   return timed(std::move(prefilled), Failure::AsTermination, [&](Record& r) {
     require_truth(truth);
     const std::vector<double> clean = clean_record(truth, unit.samples);
-    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    const std::vector<double> data = noisy_record(spec, clean, unit);
     int modes = 0, spikes = 0;
     const fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("modes_in_data", static_cast<double>(modes));
@@ -285,7 +291,7 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("modes_in_data", static_cast<double>(modes));
     // A noisy landscape sees the record of the sweep's replicate 0 at its noise level (the same draw as its cases).
-    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    const std::vector<double> data = noisy_record(spec, clean, unit);
     const model::BeamParameters beam = spec.truth.parameters;
     const double F = unit.range_factor > 1 ? unit.range_factor : spec.landscape.range_factor;
     // Log-spaced axis v F^(2j/(P-1) - 1), j = 0..P-1: the middle point (P odd) is the true value.
@@ -358,7 +364,7 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
   return timed(std::move(prefilled), Failure::AsTermination, [&](Record& r) {
     require_truth(truth);
     const std::vector<double> clean = clean_record(truth, unit.samples);
-    const std::vector<double> data = signal::add_noise(clean, unit.noise, unit.noise_seed);
+    const std::vector<double> data = noisy_record(spec, clean, unit);
     int modes = 0, spikes = 0;
     fit::FitOptions o = fit_options(spec, unit, clean, truth, modes, spikes);
     r.set("fitted_modes", static_cast<double>(spikes));
@@ -392,8 +398,11 @@ Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
     require_truth(truth);
     // The noise the cases add: level x RMS of the clean record (signal/noise.h).
     const double noise_sd = unit.noise * signal::rms(clean_record(truth, unit.samples));
-    const fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements,
-                                                             experiment_of(spec, unit), spec.fit.estimate, noise_sd);
+    fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements, experiment_of(spec, unit),
+                                                       spec.fit.estimate, noise_sd);
+    // In the records' coloured noise of that process sd, the bound of the whitened sensitivities.
+    if (spec.truth.noise_model != "white")
+      b = fit::coloured_bound(b, signal::parse_noise_model(spec.truth.noise_model));
     r.set("status", b.status);
     r.set("method", b.method);
     r.set("noise_sd", noise_sd);

@@ -83,6 +83,18 @@ void read_study_table(const config::Document& document, StudySpec& spec) {
   r.finish({"name", "question", "seed"});
 }
 
+// A noise model's text at `key`, canonical ("ar:0.9"); the parser's constraint at the key's line otherwise.
+std::string noise_model_of(Table& r, const std::string& key) {
+  const std::string text = r.string(key, std::nullopt);
+  try {
+    return signal::parse_noise_model(text).text();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::size_t cut = what.find("': ");
+    r.fail(key, "'" + text + "'", cut == std::string::npos ? what : what.substr(cut + 3));
+  }
+}
+
 // [truth]: the beam, N_truth, the integrator's tolerance and the experiment, validated on the beam.
 void read_truth(const config::Document& document, const std::string& directory, StudySpec& spec) {
   Table r = document.required("truth");
@@ -104,8 +116,9 @@ void read_truth(const config::Document& document, const std::string& directory, 
   t.rtol = r.number(
       "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
   read_experiment(r, t.experiment);
+  if (r.has("noise_model")) t.noise_model = noise_model_of(r, "noise_model");
   r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
-            "pulse_width_s", "sensor_x_m", "output"});
+            "pulse_width_s", "sensor_x_m", "output", "noise_model"});
   t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
   const model::BeamParameters& beam = t.parameters;
   if (auto e = simulation::validation_error(t.experiment, beam.l)) {
@@ -178,7 +191,7 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
       m.strategy = r.string("strategy", m.strategy, fit::strategy_names().names());
       m.optimizer = r.string("optimizer", m.optimizer, optimizers);
       m.starts = r.integer("starts", 1, 1, core::kMaxStarts);
-      m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost});
+      m.refine = r.string("refine", m.refine, {costs::kTimeCost, costs::kBandCost, costs::kMaxLikelihoodCost});
       if (r.has("refine") && m.strategy != fit::kHybrid)
         r.fail("refine", "'" + m.refine + "'", "applies to strategy = 'hybrid' only");
       if (r.has("window")) m.window = r.string("window", std::nullopt, {"rectangular", "hann", "exponential"});
@@ -187,8 +200,10 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
       const auto positive_factor = [](double v) { return v > 0 && v <= 1e6; };
       m.eps1_factor = r.number("eps1_factor", 1.0, positive_factor, "must be in (0, 1e6]");
       m.eps2_factor = r.number("eps2_factor", 1.0, positive_factor, "must be in (0, 1e6]");
-      r.finish(
-          {"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor"});
+      if (r.has("noise_model"))
+        m.noise_model = r.string("noise_model", std::nullopt) == "truth" ? "truth" : noise_model_of(r, "noise_model");
+      r.finish({"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor",
+                "noise_model"});
       spec.methods.push_back(m);
     }
   }
@@ -349,7 +364,7 @@ void check_method_overrides(const config::Document& document, const StudySpec& s
     const Reads spike = [](const std::string& c) { return costs::is_spike_cost(c); };
     const Reads picks = [](const std::string& c) { return costs::is_spike_cost(c) || c == costs::kModalCost; };
     const Reads band = [](const std::string& c) {
-      return costs::is_spike_cost(c) || c == costs::kModalCost || c == costs::kBandCost;
+      return costs::is_spike_cost(c) || c == costs::kModalCost || costs::is_band_cost(c);
     };
     // The spikes' number and band too (the fifth pass's R345-R361).
     for (const auto& [key, reads, readers] :
@@ -384,7 +399,8 @@ void check_method_overrides(const config::Document& document, const StudySpec& s
          {std::tuple{"window", &costs::CostUses::window, "the DFT costs (spike, spike-smooth, freq-band)"},
           std::tuple{"frequency_weight", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
           std::tuple{"eps1_factor", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
-          std::tuple{"eps2_factor", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"}})
+          std::tuple{"eps2_factor", &costs::CostUses::frequency_weight, "the spike costs (spike, spike-smooth)"},
+          std::tuple{"noise_model", &costs::CostUses::noise_model, "the time and freq-ml costs"}})
       if (r.has(key) && !read_by(field))
         throw InputError(r.where(key) + ": methods." + m.name + "." + key + " is read by " + readers +
                          "; this method runs only " + listed);

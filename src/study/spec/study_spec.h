@@ -33,6 +33,9 @@ struct TruthSpec {
   bool control = false;                  // fitted N may equal N_truth (a control: the estimators alone)
   double rtol = 1e-10;                   // CVODE relative tolerance of the cross-check of the first truth record
   simulation::Experiment experiment;
+  // The colour of every record's noise (signal/noise.h: white, ar:a1,..., power:alpha) at the sweep's levels (its
+  // process sd over the clean RMS); the efficiency tables' bound is the bound in that noise (fit::coloured_bound).
+  std::string noise_model = "white";
 };
 
 struct FitSpec {
@@ -72,6 +75,9 @@ struct MethodSpec {
   std::string frequency_weight;  // "": fit.frequency_weight
   double eps1_factor = 1;
   double eps2_factor = 1;
+  // The noise the time and freq-ml costs assume (costs/cost.h): "" white; "truth" the records' own ([truth]
+  // noise_model, known to the estimator: the maximum-likelihood and generalised least-squares fits); or a model.
+  std::string noise_model;
 };
 
 struct SweepSpec {

@@ -1,0 +1,90 @@
+#include "signal/noise_spectrum.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/errors.h"
+
+namespace beamid::signal {
+
+std::optional<std::string> validation_error(const LocalPolynomialOptions& o) {
+  if (o.degree < 0 || o.degree > 8)
+    return "local polynomial degree = " + std::to_string(o.degree) + ": must be in 0..8";
+  if (o.half_width < 1 || o.half_width > 1000)
+    return "local polynomial half width = " + std::to_string(o.half_width) + ": must be in 1..1000 bins";
+  if (2 * o.half_width + 1 <= o.degree + 1)
+    return "local polynomial half width = " + std::to_string(o.half_width) + ": 2n + 1 bins must exceed the degree " +
+           std::to_string(o.degree) + " + 1 (no degree of freedom is left for the noise)";
+  if (o.smoothing_half_width < 0 || o.smoothing_half_width > 100000)
+    return "smoothing half width = " + std::to_string(o.smoothing_half_width) + ": must be in 0..100000 bins";
+  return std::nullopt;
+}
+
+namespace {
+
+// I - Q Q^T for the polynomial basis ((r / n)^d, d = 0..R) at the offsets r: the residual projector of a local fit
+// (the basis is real, so it acts on the real and imaginary parts alike).
+Eigen::MatrixXd residual_projector(const std::vector<int>& offsets, int degree, int half_width) {
+  const auto rows = static_cast<Eigen::Index>(offsets.size());
+  Eigen::MatrixXd basis(rows, degree + 1);
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (int d = 0; d <= degree; ++d)
+      basis(i, d) = std::pow(static_cast<double>(offsets[static_cast<std::size_t>(i)]) / half_width, d);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
+  const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(rows, degree + 1);
+  return Eigen::MatrixXd::Identity(rows, rows) - q * q.transpose();
+}
+
+}  // namespace
+
+BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynomialOptions& options) {
+  if (auto error = validation_error(options)) throw InputError(*error);
+  const int n = options.half_width;
+  const int width = 2 * n + 1;
+  // Complex bins only: 1..Nbar/2 - 1 for an even record (Nbar/2 is real), 1..(Nbar - 1)/2 for an odd one.
+  const int first = 1;
+  const int last = record.samples % 2 == 0 ? record.samples / 2 - 1 : record.samples / 2;
+  if (last - first + 1 < width)
+    throw InputError("local polynomial noise estimate: the record has " + std::to_string(std::max(0, last)) +
+                     " complex DFT bins, fewer than the " + std::to_string(width) + " one local fit of half width " +
+                     std::to_string(n) + " needs");
+  BinVariance out;
+  out.dof = width - (options.degree + 1);
+  std::vector<double> local(static_cast<std::size_t>(last + 1), 0.0);
+  std::map<int, Eigen::MatrixXd> projectors;  // by the window's start relative to k (shifted only at the edges)
+  Eigen::VectorXd re(width), im(width);
+  for (int k = first; k <= last; ++k) {
+    const int start = std::clamp(k - n, first, last - 2 * n);
+    auto it = projectors.find(start - k);
+    if (it == projectors.end()) {
+      std::vector<int> offsets(static_cast<std::size_t>(width));
+      for (int i = 0; i < width; ++i) offsets[static_cast<std::size_t>(i)] = start - k + i;
+      it = projectors.emplace(start - k, residual_projector(offsets, options.degree, n)).first;
+    }
+    for (int i = 0; i < width; ++i) {
+      const std::complex<double> z = record.half[static_cast<std::size_t>(start + i)];
+      re(i) = z.real();
+      im(i) = z.imag();
+    }
+    // |e|^2 = y^T (I - Q Q^T) y for the real and the imaginary parts (the projector is idempotent and symmetric).
+    local[static_cast<std::size_t>(k)] = (re.dot(it->second * re) + im.dot(it->second * im)) / out.dof;
+  }
+  out.variance.assign(record.half.size(), 0.0);
+  const int m = options.smoothing_half_width;
+  // A running sum over [k - m, k + m] within first..last.
+  std::vector<double> prefix(local.size() + 1, 0.0);
+  for (std::size_t k = 0; k < local.size(); ++k) prefix[k + 1] = prefix[k] + local[k];
+  for (int k = first; k <= last; ++k) {
+    const int lo = std::max(first, k - m), hi = std::min(last, k + m);
+    out.variance[static_cast<std::size_t>(k)] =
+        (prefix[static_cast<std::size_t>(hi + 1)] - prefix[static_cast<std::size_t>(lo)]) / (hi - lo + 1);
+  }
+  out.variance[0] = out.variance[static_cast<std::size_t>(first)];
+  for (std::size_t k = static_cast<std::size_t>(last) + 1; k < out.variance.size(); ++k)
+    out.variance[k] = out.variance[static_cast<std::size_t>(last)];
+  return out;
+}
+
+}  // namespace beamid::signal

@@ -1,0 +1,48 @@
+// The noise's variance at each DFT bin, E|N(k)|^2 with the paper's scaling N(k) = (1/Nbar) sum_i n_i e^{-j 2 pi k i
+// / Nbar} (signal/spectrum.h), rectangular window: the weights of the frequency-domain maximum-likelihood cost
+// "freq-ml" (costs/least_squares.h; Pintelon and Schoukens, System Identification, 2nd ed., ch. 7 and 10), either
+// given as a model of the noise or estimated from the record itself (issue 33).
+//
+// From a model: signal::model_bin_variance (signal/noise.h).
+//
+// From one record by the local polynomial method (LPM; Pintelon, Schoukens, Vandersteen and Barbé, "Estimation of
+// nonparametric noise and FRF models for multivariable systems", MSSP 24 (2010) 573-595), output only: around bin k
+// the record's DFT over the 2n + 1 bins k + r, |r| <= n, is fitted by a complex polynomial of degree R in r, which
+// takes up the response and the transient where they are smooth on the scale of 2n + 1 bins; the residual e gives
+//   sigma^2(k) = |e|^2 / q,   q = 2n + 1 - (R + 1) complex degrees of freedom,
+// unbiased for noise whose variance is constant over the window and whose bins are uncorrelated (white or smooth
+// coloured noise in a long record): q sigma^2(k) / E|N(k)|^2 is then chi-square with 2q real degrees of freedom over 2,
+// so its relative sd is 1/sqrt(q). Windows stay inside bins 1..Nbar/2 - 1 (the offset and Nyquist bins are real, and
+// bins beyond them are conjugates of bins inside), shifted at the edges. The estimates are then averaged over the
+// 2m + 1 estimates centred on k (m = smoothing_half_width), because a weight estimated with few degrees of freedom
+// costs a weighted fit efficiency: the noise spectrum is smooth where the response need not be. The resonance peaks
+// are where the response is least polynomial: a mode whose half-power band spans fewer bins than the window leaves
+// part of itself in e, so the LPM overestimates the noise there (say why, and how much, where it is used).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "signal/noise.h"
+#include "signal/spectrum.h"
+
+namespace beamid::signal {
+
+struct LocalPolynomialOptions {
+  int degree = 2;                 // R
+  int half_width = 6;             // n: 2n + 1 bins per local fit
+  int smoothing_half_width = 10;  // m: the estimates averaged over 2m + 1 neighbouring bins (0: none)
+};
+// First violated constraint, or nothing: degree >= 0, 2n + 1 > R + 1 (at least one degree of freedom), m >= 0.
+std::optional<std::string> validation_error(const LocalPolynomialOptions& options);
+
+struct BinVariance {
+  std::vector<double> variance;  // E|N(k)|^2 estimated, k = 0..Nbar/2
+  int dof = 0;                   // q, complex degrees of freedom of each local fit (before smoothing)
+};
+// InputError when the options are invalid or the record has fewer bins inside 1..Nbar/2 - 1 than one local fit needs.
+// The offset and Nyquist bins take their nearest neighbour's estimate.
+BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynomialOptions& options);
+
+}  // namespace beamid::signal

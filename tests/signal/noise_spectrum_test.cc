@@ -1,0 +1,145 @@
+// The noise's variance per DFT bin: the model's exact value (against the dense quadratic form and Monte Carlo) and the
+// local polynomial method's estimate from one record (its mean and its chi-square spread).
+#include "signal/noise_spectrum.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+#include "core/errors.h"
+#include "signal/noise.h"
+#include "signal/spectrum.h"
+
+namespace beamid::signal {
+namespace {
+
+// The autocorrelation of an AR(1) process of unit variance: rho(l) = a^|l|.
+double ar1_rho(double a, int l) { return std::pow(a, std::abs(l)); }
+
+TEST(ModelBinVariance, IsTheDenseQuadraticFormOfTheNoiseCorrelation) {
+  // E|N(k)|^2 = f_k^H R f_k / Nbar^2 with f_k = (e^{-j 2 pi k i / Nbar})_i and R_ij = rho(i - j): the definition,
+  // summed in full; the folded-lag DFT must give it to rounding (1e-12 of 1/Nbar).
+  for (const int samples : {16, 17}) {
+    for (const double a : {0.9, -0.5}) {
+      const std::vector<double> v = model_bin_variance(parse_noise_model("ar:" + std::to_string(a)), samples);
+      ASSERT_EQ(v.size(), static_cast<std::size_t>(samples / 2 + 1));
+      for (int k = 0; k <= samples / 2; ++k) {
+        std::complex<double> sum = 0;
+        for (int i = 0; i < samples; ++i)
+          for (int j = 0; j < samples; ++j)
+            sum += ar1_rho(a, i - j) * std::polar(1.0, -2 * std::numbers::pi * k * (i - j) / samples);
+        EXPECT_NEAR(v[static_cast<std::size_t>(k)], sum.real() / (samples * samples), 1e-12 / samples)
+            << "a = " << a << ", k = " << k;
+      }
+    }
+  }
+}
+
+TEST(ModelBinVariance, SumsToTheProcessVarianceByParseval) {
+  // sum over the whole spectrum of |N(k)|^2 = (1/Nbar) sum_i n_i^2, whose expectation is 1 for unit process variance.
+  for (const std::string text : {"white", "ar:0.9", "ar:0.5,-0.3", "power:1", "power:2"}) {
+    for (const int samples : {64, 65, 1000}) {
+      const std::vector<double> v = model_bin_variance(parse_noise_model(text), samples);
+      double total = v[0];
+      for (std::size_t k = 1; k < v.size(); ++k) total += (samples % 2 == 0 && k == v.size() - 1 ? 1 : 2) * v[k];
+      EXPECT_NEAR(total, 1.0, 1e-12) << text << ", " << samples;
+    }
+  }
+  EXPECT_EQ(model_bin_variance(parse_noise_model("white"), 10)[3], 0.1);
+  EXPECT_EQ(model_bin_variance(parse_noise_model("power:1"), 64)[0], 0.0);  // no noise at the offset
+}
+
+TEST(ModelBinVariance, IsWhatTheGeneratorsNoiseShowsOverManyDraws) {
+  // The mean of |N(k)|^2 over M = 1,500 draws of model_deviates: |N(k)|^2 is exponential (chi-square 2 over 2) at a
+  // complex bin, so the mean's relative sd is 1/sqrt(M) = 2.6 %; bound 5 sd (13 %).
+  constexpr int kSamples = 128, kDraws = 1500;
+  for (const std::string text : {"ar:0.9", "power:1.5"}) {
+    const NoiseModel model = parse_noise_model(text);
+    const std::vector<double> v = model_bin_variance(model, kSamples);
+    std::vector<double> mean(v.size(), 0.0);
+    Dft dft(kSamples, 1.0);
+    for (int d = 0; d < kDraws; ++d) {
+      const Spectrum s = dft.transform(model_deviates(model, 1000 + static_cast<std::uint64_t>(d), kSamples));
+      for (std::size_t k = 0; k < v.size(); ++k) mean[k] += std::norm(s.half[k]) / kDraws;
+    }
+    for (const std::size_t k : {1, 2, 5, 20, 63}) EXPECT_NEAR(mean[k] / v[k], 1.0, 0.13) << text << ", bin " << k;
+  }
+}
+
+// The ratio of the LPM estimate to the model's variance at the complex bins of `records` records of AR(0.9) noise
+// (a spectrum that falls 19-fold from the offset to 1/8 of the sampling rate, smooth on the scale of a window).
+std::vector<double> lpm_ratios(const LocalPolynomialOptions& options, int records, int stride) {
+  constexpr int kSamples = 4096;
+  const NoiseModel model = parse_noise_model("ar:0.9");
+  const std::vector<double> v = model_bin_variance(model, kSamples);
+  Dft dft(kSamples, 1e-3);
+  std::vector<double> ratios;
+  for (int r = 0; r < records; ++r) {
+    const Spectrum s = dft.transform(model_deviates(model, 50 + static_cast<std::uint64_t>(r), kSamples));
+    const BinVariance e = local_polynomial_variance(s, options);
+    for (std::size_t k = 1; k + 1 < v.size(); k += static_cast<std::size_t>(stride))
+      ratios.push_back(e.variance[k] / v[k]);
+  }
+  return ratios;
+}
+
+TEST(LocalPolynomialVariance, IsUnbiasedWithTheChiSquareSpreadOfItsDegreesOfFreedom) {
+  // Unsmoothed (m = 0), R = 2 and n = 6: q = 13 - 3 = 10 complex degrees of freedom, so q sigma^2 / E|N|^2 is
+  // chi-square with 20 real dof over 2: mean 1, variance 1/q = 0.1. Bins 13 apart have disjoint windows and so
+  // independent estimates; 4 records give 4 x 157 = 628 of them. The mean's sd is sqrt(0.1 / 628) = 0.013 (bound 5 sd,
+  // plus 1 % for the spectrum's curvature over a window); the sample variance's relative sd is sqrt((2 + 6/q) / 628)
+  // = 6.4 % for this chi-square (bound 25 %, about 4 sd).
+  LocalPolynomialOptions o;
+  o.smoothing_half_width = 0;
+  const std::vector<double> ratios = lpm_ratios(o, 4, 13);
+  double mean = 0, var = 0;
+  for (const double x : ratios) mean += x / static_cast<double>(ratios.size());
+  for (const double x : ratios) var += (x - mean) * (x - mean) / static_cast<double>(ratios.size() - 1);
+  EXPECT_NEAR(mean, 1.0, 0.075);
+  EXPECT_NEAR(var, 0.1, 0.025);
+}
+
+TEST(LocalPolynomialVariance, SmoothingNarrowsTheSpreadAndKeepsTheMean) {
+  // m = 10 averages 21 neighbouring estimates, each from 13 bins: 33 bins lie behind each, but the overlapping windows
+  // share them, so the effective degrees of freedom are about 25 (measured: relative sd 0.21 over 4 x 66 estimates
+  // 31 bins apart, against sqrt(1/25) = 0.2): the spread falls from sqrt(0.1) = 0.32 to below 0.25, and the mean
+  // stays 1 (its sd 0.2 / sqrt(264) = 0.012; bound about 4 sd).
+  const std::vector<double> ratios = lpm_ratios(LocalPolynomialOptions{}, 4, 31);
+  double mean = 0, var = 0;
+  for (const double x : ratios) mean += x / static_cast<double>(ratios.size());
+  for (const double x : ratios) var += (x - mean) * (x - mean) / static_cast<double>(ratios.size() - 1);
+  EXPECT_NEAR(mean, 1.0, 0.05);
+  EXPECT_LT(std::sqrt(var), 0.25);
+  EXPECT_GT(std::sqrt(var), 0.1);  // not less than 33 bins' worth: the estimate follows the record  // not a constant:
+                                   // the estimate follows the record
+}
+
+TEST(LocalPolynomialVariance, TakesUpASmoothTransientAndRefusesTooShortARecord) {
+  // A transient whose DFT is smooth over a window (a fast exponential decay: 1/(sigma + j omega) with sigma = 200 1/s
+  // changes by under 10 % across 13 bins 2 pi rad/s apart) plus white noise of sd 1e-3: the estimate is the noise's
+  // 1e-6 / Nbar within its sampling error, although the transient's bins are up to 300 times the noise's sd.
+  constexpr int kSamples = 4096;
+  constexpr double kDt = 1.0 / 4096;
+  std::vector<double> z = gaussian_deviates(9, kSamples);
+  for (int i = 0; i < kSamples; ++i)
+    z[static_cast<std::size_t>(i)] = 1e-3 * z[static_cast<std::size_t>(i)] + std::exp(-200.0 * i * kDt);
+  Dft dft(kSamples, kDt);
+  const BinVariance e = local_polynomial_variance(dft.transform(z), LocalPolynomialOptions{});
+  double mean = 0;
+  int count = 0;
+  for (std::size_t k = 20; k + 1 < e.variance.size(); k += 31, ++count) mean += e.variance[k] * kSamples / 1e-6;
+  EXPECT_NEAR(mean / count, 1.0, 0.1) << count;  // 66 estimates of relative sd < 0.15: the mean's sd < 0.02
+  // 2n + 1 = 13 bins need 13 complex bins: 28 samples have 13 (1..13), 26 have 12.
+  LocalPolynomialOptions o;
+  EXPECT_NO_THROW(local_polynomial_variance(Dft(28, kDt).transform(std::vector<double>(28, 1.0)), o));
+  EXPECT_THROW(local_polynomial_variance(Dft(26, kDt).transform(std::vector<double>(26, 1.0)), o), InputError);
+  o.half_width = 1;
+  o.degree = 2;
+  EXPECT_TRUE(validation_error(o).has_value());  // 3 bins, 3 coefficients: no degree of freedom
+}
+
+}  // namespace
+}  // namespace beamid::signal
