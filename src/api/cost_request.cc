@@ -125,7 +125,10 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.model_poles = request.model_poles.value_or(o.model_poles);
   o.mode_weight = request.mode_weight.value_or(o.mode_weight);
   o.frequency_weight = request.frequency_weight.value_or(costs::kRelativeWeight);
-  if (request.noise_model) o.noise_model = parsed_noise_model(caller, *request.noise_model).text();
+  if (request.noise_model)
+    o.noise_model = *request.noise_model == costs::kEstimatedNoise
+                        ? costs::kEstimatedNoise
+                        : parsed_noise_model(caller, *request.noise_model).text();
   if (auto error = costs::validation_error(o)) refuse(caller, *error);
   return o;
 }

@@ -226,7 +226,8 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   // (simulation/free_decay.h): with a coloured noise model that synthesis is not the generalised one the cost assumes,
   // so the fit would be neither least squares nor maximum likelihood. Refused until the synthesis is whitened too.
   if (request.cost.noise_model && o.experiment.excitation == simulation::kFreeDecay &&
-      parsed_noise_model(caller, *request.cost.noise_model).kind != "white")
+      (*request.cost.noise_model == costs::kEstimatedNoise ||
+       parsed_noise_model(caller, *request.cost.noise_model).kind != "white"))
     refuse(caller, "noise-model", *request.cost.noise_model,
            "needs a modelled excitation (pulse, pluck): a free decay's modal amplitudes are fitted unweighted, which "
            "a coloured noise model's likelihood does not allow");

@@ -85,7 +85,9 @@ std::vector<FlagSpec> cost_flags(bool required) {
                                         " (default relative: a record read from a file is a measured one)"));
   flags.push_back(text_flag("noise-model",
                             "time, freq-ml: the noise assumed, white | ar:a1,... | power:alpha (time: least squares "
-                            "on the prewhitened record; freq-ml: each bin over its variance; default white)"));
+                            "on the prewhitened record; freq-ml: each bin over its variance; default white); fit: "
+                            "estimated, from the residuals of a white fit first (time an AR model, freq-ml each "
+                            "bin's variance)"));
   return flags;
 }
 

@@ -108,11 +108,11 @@ std::optional<std::string> validation_error(const CostOptions& o) {
       return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
   if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
   if (auto error = mode_weight_names().violation("mode_weight", o.mode_weight)) return error;
-  try {
-    signal::parse_noise_model(o.noise_model);
-  } catch (const InputError& e) {
-    return std::string(e.what());
-  }
+  if (o.noise_model != kEstimatedNoise) try {
+      signal::parse_noise_model(o.noise_model);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
   return std::nullopt;
 }
 
@@ -122,6 +122,12 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
   for (std::size_t i = 0; i < data.size(); ++i)
     if (!std::isfinite(data[i]))
       throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
+  // An estimated noise model is resolved by the fit (a model for time, bin variances for freq-ml) before a cost is
+  // made.
+  if (options.noise_model == kEstimatedNoise && cost_uses(options.name).noise_model &&
+      !(options.name == kMaxLikelihoodCost && !options.bin_variance.empty()))
+    throw InputError("noise_model = '" + kEstimatedNoise + "': a fit estimates it from its own residuals; cost " +
+                     options.name + " alone needs a model (white, ar:a1,..., power:alpha)");
   if (options.name == kTimeCost) return make_time_cost(options, std::move(data));
   if (options.name == kSpikeCost) return make_spike_cost(options, std::move(data), dt_s);
   if (options.name == kBandCost || options.name == kMaxLikelihoodCost)

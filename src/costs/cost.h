@@ -64,6 +64,9 @@ inline const std::string kModalCost = "modal";            // costs/modal_cost.h
 inline const std::string kMaxLikelihoodCost = "freq-ml";  // costs/least_squares.h
 const core::NameSet& cost_names();
 
+// The noise model a fit estimates from its own residuals (CostOptions::noise_model).
+inline const std::string kEstimatedNoise = "estimated";
+
 // The spike costs' frequency weightings by name (above).
 inline const std::string kAbsoluteWeight = "absolute";
 inline const std::string kRelativeWeight = "relative";
@@ -99,7 +102,11 @@ struct CostOptions {
   // squares on the record prewhitened by it (generalised least squares, the time-domain maximum likelihood), and
   // "freq-ml" weighs each bin by its variance (signal::model_bin_variance). Its level does not matter: the estimate
   // depends on the noise's colour alone, and the standard errors take the level from the residuals.
+  // "estimated": a fit estimates the model from the residuals of its own white-noise fit first (fit/identification.h:
+  // time an AR model, freq-ml each bin's variance by the local polynomial method) and fits again with it.
   std::string noise_model = "white";
+  // freq-ml: the noise's variance at each bin 0..Nbar/2 as given (a fit's estimate), in place of the model's.
+  std::vector<double> bin_variance;
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);

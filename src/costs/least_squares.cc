@@ -70,8 +70,13 @@ class BandCost final : public Cost {
     // likelihood term and is left out.
     const bool ml = options_.name == kMaxLikelihoodCost;
     const std::vector<double> variance =
-        ml ? signal::model_bin_variance(signal::parse_noise_model(options_.noise_model), data_.samples)
-           : std::vector<double>(static_cast<std::size_t>(data_.last_bin() + 1), 1.0);
+        !ml ? std::vector<double>(static_cast<std::size_t>(data_.last_bin() + 1), 1.0)
+        : options_.bin_variance.empty()
+            ? signal::model_bin_variance(signal::parse_noise_model(options_.noise_model), data_.samples)
+            : options_.bin_variance;
+    if (variance.size() != static_cast<std::size_t>(data_.last_bin() + 1))
+      throw InputError("cost freq-ml: " + std::to_string(variance.size()) + " bin variances for " +
+                       std::to_string(data_.last_bin() + 1) + " bins");
     for (int k = 0; k <= data_.last_bin(); ++k) {
       const double f = data_.frequency_hz(k);
       if (f < options_.spikes.min_frequency_hz || f > options_.spikes.max_frequency_hz) continue;

@@ -10,6 +10,7 @@
 #include "fit/joint_objective.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
+#include "signal/noise_spectrum.h"
 #include "signal/spikes.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
@@ -37,6 +38,8 @@ const core::NameSet& strategy_names() {
 std::string default_optimizer(const std::string& cost) { return cost == costs::kSpikeCost ? "nelder-mead" : "lm"; }
 
 namespace {
+
+constexpr int kEstimatedArOrder = 20;  // the highest AR order an estimated time-domain noise model may take
 
 // The optimizer problem over a subset `active` of the estimated coordinates, the others held at `x_fixed`.
 Problem subproblem(JointObjective& objective, const ParameterMap& map, const std::vector<int>& active,
@@ -294,6 +297,27 @@ void check_first_step(const FitOptions& o, const ParameterMap& map) {
   }
 }
 
+// Two fits in a row, the second from the first's estimate: the second's result with the stages (named by their
+// prefixes), evaluations and time of both, and the first's starts.
+FitResult chained(const FitResult& first, FitResult second, const std::string& first_name,
+                  const std::string& second_name) {
+  std::vector<StageResult> stages;
+  for (StageResult stage : first.stages) {
+    stage.name = first_name + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  for (StageResult stage : second.stages) {
+    stage.name = second_name + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  second.stages = std::move(stages);
+  second.evaluations += first.evaluations;
+  second.wall_time_s += first.wall_time_s;
+  second.best_start = first.best_start;
+  for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
+  return second;
+}
+
 // The hybrid strategy: the global fit (direct, from every start), then the refinement from its estimate. The result
 // is the refinement's, with the stages and evaluations of both.
 FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
@@ -307,22 +331,46 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
   fine.starts = 1;
   std::vector<Record> from_first = records;
   for (std::size_t r = 0; r < records.size(); ++r) from_first[r].start = first.records[r].beam;  // inside the bounds
-  FitResult second = fit(fine, from_first);
-  std::vector<StageResult> stages;
-  for (StageResult stage : first.stages) {
-    stage.name = o.cost.name + ": " + stage.name;
-    stages.push_back(std::move(stage));
+  return chained(first, fit(fine, from_first), o.cost.name + ": ",
+                 o.refine + " from the " + o.cost.name + " estimate: ");
+}
+
+// A fit of a cost that reads the noise model, with the model estimated from the residuals of its own white-noise fit
+// (CostOptions::noise_model "estimated"): the white fit, then each record's noise estimated from its residual at that
+// estimate (time: an AR model of order <= 20 by Akaike's criterion; freq-ml: each bin's variance by the local
+// polynomial method on the residual's DFT, which holds no resonance peak once the model's response is taken out), then
+// the fit again from the white estimate with it. Only the noise's colour matters: its level is the residuals'.
+FitResult fit_with_estimated_noise(const FitOptions& o, const std::vector<Record>& records) {
+  FitOptions white = o;
+  white.cost.noise_model = "white";
+  const FitResult first = fit(white, records);
+  if (first.status == "failed") return first;
+  std::vector<Record> estimated = records;
+  std::string described;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    const std::vector<double>& y = first.records[r].model_output;
+    const std::vector<double>& z = records[r].data;
+    if (y.size() != z.size()) return first;
+    std::vector<double> residual(z.size());
+    for (std::size_t i = 0; i < z.size(); ++i) residual[i] = z[i] - y[i];
+    Record& e = estimated[r];
+    e.start = first.records[r].beam;
+    if (o.cost.name == costs::kMaxLikelihoodCost) {
+      signal::Dft dft(static_cast<int>(residual.size()), records[r].experiment.dt_s);
+      e.bin_variance = signal::local_polynomial_variance(dft.transform(residual), {}).variance;
+      e.noise_model = costs::kEstimatedNoise;
+    } else {
+      e.noise_model = signal::fit_autoregressive(residual, kEstimatedArOrder).text();
+    }
+    described += (described.empty() ? "" : "; ") + (o.cost.name == costs::kMaxLikelihoodCost
+                                                        ? std::string("each bin's variance by local polynomials")
+                                                        : e.noise_model);
   }
-  for (StageResult stage : second.stages) {
-    stage.name = o.refine + " from the " + o.cost.name + " estimate: " + stage.name;
-    stages.push_back(std::move(stage));
-  }
-  second.stages = std::move(stages);
-  second.evaluations += first.evaluations;
-  second.wall_time_s += first.wall_time_s;
-  second.best_start = first.best_start;
-  for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
-  return second;
+  FitOptions again = o;
+  again.strategy = kDirect;
+  again.starts = 1;
+  return chained(first, fit(again, estimated),
+                 "white noise: ", "the noise estimated from its residuals (" + described + "): ");
 }
 
 }  // namespace
@@ -501,6 +549,9 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
   validate_records(o, records, map);
   check_first_step(o, map);
   if (o.strategy == kHybrid) return fit_hybrid(o, records);
+  if (o.cost.noise_model == costs::kEstimatedNoise && costs::cost_uses(o.cost.name).noise_model &&
+      records.front().noise_model.empty())
+    return fit_with_estimated_noise(o, records);
   JointObjective objective(o, records, map);
 
   const auto begin = std::chrono::steady_clock::now();

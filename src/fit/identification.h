@@ -90,6 +90,10 @@ struct Record {
   simulation::Experiment experiment;  // dt_s and samples must match the data
   std::vector<double> data;
   std::vector<double> spike_frequencies_hz;  // this record's --spike-frequencies (empty: the fit's cost options')
+  // This record's noise as the fit estimated it (FitOptions::cost.noise_model "estimated"): an AR model for time, the
+  // bins' variances for freq-ml (empty: the fit's cost options').
+  std::string noise_model;
+  std::vector<double> bin_variance;
 };
 
 // The default optimizer for a cost: "lm" for the sums of squares with a usable Jacobian (time, spike-smooth),

@@ -15,6 +15,8 @@ FitOptions record_options(const FitOptions& options, const Record& record, const
     const EstimatedParameter& e = map.estimated()[static_cast<std::size_t>(p.index)];
     o.estimate.push_back({p.key, e.lower, e.upper});
   }
+  if (!record.noise_model.empty()) o.cost.noise_model = record.noise_model;
+  if (!record.bin_variance.empty()) o.cost.bin_variance = record.bin_variance;
   if (!record.spike_frequencies_hz.empty()) {
     o.cost.spikes.frequencies_hz = record.spike_frequencies_hz;
     o.cost.spikes.count = static_cast<int>(record.spike_frequencies_hz.size());

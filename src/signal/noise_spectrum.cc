@@ -87,4 +87,44 @@ BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynom
   return out;
 }
 
+NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order) {
+  if (e.size() < 8)
+    throw InputError("autoregressive noise model: " + std::to_string(e.size()) + " samples: at least 8");
+  if (max_order < 0 || max_order > 32)
+    throw InputError("autoregressive noise model: order " + std::to_string(max_order) + ": must be in 0..32");
+  const auto n = static_cast<double>(e.size());
+  double mean = 0;
+  for (const double v : e) mean += v / n;
+  const auto p_max = static_cast<std::size_t>(std::min<long>(max_order, static_cast<long>(e.size()) / 4));
+  std::vector<double> gamma(p_max + 1, 0.0);  // biased: sum over n - l products, over n
+  for (std::size_t l = 0; l <= p_max; ++l) {
+    for (std::size_t i = 0; i + l < e.size(); ++i) gamma[l] += (e[i] - mean) * (e[i + l] - mean);
+    gamma[l] /= n;
+  }
+  NoiseModel best;  // white
+  if (!(gamma[0] > 0)) return best;
+  // Levinson-Durbin: phi holds the order-p coefficients, v the order-p prediction-error variance.
+  std::vector<double> phi;
+  double v = gamma[0];
+  double best_aic = n * std::log(v);
+  for (std::size_t p = 1; p <= p_max; ++p) {
+    double acc = gamma[p];
+    for (std::size_t j = 0; j < phi.size(); ++j) acc -= phi[j] * gamma[p - 1 - j];
+    const double k = acc / v;
+    std::vector<double> next(p);
+    for (std::size_t j = 0; j + 1 < p; ++j) next[j] = phi[j] - k * phi[p - 2 - j];
+    next[p - 1] = k;
+    phi = std::move(next);
+    v *= 1 - k * k;
+    if (!(v > 0)) break;
+    const double aic = n * std::log(v) + 2.0 * static_cast<double>(p);
+    if (aic < best_aic) {
+      best_aic = aic;
+      best.kind = "ar";
+      best.ar = phi;
+    }
+  }
+  return best;
+}
+
 }  // namespace beamid::signal

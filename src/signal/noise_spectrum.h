@@ -45,4 +45,11 @@ struct BinVariance {
 // The offset and Nyquist bins take their nearest neighbour's estimate.
 BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynomialOptions& options);
 
+// The autoregressive model of a noise record e (a fit's residuals): Yule-Walker by the Levinson-Durbin recursion on
+// the biased sample autocorrelation (so the model is stationary), of the order p <= max_order that minimises Akaike's
+// criterion n ln(sigma_p^2) + 2 p, sigma_p^2 the order-p prediction-error variance (Brockwell and Davis, Introduction
+// to Time Series and Forecasting, 5.1 and 5.5). Order 0 is "white". InputError for fewer than 8 samples or a
+// max_order outside 0..32; a record of zeros is white.
+NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order);
+
 }  // namespace beamid::signal

@@ -200,8 +200,10 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
       const auto positive_factor = [](double v) { return v > 0 && v <= 1e6; };
       m.eps1_factor = r.number("eps1_factor", 1.0, positive_factor, "must be in (0, 1e6]");
       m.eps2_factor = r.number("eps2_factor", 1.0, positive_factor, "must be in (0, 1e6]");
-      if (r.has("noise_model"))
-        m.noise_model = r.string("noise_model", std::nullopt) == "truth" ? "truth" : noise_model_of(r, "noise_model");
+      if (r.has("noise_model")) {
+        const std::string text = r.string("noise_model", std::nullopt);
+        m.noise_model = text == "truth" || text == costs::kEstimatedNoise ? text : noise_model_of(r, "noise_model");
+      }
       r.finish({"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor",
                 "noise_model"});
       spec.methods.push_back(m);

@@ -76,7 +76,8 @@ struct MethodSpec {
   double eps1_factor = 1;
   double eps2_factor = 1;
   // The noise the time and freq-ml costs assume (costs/cost.h): "" white; "truth" the records' own ([truth]
-  // noise_model, known to the estimator: the maximum-likelihood and generalised least-squares fits); or a model.
+  // noise_model, known to the estimator: the maximum-likelihood and generalised least-squares fits); "estimated" from
+  // each fit's own white-noise residuals (fit/identification.cc); or a model.
   std::string noise_model;
 };
 
