@@ -261,10 +261,13 @@ def modes(**flags) -> np.ndarray:
 
 def simulate(**flags) -> np.ndarray:
     """``beamid simulate``: the sampled output as a 1-D array (``y[i]`` at ``t = dt * i``), bit-identical to the
-    command's second column."""
+    command's second column; with ``force_column=True`` a 2-D array whose columns are the output and the force
+    (``force_N``, with ``force_noise_level`` noise on it), as the command's second and third columns."""
     f, toml = _beam_argument(flags)
     r = _call(_core.simulate, _arguments(f), toml)
     _warn_lines(r)
+    if "force" in r:
+        return np.column_stack((r["y"], r["force"]))
     return r["y"]
 
 

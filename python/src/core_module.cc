@@ -143,6 +143,12 @@ std::vector<io::TimeSeries> records_of(const apps::Flags& a, const std::optional
   if (!array) return apps::read_channels(a);
   return apps::read_channels(a, [&array](const io::ImportOptions& o) { return array->read(o); });
 }
+// fit's --force-channel from the array, or from the --data file.
+std::optional<io::TimeSeries> force_channel_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
+  if (!array) return apps::read_force_channel(a);
+  return apps::read_force_channel(a, [&array](const io::ImportOptions& o) { return array->read(o); });
+}
+
 io::TimeSeries record_of(const apps::Flags& a, const std::optional<ArrayRecord>& array) {
   if (!array) return apps::read_data(a);
   return apps::read_data(a, [&array](const io::ImportOptions& o) { return array->read(o); });
@@ -189,6 +195,7 @@ py::dict py_simulate(const std::vector<std::string>& args, const std::optional<s
   d["modes"] = r.trace.stats.modes;
   d["steps"] = r.trace.stats.steps;
   d["y"] = owned_array(std::move(r.y));
+  if (!r.force_N.empty()) d["force"] = owned_array(std::move(r.force_N));
   return d;
 }
 
@@ -341,7 +348,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     const apps::Flags a = flags_of("fit", args, beam_toml);
     check_before_reading(a, array);
     channels = records_of(a, array);
-    c = api::compute_fit(apps::fit_request_of(a), channels, warned);
+    c = api::compute_fit(apps::fit_request_of(a, force_channel_of(a, array)), channels, warned);
     beam_name = a.text("beam");
     const apps::FitReportInput input{
         c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};

@@ -19,6 +19,23 @@ simulation::Experiment experiment_of(const ExperimentRequest& request, double le
   e.force_x_m = request.force_x_m;
   e.force_amplitude_N = request.force_amplitude_N.value_or(e.force_amplitude_N);
   e.pulse_width_s = request.pulse_width_s.value_or(e.pulse_width_s);
+  if (!request.force_samples_N.empty()) {
+    // A measured force drives the model: it sets the excitation, its amplitude and its shape.
+    if (request.excitation && *request.excitation != simulation::kSampledForce)
+      refuse(caller, "excitation", *request.excitation,
+             "--force-channel '" + request.force_channel + "' drives the model with the record's force (excitation " +
+                 simulation::kSampledForce + ")");
+    for (const auto& [flag, given] : {std::pair{"force-amplitude", request.force_amplitude_N.has_value()},
+                                      std::pair{"pulse-width", request.pulse_width_s.has_value()}})
+      if (given)
+        refuse(caller, std::string("--") + flag + " describes a modelled pulse; --force-channel '" +
+                           request.force_channel + "' gives the measured force");
+    e.excitation = simulation::kSampledForce;
+    e.force_samples_N = request.force_samples_N;
+    e.samples = static_cast<int>(request.force_samples_N.size());  // the record's; checked against the response's
+  } else if (e.excitation == simulation::kSampledForce) {
+    refuse(caller, "excitation", e.excitation, "needs the record's force: give --force-channel NAME (fit)");
+  }
   if (e.excitation == simulation::kPluck && request.pulse_width_s)
     refuse(caller, "--pulse-width applies to --excitation pulse only");
   // A free decay has no force: its initial state is solved from the record (simulation/experiment.h), and a force

@@ -22,6 +22,9 @@ struct ExperimentRequest {
   std::optional<double> force_x_m;          // --force-x
   std::optional<double> force_amplitude_N;  // --force-amplitude
   std::optional<double> pulse_width_s;      // --pulse-width (pulse only)
+  // fit --force-channel: the record's measured force, which drives the model (excitation "force"), and its column.
+  std::vector<double> force_samples_N;
+  std::string force_channel;
 };
 
 // The experiment the request describes, validated for a beam of length_m; the sensor is the first of sensor_x_m

@@ -76,6 +76,15 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
            "must equal the data's " + std::to_string(data.values.size()));
   experiment.dt_s = data.dt_s;
   experiment.samples = static_cast<int>(data.values.size());
+  if (experiment.excitation != simulation::kSampledForce) return;
+  if (request.windows)
+    refuse(caller, "windows", std::to_string(*request.windows),
+           "cuts the record into windows that start after the force; with --force-channel each window's force "
+           "history is not modelled yet");
+  if (experiment.force_samples_N.size() != data.values.size())
+    refuse(caller, "force-channel", request.experiment.force_channel,
+           "has " + std::to_string(experiment.force_samples_N.size()) + " samples; the response '" + data.value_column +
+               "' has " + std::to_string(data.values.size()));
 }
 
 // A record that states what it measures (its unit, io/units.h) is not fitted as another quantity: a velocity in m/s

@@ -132,9 +132,30 @@ constexpr const char* kZeroResponse =
 
 }  // namespace
 
+namespace {
+
+// The force channel of a simulated pulse test: P(t_i), with its own white noise (the seed's second stream).
+std::vector<double> force_channel(const SimulateRequest& request, const simulation::Experiment& e) {
+  const Caller& caller = request.run.caller;
+  if (e.excitation != simulation::kPulse)
+    refuse(caller, "--force-column records a pulse's force; --excitation " + e.excitation + " has none after t = 0");
+  const double level = request.force_noise_level.value_or(0.0);
+  if (!(level >= 0 && level <= 10))
+    refuse(caller, "force-noise-level", format_value(level), "must be in [0, 10] (times the force's RMS)");
+  simulation::ResponseProblem pulse;
+  pulse.amplitude_N = e.force_amplitude_N;
+  pulse.pulse_width_s = e.pulse_width_s;
+  std::vector<double> f(static_cast<std::size_t>(e.samples));
+  for (int i = 0; i < e.samples; ++i) f[static_cast<std::size_t>(i)] = pulse.force_N(i * e.dt_s);
+  const auto seed = static_cast<std::uint64_t>(request.seed.value_or(1));
+  return signal::add_noise(f, level, core::derive_seed(seed, "force"));
+}
+
+}  // namespace
+
 SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings) {
   const Caller& caller = request.run.caller;
-  SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}};
+  SimulateResult r{model_run(request.run, core::kSimulateBytesPerSample, warnings), {}, {}, {}};
   simulation::SimulatorOptions options;
   options.integrator = request.integrator;
   // CVODE's tolerances and order do nothing to the exact propagator: said, not ignored.
@@ -162,6 +183,10 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
       request.noise_model ? parsed_noise_model(caller, *request.noise_model) : signal::NoiseModel{};
   if (request.seed && *request.seed < 0)
     refuse(caller, "seed", std::to_string(*request.seed), "must be an integer >= 0");
+  if (request.force_noise_level && !request.force_column)
+    refuse(caller, "force-noise-level", format_value(*request.force_noise_level),
+           "is noise on the force column: give --force-column too");
+  if (request.force_column) r.force_N = force_channel(request, r.run.experiment);
   const galerkin::SplineSpace space(r.run.elements);
   const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
   r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);

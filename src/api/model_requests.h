@@ -72,11 +72,16 @@ struct SimulateRequest {
   std::optional<double> noise_level;       // --noise-level: white noise of this times the clean signal's RMS (none: 0)
   std::optional<std::string> noise_model;  // --noise-model (signal/noise.h; needs noise_level; default white)
   std::optional<long long> seed;           // --seed of the noise (needs noise_level; default 1)
+  // --force-column: also the force at each sample (a pulse's F0 sin^2, as a hammer's force channel records it), with
+  // --force-noise-level white noise of this times the force's RMS on it (an independent stream of the same seed).
+  bool force_column = false;
+  std::optional<double> force_noise_level;
 };
 struct SimulateResult {
   ModelRun run;
   simulation::Trace trace;
   std::vector<double> y;
+  std::vector<double> force_N;  // with force_column
 };
 SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& warnings);
 

@@ -90,6 +90,21 @@ RecordReader file_reader(const Flags& a) {
 
 std::vector<io::TimeSeries> read_channels(const Flags& a) { return read_channels(a, file_reader(a)); }
 
+std::optional<io::TimeSeries> read_force_channel(const Flags& a, const RecordReader& read) {
+  if (!a.has("force-channel")) return std::nullopt;
+  io::ImportOptions o = read_import_options(a);
+  o.channel = a.text("force-channel");
+  for (const std::string& channel : a.texts("channel"))
+    a.require(channel != o.channel, "force-channel", "names a response --channel too: the force drives the model");
+  try {
+    return read(o);
+  } catch (const InputError& e) {
+    throw InputError("beamid " + a.command() + ": --force-channel = '" + o.channel + "': " + e.what());
+  }
+}
+
+std::optional<io::TimeSeries> read_force_channel(const Flags& a) { return read_force_channel(a, file_reader(a)); }
+
 io::TimeSeries read_data(const Flags& a, const RecordReader& read) {
   a.require(a.texts("channel").size() <= 1, "channel", "must name one channel (several are for beamid fit)");
   return read_channels(a, read).front();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ std::vector<io::TimeSeries> read_channels(const Flags& a);
 using RecordReader = std::function<io::TimeSeries(const io::ImportOptions&)>;
 io::TimeSeries read_data(const Flags& a, const RecordReader& read);
 std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& read);
+// fit --force-channel NAME: that column of the record, read with the response's import flags (the same cut and
+// resampling), or nothing without the flag. InputError naming the command and the flag.
+std::optional<io::TimeSeries> read_force_channel(const Flags& a, const RecordReader& read);
+std::optional<io::TimeSeries> read_force_channel(const Flags& a);
 // --prediction (cost): one signal column beside its time, read as it is but for --start and --duration, which cut it
 // as they cut --data (the other import flags are the record's); a file of several columns is told so, not sent to
 // --channel. With a window, the two files' times must start together (each is cut by its own clock: a prediction

@@ -47,8 +47,14 @@ int run_simulate(const Flags& a, std::ostream& out) {
   const api::SimulateResult r = api::compute_simulate(simulate_request_of(a), std::cerr);
   const simulation::Experiment& e = r.run.experiment;
   std::ostringstream csv;
-  csv << "t_s," << simulation::output_column(e.output) << "\n";
-  for (int i = 0; i < e.samples; ++i) io::write_row(csv, {i * e.dt_s, r.y[static_cast<std::size_t>(i)]});
+  csv << "t_s," << simulation::output_column(e.output) << (r.force_N.empty() ? "" : ",force_N") << "\n";
+  for (int i = 0; i < e.samples; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (r.force_N.empty())
+      io::write_row(csv, {i * e.dt_s, r.y[k]});
+    else
+      io::write_row(csv, {i * e.dt_s, r.y[k], r.force_N[k]});
+  }
   out << csv.str();
   if (a.has("verbose")) {
     const auto& s = r.trace.stats;

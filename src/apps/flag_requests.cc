@@ -83,6 +83,8 @@ api::SimulateRequest simulate_request_of(const Flags& a) {
   r.noise_level = a.optional_number("noise-level");
   if (a.has("noise-model")) r.noise_model = a.text("noise-model");
   r.seed = a.optional_integer("seed");
+  r.force_column = a.has("force-column");
+  r.force_noise_level = a.optional_number("force-noise-level");
   return r;
 }
 
@@ -133,13 +135,17 @@ std::map<std::string, std::pair<double, double>> bounds_of(const Flags& a) {
 
 }  // namespace
 
-api::FitRequest fit_request_of(const Flags& a) {
+api::FitRequest fit_request_of(const Flags& a, const std::optional<io::TimeSeries>& force) {
   api::FitRequest r;
   r.caller = caller_of(a);
   r.beam_name = a.text("beam");
   r.beam = read_beam(a);
   r.elements = a.integer("elements");
   r.experiment = experiment_request_of(a);
+  if (force) {
+    r.experiment.force_samples_N = force->values;
+    r.experiment.force_channel = force->value_column;
+  }
   r.estimate = a.texts("estimate");
   r.of_interest = a.texts("of-interest");
   r.bounds = bounds_of(a);

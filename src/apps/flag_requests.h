@@ -29,7 +29,8 @@ api::SimulateRequest simulate_request_of(const Flags& a);
 api::SpikesRequest spikes_request_of(const Flags& a);
 api::CostEvaluationRequest cost_evaluation_request_of(const Flags& a);
 // beamid fit's request (the records are read apart: read_channels).
-api::FitRequest fit_request_of(const Flags& a);
+// `force`: the record's --force-channel, read by the caller (apps::read_force_channel), which drives the model.
+api::FitRequest fit_request_of(const Flags& a, const std::optional<io::TimeSeries>& force = std::nullopt);
 api::CrbRequest crb_request_of(const Flags& a);
 api::ModalIdRequest modal_id_request_of(const Flags& a);
 

@@ -187,7 +187,7 @@ int run_fit(const Flags& a, std::ostream& out) {
   const std::vector<io::TimeSeries> channels = read_channels(a);
   const io::TimeSeries& data = channels.front();
   const std::string beam_name = a.text("beam");
-  const api::FitComputation c = api::compute_fit(fit_request_of(a), channels, std::cerr);
+  const api::FitComputation c = api::compute_fit(fit_request_of(a, read_force_channel(a)), channels, std::cerr);
   const fit::FitOptions& o = c.options;
   const fit::FitResult& result = c.result;
   const std::vector<double>& sensors = c.sensors_m;
@@ -288,6 +288,9 @@ std::vector<FlagSpec> fit_flags() {
                 "free decay, none otherwise); for a free decay fitted by the time or freq-band cost, mean (the "
                 "default) or linear: what its amplitudes fit beside the modes, a sensor offset or an offset and a "
                 "drift"),
+      text_flag("force-channel",
+                "the record's measured force, N (a column of --data, e.g. force_N): it drives the model (linear "
+                "between samples, at --force-x, from rest) instead of a modelled pulse"),
       integer_flag("windows",
                    "also fit K disjoint windows of the record(s) and report the estimates' spread over them, an "
                    "uncertainty that admits model error (default: not done)",

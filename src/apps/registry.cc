@@ -31,6 +31,26 @@ std::vector<FlagSpec> joined(std::vector<FlagSpec> a, const std::vector<FlagSpec
   return a;
 }
 
+// simulate's flags: the model and experiment, the integrator, the response's noise and the force column.
+std::vector<FlagSpec> simulate_flags() {
+  return joined(
+      joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),
+      {text_flag("integrator", "fast | cvode (default fast)"),
+       number_flag("rtol", "CVODE relative tolerance (default 1e-10)"),
+       number_flag("atol", "CVODE absolute tolerance (default: rtol times the state's natural size)"),
+       integer_flag("max-order", "CVODE BDF order limit (default 5)", 1, 5),
+       number_flag("noise-level",
+                   "add white Gaussian noise of this many times the signal's RMS, e.g. 0.01 (default "
+                   "0: none)"),
+       text_flag("noise-model",
+                 "the noise's colour: white | ar:a1,a2,... | power:alpha (1/f^alpha to "
+                 "Nyquist), at --noise-level (default white)"),
+       integer_flag("seed", "seed of the noise (default 1)", 0, std::numeric_limits<int>::max()),
+       switch_flag("force-column", "also print the pulse's force at each sample, force_N (a hammer's force channel)"),
+       number_flag("force-noise-level", "white noise on the force column, this many times its RMS (default 0)"),
+       switch_flag("verbose", "say on stderr what ran, with the integrator statistics")});
+}
+
 std::vector<Command> make_commands() {
   std::vector<Command> c;
   c.push_back(
@@ -42,23 +62,8 @@ std::vector<Command> make_commands() {
                      std::numeric_limits<int>::max())},
        {{"exact", "elements"}, {"exact", "undamped"}},
        run_modes});
-  c.push_back({"simulate",
-               "sampled sensor signal of a pulse or pluck experiment, as CSV",
-               joined(joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),
-                      {text_flag("integrator", "fast | cvode (default fast)"),
-                       number_flag("rtol", "CVODE relative tolerance (default 1e-10)"),
-                       number_flag("atol", "CVODE absolute tolerance (default: rtol times the state's natural size)"),
-                       integer_flag("max-order", "CVODE BDF order limit (default 5)", 1, 5),
-                       number_flag("noise-level",
-                                   "add white Gaussian noise of this many times the signal's RMS, e.g. 0.01 (default "
-                                   "0: none)"),
-                       text_flag("noise-model",
-                                 "the noise's colour: white | ar:a1,a2,... | power:alpha (1/f^alpha to "
-                                 "Nyquist), at --noise-level (default white)"),
-                       integer_flag("seed", "seed of the noise (default 1)", 0, std::numeric_limits<int>::max()),
-                       switch_flag("verbose", "say on stderr what ran, with the integrator statistics")}),
-               {},
-               run_simulate});
+  c.push_back(
+      {"simulate", "sampled sensor signal of a pulse or pluck experiment, as CSV", simulate_flags(), {}, run_simulate});
   c.push_back({"system",
                "the Galerkin matrices M, C, K with the load, sensor and sampling of an experiment, as JSON",
                joined({beam_flag(), elements_flag(true)}, experiment_flag_specs()),

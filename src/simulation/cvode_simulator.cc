@@ -346,11 +346,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
   trace.y.assign(static_cast<std::size_t>(p.samples), 0.0);
 
   const int n = static_cast<int>(system.M.rows());
-  Rhs rhs;
-  rhs.problem = &p;
-  rhs.system = &system;
-  rhs.n = n;
-  rhs.mass.compute(system.M);
+  Rhs rhs{&p, &system, Eigen::LLT<Eigen::MatrixXd>(system.M), n, {}};
   if (rhs.mass.info() != Eigen::Success) {
     trace.status = "cvode: mass matrix is not positive definite";
     return trace;
@@ -428,6 +424,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
         restarted = true;
       }
       double t_reached = 0;
+      if (!p.force_samples_N.empty()) CVodeSetStopTime(s.cvode, t_out);  // a sampled force's kink: never crossed
       flag = CVode(s.cvode, t_out, s.y, &t_reached, CV_NORMAL);
       if (flag < 0) return failed("CVode at t = " + format_value(t_out) + " s", flag);
       diagnosis.record();

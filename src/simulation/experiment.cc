@@ -1,5 +1,6 @@
 #include "simulation/experiment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -10,7 +11,10 @@ namespace beamid::simulation {
 const core::NameSet& excitation_names() {
   static const core::NameSet names({{kPulse, "F0 sin^2(pi t/tau) on [0, tau] at x_f, from rest"},
                                     {kPluck, "released at rest from the static deflection under F0 at x_f"},
-                                    {kFreeDecay, "a record from an unknown state (fit only)"}});
+                                    {kFreeDecay, "a record from an unknown state (fit only)"},
+                                    {kSampledForce,
+                                     "a record's force channel at x_f, linear between samples (fit "
+                                     "--force-channel), from rest"}});
   return names;
 }
 
@@ -49,6 +53,17 @@ std::optional<std::string> validation_error(const Experiment& e, double length_m
   // dt = 1e-300 s that no reader takes (the third pass's P209).
   if (e.dt_s < 1e-9) return bad("dt_s", e.dt_s, "must be at least 1e-9 s (a rate of at most 1 GHz; is dt in seconds?)");
   if (e.samples < 2) return "samples = " + std::to_string(e.samples) + ": must be >= 2";
+  if (e.excitation == kSampledForce) {
+    if (e.force_samples_N.size() != static_cast<std::size_t>(e.samples))
+      return "excitation = 'force': needs the force at every sample (" + std::to_string(e.samples) + "), has " +
+             std::to_string(e.force_samples_N.size()) + " (a record's force channel: fit --force-channel)";
+    for (std::size_t i = 0; i < e.force_samples_N.size(); ++i)
+      if (!(std::abs(e.force_samples_N[i]) <= 1e12))
+        return "force sample " + std::to_string(i) + " = " + format_value(e.force_samples_N[i]) +
+               ": must be finite and at most 1e12 N in magnitude";
+  } else if (!e.force_samples_N.empty()) {
+    return "excitation = '" + e.excitation + "': a sampled force is read by excitation 'force' only";
+  }
   // A beam's free vibration dies out in minutes; a record of more than 1e6 s (11 days) is a unit mistake.
   if (e.dt_s * e.samples > 1e6)
     return bad("dt_s", e.dt_s,
@@ -76,6 +91,14 @@ std::string output_column(const std::string& output) {
 }
 
 double ResponseProblem::force_N(double t_s) const {
+  if (!force_samples_N.empty()) {
+    if (!(t_s >= 0)) return 0;
+    const double x = t_s / dt_s;
+    const auto i = static_cast<std::size_t>(std::min<double>(std::floor(x), force_samples_N.size() - 1));
+    if (i + 1 >= force_samples_N.size()) return force_samples_N.back();
+    const double f = x - static_cast<double>(i);
+    return (1 - f) * force_samples_N[i] + f * force_samples_N[i + 1];
+  }
   if (pulse_width_s <= 0 || t_s < 0 || t_s > pulse_width_s) return 0;
   const double s = std::sin(std::numbers::pi * t_s / pulse_width_s);
   return amplitude_N * s * s;

@@ -4,12 +4,15 @@
 //                       x_f = l); no force afterwards.
 //   excitation "free-decay": a record that starts after an impact or a release, from an unknown state; it can be
 //                       fitted (simulation/free_decay.h) but not simulated.
+//   excitation "force": a sampled force F_i at t_i = i dt (a record's measured force channel: an impact hammer's),
+//                       linear between samples (first-order hold), at x_f; zero initial state.
 //   sensor at xbar: displacement, velocity or acceleration of u; samples t_i = i dt, i = 0..Nbar-1.
 #pragma once
 
 #include <Eigen/Dense>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/names.h"
 
@@ -19,6 +22,7 @@ namespace beamid::simulation {
 inline const std::string kPulse = "pulse";
 inline const std::string kPluck = "pluck";
 inline const std::string kFreeDecay = "free-decay";
+inline const std::string kSampledForce = "force";
 const core::NameSet& excitation_names();
 inline const std::string kDisplacement = "displacement";
 inline const std::string kVelocity = "velocity";
@@ -37,6 +41,8 @@ struct Experiment {
   // Free decay only: a linear trend fitted beside the constant (simulation/free_decay.h; fit --detrend linear with the
   // time or freq-band cost): a sensor that drifts during the record.
   bool free_decay_trend = false;
+  // Sampled force only: F_i, N, one per sample (force_amplitude_N and pulse_width_s are not read).
+  std::vector<double> force_samples_N;
 };
 
 // First violated constraint as "key = value: constraint", e.g. "pulse_width_s = -1: must be > 0", or nothing.
@@ -52,16 +58,17 @@ std::string output_column(const std::string& output);
 //   M w'' + C w' + K w = load * P(t),  P(t) = amplitude sin^2(pi t / tau) on [0, tau] (none when tau = 0),
 //   w(0) = w0, w'(0) = 0,  y_i = sensor^T (d/dt)^derivative w (t_i).
 struct ResponseProblem {
-  Eigen::VectorXd load;      // generalised load of a unit force at x_f
-  double amplitude_N = 0;    // F0 of the pulse (0 for a pluck)
-  double pulse_width_s = 0;  // tau (0 for a pluck)
-  Eigen::VectorXd w0;        // initial displacement state
-  Eigen::VectorXd sensor;    // [beta(xbar); 0]
+  Eigen::VectorXd load;                 // generalised load of a unit force at x_f
+  double amplitude_N = 0;               // F0 of the pulse (0 for a pluck); a sampled force's largest |F_i| (a scale)
+  double pulse_width_s = 0;             // tau (0 for a pluck)
+  std::vector<double> force_samples_N;  // a sampled force: P(t) is these, linear between samples (else empty)
+  Eigen::VectorXd w0;                   // initial displacement state
+  Eigen::VectorXd sensor;               // [beta(xbar); 0]
   int derivative = 0;
   double dt_s = 0;
   int samples = 0;
 
-  // P(t) of the pulse, N.
+  // P(t) of the pulse or the sampled force, N.
   double force_N(double t_s) const;
 };
 

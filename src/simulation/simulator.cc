@@ -63,6 +63,10 @@ ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::S
     p.amplitude_N = e.force_amplitude_N;
     p.pulse_width_s = e.pulse_width_s;
     p.w0 = Eigen::VectorXd::Zero(p.load.size());
+  } else if (e.excitation == kSampledForce) {
+    p.force_samples_N = e.force_samples_N;
+    for (const double f : e.force_samples_N) p.amplitude_N = std::max(p.amplitude_N, std::abs(f));
+    p.w0 = Eigen::VectorXd::Zero(p.load.size());
   } else {
     // Static deflection under the load: K w0 = P0 f (K is SPD for admissible parameters).
     Eigen::LLT<Eigen::MatrixXd> k(system.K);

@@ -506,6 +506,23 @@ expect_error "coloured noise model, free decay" "--noise-model = 'ar:0.9': needs
   fit "${Z[@]}" --cost freq-ml --noise-model ar:0.9 --excitation free-decay
 expect_error "unstationary noise model" "--noise-model = 'ar:1': not stationary" fit "${Z[@]}" --cost time \
   --noise-model ar:1
+# A measured force channel (issue 33 item 4): it sets the excitation, so a pulse's flags are refused; simulate's
+# force column is a pulse's; its noise needs the column.
+"$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --force-column --force-noise-level 0.01 >"$tmp/hammer.csv"
+H=(--data "$tmp/hammer.csv" --channel displacement_m --beam banks-aluminium --elements 6 --estimate EI --cost time)
+expect_error "force channel with a pulse width" "--pulse-width describes a modelled pulse; --force-channel 'force_N'" \
+  fit "${H[@]}" --force-channel force_N --pulse-width 0.004
+expect_error "force channel with a pluck" "--excitation = 'pluck': --force-channel 'force_N' drives the model" \
+  fit "${H[@]}" --force-channel force_N --excitation pluck
+expect_error "force channel missing" "--force-channel = 'hammer'" fit "${H[@]}" --force-channel hammer
+expect_error "force channel as response" "names a response --channel too" \
+  fit "${H[@]}" --force-channel displacement_m
+expect_error "force excitation without channel" "needs the record's force: give --force-channel" \
+  fit "${H[@]}" --excitation force
+expect_error "force noise without the column" "--force-noise-level = '0.01': is noise on the force column" \
+  simulate "${S[@]}" --force-noise-level 0.01
+expect_error "force column of a pluck" "--force-column records a pulse's force" simulate "${S[@]}" \
+  --excitation pluck --force-column
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
 # The fourth pass's: a bound factor where --bounds gives every key (Q110), a free amplitude on a free decay (Q116),
 # and cost's flags that pick spikes or a band on a cost that has neither, and --welch, which cost never read (Q511,
