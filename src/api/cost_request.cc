@@ -92,6 +92,10 @@ void refuse_unused(const CostRequest& request, const Caller& caller, const std::
             request.mode_weight.value_or(""), "the modal cost");
   refuse_if(request.noise_model.has_value(), &costs::CostUses::noise_model, "noise-model",
             request.noise_model.value_or(""), "the time and freq-ml costs");
+  for (const auto& [flag, value] :
+       {std::pair{"noise-sd", request.noise_sd}, std::pair{"force-noise-sd", request.force_noise_sd}})
+    if (value && std::find(names.begin(), names.end(), costs::kMaxLikelihoodCost) == names.end())
+      refuse(caller, flag, format_value(*value), "is read by the freq-ml cost; cost " + named + " does not read it");
   if (request.unknown_amplitude && !uses(&costs::CostUses::unknown_amplitude))
     refuse(caller, "--unknown-amplitude frees the amplitude of a cost that compares amplitudes; cost " + named +
                        " compares frequencies and decay rates only");
@@ -125,6 +129,15 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.model_poles = request.model_poles.value_or(o.model_poles);
   o.mode_weight = request.mode_weight.value_or(o.mode_weight);
   o.frequency_weight = request.frequency_weight.value_or(costs::kRelativeWeight);
+  if (request.force_noise_sd && !request.noise_sd)
+    refuse(caller, "force-noise-sd", format_value(*request.force_noise_sd),
+           "weighs the force's noise against the response's: give --noise-sd too");
+  if (request.noise_sd && !request.force_noise_sd)
+    refuse(caller, "noise-sd", format_value(*request.noise_sd),
+           "is the errors-in-variables form's (with --force-noise-sd); the output-error form takes the level from the "
+           "residuals");
+  o.noise_sd = request.noise_sd.value_or(0.0);
+  o.force_noise_sd = request.force_noise_sd.value_or(0.0);
   if (request.noise_model)
     o.noise_model = *request.noise_model == costs::kEstimatedNoise
                         ? costs::kEstimatedNoise

@@ -44,6 +44,8 @@ struct CostRequest {
   // (unset: relative).
   std::optional<std::string> frequency_weight;
   std::optional<std::string> noise_model;  // --noise-model: the noise time and freq-ml assume (default white)
+  // --noise-sd and --force-noise-sd: freq-ml's errors-in-variables form with a measured force (costs/cost.h)
+  std::optional<double> noise_sd, force_noise_sd;
 };
 
 // The options a request gives, validated (InputError naming the field, value and constraint).

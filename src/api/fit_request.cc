@@ -76,6 +76,9 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
            "must equal the data's " + std::to_string(data.values.size()));
   experiment.dt_s = data.dt_s;
   experiment.samples = static_cast<int>(data.values.size());
+  if (request.cost.force_noise_sd && experiment.excitation != simulation::kSampledForce)
+    refuse(caller, "force-noise-sd", format_value(*request.cost.force_noise_sd),
+           "is the measured force's noise: give the record's force with --force-channel");
   if (experiment.excitation != simulation::kSampledForce) return;
   if (request.windows)
     refuse(caller, "windows", std::to_string(*request.windows),

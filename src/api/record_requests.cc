@@ -201,6 +201,10 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
     refuse(caller, "cost", costs::kModalCost,
            "compares the model's eigenvalues with the record's modes, and a prediction file carries no eigenvalues: "
            "use it in fit");
+  if (request.cost.force_noise_sd)
+    refuse(caller, "force-noise-sd", format_value(*request.cost.force_noise_sd),
+           "weighs the force's noise through the model's transfer function, which a prediction file does not carry: "
+           "use it in fit with --force-channel");
   // A noise model estimated from a fit's residuals needs the fit.
   if (request.cost.noise_model && *request.cost.noise_model == costs::kEstimatedNoise)
     refuse(caller, "noise-model", costs::kEstimatedNoise,

@@ -59,6 +59,8 @@ api::CostRequest cost_request_of(const Flags& a) {
   if (a.has("mode-weight")) r.mode_weight = a.text("mode-weight");
   if (a.has("frequency-weight")) r.frequency_weight = a.text("frequency-weight");
   if (a.has("noise-model")) r.noise_model = a.text("noise-model");
+  r.noise_sd = a.optional_number("noise-sd");
+  r.force_noise_sd = a.optional_number("force-noise-sd");
   return r;
 }
 

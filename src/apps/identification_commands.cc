@@ -88,6 +88,12 @@ std::vector<FlagSpec> cost_flags(bool required) {
                             "on the prewhitened record; freq-ml: each bin over its variance; default white); fit: "
                             "estimated, from the residuals of a white fit first (time an AR model, freq-ml each "
                             "bin's variance)"));
+  flags.push_back(number_flag("force-noise-sd",
+                              "freq-ml with fit --force-channel: the force channel's white noise sd, N: the "
+                              "errors-in-variables form, each bin over its response noise plus |G|^2 its force noise"));
+  flags.push_back(number_flag("noise-sd",
+                              "with --force-noise-sd: the response's noise sd (its process sd, --noise-model's "
+                              "colour), in the record's units"));
   return flags;
 }
 

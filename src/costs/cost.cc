@@ -108,6 +108,17 @@ std::optional<std::string> validation_error(const CostOptions& o) {
       return std::string(key) + " = " + format_value(value) + ": must be finite and > 0";
   if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
   if (auto error = mode_weight_names().violation("mode_weight", o.mode_weight)) return error;
+  const std::pair<const char*, double> sds[] = {{"noise_sd", o.noise_sd}, {"force_noise_sd", o.force_noise_sd}};
+  for (const auto& [key, value] : sds)
+    if (!(std::isfinite(value) && value >= 0)) return std::string(key) + " = " + format_value(value) + ": must be >= 0";
+  if (o.force_noise_sd > 0 && !(o.noise_sd > 0))
+    return "force_noise_sd = " + format_value(o.force_noise_sd) +
+           ": the errors-in-variables form weighs the force's noise against the response's: give noise_sd > 0 too";
+  if (o.force_noise_sd > 0 && o.name != kMaxLikelihoodCost)
+    return "force_noise_sd = " + format_value(o.force_noise_sd) + ": is read by the freq-ml cost only";
+  if (o.noise_model == kEstimatedNoise && o.force_noise_sd > 0)
+    return "noise_model = 'estimated' with force_noise_sd: the errors-in-variables form needs the response's noise "
+           "given (a model and noise_sd)";
   if (o.noise_model != kEstimatedNoise) try {
       signal::parse_noise_model(o.noise_model);
     } catch (const InputError& e) {

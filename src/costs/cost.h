@@ -107,6 +107,10 @@ struct CostOptions {
   std::string noise_model = "white";
   // freq-ml: the noise's variance at each bin 0..Nbar/2 as given (a fit's estimate), in place of the model's.
   std::vector<double> bin_variance;
+  // freq-ml with a measured force (its errors-in-variables form, costs/least_squares.h): the response's noise sd (its
+  // process sd, in the record's units; the colour is noise_model's) and the force channel's white noise sd, N. Both 0:
+  // the output-error form.
+  double noise_sd = 0, force_noise_sd = 0;
 };
 // First violated constraint ("cost = 'x': must be one of time, spike, spike-smooth"), or nothing.
 std::optional<std::string> validation_error(const CostOptions& options);
@@ -125,8 +129,14 @@ CostUses cost_uses(const std::string& name);
 
 // What the model produced: the sampled output and, when known, its underdamped eigenvalues (rad/s).
 struct ModelResponse {
+  ModelResponse(const std::vector<double>& y_in, const std::vector<std::complex<double>>& poles,
+                const std::vector<std::complex<double>>* transfer = nullptr)
+      : y(y_in), poles_rad_s(poles), frf(transfer) {}
   const std::vector<double>& y;
   const std::vector<std::complex<double>>& poles_rad_s;
+  // With a sampled force, when the cost asks for it (Cost::uses_frf): the model's transfer function from the force's
+  // samples to the output's at the DFT bins 0..Nbar/2 (simulation::Trace::frf); else null.
+  const std::vector<std::complex<double>>* frf;
 };
 
 // One data spike beside its model partner (a row of the spike table in a fit report).
@@ -167,6 +177,8 @@ class Cost {
   // Whether evaluate reads the model's output y (every cost but modal, which compares eigenvalues alone): a free
   // decay's least-squares synthesis of y, a record-sized QR, is skipped for a cost that does not (fit/objective.h).
   virtual bool uses_response() const { return true; }
+  // Whether evaluate reads ModelResponse::frf (freq-ml in its errors-in-variables form).
+  virtual bool uses_frf() const { return false; }
   // Whether output_jacobian is available: time and freq-band with a known amplitude (residuals linear in y), and
   // spike-smooth with a known amplitude and the model's poles from its DFT (by the chain rule through the 3-bin
   // estimator and the magnitudes).

@@ -85,6 +85,9 @@ class BandCost final : public Cost {
       bins_.push_back(k);
       const bool single = k == 0 || (data_.samples % 2 == 0 && k == data_.last_bin());
       weights_.push_back(std::sqrt((single ? 1.0 : 2.0) / v));
+      // Errors in variables: the bin's multiplicity and its response noise variance, the weight per evaluation.
+      counts_.push_back(single ? 1.0 : 2.0);
+      response_variance_.push_back(options_.noise_sd * options_.noise_sd * v);
     }
     if (bins_.empty())
       throw InputError("cost " + options_.name + ": the band [" + format_value(options_.spikes.min_frequency_hz) +
@@ -114,6 +117,7 @@ class BandCost final : public Cost {
         return e;
       }
     const signal::Spectrum u = dft_.transform(model.y);
+    if (uses_frf() && !errors_in_variables_weights(model, e)) return e;
     if (options_.unknown_amplitude) {
       // min_a sum_k w_k^2 |a U - Z|^2 over the band: a = Re <U, Z> / <U, U>.
       double uz = 0, uu = 0;
@@ -143,7 +147,12 @@ class BandCost final : public Cost {
     return sum;
   }
 
-  bool has_output_jacobian() const override { return !options_.unknown_amplitude; }
+  // With a noisy measured force U = U0 + N_U, Y - Yhat = N_Y - G N_U + (G0 - G) U0: weighing each bin by
+  // sigma_Y^2(k) + |G(k)|^2 sigma_U^2 (independent noises; sigma_U^2 = sd_F^2 / Nbar, white) makes the expected cost
+  // independent of G at the truth, which the output-error form biases towards a smaller |G| (Pintelon and Schoukens
+  // ch. 7, the errors-in-variables cost). The weights then depend on the parameters: no output Jacobian.
+  bool uses_frf() const override { return options_.force_noise_sd > 0; }
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude && !uses_frf(); }
   // r is linear in y: d r = the band's bins of DFT(d y).
   Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
     Eigen::MatrixXd dr(residual_count(), dy.cols());
@@ -164,8 +173,23 @@ class BandCost final : public Cost {
   CostOptions options_;
   signal::Dft dft_;
   signal::Spectrum data_;
+  // The errors-in-variables weights at this evaluation's transfer function, or false with the status set.
+  bool errors_in_variables_weights(const ModelResponse& model, Evaluation& e) {
+    if (!model.frf || model.frf->size() != static_cast<std::size_t>(data_.last_bin() + 1)) {
+      e.status = "the errors-in-variables form needs the model's transfer function (a measured force, fast)";
+      return false;
+    }
+    const double force_variance = options_.force_noise_sd * options_.force_noise_sd / data_.samples;
+    for (std::size_t b = 0; b < bins_.size(); ++b) {
+      const double g2 = std::norm((*model.frf)[static_cast<std::size_t>(bins_[b])]);
+      weights_[b] = std::sqrt(counts_[b] / (response_variance_[b] + g2 * force_variance));
+    }
+    return true;
+  }
+
   std::vector<int> bins_;
-  std::vector<double> weights_;  // sqrt(w_k)
+  std::vector<double> weights_;                     // sqrt(w_k)
+  std::vector<double> counts_, response_variance_;  // errors in variables: w_k and sigma_Y^2(k)
   std::vector<SpikePair> no_spikes_;
 };
 

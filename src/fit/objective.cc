@@ -152,7 +152,7 @@ Objective::~Objective() = default;
 
 Objective::Output Objective::evaluate(const model::BeamParameters& beam, Response response) {
   Output out;
-  std::vector<std::complex<double>> poles;
+  std::vector<std::complex<double>> poles, frf;
   if (auto error = model::validation_error(beam)) {
     out.evaluation.status = "inadmissible parameters: " + *error;
     return out;
@@ -173,8 +173,8 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
         out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
         return out;
       }
-      simulation::FreeDecayFit decay = simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data,
-                                                                        impl_->experiment.free_decay_trend);
+      simulation::FreeDecayFit decay =
+          simulation::fit_free_decay(all, impl_->experiment.dt_s, impl_->data, impl_->experiment.free_decay_trend);
       if (decay.status != "ok") {
         out.evaluation.status = decay.status;
         return out;
@@ -183,8 +183,8 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
       return out;
     }
-    const simulation::ResponseProblem problem =
-        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+    simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+    problem.frf = cost_->uses_frf();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
@@ -192,13 +192,14 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     }
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
+    frf = std::move(trace.frf);
     if (impl_->needs_poles && poles.empty())
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
   } catch (const std::exception& error) {  // NumericalError from a decomposition, or InputError from the load
     out.evaluation.status = error.what();
     return out;
   }
-  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles});
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &frf});
   return out;
 }
 

@@ -62,6 +62,7 @@ struct ResponseProblem {
   double amplitude_N = 0;               // F0 of the pulse (0 for a pluck); a sampled force's largest |F_i| (a scale)
   double pulse_width_s = 0;             // tau (0 for a pluck)
   std::vector<double> force_samples_N;  // a sampled force: P(t) is these, linear between samples (else empty)
+  bool frf = false;                     // a sampled force: also its transfer function at the DFT bins (Trace::frf)
   Eigen::VectorXd w0;                   // initial displacement state
   Eigen::VectorXd sensor;               // [beta(xbar); 0]
   int derivative = 0;

@@ -54,6 +54,25 @@ complex divided_exp_da(complex a, complex b) {
   return std::exp(b) * (phi1(a - b) - phi2(a - b));
 }
 
+// G(z_k) at the DFT bins k = 0..samples/2 (modal_simulator.h), every mode counted (a pair's two are not conjugate
+// at one z).
+std::vector<complex> sampled_transfer_function(const galerkin::StateSpaceModes& modes, const ResponseProblem& p) {
+  const Eigen::VectorXcd& lambda = modes.eigenvalues();
+  const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
+  const Eigen::VectorXcd g = modes.input_coefficients(p.load);
+  const double direct = p.derivative == 2 ? modes.feedthrough(p.sensor, p.load) : 0.0;
+  std::vector<complex> frf(static_cast<std::size_t>(p.samples / 2 + 1), complex(direct));
+  for (int k = 0; k < lambda.size(); ++k) {
+    const complex z = lambda(k) * p.dt_s, step = std::exp(z);
+    const complex a = h(k) * g(k) * p.dt_s * phi1(z), b = h(k) * g(k) * p.dt_s * phi2(z);
+    for (std::size_t bin = 0; bin < frf.size(); ++bin) {
+      const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / p.samples);
+      frf[bin] += ((a - b) + b * zk) / (zk - step);
+    }
+  }
+  return frf;
+}
+
 // The trace's underdamped poles (one of each conjugate pair) and the eigenvectors' conditioning.
 void record_poles(Trace& trace, const galerkin::StateSpaceModes& modes) {
   const Eigen::VectorXcd& lambda = modes.eigenvalues();
@@ -88,6 +107,7 @@ Trace sampled_force_trace(Trace trace, const galerkin::StateSpaceModes& modes,
       y[i + 1] += (hk * eta).real();
     }
   }
+  if (p.frf) trace.frf = sampled_transfer_function(modes, p);
   if (p.derivative == 2) {
     const double direct = modes.feedthrough(p.sensor, p.load);
     for (std::size_t i = 1; i < n; ++i) y[i] += direct * f[i];

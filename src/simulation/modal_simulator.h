@@ -9,6 +9,11 @@
 // exponential every 256 samples; a mode is dropped once its amplitude is below 1e-18 of the output's bound.
 // The output y = sum_k h_k eta_k (+ c^T M^-1 f P for acceleration) sums conjugate pairs as 2 Re.
 // There is no time-stepping error: the result is exact up to round-off in the eigen-decomposition.
+// A sampled force F_i, linear between samples, steps each mode exactly:
+//   eta_{i+1} = e eta_i + (a - b) F_i + b F_{i+1},  e = e^{lambda dt},  a = g dt phi1(lambda dt),  b = g dt phi2(lambda
+//   dt),
+// so that in steady state the sampled system's transfer function is G(z) = sum_k h_k ((a_k - b_k) + b_k z)/(z - e_k)
+// (+ the feedthrough for acceleration), over every mode (conjugates included), which Trace::frf gives at the DFT bins.
 #pragma once
 
 #include "galerkin/modes.h"

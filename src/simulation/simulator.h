@@ -81,6 +81,9 @@ struct Trace {
   // fast only: the underdamped state-space eigenvalues (Im > 0), rad/s, as computed for this run (the spike-smooth
   // cost can compare them with the data's poles without a second eigen-decomposition). Empty for cvode.
   std::vector<std::complex<double>> poles_rad_s;
+  // fast with a sampled force and ResponseProblem::frf: the sampled system's transfer function from the force's
+  // samples to the output's at the DFT bins k = 0..samples/2, G(z_k), z_k = e^{j 2 pi k / samples} (modal_simulator.h).
+  std::vector<std::complex<double>> frf;
   bool ok() const { return status == "ok"; }
 };
 

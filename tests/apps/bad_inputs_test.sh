@@ -523,6 +523,16 @@ expect_error "force noise without the column" "--force-noise-level = '0.01': is 
   simulate "${S[@]}" --force-noise-level 0.01
 expect_error "force column of a pluck" "--force-column records a pulse's force" simulate "${S[@]}" \
   --excitation pluck --force-column
+# The errors-in-variables form needs both noise levels and the measured force.
+M=(--data "$tmp/hammer.csv" --channel displacement_m --beam banks-aluminium --elements 6 --estimate EI --cost freq-ml)
+expect_error "force noise sd alone" "--force-noise-sd = '0.1': weighs the force's noise against the response's" \
+  fit "${M[@]}" --force-channel force_N --force-noise-sd 0.1
+expect_error "noise sd alone" "--noise-sd = '0.1': is the errors-in-variables form's" \
+  fit "${M[@]}" --force-channel force_N --noise-sd 0.1
+expect_error "force noise sd without a force" "--force-noise-sd = '0.1': is the measured force's noise" \
+  fit "${M[@]}" --force-noise-sd 0.1 --noise-sd 0.1
+expect_error "force noise sd with time" "--noise-sd = '0.1': is read by the freq-ml cost" \
+  fit "${H[@]}" --force-channel force_N --force-noise-sd 0.1 --noise-sd 0.1
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
 # The fourth pass's: a bound factor where --bounds gives every key (Q110), a free amplitude on a free decay (Q116),
 # and cost's flags that pick spikes or a band on a cost that has neither, and --welch, which cost never read (Q511,
