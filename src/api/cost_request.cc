@@ -136,6 +136,10 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
     refuse(caller, "noise-sd", format_value(*request.noise_sd),
            "is the errors-in-variables form's (with --force-noise-sd); the output-error form takes the level from the "
            "residuals");
+  if (request.force_noise_sd && request.unknown_amplitude)
+    refuse(caller,
+           "--unknown-amplitude with --force-noise-sd: the errors-in-variables weights take the force's noise "
+           "through the model at its own amplitude; a measured force fixes it");
   o.noise_sd = request.noise_sd.value_or(0.0);
   o.force_noise_sd = request.force_noise_sd.value_or(0.0);
   if (request.noise_model)

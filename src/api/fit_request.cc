@@ -76,6 +76,14 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
            "must equal the data's " + std::to_string(data.values.size()));
   experiment.dt_s = data.dt_s;
   experiment.samples = static_cast<int>(data.values.size());
+}
+
+// A measured force (--force-channel) and what reads it: the same length as the response, not a response channel too
+// (by name or by index), and only where it is modelled.
+void check_force_channel(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
+                         const simulation::Experiment& experiment) {
+  const Caller& caller = request.caller;
+  const std::string& force = request.experiment.force_channel;
   if (request.cost.force_noise_sd && experiment.excitation != simulation::kSampledForce)
     refuse(caller, "force-noise-sd", format_value(*request.cost.force_noise_sd),
            "is the measured force's noise: give the record's force with --force-channel");
@@ -84,10 +92,23 @@ void match_record(const FitRequest& request, const io::TimeSeries& data, simulat
     refuse(caller, "windows", std::to_string(*request.windows),
            "cuts the record into windows that start after the force; with --force-channel each window's force "
            "history is not modelled yet");
-  if (experiment.force_samples_N.size() != data.values.size())
-    refuse(caller, "force-channel", request.experiment.force_channel,
-           "has " + std::to_string(experiment.force_samples_N.size()) + " samples; the response '" + data.value_column +
-               "' has " + std::to_string(data.values.size()));
+  for (const io::TimeSeries& channel : channels) {
+    if (channel.value_column == force)
+      refuse(caller, "force-channel", force, "is also a response --channel: the force drives the model");
+    if (experiment.force_samples_N.size() != channel.values.size())
+      refuse(caller, "force-channel", force,
+             "has " + std::to_string(experiment.force_samples_N.size()) + " samples; the response '" +
+                 channel.value_column + "' has " + std::to_string(channel.values.size()));
+  }
+  // The modal cost's pencil reads the free decay after a pulse; after a measured force it would read the forced part.
+  if (request.cost.name == costs::kModalCost)
+    refuse(caller, "cost", costs::kModalCost,
+           "identifies the free decay after a modelled pulse; with --force-channel use time, freq-band, freq-ml or a "
+           "spike cost");
+  // The errors-in-variables form reads the model's transfer function, which the exact propagator gives.
+  if (request.cost.force_noise_sd && request.integrator && *request.integrator != simulation::kFast)
+    refuse(caller, "integrator", *request.integrator,
+           "has no transfer function for --force-noise-sd's errors-in-variables form: use the default (fast)");
 }
 
 // A record that states what it measures (its unit, io/units.h) is not fitted as another quantity: a velocity in m/s
@@ -221,6 +242,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   guard_run_size(caller, o.elements, static_cast<double>(data.values.size() * channels.size()),
                  core::kRecordBytesPerSample, warnings);
   match_record(request, data, o.experiment);
+  check_force_channel(request, channels, o.experiment);
   check_quantity(caller, channels, o.experiment);
   o.simulator.integrator = request.integrator.value_or(simulation::kFast);
   // A free decay is computed from the model's modes with its initial state solved in closed form (simulation/

@@ -134,8 +134,10 @@ constexpr const char* kZeroResponse =
 
 namespace {
 
-// The force channel of a simulated pulse test: P(t_i), with its own white noise (the seed's second stream).
-std::vector<double> force_channel(const SimulateRequest& request, const simulation::Experiment& e) {
+// The force channel of a simulated pulse test: P(t_i) (`clean`), and with its own white noise (the seed's second
+// stream) as returned.
+std::vector<double> force_channel(const SimulateRequest& request, const simulation::Experiment& e,
+                                  std::vector<double>& clean) {
   const Caller& caller = request.run.caller;
   if (e.excitation != simulation::kPulse)
     refuse(caller, "--force-column records a pulse's force; --excitation " + e.excitation + " has none after t = 0");
@@ -148,6 +150,7 @@ std::vector<double> force_channel(const SimulateRequest& request, const simulati
   std::vector<double> f(static_cast<std::size_t>(e.samples));
   for (int i = 0; i < e.samples; ++i) f[static_cast<std::size_t>(i)] = pulse.force_N(i * e.dt_s);
   const auto seed = static_cast<std::uint64_t>(request.seed.value_or(1));
+  clean = f;
   return signal::add_noise(f, level, core::derive_seed(seed, "force"));
 }
 
@@ -186,7 +189,15 @@ SimulateResult compute_simulate(const SimulateRequest& request, std::ostream& wa
   if (request.force_noise_level && !request.force_column)
     refuse(caller, "force-noise-level", format_value(*request.force_noise_level),
            "is noise on the force column: give --force-column too");
-  if (request.force_column) r.force_N = force_channel(request, r.run.experiment);
+  if (request.force_column) {
+    // The response to the force as recorded (its samples, linear between them): what a fit with --force-channel
+    // models, so that such a record is no test of the interpolation (the continuous pulse differs from it by up to
+    // 0.4 % of EI at 4 samples a pulse). The column carries the force's own noise; the model saw the clean samples.
+    std::vector<double> clean;
+    r.force_N = force_channel(request, r.run.experiment, clean);
+    r.run.experiment.excitation = simulation::kSampledForce;
+    r.run.experiment.force_samples_N = std::move(clean);
+  }
   const galerkin::SplineSpace space(r.run.elements);
   const galerkin::BeamForms forms(space, r.run.beam.l, r.run.beam.support);
   r.trace = simulation::simulate(forms, r.run.beam, r.run.experiment, options);

@@ -63,8 +63,12 @@ class TimeCost final : public Cost {
 
 class BandCost final : public Cost {
  public:
+  // freq-ml's weights are the noise's variance through the rectangular window: it takes no other (a hybrid's
+  // refinement or a study's [fit] window would otherwise reach it through the shared options).
   BandCost(CostOptions options, const std::vector<double>& data, double dt_s)
-      : options_(std::move(options)), dft_(static_cast<int>(data.size()), dt_s, options_.window) {
+      : options_(std::move(options)),
+        dft_(static_cast<int>(data.size()), dt_s,
+             options_.name == kMaxLikelihoodCost ? signal::WindowOptions{} : options_.window) {
     data_ = dft_.transform(data);
     // freq-ml: each bin over its noise variance; a bin without noise (power-law noise's offset) carries no
     // likelihood term and is left out.

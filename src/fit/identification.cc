@@ -200,6 +200,15 @@ void validate(const FitOptions& o) {
       o.refine != costs::kSpikeSmoothCost)
     throw InputError("refine = '" + o.refine + "': must be one of " + costs::kTimeCost + ", " + costs::kBandCost +
                      ", " + costs::kMaxLikelihoodCost + ", " + costs::kSpikeSmoothCost);
+  // The estimated noise's shortest records: the local polynomial method's 13 complex bins (28 samples), an AR
+  // model's 8.
+  const bool estimated = o.cost.noise_model == costs::kEstimatedNoise;
+  const std::string& reader = o.strategy == kHybrid ? o.refine : o.cost.name;
+  if (estimated && reader == costs::kMaxLikelihoodCost && o.experiment.samples < 28)
+    throw InputError(
+        "noise_model = 'estimated': freq-ml estimates each bin's noise from 13 neighbouring complex DFT "
+        "bins, which needs at least 28 samples; the record has " +
+        std::to_string(o.experiment.samples));
   if (o.strategy == kHybrid && o.refine == o.cost.name)
     throw InputError("refine = '" + o.refine + "': must differ from the cost it refines (cost = '" + o.cost.name +
                      "')");
@@ -343,24 +352,45 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
 FitResult fit_with_estimated_noise(const FitOptions& o, const std::vector<Record>& records) {
   FitOptions white = o;
   white.cost.noise_model = "white";
-  const FitResult first = fit(white, records);
-  if (first.status == "failed") return first;
+  FitResult first = fit(white, records);
+  // Said in the stages, never a white fit passed off as one with its noise estimated.
+  const auto unestimated = [&first](const std::string& why) {
+    for (StageResult& stage : first.stages)
+      stage.name = "white noise (the noise not estimated: " + why + "): " + stage.name;
+    return first;
+  };
+  if (first.status == "failed") return unestimated("the white fit failed");
   std::vector<Record> estimated = records;
   std::string described;
   for (std::size_t r = 0; r < records.size(); ++r) {
     const std::vector<double>& y = first.records[r].model_output;
     const std::vector<double>& z = records[r].data;
-    if (y.size() != z.size()) return first;
+    if (y.size() != z.size()) return unestimated("no model output at the white estimate");
+    // The residual of the fitted output a y (a: the closed-form amplitude, 1 unless --unknown-amplitude).
+    const double a = first.records[r].evaluation.amplitude_scale;
     std::vector<double> residual(z.size());
-    for (std::size_t i = 0; i < z.size(); ++i) residual[i] = z[i] - y[i];
+    double power = 0;
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      residual[i] = z[i] - a * y[i];
+      power += residual[i] * residual[i] / static_cast<double>(z.size());
+    }
+    if (!(power > 0)) return unestimated("a residual of zeros");
     Record& e = estimated[r];
     e.start = first.records[r].beam;
     if (o.cost.name == costs::kMaxLikelihoodCost) {
+      // Scaled to unit process variance, as the models' bin variances are: the colour, not the level (whose ratio
+      // between records a joint fit's record weights set).
       signal::Dft dft(static_cast<int>(residual.size()), records[r].experiment.dt_s);
       e.bin_variance = signal::local_polynomial_variance(dft.transform(residual), {}).variance;
+      for (double& v : e.bin_variance) v /= power;
       e.noise_model = costs::kEstimatedNoise;
     } else {
       e.noise_model = signal::fit_autoregressive(residual, kEstimatedArOrder).text();
+      try {
+        signal::parse_noise_model(e.noise_model);  // Yule-Walker is stationary; within 1e-6 of a unit root is not taken
+      } catch (const InputError&) {
+        return unestimated("the residual's AR model " + e.noise_model + " has a root at the unit circle");
+      }
     }
     described += (described.empty() ? "" : "; ") + (o.cost.name == costs::kMaxLikelihoodCost
                                                         ? std::string("each bin's variance by local polynomials")

@@ -533,6 +533,17 @@ expect_error "force noise sd without a force" "--force-noise-sd = '0.1': is the 
   fit "${M[@]}" --force-noise-sd 0.1 --noise-sd 0.1
 expect_error "force noise sd with time" "--noise-sd = '0.1': is read by the freq-ml cost" \
   fit "${H[@]}" --force-channel force_N --force-noise-sd 0.1 --noise-sd 0.1
+# The review's findings: the force by index as a response channel; the modal cost's pencil after a measured force;
+# errors in variables with a free amplitude or without the exact propagator.
+expect_error "force channel by index" "--force-channel = 'force_N': is also a response --channel" \
+  fit --data "$tmp/hammer.csv" --channel 2 --beam banks-aluminium --elements 6 --estimate EI --cost time \
+  --force-channel force_N
+expect_error "modal after a measured force" "--cost = 'modal': identifies the free decay after a modelled pulse" \
+  fit "${M[@]/freq-ml/modal}" --force-channel force_N
+expect_error "eiv with a free amplitude" "--unknown-amplitude with --force-noise-sd" \
+  fit "${M[@]}" --force-channel force_N --force-noise-sd 0.1 --noise-sd 0.1 --unknown-amplitude
+expect_error "eiv with cvode" "--integrator = 'cvode': has no transfer function" \
+  fit "${M[@]}" --force-channel force_N --force-noise-sd 0.1 --noise-sd 0.1 --integrator cvode
 expect_error "seed with nothing random" "--seed = '3': seeds the multistart" fit "${Z[@]}" --cost time --seed 3
 # The fourth pass's: a bound factor where --bounds gives every key (Q110), a free amplitude on a free decay (Q116),
 # and cost's flags that pick spikes or a band on a cost that has neither, and --welch, which cost never read (Q511,

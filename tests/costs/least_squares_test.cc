@@ -218,6 +218,13 @@ TEST(NoiseWeightedCost, FitsRecoverTheBeamAndABadNoiseModelIsRefused) {
   EXPECT_TRUE(cost_uses(kMaxLikelihoodCost).noise_model && cost_uses(kTimeCost).noise_model);
   EXPECT_FALSE(cost_uses(kBandCost).noise_model || cost_uses(kSpikeSmoothCost).noise_model);
   EXPECT_FALSE(cost_uses(kMaxLikelihoodCost).window);  // its weights are the rectangular window's
+  // ... and a window reaching it through shared options (a hybrid's, a study's [fit]) is not applied.
+  CostOptions hann = options(kMaxLikelihoodCost, "ar:0.9");
+  hann.window.name = "hann";
+  const auto z = decaying_tone(1, 10, 1), y = decaying_tone(0.9, 10.5, 1.2);
+  const std::vector<std::complex<double>> none;
+  EXPECT_EQ(make_cost(hann, z, kDt)->evaluate(ModelResponse{y, none}).value,
+            make_cost(options(kMaxLikelihoodCost, "ar:0.9"), z, kDt)->evaluate(ModelResponse{y, none}).value);
 }
 
 TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinByItsResponseAndForceNoise) {
@@ -290,6 +297,18 @@ TEST(NoiseWeightedCost, AFitEstimatesTheNoiseFromItsResidualsAndWeighsByIt) {
       EXPECT_LT(off, 3 * k.standard_error) << name << " " << k.key;
       if (k.key == "EI") EXPECT_LT(off, std::abs(white.parameters[i].estimate - k.estimate)) << name;
     }
+    // With the amplitude unknown the residual is the fitted output's, z - a y: a record 1000 times larger gives the
+    // same estimate, as the white fit does, to where the optimizer stops (measured 1.2e-6 on gamma, the least
+    // determined; bound 1e-5). With z - y, the response itself, the time fit took an AR(20) of the response and
+    // moved EI by 1e-3 relative, 6 of its standard errors.
+    fit::FitOptions scaled = o;
+    scaled.cost.unknown_amplitude = true;
+    std::vector<double> larger = data;
+    for (double& v : larger) v *= 1000;
+    const fit::FitResult as_is = fit::fit(scaled, data), enlarged = fit::fit(scaled, larger);
+    for (std::size_t i = 0; i < as_is.parameters.size(); ++i)
+      EXPECT_NEAR(enlarged.parameters[i].estimate / as_is.parameters[i].estimate, 1.0, 1e-5)
+          << name << " " << as_is.parameters[i].key;
   }
 }
 
