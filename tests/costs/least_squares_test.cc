@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../fit/central_difference.h"
 #include "core/errors.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
@@ -242,13 +243,7 @@ TEST(NoiseWeightedCost, TheExactJacobianThroughTheSensitivitiesIsTheResidualsCen
     Eigen::MatrixXd jacobian;
     ASSERT_TRUE(objective.evaluate_with_jacobian(o.start, keys, jacobian).evaluation.ok());
     for (std::size_t q = 0; q < keys.size(); ++q) {
-      double model::BeamParameters::*member = model::find_parameter(keys[q])->member;
-      const double h = 1e-5 * o.start.*member;
-      model::BeamParameters up = o.start, down = o.start;
-      up.*member += h;
-      down.*member -= h;
-      const Eigen::VectorXd difference =
-          (objective.evaluate(up).evaluation.residuals - objective.evaluate(down).evaluation.residuals) / (2 * h);
+      const Eigen::VectorXd difference = fit::testing::residual_central_difference(objective, o.start, keys[q]);
       EXPECT_LT((jacobian.col(static_cast<Eigen::Index>(q)) - difference).norm(), 1e-5 * difference.norm())
           << name << " " << keys[q];
     }

@@ -8,6 +8,7 @@
 #include <complex>
 #include <numbers>
 
+#include "central_difference.h"
 #include "core/errors.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
@@ -160,13 +161,8 @@ TEST(FreeDecay, TheModalCostTakesTheExactPoleJacobianAndNoSynthesis) {
   ASSERT_TRUE(at.evaluation.ok()) << at.evaluation.status;
   ASSERT_EQ(jacobian.cols(), 2);
   for (int q = 0; q < 2; ++q) {
-    double model::BeamParameters::*member = model::find_parameter(q == 0 ? "EI" : "cDI")->member;
-    const double h = 1e-5 * o.start.*member;
-    model::BeamParameters up = o.start, down = o.start;
-    up.*member += h;
-    down.*member -= h;
     const Eigen::VectorXd difference =
-        (objective.evaluate(up).evaluation.residuals - objective.evaluate(down).evaluation.residuals) / (2 * h);
+        fit::testing::residual_central_difference(objective, o.start, q == 0 ? "EI" : "cDI");
     EXPECT_LT((jacobian.col(q) - difference).norm(), 1e-5 * difference.norm()) << q;
   }
 }
