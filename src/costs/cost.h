@@ -130,13 +130,16 @@ CostUses cost_uses(const std::string& name);
 // What the model produced: the sampled output and, when known, its underdamped eigenvalues (rad/s).
 struct ModelResponse {
   ModelResponse(const std::vector<double>& y_in, const std::vector<std::complex<double>>& poles,
-                const std::vector<std::complex<double>>* transfer = nullptr)
-      : y(y_in), poles_rad_s(poles), frf(transfer) {}
+                const std::vector<std::complex<double>>* transfer = nullptr,
+                const std::vector<double>* force_noise_gain = nullptr)
+      : y(y_in), poles_rad_s(poles), frf(transfer), noise_gain(force_noise_gain) {}
   const std::vector<double>& y;
   const std::vector<std::complex<double>>& poles_rad_s;
   // With a sampled force, when the cost asks for it (Cost::uses_frf): the model's transfer function from the force's
-  // samples to the output's at the DFT bins 0..Nbar/2 (simulation::Trace::frf); else null.
+  // samples to the output's at the DFT bins 0..Nbar/2, and the variance of those bins over the record when white
+  // noise of unit variance drives the force (simulation::Trace::frf, noise_gain); else null.
   const std::vector<std::complex<double>>* frf;
+  const std::vector<double>* noise_gain;
 };
 
 // One data spike beside its model partner (a row of the spike table in a fit report).

@@ -151,10 +151,13 @@ class BandCost final : public Cost {
     return sum;
   }
 
-  // With a noisy measured force U = U0 + N_U, Y - Yhat = N_Y - G N_U + (G0 - G) U0: weighing each bin by
-  // sigma_Y^2(k) + |G(k)|^2 sigma_U^2 (independent noises; sigma_U^2 = sd_F^2 / Nbar, white) makes the expected cost
-  // independent of G at the truth, which the output-error form biases towards a smaller |G| (Pintelon and Schoukens
-  // ch. 7, the errors-in-variables cost). The weights then depend on the parameters: no output Jacobian.
+  // With a noisy measured force u = u0 + n_u, Y - Yhat = N_Y - (the model's response to n_u over the record) + (the
+  // model error at u0): weighing each bin by sigma_Y^2(k) + sd_F^2 gamma(k), gamma the variance of that bin when
+  // white noise of unit variance drives the force (simulation::Trace::noise_gain), makes the expected cost
+  // independent of the parameters at the truth, which the output-error form biases (Pintelon and Schoukens ch. 7,
+  // the errors-in-variables cost; their steady-state |G|^2 sd_F^2 / Nbar is gamma for a record much longer than the
+  // decay time, and overstates it at a lightly damped resonance in a shorter one). The weights depend on the
+  // parameters: no output Jacobian.
   bool uses_frf() const override { return options_.force_noise_sd > 0; }
   bool has_output_jacobian() const override { return !options_.unknown_amplitude && !uses_frf(); }
   // r is linear in y: d r = the band's bins of DFT(d y).
@@ -179,14 +182,14 @@ class BandCost final : public Cost {
   signal::Spectrum data_;
   // The errors-in-variables weights at this evaluation's transfer function, or false with the status set.
   bool errors_in_variables_weights(const ModelResponse& model, Evaluation& e) {
-    if (!model.frf || model.frf->size() != static_cast<std::size_t>(data_.last_bin() + 1)) {
-      e.status = "the errors-in-variables form needs the model's transfer function (a measured force, fast)";
+    if (!model.noise_gain || model.noise_gain->size() != static_cast<std::size_t>(data_.last_bin() + 1)) {
+      e.status = "the errors-in-variables form needs the model's noise gain (a measured force, fast)";
       return false;
     }
-    const double force_variance = options_.force_noise_sd * options_.force_noise_sd / data_.samples;
+    const double force_variance = options_.force_noise_sd * options_.force_noise_sd;
     for (std::size_t b = 0; b < bins_.size(); ++b) {
-      const double g2 = std::norm((*model.frf)[static_cast<std::size_t>(bins_[b])]);
-      weights_[b] = std::sqrt(counts_[b] / (response_variance_[b] + g2 * force_variance));
+      const double gain = (*model.noise_gain)[static_cast<std::size_t>(bins_[b])];
+      weights_[b] = std::sqrt(counts_[b] / (response_variance_[b] + gain * force_variance));
     }
     return true;
   }

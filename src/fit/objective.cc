@@ -153,6 +153,7 @@ Objective::~Objective() = default;
 Objective::Output Objective::evaluate(const model::BeamParameters& beam, Response response) {
   Output out;
   std::vector<std::complex<double>> poles, frf;
+  std::vector<double> noise_gain;
   if (auto error = model::validation_error(beam)) {
     out.evaluation.status = "inadmissible parameters: " + *error;
     return out;
@@ -193,13 +194,14 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
     frf = std::move(trace.frf);
+    noise_gain = std::move(trace.noise_gain);
     if (impl_->needs_poles && poles.empty())
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
   } catch (const std::exception& error) {  // NumericalError from a decomposition, or InputError from the load
     out.evaluation.status = error.what();
     return out;
   }
-  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &frf});
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &frf, &noise_gain});
   return out;
 }
 

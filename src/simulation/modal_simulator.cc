@@ -73,6 +73,62 @@ std::vector<complex> sampled_transfer_function(const galerkin::StateSpaceModes& 
   return frf;
 }
 
+// The variance of the output's DFT bin k over the record (paper scaling) when white noise of unit variance drives it
+// on every sample (modal_simulator.h): (1/Nbar^2) sum_{L=1..Nbar} |T_L(z_k)|^2, T_L the transfer function truncated
+// to its first L samples. With the impulse response g_0 = sum_k b_k + direct, g_l = sum_k c_k e_k^{l-1} (l >= 1),
+// c_k = e_k b_k + a_k - b_k (a, b with h and g folded in),
+//   T_L = A - sum_k B_k q_k^{L-1},  q_k = e_k / z,  B_k = c_k / (z - e_k),  A = g_0 + sum_k B_k,
+// and the sum over L in closed form with S(x) = sum_{j < Nbar} x^j = (1 - x^Nbar)/(1 - x), where q_k^Nbar = e_k^Nbar at
+// every bin (z_k^Nbar = 1), computed once. Modes whose B_k is below 1e-13 of the largest are left out (stiff ones:
+// e_k ~ 0).
+std::vector<double> sampled_noise_gain(const galerkin::StateSpaceModes& modes, const ResponseProblem& p) {
+  const Eigen::VectorXcd& lambda = modes.eigenvalues();
+  const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
+  const Eigen::VectorXcd g = modes.input_coefficients(p.load);
+  const double direct = p.derivative == 2 ? modes.feedthrough(p.sensor, p.load) : 0.0;
+  const auto n = static_cast<double>(p.samples);
+  const auto m = static_cast<std::size_t>(lambda.size());
+  std::vector<complex> e(m), c(m), e_n(m);
+  complex g0 = direct;
+  for (std::size_t k = 0; k < m; ++k) {
+    const complex z = lambda(static_cast<Eigen::Index>(k)) * p.dt_s;
+    const complex hg = h(static_cast<Eigen::Index>(k)) * g(static_cast<Eigen::Index>(k)) * p.dt_s;
+    const complex a = hg * phi1(z), b = hg * phi2(z);
+    e[k] = std::exp(z);
+    e_n[k] = std::exp(z * n);
+    c[k] = e[k] * b + a - b;
+    g0 += b;
+  }
+  const auto geometric = [n](complex x, complex x_n) {  // S(x) = (1 - x^Nbar) / (1 - x), x_n = x^Nbar
+    return std::abs(1.0 - x) < 1e-12 ? complex(n) : (1.0 - x_n) / (1.0 - x);
+  };
+  std::vector<double> gain(static_cast<std::size_t>(p.samples / 2 + 1));
+  std::vector<complex> B(m), q(m);
+  std::vector<std::size_t> kept;
+  for (std::size_t bin = 0; bin < gain.size(); ++bin) {
+    const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / n);
+    complex A = g0;
+    double largest = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      B[k] = c[k] / (zk - e[k]);
+      q[k] = e[k] / zk;
+      A += B[k];
+      largest = std::max(largest, std::abs(B[k]));
+    }
+    kept.clear();
+    for (std::size_t k = 0; k < m; ++k)
+      if (std::abs(B[k]) > 1e-13 * largest) kept.push_back(k);
+    complex cross = 0, square = 0;
+    for (const std::size_t k : kept) {
+      cross += B[k] * geometric(q[k], e_n[k]);
+      for (const std::size_t j : kept)
+        square += B[k] * std::conj(B[j]) * geometric(q[k] * std::conj(q[j]), e_n[k] * std::conj(e_n[j]));
+    }
+    gain[bin] = std::max(0.0, (n * std::norm(A) - 2 * (std::conj(A) * cross).real() + square.real()) / (n * n));
+  }
+  return gain;
+}
+
 // The trace's underdamped poles (one of each conjugate pair) and the eigenvectors' conditioning.
 void record_poles(Trace& trace, const galerkin::StateSpaceModes& modes) {
   const Eigen::VectorXcd& lambda = modes.eigenvalues();
@@ -107,7 +163,10 @@ Trace sampled_force_trace(Trace trace, const galerkin::StateSpaceModes& modes,
       y[i + 1] += (hk * eta).real();
     }
   }
-  if (p.frf) trace.frf = sampled_transfer_function(modes, p);
+  if (p.frf) {
+    trace.frf = sampled_transfer_function(modes, p);
+    trace.noise_gain = sampled_noise_gain(modes, p);
+  }
   if (p.derivative == 2) {
     const double direct = modes.feedthrough(p.sensor, p.load);
     for (std::size_t i = 1; i < n; ++i) y[i] += direct * f[i];

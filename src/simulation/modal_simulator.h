@@ -13,7 +13,10 @@
 //   eta_{i+1} = e eta_i + (a - b) F_i + b F_{i+1},  e = e^{lambda dt},  a = g dt phi1(lambda dt),  b = g dt phi2(lambda
 //   dt),
 // so that in steady state the sampled system's transfer function is G(z) = sum_k h_k ((a_k - b_k) + b_k z)/(z - e_k)
-// (+ the feedthrough for acceleration), over every mode (conjugates included), which Trace::frf gives at the DFT bins.
+// (+ the feedthrough for acceleration), over every mode (conjugates included), which Trace::frf gives at the DFT bins,
+// and Trace::noise_gain the variance of each bin when white noise of unit variance drives every sample of the record:
+// (1/Nbar^2) sum_{L=1..Nbar} |T_L(z_k)|^2, T_L the transfer function truncated to L samples, in closed form (its
+// steady state |G|^2 / Nbar holds only for a record much longer than the slowest decay).
 #pragma once
 
 #include "galerkin/modes.h"

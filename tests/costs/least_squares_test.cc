@@ -251,9 +251,9 @@ TEST(NoiseWeightedCost, TheExactJacobianThroughTheSensitivitiesIsTheResidualsCen
 }
 
 TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinByItsResponseAndForceNoise) {
-  // freq-ml with a force's noise: value = sum_k w_k |U(k) - Z(k)|^2 / (sd_Y^2 s(k) + |G(k)|^2 sd_F^2 / Nbar), s the
-  // noise model's bin variance (white: 1/Nbar), G the given transfer function; computed here in full (round-off
-  // 1e-12). Without G it is refused in words; with G = 0 it is the output-error form over sd_Y^2.
+  // freq-ml with a force's noise: value = sum_k w_k |U(k) - Z(k)|^2 / (sd_Y^2 s(k) + sd_F^2 gamma(k)), s the noise
+  // model's bin variance (white: 1/Nbar), gamma the given noise gain; computed here in full (round-off 1e-12).
+  // Without the gain it is refused in words; with gamma = 0 it is the output-error form over sd_Y^2.
   const auto z = decaying_tone(1.0, 10.3, 0.5), y = decaying_tone(0.9, 10.6, 0.4, 0.2);
   CostOptions o = options(kMaxLikelihoodCost, "white");
   o.noise_sd = 0.01;
@@ -261,25 +261,24 @@ TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinByItsResponseAndFor
   auto c = make_cost(o, z, kDt);
   ASSERT_TRUE(c->uses_frf());
   EXPECT_FALSE(c->has_output_jacobian());  // its weights move with the parameters
-  std::vector<std::complex<double>> g(kSamples / 2 + 1);
-  for (std::size_t k = 0; k < g.size(); ++k) g[k] = std::complex<double>(1.0 / (1.0 + 0.1 * k), 0.02 * k);
+  std::vector<double> gain(kSamples / 2 + 1);
+  for (std::size_t k = 0; k < gain.size(); ++k) gain[k] = 1e-3 / (1.0 + 0.1 * k);
   const std::vector<std::complex<double>> none;
-  const Evaluation e = c->evaluate(ModelResponse{y, none, &g});
+  const Evaluation e = c->evaluate(ModelResponse{y, none, nullptr, &gain});
   ASSERT_TRUE(e.ok()) << e.status;
   signal::Dft dft(kSamples, kDt);
   const signal::Spectrum zs = dft.transform(z), ys = dft.transform(y);
   double expected = 0;
-  for (std::size_t k = 0; k < g.size(); ++k) {
-    const double w = (k == 0 || k == g.size() - 1) ? 1.0 : 2.0;
-    const double v =
-        o.noise_sd * o.noise_sd / kSamples + std::norm(g[k]) * o.force_noise_sd * o.force_noise_sd / kSamples;
+  for (std::size_t k = 0; k < gain.size(); ++k) {
+    const double w = (k == 0 || k == gain.size() - 1) ? 1.0 : 2.0;
+    const double v = o.noise_sd * o.noise_sd / kSamples + gain[k] * o.force_noise_sd * o.force_noise_sd;
     expected += w * std::norm(ys.half[k] - zs.half[k]) / v;
   }
   EXPECT_NEAR(e.value / expected, 1.0, 1e-12);
   EXPECT_FALSE(c->evaluate(ModelResponse{y, none}).ok());
-  std::fill(g.begin(), g.end(), 0.0);
+  std::fill(gain.begin(), gain.end(), 0.0);
   auto oe = make_cost(options(kMaxLikelihoodCost, "white"), z, kDt);
-  EXPECT_NEAR(c->evaluate(ModelResponse{y, none, &g}).value * o.noise_sd * o.noise_sd /
+  EXPECT_NEAR(c->evaluate(ModelResponse{y, none, nullptr, &gain}).value * o.noise_sd * o.noise_sd /
                   oe->evaluate(ModelResponse{y, none}).value,
               1.0, 1e-12);
   o.noise_sd = 0;
