@@ -212,8 +212,9 @@ TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInThe
   // [truth] noise_model colours every record; a method's noise_model ("truth": the records' own) is what the time
   // and freq-ml costs assume. Bad values name the line; a method's model with no cost that reads it is refused.
   const std::string coloured =
-      replaced(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"ar:0.9\""),
-               "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"truth\"");
+      replaced(replaced(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"ar:0.9\""),
+                        "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"truth\""),
+               "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\", \"freq-ml\"]");
   const StudySpec s = parse_study(coloured, "s.toml", ".");
   EXPECT_EQ(s.truth.noise_model, "ar:0.9");
   EXPECT_EQ(s.methods.at(0).noise_model, "truth");
@@ -225,6 +226,9 @@ TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInThe
                         "cost = [\"time\", \"spike-smooth\"]", "cost = [\"spike-smooth\"]")),
       "s.toml:21: methods.direct.noise_model is read by the time and freq-ml costs; this method runs only "
       "spike-smooth");
+  EXPECT_EQ(error_of(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"ar:0.5\"")),
+            "s.toml:21: methods.direct.noise_model is read by the time and freq-ml costs; this method also runs "
+            "spike-smooth, whose fits would be white under its name: give that cost a method of its own");
   // White records keep the ids they had before the key existed; a colour or an assumed model changes them.
   const Plan white = make_plan(parse_study(kValid, "s.toml", "."));
   const Plan explicit_white = make_plan(parse_study(

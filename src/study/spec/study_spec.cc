@@ -406,6 +406,14 @@ void check_method_overrides(const config::Document& document, const StudySpec& s
       if (r.has(key) && !read_by(field))
         throw InputError(r.where(key) + ": methods." + m.name + "." + key + " is read by " + readers +
                          "; this method runs only " + listed);
+    // A noise model names what the method's fits assume: a cost that would run white under that name is refused
+    // (a window is applied where it is read; a likelihood is not half-applied).
+    if (r.has("noise_model"))
+      for (const std::string& c : runs)
+        if (!costs::cost_uses(c).noise_model)
+          throw InputError(r.where("noise_model") + ": methods." + m.name +
+                           ".noise_model is read by the time and freq-ml costs; this method also runs " + c +
+                           ", whose fits would be white under its name: give that cost a method of its own");
   }
 }
 
