@@ -38,10 +38,8 @@ signal::SpikeOptions spike_options(const SpikeRequest& request, const Caller& ca
 signal::NoiseModel parsed_noise_model(const Caller& caller, const std::string& text) {
   try {
     return signal::parse_noise_model(text);
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    const std::size_t cut = what.find("': ");
-    refuse(caller, "noise-model", text, cut == std::string::npos ? what : what.substr(cut + 3));
+  } catch (const signal::NoiseModelError& e) {
+    refuse(caller, "noise-model", text, e.constraint);
   }
 }
 

@@ -121,7 +121,7 @@ class BandCost final : public Cost {
         return e;
       }
     const signal::Spectrum u = dft_.transform(model.y);
-    if (uses_frf() && !errors_in_variables_weights(model, e)) return e;
+    if (uses_noise_gain() && !errors_in_variables_weights(model, e)) return e;
     if (options_.unknown_amplitude) {
       // min_a sum_k w_k^2 |a U - Z|^2 over the band: a = Re <U, Z> / <U, U>.
       double uz = 0, uu = 0;
@@ -158,8 +158,8 @@ class BandCost final : public Cost {
   // the errors-in-variables cost; their steady-state |G|^2 sd_F^2 / Nbar is gamma for a record much longer than the
   // decay time, and overstates it at a lightly damped resonance in a shorter one). The weights depend on the
   // parameters: no output Jacobian.
-  bool uses_frf() const override { return options_.force_noise_sd > 0; }
-  bool has_output_jacobian() const override { return !options_.unknown_amplitude && !uses_frf(); }
+  bool uses_noise_gain() const override { return options_.force_noise_sd > 0; }
+  bool has_output_jacobian() const override { return !options_.unknown_amplitude && !uses_noise_gain(); }
   // r is linear in y: d r = the band's bins of DFT(d y).
   Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {
     Eigen::MatrixXd dr(residual_count(), dy.cols());

@@ -152,7 +152,7 @@ Objective::~Objective() = default;
 
 Objective::Output Objective::evaluate(const model::BeamParameters& beam, Response response) {
   Output out;
-  std::vector<std::complex<double>> poles, frf;
+  std::vector<std::complex<double>> poles;
   std::vector<double> noise_gain;
   if (auto error = model::validation_error(beam)) {
     out.evaluation.status = "inadmissible parameters: " + *error;
@@ -185,7 +185,7 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       return out;
     }
     simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
-    problem.frf = cost_->uses_frf();
+    problem.noise_gain = cost_->uses_noise_gain();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
@@ -193,7 +193,6 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     }
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
-    frf = std::move(trace.frf);
     noise_gain = std::move(trace.noise_gain);
     if (impl_->needs_poles && poles.empty())
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
@@ -201,7 +200,7 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     out.evaluation.status = error.what();
     return out;
   }
-  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &frf, &noise_gain});
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &noise_gain});
   return out;
 }
 

@@ -67,6 +67,13 @@ ArResponse ar_response(const std::vector<double>& a) {
   return r;
 }
 
+// The autocorrelation rho(l) = sum_m h_m h_{m+l} / sum h^2 of the unit-variance AR process.
+double autocorrelation(const ArResponse& response, std::size_t l) {
+  double r = 0;
+  for (std::size_t m = 0; m + l < response.h.size(); ++m) r += response.h[m] * response.h[m + l];
+  return r / response.energy;
+}
+
 // Power-law noise's bin gains H_k = k^(-alpha/2), k = 0..n/2 (0 at DC), and P, the sum of |H_k|^2 over the whole
 // spectrum (the bins 1..n/2 - 1 twice, Nyquist once for an even n): y = c2r(H Z) has E[y_i^2] = P.
 struct PowerGains {
@@ -143,9 +150,7 @@ std::string NoiseModel::text() const {
 }
 
 NoiseModel parse_noise_model(const std::string& text) {
-  const auto fail = [&](const std::string& constraint) -> NoiseModel {
-    throw InputError("noise model '" + text + "': " + constraint);
-  };
+  const auto fail = [&](const std::string& constraint) -> NoiseModel { throw NoiseModelError(text, constraint); };
   NoiseModel m;
   if (text == "white") return m;
   const std::size_t colon = text.find(':');
@@ -193,18 +198,11 @@ Whitener::Whitener(NoiseModel model, Eigen::Index samples)
   if (model_.kind == "ar") {
     const std::vector<double>& a = model_.ar;
     const ArResponse response = ar_response(a);
-    const std::vector<double>& h = response.h;
-    // The autocorrelation rho(l) = sum_m h_m h_{m+l} / sum h^2 of the unit-variance process.
-    const auto rho = [&](Eigen::Index l) {
-      double r = 0;
-      for (std::size_t m = 0; m + static_cast<std::size_t>(l) < h.size(); ++m)
-        r += h[m] * h[m + static_cast<std::size_t>(l)];
-      return r / response.energy;
-    };
     const Eigen::Index head = std::min(static_cast<Eigen::Index>(a.size()), samples_);
     Eigen::MatrixXd gamma(head, head);
     for (Eigen::Index i = 0; i < head; ++i)
-      for (Eigen::Index j = 0; j < head; ++j) gamma(i, j) = rho(std::abs(i - j));
+      for (Eigen::Index j = 0; j < head; ++j)
+        gamma(i, j) = autocorrelation(response, static_cast<std::size_t>(std::abs(i - j)));
     plan_->head.compute(gamma);
     plan_->innovation_sd = 1 / std::sqrt(response.energy);  // of g_i, for unit process variance
   } else if (model_.kind == "power" && samples_ >= 4) {
@@ -271,11 +269,7 @@ std::vector<double> model_bin_variance(const NoiseModel& model, int samples) {
   const std::vector<double>& a = model.ar;
   const ArResponse response = ar_response(a);
   std::vector<double> rho(n, 0.0);
-  for (std::size_t l = 0; l <= a.size() && l < n; ++l) {
-    double r = 0;
-    for (std::size_t m = 0; m + l < response.h.size(); ++m) r += response.h[m] * response.h[m + l];
-    rho[l] = r / response.energy;
-  }
+  for (std::size_t l = 0; l <= a.size() && l < n; ++l) rho[l] = autocorrelation(response, l);
   for (std::size_t l = a.size() + 1; l < n; ++l)
     for (std::size_t j = 0; j < a.size(); ++j) rho[l] += a[j] * rho[l - 1 - j];
   // The lags folded modulo Nbar: c(m) = ((Nbar - m) rho(m) + m rho(Nbar - m)) / Nbar^2, symmetric in m <-> Nbar - m,

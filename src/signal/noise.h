@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
 #include "core/hash.h"
 
 namespace beamid::signal {
@@ -38,8 +39,14 @@ struct NoiseModel {
   double alpha = 0;            // (power)
   std::string text() const;    // the name it was parsed from, canonical ("ar:0.9", "power:1")
 };
-// InputError naming the text and the constraint ("noise model 'ar:1.2': not stationary (a root of ... inside the unit
-// circle)"); at most 32 AR coefficients, alpha in [0, 4].
+// NoiseModelError (an InputError) naming the text and the constraint ("noise model 'ar:1.2': not stationary: ..."),
+// the constraint alone in its `constraint` for a caller that names the flag or key itself; at most 32 AR
+// coefficients, alpha in [0, 4].
+struct NoiseModelError : InputError {
+  NoiseModelError(const std::string& text, std::string violated)
+      : InputError("noise model '" + text + "': " + violated), constraint(std::move(violated)) {}
+  std::string constraint;
+};
 NoiseModel parse_noise_model(const std::string& text);
 
 // `count` deviates of the model with unit variance as a process (AR: its stationary variance, sum of the squared

@@ -54,22 +54,38 @@ complex divided_exp_da(complex a, complex b) {
   return std::exp(b) * (phi1(a - b) - phi2(a - b));
 }
 
-// G(z_k) at the DFT bins k = 0..samples/2 (modal_simulator.h), every mode counted (a pair's two are not conjugate
-// at one z).
-std::vector<complex> sampled_transfer_function(const galerkin::StateSpaceModes& modes, const ResponseProblem& p) {
+// Every mode's exact first-order-hold step (modal_simulator.h) with its output and input coefficients folded in:
+// h eta_{i+1} = e h eta_i + a F_i + b (F_{i+1} - F_i), e = e^{lambda dt}, a = h g dt phi1(lambda dt),
+// b = h g dt phi2(lambda dt); and the acceleration's feedthrough (0 for the other outputs).
+struct HeldModes {
+  std::vector<complex> lambda, e, a, b;
+  double direct = 0;
+};
+HeldModes held_modes(const galerkin::StateSpaceModes& modes, const ResponseProblem& p) {
   const Eigen::VectorXcd& lambda = modes.eigenvalues();
   const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
   const Eigen::VectorXcd g = modes.input_coefficients(p.load);
-  const double direct = p.derivative == 2 ? modes.feedthrough(p.sensor, p.load) : 0.0;
-  std::vector<complex> frf(static_cast<std::size_t>(p.samples / 2 + 1), complex(direct));
+  HeldModes held;
+  held.direct = p.derivative == 2 ? modes.feedthrough(p.sensor, p.load) : 0.0;
   for (int k = 0; k < lambda.size(); ++k) {
-    const complex z = lambda(k) * p.dt_s, step = std::exp(z);
-    const complex a = h(k) * g(k) * p.dt_s * phi1(z), b = h(k) * g(k) * p.dt_s * phi2(z);
-    for (std::size_t bin = 0; bin < frf.size(); ++bin) {
-      const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / p.samples);
-      frf[bin] += ((a - b) + b * zk) / (zk - step);
-    }
+    const complex z = lambda(k) * p.dt_s, hg = h(k) * g(k) * p.dt_s;
+    held.lambda.push_back(lambda(k));
+    held.e.push_back(std::exp(z));
+    held.a.push_back(hg * phi1(z));
+    held.b.push_back(hg * phi2(z));
   }
+  return held;
+}
+
+// G(z_k) at the DFT bins k = 0..samples/2 (modal_simulator.h), every mode counted (a pair's two are not conjugate
+// at one z).
+std::vector<complex> sampled_transfer_function(const HeldModes& held, int samples) {
+  std::vector<complex> frf(static_cast<std::size_t>(samples / 2 + 1), complex(held.direct));
+  for (std::size_t k = 0; k < held.e.size(); ++k)
+    for (std::size_t bin = 0; bin < frf.size(); ++bin) {
+      const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / samples);
+      frf[bin] += ((held.a[k] - held.b[k]) + held.b[k] * zk) / (zk - held.e[k]);
+    }
   return frf;
 }
 
@@ -81,28 +97,21 @@ std::vector<complex> sampled_transfer_function(const galerkin::StateSpaceModes& 
 // and the sum over L in closed form with S(x) = sum_{j < Nbar} x^j = (1 - x^Nbar)/(1 - x), where q_k^Nbar = e_k^Nbar at
 // every bin (z_k^Nbar = 1), computed once. Modes whose B_k is below 1e-13 of the largest are left out (stiff ones:
 // e_k ~ 0).
-std::vector<double> sampled_noise_gain(const galerkin::StateSpaceModes& modes, const ResponseProblem& p) {
-  const Eigen::VectorXcd& lambda = modes.eigenvalues();
-  const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
-  const Eigen::VectorXcd g = modes.input_coefficients(p.load);
-  const double direct = p.derivative == 2 ? modes.feedthrough(p.sensor, p.load) : 0.0;
-  const auto n = static_cast<double>(p.samples);
-  const auto m = static_cast<std::size_t>(lambda.size());
-  std::vector<complex> e(m), c(m), e_n(m);
-  complex g0 = direct;
+std::vector<double> sampled_noise_gain(const HeldModes& held, int samples, double dt_s) {
+  const auto n = static_cast<double>(samples);
+  const std::vector<complex>& e = held.e;
+  const std::size_t m = e.size();
+  std::vector<complex> c(m), e_n(m);
+  complex g0 = held.direct;
   for (std::size_t k = 0; k < m; ++k) {
-    const complex z = lambda(static_cast<Eigen::Index>(k)) * p.dt_s;
-    const complex hg = h(static_cast<Eigen::Index>(k)) * g(static_cast<Eigen::Index>(k)) * p.dt_s;
-    const complex a = hg * phi1(z), b = hg * phi2(z);
-    e[k] = std::exp(z);
-    e_n[k] = std::exp(z * n);
-    c[k] = e[k] * b + a - b;
-    g0 += b;
+    e_n[k] = std::exp(held.lambda[k] * dt_s * n);
+    c[k] = e[k] * held.b[k] + held.a[k] - held.b[k];
+    g0 += held.b[k];
   }
   const auto geometric = [n](complex x, complex x_n) {  // S(x) = (1 - x^Nbar) / (1 - x), x_n = x^Nbar
     return std::abs(1.0 - x) < 1e-12 ? complex(n) : (1.0 - x_n) / (1.0 - x);
   };
-  std::vector<double> gain(static_cast<std::size_t>(p.samples / 2 + 1));
+  std::vector<double> gain(static_cast<std::size_t>(samples / 2 + 1));
   std::vector<complex> B(m), q(m);
   std::vector<std::size_t> kept;
   for (std::size_t bin = 0; bin < gain.size(); ++bin) {
@@ -145,31 +154,24 @@ void record_poles(Trace& trace, const galerkin::StateSpaceModes& modes) {
 Trace sampled_force_trace(Trace trace, const galerkin::StateSpaceModes& modes,
                           const galerkin::SecondOrderSystem& system, const ResponseProblem& p) {
   std::vector<double>& y = trace.y;
-  const Eigen::VectorXcd& lambda = modes.eigenvalues();
-  trace.stats.modes = static_cast<int>(lambda.size());
+  trace.stats.modes = static_cast<int>(modes.eigenvalues().size());
   record_poles(trace, modes);
-  const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
-  const Eigen::VectorXcd g = modes.input_coefficients(p.load);
+  const HeldModes held = held_modes(modes, p);
   const std::vector<double>& f = p.force_samples_N;
   const std::size_t n = y.size();
-  for (int k = 0; k < lambda.size(); ++k) {
-    if (lambda(k).imag() < 0) continue;  // its conjugate partner carries it (2 Re)
-    const complex l = lambda(k), z = l * p.dt_s;
-    const complex hk = (l.imag() > 0 ? 2.0 : 1.0) * h(k);
-    const complex step = std::exp(z), a = g(k) * p.dt_s * phi1(z), b = g(k) * p.dt_s * phi2(z);
-    complex eta = 0;
+  for (std::size_t k = 0; k < held.e.size(); ++k) {
+    if (held.lambda[k].imag() < 0) continue;  // its conjugate partner carries it (2 Re)
+    const double weight = held.lambda[k].imag() > 0 ? 2.0 : 1.0;
+    complex eta = 0;  // h eta
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      eta = step * eta + a * f[i] + b * (f[i + 1] - f[i]);
-      y[i + 1] += (hk * eta).real();
+      eta = held.e[k] * eta + held.a[k] * f[i] + held.b[k] * (f[i + 1] - f[i]);
+      y[i + 1] += weight * eta.real();
     }
   }
-  if (p.frf) {
-    trace.frf = sampled_transfer_function(modes, p);
-    trace.noise_gain = sampled_noise_gain(modes, p);
-  }
+  if (p.frf) trace.frf = sampled_transfer_function(held, p.samples);
+  if (p.noise_gain) trace.noise_gain = sampled_noise_gain(held, p.samples, p.dt_s);
   if (p.derivative == 2) {
-    const double direct = modes.feedthrough(p.sensor, p.load);
-    for (std::size_t i = 1; i < n; ++i) y[i] += direct * f[i];
+    for (std::size_t i = 1; i < n; ++i) y[i] += held.direct * f[i];
     // t = 0 from the state at rest: w = w' = 0, w'' = M^-1 f F_0.
     y[0] = p.sensor.dot(system.M.llt().solve(f[0] * p.load));
   }

@@ -259,12 +259,12 @@ TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinByItsResponseAndFor
   o.noise_sd = 0.01;
   o.force_noise_sd = 0.5;
   auto c = make_cost(o, z, kDt);
-  ASSERT_TRUE(c->uses_frf());
+  ASSERT_TRUE(c->uses_noise_gain());
   EXPECT_FALSE(c->has_output_jacobian());  // its weights move with the parameters
   std::vector<double> gain(kSamples / 2 + 1);
   for (std::size_t k = 0; k < gain.size(); ++k) gain[k] = 1e-3 / (1.0 + 0.1 * k);
   const std::vector<std::complex<double>> none;
-  const Evaluation e = c->evaluate(ModelResponse{y, none, nullptr, &gain});
+  const Evaluation e = c->evaluate(ModelResponse{y, none, &gain});
   ASSERT_TRUE(e.ok()) << e.status;
   signal::Dft dft(kSamples, kDt);
   const signal::Spectrum zs = dft.transform(z), ys = dft.transform(y);
@@ -278,7 +278,7 @@ TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinByItsResponseAndFor
   EXPECT_FALSE(c->evaluate(ModelResponse{y, none}).ok());
   std::fill(gain.begin(), gain.end(), 0.0);
   auto oe = make_cost(options(kMaxLikelihoodCost, "white"), z, kDt);
-  EXPECT_NEAR(c->evaluate(ModelResponse{y, none, nullptr, &gain}).value * o.noise_sd * o.noise_sd /
+  EXPECT_NEAR(c->evaluate(ModelResponse{y, none, &gain}).value * o.noise_sd * o.noise_sd /
                   oe->evaluate(ModelResponse{y, none}).value,
               1.0, 1e-12);
   o.noise_sd = 0;

@@ -231,14 +231,14 @@ TEST(ModalSimulator, TheNoiseGainIsTheVarianceOfTheResponseToAWhiteNoiseForce) {
   e.excitation = kSampledForce;
   e.force_samples_N = signal::gaussian_deviates(1, 512);
   ResponseProblem p = make_problem(forms, system, e);
-  p.frf = true;
+  p.frf = p.noise_gain = true;
   const Trace reference = ModalSimulator().run(system, p);
   ASSERT_TRUE(reference.ok()) << reference.status;
   constexpr int kDraws = 1000;
   std::vector<double> mean(reference.noise_gain.size(), 0.0);
   signal::Dft dft(e.samples, e.dt_s);
   ResponseProblem draw = p;
-  draw.frf = false;
+  draw.frf = draw.noise_gain = false;
   for (int d = 0; d < kDraws; ++d) {
     draw.force_samples_N = signal::gaussian_deviates(100 + static_cast<std::uint64_t>(d), 512);
     const signal::Spectrum y = dft.transform(ModalSimulator().run(system, draw).y);

@@ -88,10 +88,8 @@ std::string noise_model_of(Table& r, const std::string& key) {
   const std::string text = r.string(key, std::nullopt);
   try {
     return signal::parse_noise_model(text).text();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    const std::size_t cut = what.find("': ");
-    r.fail(key, "'" + text + "'", cut == std::string::npos ? what : what.substr(cut + 3));
+  } catch (const signal::NoiseModelError& e) {
+    r.fail(key, "'" + text + "'", e.constraint);
   }
 }
 
