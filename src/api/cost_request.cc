@@ -141,8 +141,8 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
   o.noise_sd = request.noise_sd.value_or(0.0);
   o.force_noise_sd = request.force_noise_sd.value_or(0.0);
   if (request.noise_model)
-    o.noise_model = *request.noise_model == costs::kEstimatedNoise
-                        ? costs::kEstimatedNoise
+    o.noise_model = costs::is_estimated_noise(*request.noise_model)
+                        ? *request.noise_model
                         : parsed_noise_model(caller, *request.noise_model).text();
   if (auto error = costs::validation_error(o)) refuse(caller, *error);
   return o;

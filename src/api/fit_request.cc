@@ -260,7 +260,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
   // (simulation/free_decay.h): with a coloured noise model that synthesis is not the generalised one the cost assumes,
   // so the fit would be neither least squares nor maximum likelihood. Refused until the synthesis is whitened too.
   if (request.cost.noise_model && o.experiment.excitation == simulation::kFreeDecay &&
-      (*request.cost.noise_model == costs::kEstimatedNoise ||
+      (costs::is_estimated_noise(*request.cost.noise_model) ||
        parsed_noise_model(caller, *request.cost.noise_model).kind != "white"))
     refuse(caller, "noise-model", *request.cost.noise_model,
            "needs a modelled excitation (pulse, pluck): a free decay's modal amplitudes are fitted unweighted, which "
@@ -355,21 +355,25 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
   const fit::FitOptions& o = c.options;
   const Caller& caller = request.caller;
   // Several channels: one record each, at its own sensor position, fitted jointly (fit/identification.h).
-  c.sensors_m = request.experiment.sensor_x_m;
-  const std::vector<double>& sensors = c.sensors_m;
+  const std::vector<double>& sensors = request.experiment.sensor_x_m;
   std::string listed;  // the --sensor-x list, for its errors
   for (double x : sensors) listed += (listed.empty() ? "" : ",") + format_value(x);
+  // Repeats of one test (--noise-model repeated) share their sensor: one position, or none (the tip), serves all.
+  const bool shared = o.cost.noise_model == costs::kRepeatedNoise && sensors.size() <= 1;
   if (channels.size() > 1 || sensors.size() > 1) {
-    if (sensors.size() != channels.size())
+    if (!shared && sensors.size() != channels.size())
       refuse(caller, "sensor-x", listed,
              "must list one position per --channel (" + std::to_string(channels.size()) + " channel(s))");
     for (std::size_t k = 0; k < channels.size(); ++k) {
-      fit::Record record{channels[k].value_column, o.start, o.experiment, channels[k].values, {}};
-      record.experiment.sensor_x_m = sensors[k];
+      fit::Record record{channels[k].value_column, o.start, o.experiment, channels[k].values, {}, {}, {}};
+      if (!shared) record.experiment.sensor_x_m = sensors[k];
       if (auto error = simulation::validation_error(record.experiment, o.start.l))
         refuse(caller, "sensor-x", listed, "channel " + std::to_string(k + 1) + ": " + *error);
       c.records.push_back(std::move(record));
     }
+    // Every record's position, the shared one included (the tip when none was given).
+    c.sensors_m.clear();
+    for (const fit::Record& r : c.records) c.sensors_m.push_back(r.experiment.sensor_x_m.value_or(o.start.l));
   }
   refuse_zero_model(o, c.records, caller);
   const std::vector<double>& data = channels.front().values;

@@ -61,7 +61,7 @@ struct FitRequest {
 struct FitComputation {
   fit::FitOptions options;
   std::vector<fit::Record> records;
-  std::vector<double> sensors_m;  // the request's sensor positions (several channels)
+  std::vector<double> sensors_m;  // each record's sensor position (several channels)
   fit::FitResult result;
   std::optional<fit::WindowSpread> spread;
   bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)

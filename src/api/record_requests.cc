@@ -205,11 +205,11 @@ costs::Evaluation compute_cost(const CostEvaluationRequest& request, const io::T
     refuse(caller, "force-noise-sd", format_value(*request.cost.force_noise_sd),
            "weighs the force's noise through the model's transfer function, which a prediction file does not carry: "
            "use it in fit with --force-channel");
-  // A noise model estimated from a fit's residuals needs the fit.
-  if (request.cost.noise_model && *request.cost.noise_model == costs::kEstimatedNoise)
-    refuse(caller, "noise-model", costs::kEstimatedNoise,
-           "is estimated by fit from its white fit's residuals; cost compares a given prediction: give a model (white, "
-           "ar:a1,..., power:alpha)");
+  // A noise model a fit estimates (from its residuals, or from repeated records) needs the fit.
+  if (request.cost.noise_model && costs::is_estimated_noise(*request.cost.noise_model))
+    refuse(caller, "noise-model", *request.cost.noise_model,
+           "is estimated by fit (from its white fit's residuals, or from repeated records); cost compares a given "
+           "prediction: give a model (white, ar:a1,..., power:alpha)");
   // What picks spikes (their number, chosen frequencies) and their band, where the cost reads neither: in fit they
   // also choose the modes compared at the estimate; here nothing reads them (the fourth pass's Q511, Q524-Q537).
   const bool picks = costs::is_spike_cost(request.cost.name), band = picks || costs::is_band_cost(request.cost.name);

@@ -32,6 +32,9 @@ constexpr std::pair<const char*, const char*> kFlagOfField[] = {
     {"cvode.rtol", "rtol"},
     {"cvode.atol", "atol"},
     {"cvode.max_order", "max-order"},
+    {"noise_model", "noise-model"},
+    {"force_noise_sd", "force-noise-sd"},
+    {"noise_sd", "noise-sd"},
 };
 
 bool word_start(const std::string& text, std::size_t at) {

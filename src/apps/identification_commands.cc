@@ -87,7 +87,8 @@ std::vector<FlagSpec> cost_flags(bool required) {
                             "time, freq-ml: the noise assumed, white | ar:a1,... | power:alpha (time: least squares "
                             "on the prewhitened record; freq-ml: each bin over its variance; default white); fit: "
                             "estimated, from the residuals of a white fit first (time an AR model, freq-ml each "
-                            "bin's variance)"));
+                            "bin's variance), or repeated, from several --channel's that repeat one test (at one "
+                            "--sensor-x), by their deviations from their mean"));
   flags.push_back(number_flag("force-noise-sd",
                               "freq-ml with fit --force-channel: the force channel's white noise sd, N: the "
                               "errors-in-variables form, each bin over its response noise plus |G|^2 its force noise"));
@@ -306,7 +307,9 @@ std::vector<FlagSpec> fit_flags() {
     flags.insert(flags.end(), more.begin(), more.end());
   for (FlagSpec& f : flags) {  // lists: one record per channel, each at its own sensor position
     if (f.name == "sensor-x")
-      f = text_flag("sensor-x", "sensor position(s) xbar, m: one per --channel, e.g. 0.15,0.3 (default: the tip)");
+      f = text_flag("sensor-x",
+                    "sensor position(s) xbar, m: one per --channel, e.g. 0.15,0.3, or one for all with "
+                    "--noise-model repeated (default: the tip)");
     if (f.name == "channel")
       f = text_flag("channel",
                     "signal column(s) by name or 1-based index: a comma-separated list fits the channels jointly, "

@@ -70,6 +70,9 @@ const core::NameSet& model_pole_names() {
 
 bool is_spike_cost(const std::string& name) { return name == kSpikeCost || name == kSpikeSmoothCost; }
 bool is_band_cost(const std::string& name) { return name == kBandCost || name == kMaxLikelihoodCost; }
+bool is_estimated_noise(const std::string& noise_model) {
+  return noise_model == kEstimatedNoise || noise_model == kRepeatedNoise;
+}
 
 CostUses cost_uses(const std::string& name) {
   CostUses u;
@@ -116,10 +119,11 @@ std::optional<std::string> validation_error(const CostOptions& o) {
            ": the errors-in-variables form weighs the force's noise against the response's: give noise_sd > 0 too";
   if (o.force_noise_sd > 0 && o.name != kMaxLikelihoodCost)
     return "force_noise_sd = " + format_value(o.force_noise_sd) + ": is read by the freq-ml cost only";
-  if (o.noise_model == kEstimatedNoise && o.force_noise_sd > 0)
-    return "noise_model = 'estimated' with force_noise_sd: the errors-in-variables form needs the response's noise "
-           "given (a model and noise_sd)";
-  if (o.noise_model != kEstimatedNoise) try {
+  if (is_estimated_noise(o.noise_model) && o.force_noise_sd > 0)
+    return "noise_model = '" + o.noise_model +
+           "' with force_noise_sd: the errors-in-variables form needs the response's noise given (a model and "
+           "noise_sd)";
+  if (!is_estimated_noise(o.noise_model)) try {
       signal::parse_noise_model(o.noise_model);
     } catch (const InputError& e) {
       return std::string(e.what());
@@ -135,10 +139,11 @@ std::unique_ptr<Cost> make_cost(const CostOptions& options, std::vector<double> 
       throw InputError("data: sample " + std::to_string(i) + " = " + format_value(data[i]) + ": must be finite");
   // An estimated noise model is resolved by the fit (a model for time, bin variances for freq-ml) before a cost is
   // made.
-  if (options.noise_model == kEstimatedNoise && cost_uses(options.name).noise_model &&
+  if (is_estimated_noise(options.noise_model) && cost_uses(options.name).noise_model &&
       !(options.name == kMaxLikelihoodCost && !options.bin_variance.empty()))
-    throw InputError("noise_model = '" + kEstimatedNoise + "': a fit estimates it from its own residuals; cost " +
-                     options.name + " alone needs a model (white, ar:a1,..., power:alpha)");
+    throw InputError("noise_model = '" + options.noise_model + "': a fit estimates it (from its own residuals or " +
+                     "from repeated records); cost " + options.name +
+                     " alone needs a model (white, ar:a1,..., power:alpha)");
   if (options.name == kTimeCost) return make_time_cost(options, std::move(data));
   if (options.name == kSpikeCost) return make_spike_cost(options, std::move(data), dt_s);
   if (options.name == kBandCost || options.name == kMaxLikelihoodCost)

@@ -64,8 +64,11 @@ inline const std::string kModalCost = "modal";            // costs/modal_cost.h
 inline const std::string kMaxLikelihoodCost = "freq-ml";  // costs/least_squares.h
 const core::NameSet& cost_names();
 
-// The noise model a fit estimates from its own residuals (CostOptions::noise_model).
+// The noise models a fit estimates (CostOptions::noise_model; fit/noise_estimation.h): from its own residuals, or
+// from repeated records of one experiment. A cost alone cannot: it takes the result (an AR model, bin variances).
 inline const std::string kEstimatedNoise = "estimated";
+inline const std::string kRepeatedNoise = "repeated";
+bool is_estimated_noise(const std::string& noise_model);
 
 // The spike costs' frequency weightings by name (above).
 inline const std::string kAbsoluteWeight = "absolute";

@@ -8,9 +8,9 @@
 #include "core/errors.h"
 #include "core/limits.h"
 #include "fit/joint_objective.h"
+#include "fit/noise_estimation.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
-#include "signal/noise_spectrum.h"
 #include "signal/spikes.h"
 #include "simulation/free_decay.h"
 #include "simulation/modal_simulator.h"
@@ -37,9 +37,26 @@ const core::NameSet& strategy_names() {
 
 std::string default_optimizer(const std::string& cost) { return cost == costs::kSpikeCost ? "nelder-mead" : "lm"; }
 
-namespace {
+FitResult chained(const FitResult& first, FitResult second, const std::string& first_name,
+                  const std::string& second_name) {
+  std::vector<StageResult> stages;
+  for (StageResult stage : first.stages) {
+    stage.name = first_name + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  for (StageResult stage : second.stages) {
+    stage.name = second_name + stage.name;
+    stages.push_back(std::move(stage));
+  }
+  second.stages = std::move(stages);
+  second.evaluations += first.evaluations;
+  second.wall_time_s += first.wall_time_s;
+  second.best_start = first.best_start;
+  for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
+  return second;
+}
 
-constexpr int kEstimatedArOrder = 20;  // the highest AR order an estimated time-domain noise model may take
+namespace {
 
 // The optimizer problem over a subset `active` of the estimated coordinates, the others held at `x_fixed`.
 Problem subproblem(JointObjective& objective, const ParameterMap& map, const std::vector<int>& active,
@@ -306,27 +323,6 @@ void check_first_step(const FitOptions& o, const ParameterMap& map) {
   }
 }
 
-// Two fits in a row, the second from the first's estimate: the second's result with the stages (named by their
-// prefixes), evaluations and time of both, and the first's starts.
-FitResult chained(const FitResult& first, FitResult second, const std::string& first_name,
-                  const std::string& second_name) {
-  std::vector<StageResult> stages;
-  for (StageResult stage : first.stages) {
-    stage.name = first_name + stage.name;
-    stages.push_back(std::move(stage));
-  }
-  for (StageResult stage : second.stages) {
-    stage.name = second_name + stage.name;
-    stages.push_back(std::move(stage));
-  }
-  second.stages = std::move(stages);
-  second.evaluations += first.evaluations;
-  second.wall_time_s += first.wall_time_s;
-  second.best_start = first.best_start;
-  for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
-  return second;
-}
-
 // The hybrid strategy: the global fit (direct, from every start), then the refinement from its estimate. The result
 // is the refinement's, with the stages and evaluations of both.
 FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
@@ -344,65 +340,6 @@ FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
                  o.refine + " from the " + o.cost.name + " estimate: ");
 }
 
-// A fit of a cost that reads the noise model, with the model estimated from the residuals of its own white-noise fit
-// (CostOptions::noise_model "estimated"): the white fit, then each record's noise estimated from its residual at that
-// estimate (time: an AR model of order <= 20 by Akaike's criterion; freq-ml: each bin's variance by the local
-// polynomial method on the residual's DFT, which holds no resonance peak once the model's response is taken out), then
-// the fit again from the white estimate with it. Only the noise's colour matters: its level is the residuals'.
-FitResult fit_with_estimated_noise(const FitOptions& o, const std::vector<Record>& records) {
-  FitOptions white = o;
-  white.cost.noise_model = "white";
-  FitResult first = fit(white, records);
-  // Said in the stages, never a white fit passed off as one with its noise estimated.
-  const auto unestimated = [&first](const std::string& why) {
-    for (StageResult& stage : first.stages)
-      stage.name = "white noise (the noise not estimated: " + why + "): " + stage.name;
-    return first;
-  };
-  if (first.status == "failed") return unestimated("the white fit failed");
-  std::vector<Record> estimated = records;
-  std::string described;
-  for (std::size_t r = 0; r < records.size(); ++r) {
-    const std::vector<double>& y = first.records[r].model_output;
-    const std::vector<double>& z = records[r].data;
-    if (y.size() != z.size()) return unestimated("no model output at the white estimate");
-    // The residual of the fitted output a y (a: the closed-form amplitude, 1 unless --unknown-amplitude).
-    const double a = first.records[r].evaluation.amplitude_scale;
-    std::vector<double> residual(z.size());
-    double power = 0;
-    for (std::size_t i = 0; i < z.size(); ++i) {
-      residual[i] = z[i] - a * y[i];
-      power += residual[i] * residual[i] / static_cast<double>(z.size());
-    }
-    if (!(power > 0)) return unestimated("a residual of zeros");
-    Record& e = estimated[r];
-    e.start = first.records[r].beam;
-    if (o.cost.name == costs::kMaxLikelihoodCost) {
-      // Scaled to unit process variance, as the models' bin variances are: the colour, not the level (whose ratio
-      // between records a joint fit's record weights set).
-      signal::Dft dft(static_cast<int>(residual.size()), records[r].experiment.dt_s);
-      e.bin_variance = signal::local_polynomial_variance(dft.transform(residual), {}).variance;
-      for (double& v : e.bin_variance) v /= power;
-      e.noise_model = costs::kEstimatedNoise;
-    } else {
-      e.noise_model = signal::fit_autoregressive(residual, kEstimatedArOrder).text();
-      try {
-        signal::parse_noise_model(e.noise_model);  // Yule-Walker is stationary; within 1e-6 of a unit root is not taken
-      } catch (const InputError&) {
-        return unestimated("the residual's AR model " + e.noise_model + " has a root at the unit circle");
-      }
-    }
-    described += (described.empty() ? "" : "; ") + (o.cost.name == costs::kMaxLikelihoodCost
-                                                        ? std::string("each bin's variance by local polynomials")
-                                                        : e.noise_model);
-  }
-  FitOptions again = o;
-  again.strategy = kDirect;
-  again.starts = 1;
-  return chained(first, fit(again, estimated),
-                 "white noise: ", "the noise estimated from its residuals (" + described + "): ");
-}
-
 }  // namespace
 
 int robust_lags(const std::string& cost, int residuals) {
@@ -410,7 +347,12 @@ int robust_lags(const std::string& cost, int residuals) {
 }
 
 FitResult fit(const FitOptions& o, const std::vector<double>& data) {
-  return fit(o, std::vector<Record>{Record{"record1", o.start, o.experiment, data, {}}});
+  Record record;
+  record.name = "record1";
+  record.start = o.start;
+  record.experiment = o.experiment;
+  record.data = data;
+  return fit(o, std::vector<Record>{record});
 }
 
 namespace {
@@ -579,9 +521,10 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
   validate_records(o, records, map);
   check_first_step(o, map);
   if (o.strategy == kHybrid) return fit_hybrid(o, records);
-  if (o.cost.noise_model == costs::kEstimatedNoise && costs::cost_uses(o.cost.name).noise_model &&
+  if (costs::is_estimated_noise(o.cost.noise_model) && costs::cost_uses(o.cost.name).noise_model &&
       records.front().noise_model.empty())
-    return fit_with_estimated_noise(o, records);
+    return o.cost.noise_model == costs::kRepeatedNoise ? fit_with_repeated_noise(o, records)
+                                                       : fit_with_estimated_noise(o, records);
   JointObjective objective(o, records, map);
 
   const auto begin = std::chrono::steady_clock::now();

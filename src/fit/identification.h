@@ -174,4 +174,10 @@ FitResult fit(const FitOptions& options, const std::vector<double>& data);
 // record's, and a shared parameter starts from record 1's value. One record gives exactly fit(options, data).
 FitResult fit(const FitOptions& options, const std::vector<Record>& records);
 
+// Two fits in a row, the second from the first's estimate (a hybrid's refinement, a refit with the noise estimated):
+// the second's result with the stages of both, named with the prefixes, their evaluations and time, and the first's
+// starts.
+FitResult chained(const FitResult& first, FitResult second, const std::string& first_name,
+                  const std::string& second_name);
+
 }  // namespace beamid::fit

@@ -91,7 +91,7 @@ WindowSpread window_spread(const FitOptions& options, const std::vector<Record>&
 
 WindowSpread window_spread(const FitOptions& options, const std::vector<double>& data, const FitResult& full,
                            int windows) {
-  return window_spread(options, {Record{"record1", options.start, options.experiment, data, {}}}, full, windows);
+  return window_spread(options, {Record{"record1", options.start, options.experiment, data, {}, {}, {}}}, full, windows);
 }
 
 }  // namespace beamid::fit

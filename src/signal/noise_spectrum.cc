@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <map>
 
 #include "core/errors.h"
@@ -35,6 +36,17 @@ Eigen::MatrixXd residual_projector(const std::vector<int>& offsets, int degree, 
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
   const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(rows, degree + 1);
   return Eigen::MatrixXd::Identity(rows, rows) - q * q.transpose();
+}
+
+// out[k] = the mean of local[lo..hi], [lo, hi] = [k - m, k + m] clipped to first..last, for k in first..last.
+void smooth_over_bins(const std::vector<double>& local, int first, int last, int m, std::vector<double>& out) {
+  std::vector<double> prefix(local.size() + 1, 0.0);  // a running sum
+  for (std::size_t k = 0; k < local.size(); ++k) prefix[k + 1] = prefix[k] + local[k];
+  for (int k = first; k <= last; ++k) {
+    const int lo = std::max(first, k - m), hi = std::min(last, k + m);
+    out[static_cast<std::size_t>(k)] =
+        (prefix[static_cast<std::size_t>(hi + 1)] - prefix[static_cast<std::size_t>(lo)]) / (hi - lo + 1);
+  }
 }
 
 }  // namespace
@@ -72,35 +84,67 @@ BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynom
     local[static_cast<std::size_t>(k)] = (re.dot(it->second * re) + im.dot(it->second * im)) / out.dof;
   }
   out.variance.assign(record.half.size(), 0.0);
-  const int m = options.smoothing_half_width;
-  // A running sum over [k - m, k + m] within first..last.
-  std::vector<double> prefix(local.size() + 1, 0.0);
-  for (std::size_t k = 0; k < local.size(); ++k) prefix[k + 1] = prefix[k] + local[k];
-  for (int k = first; k <= last; ++k) {
-    const int lo = std::max(first, k - m), hi = std::min(last, k + m);
-    out.variance[static_cast<std::size_t>(k)] =
-        (prefix[static_cast<std::size_t>(hi + 1)] - prefix[static_cast<std::size_t>(lo)]) / (hi - lo + 1);
-  }
+  smooth_over_bins(local, first, last, options.smoothing_half_width, out.variance);
   out.variance[0] = out.variance[static_cast<std::size_t>(first)];
   for (std::size_t k = static_cast<std::size_t>(last) + 1; k < out.variance.size(); ++k)
     out.variance[k] = out.variance[static_cast<std::size_t>(last)];
   return out;
 }
 
+BinVariance repeated_record_variance(const std::vector<Spectrum>& records, int smoothing_half_width) {
+  if (records.size() < 2)
+    throw InputError("repeated-record noise estimate: " + std::to_string(records.size()) +
+                     " record(s): at least 2 repeats of one experiment are needed");
+  if (smoothing_half_width < 0)
+    throw InputError("smoothing half width = " + std::to_string(smoothing_half_width) + ": must be >= 0");
+  const Spectrum& one = records.front();
+  for (std::size_t m = 1; m < records.size(); ++m)
+    if (records[m].samples != one.samples || records[m].dt_s != one.dt_s)
+      throw InputError("repeated-record noise estimate: record " + std::to_string(m + 1) + " has " +
+                       std::to_string(records[m].samples) + " samples at dt " + format_value(records[m].dt_s) +
+                       " s, record 1 " + std::to_string(one.samples) + " at " + format_value(one.dt_s) +
+                       " s: repeats must share the length and the time step");
+  const auto count = static_cast<double>(records.size());
+  std::vector<double> local(one.half.size(), 0.0);
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    std::complex<double> mean = 0;
+    for (const Spectrum& r : records) mean += r.half[k] / count;
+    for (const Spectrum& r : records) local[k] += std::norm(r.half[k] - mean) / (count - 1);
+  }
+  BinVariance out;
+  out.dof = static_cast<int>(records.size()) - 1;
+  out.variance.assign(local.size(), 0.0);
+  smooth_over_bins(local, 0, static_cast<int>(local.size()) - 1, smoothing_half_width, out.variance);
+  return out;
+}
+
 NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order) {
-  if (e.size() < 8)
-    throw InputError("autoregressive noise model: " + std::to_string(e.size()) + " samples: at least 8");
+  return fit_autoregressive(std::vector<std::vector<double>>{e}, max_order);
+}
+
+NoiseModel fit_autoregressive(const std::vector<std::vector<double>>& records, int max_order) {
+  if (records.empty()) throw InputError("autoregressive noise model: no record");
+  std::size_t shortest = records.front().size(), total = 0;
+  for (const auto& e : records) {
+    shortest = std::min(shortest, e.size());
+    total += e.size();
+  }
+  if (shortest < 8)
+    throw InputError("autoregressive noise model: " + std::to_string(shortest) + " samples: at least 8");
   if (max_order < 0 || max_order > 32)
     throw InputError("autoregressive noise model: order " + std::to_string(max_order) + ": must be in 0..32");
-  const auto n = static_cast<double>(e.size());
+  const auto n = static_cast<double>(total);
+  const auto p_max = static_cast<std::size_t>(std::min<long>(max_order, static_cast<long>(shortest) / 4));
+  // One mean over every sample (0 for deviations from the records' mean), so that a short record's own mean, which a
+  // correlated noise moves far from 0, does not take its low frequencies away.
   double mean = 0;
-  for (const double v : e) mean += v / n;
-  const auto p_max = static_cast<std::size_t>(std::min<long>(max_order, static_cast<long>(e.size()) / 4));
-  std::vector<double> gamma(p_max + 1, 0.0);  // biased: sum over n - l products, over n
-  for (std::size_t l = 0; l <= p_max; ++l) {
-    for (std::size_t i = 0; i + l < e.size(); ++i) gamma[l] += (e[i] - mean) * (e[i + l] - mean);
-    gamma[l] /= n;
-  }
+  for (const auto& e : records)
+    for (const double v : e) mean += v / n;
+  std::vector<double> gamma(p_max + 1, 0.0);  // biased: the lag products within each record, over the total count
+  for (const auto& e : records)
+    for (std::size_t l = 0; l <= p_max; ++l)
+      for (std::size_t i = 0; i + l < e.size(); ++i) gamma[l] += (e[i] - mean) * (e[i + l] - mean);
+  for (double& g : gamma) g /= n;
   NoiseModel best;  // white
   if (!(gamma[0] > 0)) return best;
   // Levinson-Durbin: phi holds the order-p coefficients, v the order-p prediction-error variance.

@@ -18,6 +18,16 @@
 // costs a weighted fit efficiency: the noise spectrum is smooth where the response need not be. The resonance peaks
 // are where the response is least polynomial: a mode whose half-power band spans fewer bins than the window leaves
 // part of itself in e, so the LPM overestimates the noise there (say why, and how much, where it is used).
+//
+// From M >= 2 repeated records of one experiment (the same excitation, sensor, length and rate: M taps of one beam
+// with a repeatable exciter, or M periods of a steady state): the records differ by their noise alone, so around the
+// mean Zbar(k) = (1/M) sum_m Z_m(k)
+//   sigma^2(k) = sum_m |Z_m(k) - Zbar(k)|^2 / (M - 1),   M - 1 complex degrees of freedom,
+// unbiased whatever the response and the transient (Pintelon and Schoukens, ch. 2.4 and 7.2), with nothing of the
+// model in it: no resonance leaks in and no model error is taken for noise, unlike an estimate from a fit's
+// residuals. (M - 1) sigma^2(k) / E|N(k)|^2 is chi-square with 2 (M - 1) real degrees of freedom over 2, so with few
+// records each bin's estimate is rough (relative sd 1/sqrt(M - 1)); it is averaged over 2m + 1 neighbouring bins as
+// the LPM's is.
 #pragma once
 
 #include <optional>
@@ -45,11 +55,21 @@ struct BinVariance {
 // The offset and Nyquist bins take their nearest neighbour's estimate.
 BinVariance local_polynomial_variance(const Spectrum& record, const LocalPolynomialOptions& options);
 
+// The repeated-record estimate above, averaged over 2 smoothing_half_width + 1 bins (0: none; the offset and Nyquist
+// bins are averaged like the others). dof: M - 1 (before smoothing). InputError for fewer than 2 records, records of
+// different lengths or time steps, or a negative smoothing half width.
+BinVariance repeated_record_variance(const std::vector<Spectrum>& records, int smoothing_half_width);
+
 // The autoregressive model of a noise record e (a fit's residuals): Yule-Walker by the Levinson-Durbin recursion on
 // the biased sample autocorrelation (so the model is stationary), of the order p <= max_order that minimises Akaike's
 // criterion n ln(sigma_p^2) + 2 p, sigma_p^2 the order-p prediction-error variance (Brockwell and Davis, Introduction
 // to Time Series and Forecasting, 5.1 and 5.5). Order 0 is "white". InputError for fewer than 8 samples or a
 // max_order outside 0..32; a record of zeros is white.
 NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order);
+// The same from several records of one process (the deviations of repeated records from their mean): one mean over
+// all samples removed, the lag products summed over the records (none across a record's ends) over the total count, n
+// in Akaike's criterion the total count, the order at most the shortest record's length / 4. InputError for no records
+// or a record of fewer than 8 samples.
+NoiseModel fit_autoregressive(const std::vector<std::vector<double>>& records, int max_order);
 
 }  // namespace beamid::signal

@@ -506,6 +506,14 @@ expect_error "coloured noise model, free decay" "--noise-model = 'ar:0.9': needs
   fit "${Z[@]}" --cost freq-ml --noise-model ar:0.9 --excitation free-decay
 expect_error "unstationary noise model" "--noise-model = 'ar:1': not stationary" fit "${Z[@]}" --cost time \
   --noise-model ar:1
+# The noise from repeats of one test needs two of them at least, and repeats: one sensor, one force.
+expect_error "repeated noise from one record" "--noise-model = 'repeated': 1 record" fit "${Z[@]}" --cost freq-ml \
+  --noise-model repeated
+awk -F, 'NR == 1 { print "t_s,a,b"; next } { print $1 "," $2 "," 1.001 * $2 }' "$tmp/z.csv" >"$tmp/two.csv"
+expect_error "repeated noise from other sensors" "is not a repeat of record 1: its sensor is elsewhere" \
+  fit --data "$tmp/two.csv" "${Z[@]:2}" --channel a,b --sensor-x 0.3,0.4 --cost time --noise-model repeated
+expect_error "repeated noise in cost" "--noise-model = 'repeated': is estimated by fit" cost --data "$tmp/z.csv" \
+  --prediction "$tmp/z.csv" --cost time --noise-model repeated
 # A measured force channel (issue 33 item 4): it sets the excitation, so a pulse's flags are refused; simulate's
 # force column is a pulse's; its noise needs the column.
 "$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --force-column --force-noise-level 0.01 >"$tmp/hammer.csv"

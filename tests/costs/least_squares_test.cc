@@ -317,7 +317,9 @@ TEST(NoiseWeightedCost, AFitEstimatesTheNoiseFromItsResidualsAndWeighsByIt) {
       const auto& k = known.parameters[i];
       const double off = std::abs(estimated.parameters[i].estimate - k.estimate);
       EXPECT_LT(off, 3 * k.standard_error) << name << " " << k.key;
-      if (k.key == "EI") EXPECT_LT(off, std::abs(white.parameters[i].estimate - k.estimate)) << name;
+      if (k.key == "EI") {
+        EXPECT_LT(off, std::abs(white.parameters[i].estimate - k.estimate)) << name;
+      }
     }
     // With the amplitude unknown the residual is the fitted output's, z - a y: a record 1000 times larger gives the
     // same estimate, as the white fit does, to where the optimizer stops (measured 1.2e-6 on gamma, the least

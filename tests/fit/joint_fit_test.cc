@@ -32,7 +32,7 @@ simulation::Experiment pulse_test(const model::BeamParameters& beam, double sens
 }
 
 Record simulated(const std::string& name, const model::BeamParameters& truth, const simulation::Experiment& e) {
-  return Record{name, truth, e, same_model_record(truth, e, kElements), {}};
+  return Record{name, truth, e, same_model_record(truth, e, kElements), {}, {}, {}};
 }
 
 FitOptions time_fit() {

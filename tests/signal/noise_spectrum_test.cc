@@ -1,5 +1,6 @@
-// The noise's variance per DFT bin: the model's exact value (against the dense quadratic form and Monte Carlo) and the
-// local polynomial method's estimate from one record (its mean and its chi-square spread).
+// The noise's variance per DFT bin: the model's exact value (against the dense quadratic form and Monte Carlo), the
+// local polynomial method's estimate from one record and the estimate from repeated records (their means and their
+// chi-square spreads), and the autoregressive model of one record or of several.
 #include "signal/noise_spectrum.h"
 
 #include <gtest/gtest.h>
@@ -141,6 +142,68 @@ TEST(LocalPolynomialVariance, TakesUpASmoothTransientAndRefusesTooShortARecord) 
   EXPECT_TRUE(validation_error(o).has_value());  // 3 bins, 3 coefficients: no degree of freedom
 }
 
+// The ratio of the repeated-record estimate to the model's variance at the complex bins, over `sets` independent sets
+// of `repeats` records: each record one transient (a resonance whose peak is about 2,000 times the noise's sd per bin)
+// plus AR(0.9) noise.
+std::vector<double> repeated_ratios(int repeats, int sets, int smoothing_half_width, int stride) {
+  constexpr int kSamples = 2048;
+  constexpr double kDt = 1e-3;
+  const NoiseModel model = parse_noise_model("ar:0.9");
+  const std::vector<double> v = model_bin_variance(model, kSamples);
+  Dft dft(kSamples, kDt);
+  std::vector<double> ratios;
+  for (int set = 0; set < sets; ++set) {
+    std::vector<Spectrum> records;
+    for (int m = 0; m < repeats; ++m) {
+      std::vector<double> z = model_deviates(model, 300 + static_cast<std::uint64_t>(set * repeats + m), kSamples);
+      for (int i = 0; i < kSamples; ++i)
+        z[static_cast<std::size_t>(i)] +=
+            100 * std::exp(-2.0 * i * kDt) * std::sin(2 * std::numbers::pi * 50 * i * kDt);
+      records.push_back(dft.transform(z));
+    }
+    const BinVariance e = repeated_record_variance(records, smoothing_half_width);
+    EXPECT_EQ(e.dof, repeats - 1);
+    for (std::size_t k = 1; k + 1 < v.size(); k += static_cast<std::size_t>(stride))
+      ratios.push_back(e.variance[k] / v[k]);
+  }
+  return ratios;
+}
+
+std::pair<double, double> mean_and_variance(const std::vector<double>& x) {
+  double mean = 0, var = 0;
+  for (const double v : x) mean += v / static_cast<double>(x.size());
+  for (const double v : x) var += (v - mean) * (v - mean) / static_cast<double>(x.size() - 1);
+  return {mean, var};
+}
+
+TEST(RepeatedRecordVariance, IsUnbiasedWithTheChiSquareSpreadOfMMinusOneWhateverTheResponse) {
+  // M = 5 repeats, unsmoothed: (M - 1) sigma^2(k) / E|N(k)|^2 is chi-square with 2 (M - 1) = 8 real dof over 2, so the
+  // ratio has mean 1 and variance 1 / (M - 1) = 0.25, at every bin, the resonance's included (the records share it).
+  // 4 sets x 1,023 bins: the mean's sd is sqrt(0.25 / 4,092) = 0.008 (bound 0.04, 5 sd); the sample variance's
+  // relative sd is sqrt((2 + 6 (M - 1)^-1) / 4,092) = 2.8 % for this chi-square, more where the rectangular window's
+  // leakage correlates neighbouring bins of the coloured noise (bound 15 %).
+  const auto [mean, var] = mean_and_variance(repeated_ratios(5, 4, 0, 1));
+  EXPECT_NEAR(mean, 1.0, 0.04);
+  EXPECT_NEAR(var, 0.25, 0.0375);
+  // Averaged over 21 bins (m = 10): the mean stays 1 and the spread falls to about 1 / sqrt(21 (M - 1)) = 0.11
+  // (estimates 43 bins apart share no bin: 4 x 24 of them; the mean's sd 0.11 / sqrt(96) = 0.011, bound 0.05).
+  const auto [smooth_mean, smooth_var] = mean_and_variance(repeated_ratios(5, 4, 10, 43));
+  EXPECT_NEAR(smooth_mean, 1.0, 0.05);
+  EXPECT_LT(std::sqrt(smooth_var), 0.16);
+  EXPECT_GT(std::sqrt(smooth_var), 0.06);
+}
+
+TEST(RepeatedRecordVariance, RefusesOneRecordAndRecordsThatAreNotRepeats) {
+  Dft dft(64, 1e-3), other(128, 1e-3);
+  const Spectrum a = dft.transform(gaussian_deviates(1, 64));
+  EXPECT_THROW(repeated_record_variance({a}, 0), InputError);
+  EXPECT_THROW(repeated_record_variance({a, other.transform(gaussian_deviates(2, 128))}, 0), InputError);
+  EXPECT_THROW(repeated_record_variance({a, a}, -1), InputError);
+  // Identical records have no noise between them: zero (fit::fit never weighs by it: it refuses two records of the
+  // same samples).
+  for (const double v : repeated_record_variance({a, a}, 0).variance) EXPECT_EQ(v, 0.0);
+}
+
 TEST(FitAutoregressive, RecoversTheProcessAndChoosesItsOrder) {
   // 8192 samples: the Yule-Walker coefficients' sd is about sqrt((1 - a^2) / n) = 0.005 for AR(1) a = 0.9, and
   // about 0.01 for the AR(2) below (bound 0.03, 3-6 sd). Akaike's criterion picks the order: 1 and 2 here (a higher
@@ -161,6 +224,30 @@ TEST(FitAutoregressive, RecoversTheProcessAndChoosesItsOrder) {
   EXPECT_EQ(parse_noise_model(one.text()).ar, one.ar);
   EXPECT_THROW(fit_autoregressive(std::vector<double>(7, 1.0), 2), InputError);
   EXPECT_THROW(fit_autoregressive(std::vector<double>(64, 1.0), 33), InputError);
+}
+
+TEST(FitAutoregressive, PoolsSeveralRecordsOfOneProcess) {
+  // 16 records of 512 samples of AR(0.9), each its own draw: the pooled estimate has 8,192 samples behind it. It is
+  // checked by what it says, the spectrum's shape (Akaike's criterion takes a higher order than 1 in about a quarter of
+  // draws, whose coefficients then differ from (0.9, 0, ...) within their noise): the worst |ln| ratio of its bin
+  // variances to the true model's over the bins. Over 100 draws of a numpy prototype of this estimator, that worst
+  // ratio had median 0.058, 90th percentile 0.13 and 99th 0.24 pooled (the same as one record of 8,192 samples: 0.057,
+  // 0.12, 0.18), and median 0.22, 90th percentile 0.48 from one record of 512: bound 0.3 (this draw: 0.062). One record
+  // is the single-record estimate exactly; a record shorter than 8 samples is refused.
+  const NoiseModel truth = parse_noise_model("ar:0.9");
+  std::vector<std::vector<double>> records;
+  for (int m = 0; m < 16; ++m) records.push_back(model_deviates(truth, 600 + static_cast<std::uint64_t>(m), 512));
+  const NoiseModel pooled = fit_autoregressive(records, 20);
+  ASSERT_EQ(pooled.kind, "ar");
+  const std::vector<double> expected = model_bin_variance(truth, 512), got = model_bin_variance(pooled, 512);
+  double worst = 0;
+  for (std::size_t k = 0; k < expected.size(); ++k) worst = std::max(worst, std::abs(std::log(got[k] / expected[k])));
+  EXPECT_LT(worst, 0.3) << pooled.text();
+  EXPECT_EQ(fit_autoregressive(records.front(), 20).ar,
+            fit_autoregressive(std::vector<std::vector<double>>{records.front()}, 20).ar);
+  records.push_back(std::vector<double>(7, 1.0));
+  EXPECT_THROW(fit_autoregressive(records, 20), InputError);
+  EXPECT_THROW(fit_autoregressive(std::vector<std::vector<double>>{}, 20), InputError);
 }
 
 }  // namespace
