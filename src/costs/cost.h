@@ -138,8 +138,8 @@ struct ModelResponse {
   const std::vector<double>& y;
   const std::vector<std::complex<double>>& poles_rad_s;
   // With a sampled force, when the cost asks for it (Cost::uses_noise_gain): the variance of the output's DFT bins
-  // 0..Nbar/2 over the record when white noise of unit variance drives the force (simulation::Trace::noise_gain);
-  // else null.
+  // 0..Nbar/2 over the record when white noise of unit variance drives the force (simulation::Trace::noise_gain;
+  // NaN beyond Cost::noise_gain_last_bin); else null.
   const std::vector<double>* noise_gain;
 };
 
@@ -181,8 +181,10 @@ class Cost {
   // Whether evaluate reads the model's output y (every cost but modal, which compares eigenvalues alone): a free
   // decay's least-squares synthesis of y, a record-sized QR, is skipped for a cost that does not (fit/objective.h).
   virtual bool uses_response() const { return true; }
-  // Whether evaluate reads ModelResponse::noise_gain (freq-ml in its errors-in-variables form).
+  // Whether evaluate reads ModelResponse::noise_gain (freq-ml in its errors-in-variables form), and up to which bin
+  // (the simulator computes none beyond it).
   virtual bool uses_noise_gain() const { return false; }
+  virtual int noise_gain_last_bin() const { return -1; }
   // Whether output_jacobian is available: time and freq-band with a known amplitude (residuals linear in y), and
   // spike-smooth with a known amplitude and the model's poles from its DFT (by the chain rule through the 3-bin
   // estimator and the magnitudes).

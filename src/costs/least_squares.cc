@@ -159,6 +159,7 @@ class BandCost final : public Cost {
   // decay time, and overstates it at a lightly damped resonance in a shorter one). The weights depend on the
   // parameters: no output Jacobian.
   bool uses_noise_gain() const override { return options_.force_noise_sd > 0; }
+  int noise_gain_last_bin() const override { return bins_.empty() ? -1 : bins_.back(); }
   bool has_output_jacobian() const override { return !options_.unknown_amplitude && !uses_noise_gain(); }
   // r is linear in y: d r = the band's bins of DFT(d y).
   Eigen::MatrixXd output_jacobian(const ModelResponse&, const Eigen::MatrixXd& dy) override {

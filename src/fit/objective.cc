@@ -186,6 +186,7 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     }
     simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
     problem.noise_gain = cost_->uses_noise_gain();
+    problem.noise_gain_last_bin = cost_->noise_gain_last_bin();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;

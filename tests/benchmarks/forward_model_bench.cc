@@ -4,6 +4,8 @@
 // (results/verification/fast_vs_cvode.md), and at 1e-10 (about 1e-8).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
@@ -75,6 +77,27 @@ void BM_SimulateFast(benchmark::State& state) { simulate(state, "fast", 1e-10); 
 void BM_SimulateCvode1e8(benchmark::State& state) { simulate(state, "cvode", 1e-8); }
 void BM_SimulateCvode1e10(benchmark::State& state) { simulate(state, "cvode", 1e-10); }
 BENCHMARK(BM_SimulateFast)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// One evaluation of freq-ml's errors-in-variables form: the response to a sampled force (the 4 ms pulse, 1 ms samples)
+// and the noise gain of every bin 0..Nbar/2 (modal_simulator.h's closed form), N in {4, 8, 16}.
+void BM_SimulateForceNoiseGain(benchmark::State& state) {
+  const model::BeamParameters beam = model::preset("banks-aluminium");
+  const galerkin::SplineSpace space(static_cast<int>(state.range(0)));
+  const galerkin::BeamForms forms(space, beam.l);
+  auto e = banks_experiment(beam.l);
+  e.excitation = simulation::kSampledForce;
+  e.force_samples_N.assign(static_cast<std::size_t>(e.samples), 0.0);
+  for (int i = 1; i < 4; ++i) e.force_samples_N[static_cast<std::size_t>(i)] = std::pow(std::sin(M_PI * i / 4.0), 2);
+  for (auto _ : state) {
+    const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
+    simulation::ResponseProblem p = simulation::make_problem(forms, system, e, beam.l);
+    p.noise_gain = true;
+    const auto trace = simulation::make_simulator({})->run(system, p);
+    if (!trace.ok()) state.SkipWithError(trace.status.c_str());
+    benchmark::DoNotOptimize(trace.noise_gain.data());
+  }
+}
+BENCHMARK(BM_SimulateForceNoiseGain)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 
 // Scaling in the record length: N = 16, Nbar = 1024 .. 65536 at the same dt (tests/benchmarks/scaling.py fits the
 // exponent).
