@@ -144,11 +144,7 @@ std::vector<double> force_channel(const SimulateRequest& request, const simulati
   const double level = request.force_noise_level.value_or(0.0);
   if (!(level >= 0 && level <= 10))
     refuse(caller, "force-noise-level", format_value(level), "must be in [0, 10] (times the force's RMS)");
-  simulation::ResponseProblem pulse;
-  pulse.amplitude_N = e.force_amplitude_N;
-  pulse.pulse_width_s = e.pulse_width_s;
-  std::vector<double> f(static_cast<std::size_t>(e.samples));
-  for (int i = 0; i < e.samples; ++i) f[static_cast<std::size_t>(i)] = pulse.force_N(i * e.dt_s);
+  const std::vector<double> f = simulation::sampled_pulse(e);
   const auto seed = static_cast<std::uint64_t>(request.seed.value_or(1));
   clean = f;
   return signal::add_noise(f, level, core::derive_seed(seed, "force"));

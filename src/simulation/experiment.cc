@@ -90,6 +90,15 @@ std::string output_column(const std::string& output) {
   }
 }
 
+std::vector<double> sampled_pulse(const Experiment& e) {
+  ResponseProblem pulse;
+  pulse.amplitude_N = e.force_amplitude_N;
+  pulse.pulse_width_s = e.pulse_width_s;
+  std::vector<double> f(static_cast<std::size_t>(std::max(e.samples, 0)));
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = pulse.force_N(static_cast<double>(i) * e.dt_s);
+  return f;
+}
+
 double ResponseProblem::force_N(double t_s) const {
   if (!force_samples_N.empty()) {
     if (!(t_s >= 0)) return 0;

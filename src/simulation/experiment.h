@@ -45,6 +45,10 @@ struct Experiment {
   std::vector<double> force_samples_N;
 };
 
+// The sin^2 pulse's force at every sample, F0 sin^2(pi t_i / tau) for t_i <= tau and 0 after (force_amplitude_N,
+// pulse_width_s, dt_s, samples): what a force channel records of the pulse, to drive excitation "force" with.
+std::vector<double> sampled_pulse(const Experiment& experiment);
+
 // First violated constraint as "key = value: constraint", e.g. "pulse_width_s = -1: must be > 0", or nothing.
 // length_m is the beam length (positions must lie in [0, l]).
 std::optional<std::string> validation_error(const Experiment& experiment, double length_m);

@@ -25,7 +25,7 @@ inline fit::FitOptions thin_beam_fit(const std::string& cost) {
 // Noise-free data of that experiment from the same model (fast, exact).
 inline std::vector<double> thin_beam_data(const fit::FitOptions& o) {
   const galerkin::SplineSpace space(o.elements);
-  return simulation::simulate(galerkin::BeamForms(space, o.start.l), o.start, o.experiment, {}).y;
+  return simulation::simulate(galerkin::BeamForms(space, o.start.l, o.start.support), o.start, o.experiment, {}).y;
 }
 
 }  // namespace beamid::costs

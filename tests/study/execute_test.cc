@@ -1,9 +1,15 @@
 // Units of work that compute: the Galerkin frequencies of the truth beam against the exact ones (Rayleigh-Ritz: from
-// above, closer as N grows), and the overlay a case keeps in its record, read back exactly.
+// above, closer as N grows), the overlay a case keeps in its record, read back exactly, and a measured force as the
+// excitation, its channel's noise and the errors-in-variables fits.
 #include "study/run/execute.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+
+#include "study/plan/plan.h"
+#include "study/spec/study_spec.h"
 #include "study/tables/overlay.h"
 
 namespace beamid::study {
@@ -55,6 +61,64 @@ TEST(Execute, TruthIsTheExactClosedFormAndCvodeAgreesWithIt) {
   EXPECT_LT(r.number("cvode_max_difference_over_max_y"), 1e-7);
   truth.cvode_check = false;  // the other truths: no CVODE
   EXPECT_FALSE(run_truth(spec, truth).has("cvode_status"));
+}
+
+TEST(Execute, AMeasuredForceDrivesTheTruthAndTheFitsAndItsNoiseReachesThem) {
+  // excitation "force": the pulse's samples drive the truth and every fit, so a noise-free control fit (N = N_truth)
+  // returns the truth (measured: exactly, the cost is 0 at the start; a force that drove the fit otherwise than the
+  // truth would move it; bound 1e-6). On a noisy record the force channel carries its own noise: the output-error and
+  // errors-in-variables fits of one record differ (the weights reach the cost), and each is the same when run again
+  // (the force's noise is seeded by the record's).
+  const StudySpec spec = parse_study(R"([study]
+name = "force"
+question = "q"
+seed = 7
+[truth]
+beam = "banks-aluminium"
+elements = 6
+control = true
+samples = 1024
+excitation = "force"
+force_x_m = 0.32
+pulse_width_s = 0.004
+output = "velocity"
+force_noise = 0.2
+[fit]
+estimate = ["EI", "cDI"]
+[starts.truth]
+EI = 1.0
+cDI = 1.0
+[methods.oe]
+strategy = "direct"
+[methods.eiv]
+strategy = "direct"
+errors_in_variables = true
+[sweep]
+elements = [6]
+cost = ["freq-ml"]
+noise = [0.0, 0.01]
+replicates = 1
+method = ["oe", "eiv"]
+start = ["truth"]
+)",
+                                     "force.toml", ".");
+  const Plan plan = make_plan(spec);
+  ASSERT_EQ(plan.truths.size(), 1u);
+  std::map<std::pair<std::string, double>, const Unit*> cases;
+  for (const Unit& u : plan.units)
+    if (u.kind == UnitKind::Case) cases[{u.method, u.noise}] = &u;
+  const Record truth = run_truth(spec, plan.truths.front());
+  ASSERT_EQ(truth.text("status"), "ok");
+  const Record clean = run_case(spec, *cases.at({"eiv", 0.0}), truth);
+  ASSERT_EQ(clean.text("status"), "converged") << clean.text("termination");
+  EXPECT_LT(std::abs(clean.number("relative_error.EI")), 1e-6);
+  EXPECT_LT(std::abs(clean.number("relative_error.cDI")), 1e-6);
+  const Record oe = run_case(spec, *cases.at({"oe", 0.01}), truth);
+  const Record eiv = run_case(spec, *cases.at({"eiv", 0.01}), truth);
+  ASSERT_EQ(oe.text("status"), "converged") << oe.text("termination");
+  ASSERT_EQ(eiv.text("status"), "converged") << eiv.text("termination");
+  EXPECT_NE(oe.number("estimate.cDI"), eiv.number("estimate.cDI"));
+  EXPECT_EQ(run_case(spec, *cases.at({"eiv", 0.01}), truth).number("estimate.cDI"), eiv.number("estimate.cDI"));
 }
 
 TEST(Execute, OverlayKeptInARecordReadsBackExactly) {

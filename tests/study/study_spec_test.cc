@@ -241,6 +241,33 @@ TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInThe
   }
 }
 
+TEST(StudySpec, AMeasuredForceItsNoiseAndTheErrorsInVariablesMethodAreReadAndRefusedWhereTheyCannotApply) {
+  const std::string force = replaced(
+      replaced(
+          replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nexcitation = \"force\"\nforce_noise = 0.2"),
+          "strategy = \"direct\"", "strategy = \"direct\"\nerrors_in_variables = true"),
+      "cost = [\"time\", \"spike-smooth\"]", "cost = [\"freq-ml\"]");
+  const StudySpec s = parse_study(force, "s.toml", ".");
+  EXPECT_EQ(s.truth.experiment.excitation, "force");
+  EXPECT_EQ(s.truth.force_noise, 0.2);
+  EXPECT_TRUE(s.methods.at(0).errors_in_variables);
+  // The force's noise and the method's form enter the units' ids.
+  const Plan eiv = make_plan(s);
+  const Plan oe = make_plan(parse_study(replaced(force, "errors_in_variables = true", ""), "s.toml", "."));
+  for (std::size_t i = 0; i < eiv.units.size(); ++i)
+    if (eiv.units[i].kind == UnitKind::Case) EXPECT_NE(eiv.units[i].id, oe.units[i].id);
+  EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nforce_noise = 0.2")),
+            "s.toml:11: truth.force_noise = 0.2: is noise on a measured force channel: needs excitation = 'force' "
+            "(excitation is 'pulse')");
+  EXPECT_EQ(error_of(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nerrors_in_variables = true")),
+            "s.toml:21: methods.direct.errors_in_variables = true: weighs the force channel's noise: needs [truth] "
+            "excitation = 'force' and force_noise > 0");
+  EXPECT_EQ(error_of(replaced(force, "cost = [\"freq-ml\"]", "cost = [\"freq-ml\", \"time\"]")),
+            "s.toml:23: methods.direct.errors_in_variables is freq-ml's form; this method also runs time");
+  EXPECT_NE(error_of(force + "\n[outputs]\nefficiency = true\n").find("compares with the bound for a known force"),
+            std::string::npos);
+}
+
 // A truth beam read from a file enters the units' identity by its values, not only its path: editing the file changes
 // every unit's id (so the store recomputes them instead of reusing records of the old beam), rewriting it unchanged
 // keeps them; a preset's units keep ids that name the preset alone.

@@ -50,6 +50,7 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
      << ";sensor_x_m=" << (e.sensor_x_m ? io::round_trip(*e.sensor_x_m) : "tip") << ";output=" << e.output;
   // The records' noise colour, named only when not white (the units of white-noise studies keep their identity).
   if (t.noise_model != "white") os << ";noise_model=" << t.noise_model;
+  if (t.force_noise > 0) os << ";force_noise=" << io::round_trip(t.force_noise);
   return os.str();
 }
 
@@ -62,7 +63,8 @@ std::string method_text(const MethodSpec& m) {
          (m.frequency_weight.empty() ? std::string() : "/frequency_weight:" + m.frequency_weight) +
          (m.eps1_factor == 1 ? std::string() : "/eps1_factor:" + io::round_trip(m.eps1_factor)) +
          (m.eps2_factor == 1 ? std::string() : "/eps2_factor:" + io::round_trip(m.eps2_factor)) +
-         (m.noise_model.empty() ? std::string() : "/noise_model:" + m.noise_model);
+         (m.noise_model.empty() ? std::string() : "/noise_model:" + m.noise_model) +
+         (m.errors_in_variables ? "/errors_in_variables" : "");
 }
 
 std::string fit_text(const StudySpec& spec) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/hash.h"
 #include "fit/cramer_rao.h"
 #include "fit/identification.h"
 #include "fit/objective.h"
@@ -25,10 +26,13 @@ namespace {
 void set(model::BeamParameters& beam, const std::string& key, double v) { model::set_parameter_value(beam, key, v); }
 double value(const model::BeamParameters& beam, const std::string& key) { return model::parameter_value(beam, key); }
 
+// The unit's experiment; a sampled force is the unit's pulse at its samples (clean: the truth's, and a noise-free
+// fit's).
 simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
   simulation::Experiment e = spec.truth.experiment;
   e.pulse_width_s = unit.pulse_width_s;
   e.samples = unit.samples;
+  if (e.excitation == simulation::kSampledForce) e.force_samples_N = simulation::sampled_pulse(e);
   return e;
 }
 
@@ -88,12 +92,24 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
   return o;
 }
 
-// The same for a record: the number of spikes follows the modes in the clean data when fit.spikes is "auto".
+// The same for a record: the number of spikes follows the modes in the clean data when fit.spikes is "auto". A noisy
+// record's measured force carries the force channel's noise ([truth] force_noise), and drives the fit; an
+// errors-in-variables method is given both channels' true noise sds.
 fit::FitOptions fit_options(const StudySpec& spec, const Unit& unit, const std::vector<double>& clean,
                             const Record& truth, int& modes, int& spikes) {
   modes = modes_in_data(clean, spec.truth.experiment.dt_s, truth.numbers("mode_frequency_hz"));
   spikes = spec.fit.spikes > 0 ? spec.fit.spikes : std::clamp(modes, 1, spec.fit.max_spikes);
-  return unit_options(spec, unit, spikes);
+  fit::FitOptions o = unit_options(spec, unit, spikes);
+  if (spec.truth.force_noise > 0 && unit.noise > 0) {
+    std::vector<double>& force = o.experiment.force_samples_N;
+    const double force_sd = spec.truth.force_noise * signal::rms(force);
+    force = signal::add_noise(force, spec.truth.force_noise, core::derive_seed(unit.noise_seed, "force"));
+    if (!unit.method.empty() && spec.method(unit.method).errors_in_variables) {
+      o.cost.noise_sd = unit.noise * signal::rms(clean);
+      o.cost.force_noise_sd = force_sd;
+    }
+  }
+  return o;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -35,7 +35,9 @@ std::vector<std::string> cost_names() { return costs::cost_names().names(); }
 void read_experiment(Table& r, simulation::Experiment& e) {
   e.dt_s = r.number("dt_s", e.dt_s, positive, "must be > 0");
   e.samples = r.integer("samples", e.samples, core::kMinStudySamples, core::kMaxStudySamples);
-  e.excitation = r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck});  // simulable
+  // Simulable: a pulse, a pluck, or the pulse's samples as a force channel records them ("force").
+  e.excitation =
+      r.string("excitation", e.excitation, {simulation::kPulse, simulation::kPluck, simulation::kSampledForce});
   // At the clamp (x = 0) a force does no work and a sensor reads nothing: every case failed, exit 0, the reason only
   // in cases.csv (the eleventh pass's TF_24).
   // Denormal positions and amplitudes passed "> 0" and failed every case (the fourteenth pass's P7, P15): the floors
@@ -115,11 +117,19 @@ void read_truth(const config::Document& document, const std::string& directory, 
       "rtol", 1e-10, [](double v) { return v >= 1e-13 && v <= 1e-6; }, "must be in [1e-13, 1e-6] (tight: the truth)");
   read_experiment(r, t.experiment);
   if (r.has("noise_model")) t.noise_model = noise_model_of(r, "noise_model");
+  t.force_noise = r.number(
+      "force_noise", 0.0, [](double v) { return v >= 0 && v <= 10; }, "must be in [0, 10] (times the force's RMS)");
+  if (t.force_noise > 0 && t.experiment.excitation != simulation::kSampledForce)
+    r.fail("force_noise", format_value(t.force_noise),
+           "is noise on a measured force channel: needs excitation = 'force' (excitation is '" +
+               t.experiment.excitation + "')");
   r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
-            "pulse_width_s", "sensor_x_m", "output", "noise_model"});
+            "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise"});
   t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
   const model::BeamParameters& beam = t.parameters;
-  if (auto e = simulation::validation_error(t.experiment, beam.l)) {
+  simulation::Experiment checked = t.experiment;
+  if (checked.excitation == simulation::kSampledForce) checked.force_samples_N = simulation::sampled_pulse(checked);
+  if (auto e = simulation::validation_error(checked, beam.l)) {
     // The message starts with the offending key ("force_x_m = 0.9: ..."): point at its line.
     const std::string key = e->substr(0, e->find(' '));
     throw InputError(r.where(key) + ": truth." + *e);
@@ -202,8 +212,12 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
         const std::string text = r.string("noise_model", std::nullopt);
         m.noise_model = text == "truth" || text == costs::kEstimatedNoise ? text : noise_model_of(r, "noise_model");
       }
+      m.errors_in_variables = r.boolean("errors_in_variables", false);
+      if (m.errors_in_variables && spec.truth.force_noise <= 0)
+        r.fail("errors_in_variables", "true",
+               "weighs the force channel's noise: needs [truth] excitation = 'force' and force_noise > 0");
       r.finish({"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor",
-                "noise_model"});
+                "noise_model", "errors_in_variables"});
       spec.methods.push_back(m);
     }
   }
@@ -333,6 +347,11 @@ void read_outputs(const config::Document& document, StudySpec& spec) {
       r.fail("overlay_noise", format_value(o.overlay_noise), "must be one of sweep.noise");
     o.efficiency = r.boolean("efficiency", false);
     o.bias_decomposition = r.boolean("bias_decomposition", false);
+    // The bound takes the force as known; with its channel noisy it is not the bound of these records.
+    if (o.efficiency && spec.truth.force_noise > 0)
+      r.fail("efficiency", "true",
+             "compares with the bound for a known force; [truth] force_noise = " +
+                 format_value(spec.truth.force_noise) + " makes the force channel noisy");
     if (o.bias_decomposition &&
         std::find(spec.sweep.noise.begin(), spec.sweep.noise.end(), 0.0) == spec.sweep.noise.end())
       r.fail("bias_decomposition", "true", "needs 0 in sweep.noise (the noise-free fit is the bias of the minimum)");
@@ -406,6 +425,11 @@ void check_method_overrides(const config::Document& document, const StudySpec& s
                          "; this method runs only " + listed);
     // A noise model names what the method's fits assume: a cost that would run white under that name is refused
     // (a window is applied where it is read; a likelihood is not half-applied).
+    if (m.errors_in_variables)
+      for (const std::string& c : runs)
+        if (c != costs::kMaxLikelihoodCost)
+          throw InputError(r.where("errors_in_variables") + ": methods." + m.name +
+                           ".errors_in_variables is freq-ml's form; this method also runs " + c);
     if (r.has("noise_model"))
       for (const std::string& c : runs)
         if (!costs::cost_uses(c).noise_model)

@@ -36,6 +36,11 @@ struct TruthSpec {
   // The colour of every record's noise (signal/noise.h: white, ar:a1,..., power:alpha) at the sweep's levels (its
   // process sd over the clean RMS); the efficiency tables' bound is the bound in that noise (fit::coloured_bound).
   std::string noise_model = "white";
+  // excitation "force": the sin^2 pulse as a force channel records it (simulation::sampled_pulse), which drives the
+  // truth and every fit (linear between samples). force_noise: white noise on that channel, sd over the force's RMS
+  // over the record, on every noisy record (seeded from its noise seed); the fits are driven by the noisy force, as
+  // a measured one drives them.
+  double force_noise = 0;
 };
 
 struct FitSpec {
@@ -79,6 +84,9 @@ struct MethodSpec {
   // noise_model, known to the estimator: the maximum-likelihood and generalised least-squares fits); "estimated" from
   // each fit's own white-noise residuals (fit/identification.cc); or a model.
   std::string noise_model;
+  // freq-ml's errors-in-variables form with the records' true noise levels (the response's sd, the force channel's
+  // sd): each bin over its response noise plus the force's through the model (costs/least_squares.h).
+  bool errors_in_variables = false;
 };
 
 struct SweepSpec {
