@@ -133,14 +133,13 @@ CostUses cost_uses(const std::string& name);
 // What the model produced: the sampled output and, when known, its underdamped eigenvalues (rad/s).
 struct ModelResponse {
   ModelResponse(const std::vector<double>& y_in, const std::vector<std::complex<double>>& poles,
-                const std::vector<double>* force_noise_gain = nullptr)
-      : y(y_in), poles_rad_s(poles), noise_gain(force_noise_gain) {}
+                const std::vector<std::complex<double>>* transfer_function = nullptr)
+      : y(y_in), poles_rad_s(poles), frf(transfer_function) {}
   const std::vector<double>& y;
   const std::vector<std::complex<double>>& poles_rad_s;
-  // With a sampled force, when the cost asks for it (Cost::uses_noise_gain): the variance of the output's DFT bins
-  // 0..Nbar/2 over the record when white noise of unit variance drives the force (simulation::Trace::noise_gain;
-  // NaN beyond Cost::noise_gain_last_bin); else null.
-  const std::vector<double>* noise_gain;
+  // With a sampled force, when the cost asks for it (Cost::uses_transfer_function): the sampled system's transfer
+  // function from the force's samples to the output's at the DFT bins 0..Nbar/2 (simulation::Trace::frf); else null.
+  const std::vector<std::complex<double>>* frf;
 };
 
 // One data spike beside its model partner (a row of the spike table in a fit report).
@@ -181,10 +180,8 @@ class Cost {
   // Whether evaluate reads the model's output y (every cost but modal, which compares eigenvalues alone): a free
   // decay's least-squares synthesis of y, a record-sized QR, is skipped for a cost that does not (fit/objective.h).
   virtual bool uses_response() const { return true; }
-  // Whether evaluate reads ModelResponse::noise_gain (freq-ml in its errors-in-variables form), and up to which bin
-  // (the simulator computes none beyond it).
-  virtual bool uses_noise_gain() const { return false; }
-  virtual int noise_gain_last_bin() const { return -1; }
+  // Whether evaluate reads ModelResponse::frf (freq-ml in its errors-in-variables form).
+  virtual bool uses_transfer_function() const { return false; }
   // Whether output_jacobian is available: time and freq-band with a known amplitude (residuals linear in y), and
   // spike-smooth with a known amplitude and the model's poles from its DFT (by the chain rule through the 3-bin
   // estimator and the magnitudes).

@@ -153,7 +153,7 @@ Objective::~Objective() = default;
 Objective::Output Objective::evaluate(const model::BeamParameters& beam, Response response) {
   Output out;
   std::vector<std::complex<double>> poles;
-  std::vector<double> noise_gain;
+  std::vector<std::complex<double>> frf;
   if (auto error = model::validation_error(beam)) {
     out.evaluation.status = "inadmissible parameters: " + *error;
     return out;
@@ -185,8 +185,7 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       return out;
     }
     simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
-    problem.noise_gain = cost_->uses_noise_gain();
-    problem.noise_gain_last_bin = cost_->noise_gain_last_bin();
+    problem.frf = cost_->uses_transfer_function();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
@@ -194,14 +193,14 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
     }
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
-    noise_gain = std::move(trace.noise_gain);
+    frf = std::move(trace.frf);
     if (impl_->needs_poles && poles.empty())
       for (const auto& mode : galerkin::StateSpaceModes(system).underdamped_modes()) poles.push_back(mode.lambda);
   } catch (const std::exception& error) {  // NumericalError from a decomposition, or InputError from the load
     out.evaluation.status = error.what();
     return out;
   }
-  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &noise_gain});
+  out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, poles, &frf});
   return out;
 }
 

@@ -67,8 +67,6 @@ struct ResponseProblem {
   double pulse_width_s = 0;             // tau (0 for a pluck)
   std::vector<double> force_samples_N;  // a sampled force: P(t) is these, linear between samples (else empty)
   bool frf = false;                     // a sampled force: also its transfer function at the DFT bins (Trace::frf)
-  bool noise_gain = false;              // and the variance white force noise puts in them (Trace::noise_gain),
-  int noise_gain_last_bin = -1;         // at bins 0..this only (-1: all), NaN beyond: the bins a cost reads
   Eigen::VectorXd w0;                   // initial displacement state
   Eigen::VectorXd sensor;               // [beta(xbar); 0]
   int derivative = 0;

@@ -77,6 +77,13 @@ HeldModes held_modes(const galerkin::StateSpaceModes& modes, const ResponseProbl
   return held;
 }
 
+// a / b in real arithmetic: std::complex's operator/ goes through the C99 Annex G routine (__divdc3), which guards
+// infinities and overflow that these finite, moderate values never reach and costs several times the division.
+complex quotient(complex a, complex b) {
+  const double d = b.real() * b.real() + b.imag() * b.imag();
+  return {(a.real() * b.real() + a.imag() * b.imag()) / d, (a.imag() * b.real() - a.real() * b.imag()) / d};
+}
+
 // G(z_k) at the DFT bins k = 0..samples/2 (modal_simulator.h), every mode counted (a pair's two are not conjugate
 // at one z).
 std::vector<complex> sampled_transfer_function(const HeldModes& held, int samples) {
@@ -84,81 +91,9 @@ std::vector<complex> sampled_transfer_function(const HeldModes& held, int sample
   for (std::size_t k = 0; k < held.e.size(); ++k)
     for (std::size_t bin = 0; bin < frf.size(); ++bin) {
       const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / samples);
-      frf[bin] += ((held.a[k] - held.b[k]) + held.b[k] * zk) / (zk - held.e[k]);
+      frf[bin] += quotient((held.a[k] - held.b[k]) + held.b[k] * zk, zk - held.e[k]);
     }
   return frf;
-}
-
-// a / b in real arithmetic: std::complex's operator/ goes through the C99 Annex G routine (__divdc3), which guards
-// infinities and overflow that these finite, moderate values never reach and costs most of a noise gain's time.
-complex quotient(complex a, complex b) {
-  const double d = b.real() * b.real() + b.imag() * b.imag();
-  return {(a.real() * b.real() + a.imag() * b.imag()) / d, (a.imag() * b.real() - a.real() * b.imag()) / d};
-}
-
-// The variance of the output's DFT bin k over the record (paper scaling) when white noise of unit variance drives it
-// on every sample (modal_simulator.h): (1/Nbar^2) sum_{L=1..Nbar} |T_L(z_k)|^2, T_L the transfer function truncated
-// to its first L samples. With the impulse response g_0 = sum_k b_k + direct, g_l = sum_k c_k e_k^{l-1} (l >= 1),
-// c_k = e_k b_k + a_k - b_k (a, b with h and g folded in),
-//   T_L = A - sum_k B_k q_k^{L-1},  q_k = e_k / z,  B_k = c_k / (z - e_k),  A = g_0 + sum_k B_k,
-// and the sum over L in closed form with S(x) = sum_{j < Nbar} x^j = (1 - x^Nbar)/(1 - x):
-//   sum_L |T_L|^2 = Nbar |A|^2 - 2 Re(conj(A) sum_k B_k S(q_k)) + sum_{k,j} B_k conj(B_j) S(q_k conj(q_j)),
-// where q_k^Nbar = e_k^Nbar at every bin (z_k^Nbar = 1) and q_k conj(q_j) = e_k conj(e_j) (|z_k| = 1): the m x m
-// matrix P_kj = S(e_k conj(e_j)) is the same at every bin, computed once, and Hermitian, so the double sum is
-// sum_k |B_k|^2 P_kk + 2 Re sum_{k<j} B_k conj(B_j) P_kj. Modes whose B_k is below 1e-13 of the largest are left out
-// (stiff ones: e_k ~ 0). Per bin: m divisions and m^2 / 2 products, where a sum per pair and bin took m^2 divisions
-// (15 ms a call for the thin beam at N = 8 and Nbar = 4096).
-std::vector<double> sampled_noise_gain(const HeldModes& held, int samples, double dt_s, int last_bin) {
-  const auto n = static_cast<double>(samples);
-  const std::vector<complex>& e = held.e;
-  const std::size_t m = e.size();
-  std::vector<complex> c(m), e_n(m);
-  complex g0 = held.direct;
-  for (std::size_t k = 0; k < m; ++k) {
-    e_n[k] = std::exp(held.lambda[k] * dt_s * n);
-    c[k] = e[k] * held.b[k] + held.a[k] - held.b[k];
-    g0 += held.b[k];
-  }
-  const auto geometric = [n](complex x, complex x_n) {  // S(x) = (1 - x^Nbar) / (1 - x), x_n = x^Nbar
-    return std::norm(1.0 - x) < 1e-24 ? complex(n) : quotient(1.0 - x_n, 1.0 - x);
-  };
-  Eigen::MatrixXcd pair_sums(m, m);  // P_kj, upper triangle and diagonal
-  for (std::size_t k = 0; k < m; ++k)
-    for (std::size_t j = k; j < m; ++j)
-      pair_sums(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
-          geometric(e[k] * std::conj(e[j]), e_n[k] * std::conj(e_n[j]));
-  std::vector<double> gain(static_cast<std::size_t>(samples / 2 + 1), std::numeric_limits<double>::quiet_NaN());
-  const std::size_t computed =
-      last_bin < 0 ? gain.size() : std::min(gain.size(), static_cast<std::size_t>(last_bin) + 1);
-  std::vector<complex> B(m);
-  std::vector<std::size_t> kept;
-  for (std::size_t bin = 0; bin < computed; ++bin) {
-    const complex zk = std::polar(1.0, 2 * std::numbers::pi * static_cast<double>(bin) / n);
-    complex A = g0;
-    double largest = 0;
-    for (std::size_t k = 0; k < m; ++k) {
-      B[k] = quotient(c[k], zk - e[k]);
-      A += B[k];
-      largest = std::max(largest, std::norm(B[k]));
-    }
-    kept.clear();
-    for (std::size_t k = 0; k < m; ++k)
-      if (std::norm(B[k]) > 1e-26 * largest) kept.push_back(k);
-    complex cross = 0;
-    double square = 0;
-    for (std::size_t u = 0; u < kept.size(); ++u) {
-      const std::size_t k = kept[u];
-      cross += B[k] * geometric(quotient(e[k], zk), e_n[k]);
-      const auto row = static_cast<Eigen::Index>(k);
-      square += std::norm(B[k]) * pair_sums(row, row).real();
-      complex off = 0;
-      for (std::size_t v = u + 1; v < kept.size(); ++v)
-        off += std::conj(B[kept[v]]) * pair_sums(row, static_cast<Eigen::Index>(kept[v]));
-      square += 2 * (B[k] * off).real();
-    }
-    gain[bin] = std::max(0.0, (n * std::norm(A) - 2 * (std::conj(A) * cross).real() + square) / (n * n));
-  }
-  return gain;
 }
 
 // The trace's underdamped poles (one of each conjugate pair) and the eigenvectors' conditioning.
@@ -192,7 +127,6 @@ Trace sampled_force_trace(Trace trace, const galerkin::StateSpaceModes& modes,
     }
   }
   if (p.frf) trace.frf = sampled_transfer_function(held, p.samples);
-  if (p.noise_gain) trace.noise_gain = sampled_noise_gain(held, p.samples, p.dt_s, p.noise_gain_last_bin);
   if (p.derivative == 2) {
     for (std::size_t i = 1; i < n; ++i) y[i] += held.direct * f[i];
     // t = 0 from the state at rest: w = w' = 0, w'' = M^-1 f F_0.

@@ -13,10 +13,11 @@
 //   eta_{i+1} = e eta_i + (a - b) F_i + b F_{i+1},  e = e^{lambda dt},  a = g dt phi1(lambda dt),  b = g dt phi2(lambda
 //   dt),
 // so that in steady state the sampled system's transfer function is G(z) = sum_k h_k ((a_k - b_k) + b_k z)/(z - e_k)
-// (+ the feedthrough for acceleration), over every mode (conjugates included), which Trace::frf gives at the DFT bins,
-// and Trace::noise_gain the variance of each bin when white noise of unit variance drives every sample of the record:
-// (1/Nbar^2) sum_{L=1..Nbar} |T_L(z_k)|^2, T_L the transfer function truncated to L samples, in closed form (its
-// steady state |G|^2 / Nbar holds only for a record much longer than the slowest decay).
+// (+ the feedthrough for acceleration), over every mode (conjugates included), which Trace::frf gives at the DFT bins.
+// Over a record from rest the output's DFT is then exactly Y(k) = G(z_k) F(k) + sum_k t_k / (1 - e_k z_k^-1): the
+// transient terms, one per mode, carry the modal states at the record's two ends (with xi = eta - b F, which steps as
+// xi_{i+1} = e xi_i + (e b + a - b) F_i), the form freq-ml's errors-in-variables cost takes them in
+// (costs/least_squares.h).
 #pragma once
 
 #include "galerkin/modes.h"

@@ -84,11 +84,6 @@ struct Trace {
   // fast with a sampled force and ResponseProblem::frf: the sampled system's transfer function from the force's
   // samples to the output's at the DFT bins k = 0..samples/2, G(z_k), z_k = e^{j 2 pi k / samples} (modal_simulator.h).
   std::vector<std::complex<double>> frf;
-  // With ResponseProblem::noise_gain: the variance of each of those bins of the output over the record when white noise
-  // of unit variance drives the force's every sample. A record shorter than the decay time holds far less than the
-  // steady state's |G|^2 / Nbar at a lightly damped resonance (the response to the noise has not built up). NaN
-  // beyond ResponseProblem::noise_gain_last_bin.
-  std::vector<double> noise_gain;
   bool ok() const { return status == "ok"; }
 };
 

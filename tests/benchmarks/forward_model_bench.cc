@@ -78,9 +78,9 @@ void BM_SimulateCvode1e8(benchmark::State& state) { simulate(state, "cvode", 1e-
 void BM_SimulateCvode1e10(benchmark::State& state) { simulate(state, "cvode", 1e-10); }
 BENCHMARK(BM_SimulateFast)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
-// One evaluation of freq-ml's errors-in-variables form: the response to a sampled force (the 4 ms pulse, 1 ms samples)
-// and the noise gain of every bin 0..Nbar/2 (modal_simulator.h's closed form), N in {4, 8, 16}.
-void BM_SimulateForceNoiseGain(benchmark::State& state) {
+// The simulation of one evaluation of freq-ml's errors-in-variables form: the response to a sampled force (the 4 ms
+// pulse, 1 ms samples) and the transfer function at every bin 0..Nbar/2, N in {4, 8, 16}.
+void BM_SimulateForceTransferFunction(benchmark::State& state) {
   const model::BeamParameters beam = model::preset("banks-aluminium");
   const galerkin::SplineSpace space(static_cast<int>(state.range(0)));
   const galerkin::BeamForms forms(space, beam.l);
@@ -91,13 +91,13 @@ void BM_SimulateForceNoiseGain(benchmark::State& state) {
   for (auto _ : state) {
     const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
     simulation::ResponseProblem p = simulation::make_problem(forms, system, e, beam.l);
-    p.noise_gain = true;
+    p.frf = true;
     const auto trace = simulation::make_simulator({})->run(system, p);
     if (!trace.ok()) state.SkipWithError(trace.status.c_str());
-    benchmark::DoNotOptimize(trace.noise_gain.data());
+    benchmark::DoNotOptimize(trace.frf.data());
   }
 }
-BENCHMARK(BM_SimulateForceNoiseGain)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SimulateForceTransferFunction)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 
 // Scaling in the record length: N = 16, Nbar = 1024 .. 65536 at the same dt (tests/benchmarks/scaling.py fits the
 // exponent).

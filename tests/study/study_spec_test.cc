@@ -237,7 +237,9 @@ TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInThe
   ASSERT_EQ(white.units.size(), ar.units.size());
   for (std::size_t i = 0; i < white.units.size(); ++i) {
     EXPECT_EQ(white.units[i].id, explicit_white.units[i].id);
-    if (white.units[i].kind == UnitKind::Case) EXPECT_NE(white.units[i].id, ar.units[i].id);
+    if (white.units[i].kind == UnitKind::Case) {
+      EXPECT_NE(white.units[i].id, ar.units[i].id);
+    }
   }
 }
 
@@ -255,7 +257,9 @@ TEST(StudySpec, AMeasuredForceItsNoiseAndTheErrorsInVariablesMethodAreReadAndRef
   const Plan eiv = make_plan(s);
   const Plan oe = make_plan(parse_study(replaced(force, "errors_in_variables = true", ""), "s.toml", "."));
   for (std::size_t i = 0; i < eiv.units.size(); ++i)
-    if (eiv.units[i].kind == UnitKind::Case) EXPECT_NE(eiv.units[i].id, oe.units[i].id);
+    if (eiv.units[i].kind == UnitKind::Case) {
+      EXPECT_NE(eiv.units[i].id, oe.units[i].id);
+    }
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nforce_noise = 0.2")),
             "s.toml:11: truth.force_noise = 0.2: is noise on a measured force channel: needs excitation = 'force' "
             "(excitation is 'pulse')");
