@@ -61,6 +61,16 @@ UndampedModes undamped_modes(const SecondOrderSystem& s) {
       "not positive definite to double precision");
 }
 
+SecondOrderSystem with_modal_damping(SecondOrderSystem system, double damping_ratio) {
+  if (!(damping_ratio >= 0 && damping_ratio < 1))
+    throw InputError("modal damping ratio = " + format_value(damping_ratio) + ": must be in [0, 1)");
+  if (damping_ratio == 0) return system;
+  const UndampedModes modes = undamped_modes(system);
+  const Eigen::MatrixXd m_phi = system.M * modes.shapes;  // M Phi
+  system.C += m_phi * (2 * damping_ratio * modes.omega_rad_s).asDiagonal() * m_phi.transpose();
+  return system;
+}
+
 UndampedModes lowest_undamped_modes(const BeamForms& forms, const model::BeamParameters& beam, int modes) {
   UndampedModes m = undamped_modes(combine(forms, beam));
   if (m.omega_rad_s.size() < modes)

@@ -48,6 +48,13 @@ struct UndampedModes {
 };
 // Throws NumericalError when M is not positive definite or the eigensolver fails.
 UndampedModes undamped_modes(const SecondOrderSystem& system);
+// The system with constant modal damping of ratio zeta added, a loss law that Kelvin-Voigt and air damping cannot
+// take (their ratios grow and fall with frequency; a study's truth with a damping law no fitted model has, issue 35):
+// C + M Phi diag(2 zeta omega_k) Phi^T M over every undamped mode (phi_k^T M phi_k = 1), which gives a system without
+// other damping the ratio zeta in every mode exactly (Phi^T C Phi = diag(2 zeta omega_k): each modal equation is
+// q'' + 2 zeta omega q' + omega^2 q = f) and adds about zeta to the ratios of a lightly damped one. InputError unless
+// 0 <= zeta < 1; zeta = 0 returns the system unchanged.
+SecondOrderSystem with_modal_damping(SecondOrderSystem system, double damping_ratio);
 // The first `modes` of them for the model (forms, beam): InputError when the model has fewer ("the Galerkin model has
 // n modes, m are fitted").
 UndampedModes lowest_undamped_modes(const BeamForms& forms, const model::BeamParameters& beam, int modes);

@@ -78,8 +78,12 @@ ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::S
 
 Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,
                const SimulatorOptions& options) {
-  const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  Trace trace = make_simulator(options)->run(system, make_problem(forms, system, experiment, beam.l));
+  return simulate(forms, galerkin::combine(forms, beam), beam.l, experiment, options);
+}
+
+Trace simulate(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system, double length_m,
+               const Experiment& experiment, const SimulatorOptions& options) {
+  Trace trace = make_simulator(options)->run(system, make_problem(forms, system, experiment, length_m));
   // A response beyond double's range (an absurd force amplitude on a soft beam) is a failure, never a record of inf
   // and NaN samples handed on as if it were one.
   const auto bad = std::find_if(trace.y.begin(), trace.y.end(), [](double v) { return !std::isfinite(v); });

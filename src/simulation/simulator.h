@@ -107,5 +107,9 @@ ResponseProblem make_problem(const galerkin::BeamForms& forms, const galerkin::S
 // Convenience for one-off runs: assemble, build the problem, run.
 Trace simulate(const galerkin::BeamForms& forms, const model::BeamParameters& beam, const Experiment& experiment,
                const SimulatorOptions& options);
+// The same for a system already assembled (a study's truth with a damping no parameter gives:
+// galerkin::with_modal_damping) of a beam of length length_m.
+Trace simulate(const galerkin::BeamForms& forms, const galerkin::SecondOrderSystem& system, double length_m,
+               const Experiment& experiment, const SimulatorOptions& options);
 
 }  // namespace beamid::simulation

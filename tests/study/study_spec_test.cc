@@ -272,6 +272,23 @@ TEST(StudySpec, AMeasuredForceItsNoiseAndTheErrorsInVariablesMethodAreReadAndRef
             std::string::npos);
 }
 
+TEST(StudySpec, AModalDampingTruthIsReadNamedInTheIdsAndRefusedInAControl) {
+  const std::string damped =
+      replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nmodal_damping_ratio = 0.002");
+  EXPECT_EQ(parse_study(damped, "s.toml", ".").truth.modal_damping_ratio, 0.002);
+  const Plan with = make_plan(parse_study(damped, "s.toml", ".")),
+             without = make_plan(parse_study(kValid, "s.toml", "."));
+  ASSERT_EQ(with.truths.size(), without.truths.size());
+  EXPECT_NE(with.truths.front().id, without.truths.front().id);
+  EXPECT_EQ(
+      error_of(replaced(damped, "beam = \"banks-aluminium\"", "beam = \"banks-aluminium\"\ncontrol = true")),
+      "s.toml:12: truth.modal_damping_ratio = 0.002: gives the truth a damping law no fitted model has; control = "
+      "true fits the truth's own model");
+  EXPECT_NE(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nmodal_damping_ratio = 0.6"))
+                .find("must be in [0, 0.5]"),
+            std::string::npos);
+}
+
 // A truth beam read from a file enters the units' identity by its values, not only its path: editing the file changes
 // every unit's id (so the store recomputes them instead of reusing records of the old beam), rewriting it unchanged
 // keeps them; a preset's units keep ids that name the preset alone.

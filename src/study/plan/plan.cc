@@ -51,6 +51,7 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   // The records' noise colour, named only when not white (the units of white-noise studies keep their identity).
   if (t.noise_model != "white") os << ";noise_model=" << t.noise_model;
   if (t.force_noise > 0) os << ";force_noise=" << io::round_trip(t.force_noise);
+  if (t.modal_damping_ratio > 0) os << ";modal_damping_ratio=" << io::round_trip(t.modal_damping_ratio);
   return os.str();
 }
 

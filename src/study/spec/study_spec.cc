@@ -123,8 +123,13 @@ void read_truth(const config::Document& document, const std::string& directory, 
     r.fail("force_noise", format_value(t.force_noise),
            "is noise on a measured force channel: needs excitation = 'force' (excitation is '" +
                t.experiment.excitation + "')");
+  t.modal_damping_ratio = r.number(
+      "modal_damping_ratio", 0.0, [](double v) { return v >= 0 && v <= 0.5; }, "must be in [0, 0.5]");
+  if (t.modal_damping_ratio > 0 && t.control)
+    r.fail("modal_damping_ratio", format_value(t.modal_damping_ratio),
+           "gives the truth a damping law no fitted model has; control = true fits the truth's own model");
   r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
-            "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise"});
+            "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise", "modal_damping_ratio"});
   t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
   const model::BeamParameters& beam = t.parameters;
   simulation::Experiment checked = t.experiment;

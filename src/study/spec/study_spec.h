@@ -41,6 +41,10 @@ struct TruthSpec {
   // over the record, on every noisy record (seeded from its noise seed); the fits are driven by the noisy force, as
   // a measured one drives them.
   double force_noise = 0;
+  // A damping law no fitted model has (issue 35): constant modal damping of this ratio added to every mode of the
+  // truth (galerkin::with_modal_damping: a hysteresis-like loss, where Kelvin-Voigt damping grows with frequency and
+  // air damping falls). 0: none.
+  double modal_damping_ratio = 0;
 };
 
 struct FitSpec {

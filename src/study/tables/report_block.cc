@@ -4,6 +4,7 @@
 
 #include "io/provenance.h"
 #include "io/text.h"
+#include "simulation/experiment.h"
 #include "study/tables/format.h"
 
 namespace beamid::study {
@@ -64,6 +65,15 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
   if (spec.truth.control)
     report
         << " (a control: the fits use the truth's own model, so no discretisation error separates them from the data)";
+  if (spec.truth.modal_damping_ratio > 0)
+    report << ", with constant modal damping of ratio " << g3(spec.truth.modal_damping_ratio)
+           << " added to every mode (a damping law the fitted model lacks)";
+  if (spec.truth.experiment.excitation == simulation::kSampledForce)
+    report << ", driven by its force channel's samples"
+           << (spec.truth.force_noise > 0 ? " (white noise of " + pct(spec.truth.force_noise) +
+                                                " of the force's RMS on the channel of every "
+                                                "noisy record, which drives the fits)"
+                                          : std::string());
   if (!results.truths.empty() && results.truths.front().has("cvode_max_difference_over_max_y"))
     report << " (CVODE at rtol " << g3(spec.truth.rtol) << " agrees to "
            << g3(results.truths.front().number("cvode_max_difference_over_max_y")) << " of max |y|)";
