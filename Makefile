@@ -11,7 +11,7 @@ BEAMID     := $(BUILD)/beamid
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature), and
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
 # the 30 minutes `make study` may take on two cores. On a cluster, any of them runs as shards (README.md).
-STUDIES      ?= paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick errors-in-variables bias
+STUDIES      ?= paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
 REAL_STUDIES ?= real-steel real-steel-candidates synthetic-strip real-unb-tipmass
 FULL_STUDIES ?= start-distance-thick efficiency-thick windows windows-thick modes-basin modes-basin-thick modes-efficiency modes-efficiency-thick landscape-thick
 STUDY_JOBS ?= 0
