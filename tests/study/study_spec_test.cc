@@ -289,6 +289,24 @@ TEST(StudySpec, AModalDampingTruthIsReadNamedInTheIdsAndRefusedInAControl) {
             std::string::npos);
 }
 
+TEST(StudySpec, AFiniteBandwidthSensorIsReadNamedInTheIdsAndRefusedWhereItCannotBe) {
+  const std::string sensed = replaced(kValid, "pulse_width_s = 0.004",
+                                      "pulse_width_s = 0.004\nsensor_bandwidth_hz = 200\nsensor_filter_order = 6");
+  const StudySpec s = parse_study(sensed, "s.toml", ".");
+  EXPECT_EQ(s.truth.sensor.cutoff_hz, 200);
+  EXPECT_EQ(s.truth.sensor.order, 6);
+  EXPECT_NE(make_plan(s).truths.front().id, make_plan(parse_study(kValid, "s.toml", ".")).truths.front().id);
+  // At dt = 1 ms the filter runs at 16 kHz: its cut-off must be below 2 kHz.
+  EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nsensor_bandwidth_hz = 2500")),
+            "s.toml:11: truth.sensor_bandwidth_hz = 2500: must be below 2000 Hz (a quarter of the Nyquist frequency of "
+            "the 16x faster record the filter runs on, where its digital form follows the analog one)");
+  EXPECT_NE(error_of(replaced(sensed, "beam = \"banks-aluminium\"", "beam = \"banks-aluminium\"\ncontrol = true"))
+                .find("filters the truth's output as no fitted model does"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(sensed, "samples = 256", "samples = 2097152")).find("16 times finer: at most 1048576"),
+            std::string::npos);
+}
+
 // A truth beam read from a file enters the units' identity by its values, not only its path: editing the file changes
 // every unit's id (so the store recomputes them instead of reusing records of the old beam), rewriting it unchanged
 // keeps them; a preset's units keep ids that name the preset alone.

@@ -52,6 +52,9 @@ std::string truth_text(const StudySpec& spec, double pulse_width_s) {
   if (t.noise_model != "white") os << ";noise_model=" << t.noise_model;
   if (t.force_noise > 0) os << ";force_noise=" << io::round_trip(t.force_noise);
   if (t.modal_damping_ratio > 0) os << ";modal_damping_ratio=" << io::round_trip(t.modal_damping_ratio);
+  if (t.sensor.cutoff_hz > 0)
+    os << ";sensor_bandwidth_hz=" << io::round_trip(t.sensor.cutoff_hz) << ";sensor_filter_order=" << t.sensor.order
+       << ";oversampling=" << t.sensor.oversampling;
   return os.str();
 }
 

@@ -14,6 +14,7 @@
 #include "galerkin/spline_space.h"
 #include "model/exact_frequencies.h"
 #include "signal/noise.h"
+#include "signal/sensor_filter.h"
 #include "signal/spectrum.h"
 #include "simulation/simulator.h"
 #include "study/analysis/start_distance.h"
@@ -34,6 +35,25 @@ simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
   e.samples = unit.samples;
   if (e.excitation == simulation::kSampledForce) e.force_samples_N = simulation::sampled_pulse(e);
   return e;
+}
+
+// The experiment sampled `factor` times finer over the same time: a sampled force interpolated linearly between its
+// samples (exactly the force it holds), held after the last.
+simulation::Experiment finer(const simulation::Experiment& e, int factor) {
+  simulation::Experiment fine = e;
+  fine.dt_s = e.dt_s / factor;
+  fine.samples = e.samples * factor;
+  if (!e.force_samples_N.empty()) {
+    fine.force_samples_N.resize(static_cast<std::size_t>(fine.samples));
+    const std::size_t last = e.force_samples_N.size() - 1;
+    for (std::size_t j = 0; j < fine.force_samples_N.size(); ++j) {
+      const std::size_t i = std::min(j / static_cast<std::size_t>(factor), last);
+      const double t = static_cast<double>(j % static_cast<std::size_t>(factor)) / factor;
+      fine.force_samples_N[j] =
+          i == last ? e.force_samples_N[last] : (1 - t) * e.force_samples_N[i] + t * e.force_samples_N[i + 1];
+    }
+  }
+  return fine;
 }
 
 // The clean record of a unit: the truth's samples cut to the unit's record length.
@@ -195,12 +215,15 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
     // A damping law no fitted model has, when the study asks for one (TruthSpec::modal_damping_ratio).
     const galerkin::SecondOrderSystem system =
         galerkin::with_modal_damping(galerkin::combine(forms, beam), spec.truth.modal_damping_ratio);
-    const simulation::Trace trace = simulation::simulate(forms, system, beam.l, experiment, options);
+    // A sensor of finite bandwidth (TruthSpec::sensor): the truth simulated finer, filtered, and sampled.
+    const signal::SensorFilter& sensor = spec.truth.sensor;
+    const simulation::Experiment simulated = sensor.cutoff_hz > 0 ? finer(experiment, sensor.oversampling) : experiment;
+    simulation::Trace trace = simulation::simulate(forms, system, beam.l, simulated, options);
     if (truth.cvode_check && trace.ok()) {
       simulation::SimulatorOptions check;
       check.integrator = simulation::kCvode;
       check.cvode.rtol = spec.truth.rtol;
-      const simulation::Trace cvode = simulation::simulate(forms, system, beam.l, experiment, check);
+      const simulation::Trace cvode = simulation::simulate(forms, system, beam.l, simulated, check);
       r.set("cvode_status", cvode.status);
       r.set("cvode_steps", static_cast<double>(cvode.stats.steps));
       if (cvode.ok()) {
@@ -212,6 +235,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
         r.set("cvode_max_difference_over_max_y", difference / y_max);
       }
     }
+    if (sensor.cutoff_hz > 0 && trace.ok()) trace.y = signal::sense(sensor, trace.y, experiment.dt_s);
     const galerkin::StateSpaceModes modes(system);
     std::vector<double> f, zeta;
     for (const auto& m : modes.underdamped_modes()) {

@@ -128,8 +128,22 @@ void read_truth(const config::Document& document, const std::string& directory, 
   if (t.modal_damping_ratio > 0 && t.control)
     r.fail("modal_damping_ratio", format_value(t.modal_damping_ratio),
            "gives the truth a damping law no fitted model has; control = true fits the truth's own model");
+  t.sensor.cutoff_hz = r.number("sensor_bandwidth_hz", 0.0, non_negative, "must be >= 0 (0: an ideal sensor)");
+  t.sensor.order = r.integer("sensor_filter_order", 4, 1, 8);
+  if (auto error = signal::validation_error(t.sensor, t.experiment.dt_s))
+    r.fail("sensor_bandwidth_hz", format_value(t.sensor.cutoff_hz), error->substr(error->find(": ") + 2));
+  // The truth is simulated oversampling times finer: 2^24 fine samples (128 MB a record) at most.
+  constexpr long kMaxFineSamples = 1L << 24;
+  if (t.sensor.cutoff_hz > 0 && static_cast<long>(t.experiment.samples) * t.sensor.oversampling > kMaxFineSamples)
+    r.fail("samples", std::to_string(t.experiment.samples),
+           "with sensor_bandwidth_hz the truth is simulated " + std::to_string(t.sensor.oversampling) +
+               " times finer: at most " + std::to_string(kMaxFineSamples / t.sensor.oversampling) + " samples");
+  if (t.sensor.cutoff_hz > 0 && t.control)
+    r.fail("sensor_bandwidth_hz", format_value(t.sensor.cutoff_hz),
+           "filters the truth's output as no fitted model does; control = true fits the truth's own model");
   r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
-            "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise", "modal_damping_ratio"});
+            "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise", "modal_damping_ratio",
+            "sensor_bandwidth_hz", "sensor_filter_order"});
   t.parameters = t.beam_path.empty() ? model::preset(t.beam) : config::load_beam_toml(t.beam_path);
   const model::BeamParameters& beam = t.parameters;
   simulation::Experiment checked = t.experiment;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "model/beam_parameters.h"
+#include "signal/sensor_filter.h"
 #include "simulation/experiment.h"
 
 namespace beamid::study {
@@ -45,6 +46,10 @@ struct TruthSpec {
   // truth (galerkin::with_modal_damping: a hysteresis-like loss, where Kelvin-Voigt damping grows with frequency and
   // air damping falls). 0: none.
   double modal_damping_ratio = 0;
+  // A sensor with a finite bandwidth (issue 35): the truth's output through an order-n Butterworth anti-alias filter
+  // of this cut-off before sampling (signal/sensor_filter.h: the truth simulated 16 times finer, filtered, every 16th
+  // sample kept). Cut-off 0: an ideal sensor.
+  signal::SensorFilter sensor;
 };
 
 struct FitSpec {

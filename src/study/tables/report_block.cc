@@ -68,6 +68,9 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
   if (spec.truth.modal_damping_ratio > 0)
     report << ", with constant modal damping of ratio " << g3(spec.truth.modal_damping_ratio)
            << " added to every mode (a damping law the fitted model lacks)";
+  if (spec.truth.sensor.cutoff_hz > 0)
+    report << ", measured through an order-" << spec.truth.sensor.order << " Butterworth anti-alias filter of cut-off "
+           << g3(spec.truth.sensor.cutoff_hz) << " Hz (a sensor the fitted model lacks)";
   if (spec.truth.experiment.excitation == simulation::kSampledForce)
     report << ", driven by its force channel's samples"
            << (spec.truth.force_noise > 0 ? " (white noise of " + pct(spec.truth.force_noise) +

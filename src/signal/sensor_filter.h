@@ -1,0 +1,36 @@
+// A sensor's finite bandwidth (issue 35: a truth measured as a real channel is, through an anti-alias filter before
+// sampling): an order-n Butterworth low-pass of cut-off f_c, whose analog magnitude is
+//   |H(j 2 pi f)|^2 = 1 / (1 + (f / f_c)^(2n)),
+// with the analog filter's phase lag (n = 4: pi rad at f_c, about 2.61 f / f_c rad well below it, a delay of
+// 0.42 / f_c s that a model without the filter reads as a stiffness and damping error). It is realised on a record
+// sampled R times faster than the one it delivers, by the bilinear transform with the frequency prewarped at f_c (exact
+// there; below f_c the digital response follows the analog one to about (pi f / (R f_s))^2 / 3 in frequency), in
+// second-order sections with their zeros at Nyquist, started in the steady state of the record's first sample (the
+// sensor has measured the beam at rest, or at a pluck's static deflection, before t = 0); then every R-th sample is
+// kept.
+#pragma once
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beamid::signal {
+
+struct SensorFilter {
+  double cutoff_hz = 0;   // f_c; 0: no filter
+  int order = 4;          // n, 1..8
+  int oversampling = 16;  // R: the filter runs at R times the record's rate
+};
+// First violated constraint, or nothing: f_c >= 0, order 1..8, oversampling 2..64, and f_c below a quarter of the
+// fine rate's Nyquist frequency (R f_s / 8), where the bilinear transform follows the analog filter.
+std::optional<std::string> validation_error(const SensorFilter& filter, double dt_s);
+
+// The filtered record of `fine` (sampled at dt_s / R), every R-th sample kept: fine.size() / R samples. InputError
+// for an invalid filter or a fine record whose length is not a multiple of R.
+std::vector<double> sense(const SensorFilter& filter, const std::vector<double>& fine, double dt_s);
+
+// The digital filter's response at f (Hz) on the fine grid (for checks against the analog magnitude).
+std::complex<double> sensor_response(const SensorFilter& filter, double dt_s, double frequency_hz);
+
+}  // namespace beamid::signal
