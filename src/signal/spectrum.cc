@@ -130,6 +130,18 @@ double fourier_least_squares(const Spectrum& model, const Spectrum& data) {
   return sum;
 }
 
+double upper_band_energy_fraction(const Spectrum& record) {
+  double total = 0, upper = 0;
+  for (int k = 0; k <= record.last_bin(); ++k) {
+    // Bins 1..Nbar/2 - 1 stand for themselves and their conjugates; the offset and, for an even length, Nyquist once.
+    const double w = (k == 0 || (record.samples % 2 == 0 && k == record.last_bin())) ? 1.0 : 2.0;
+    const double e = w * std::norm(record.half[static_cast<std::size_t>(k)]);
+    total += e;
+    if (4 * k > record.samples) upper += e;
+  }
+  return total > 0 ? upper / total : 0.0;
+}
+
 std::string fftw_library_version() { return fftw_version; }
 
 std::vector<double> inverse_real_dft(const std::vector<std::complex<double>>& half, int samples) {

@@ -83,6 +83,12 @@ class Dft {
 // sum_i (y_i - z_i)^2 / Nbar (Parseval), i.e. the time-domain cost over Nbar.
 double fourier_least_squares(const Spectrum& model, const Spectrum& data);
 
+// The fraction of a record's energy (Parseval: sum over the whole spectrum of |Z(k)|^2) at frequencies above a quarter
+// of the sampling rate, the upper half of its band: about 0.5 for white noise, 0.076 for a sin^2 pulse 4 samples wide,
+// 1e-5 for one 20 samples wide. A measured force held linear between its samples (simulation/experiment.h) is
+// misrepresented where it has such content. 0 for a record of zeros.
+double upper_band_energy_fraction(const Spectrum& record);
+
 // FFTW's version string, for provenance.
 std::string fftw_library_version();
 
