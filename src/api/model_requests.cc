@@ -145,6 +145,12 @@ std::vector<double> force_channel(const SimulateRequest& request, const simulati
   if (!(level >= 0 && level <= 10))
     refuse(caller, "force-noise-level", format_value(level), "must be in [0, 10] (times the force's RMS)");
   const std::vector<double> f = simulation::sampled_pulse(e);
+  // A pulse narrower than the step falls between the samples: a column of zeros, which drives nothing (the adversarial
+  // pass's P5: it was reported as a force at the clamp).
+  if (e.force_amplitude_N != 0 && std::all_of(f.begin(), f.end(), [](double v) { return v == 0; }))
+    refuse(caller, "pulse-width", format_value(e.pulse_width_s),
+           "falls between the force column's samples (dt = " + format_value(e.dt_s) +
+               " s): every one is 0; give a pulse of at least 2 dt");
   const auto seed = static_cast<std::uint64_t>(request.seed.value_or(1));
   clean = f;
   return signal::add_noise(f, level, core::derive_seed(seed, "force"));

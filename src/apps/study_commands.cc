@@ -138,7 +138,13 @@ int run_merge(const Flags& a, std::ostream& out) {
       a.require(false, "shards",
                 "'" + dir + "' holds " + std::to_string(absorbed.foreign) + " record(s) of no unit of " + spec.path +
                     " (and no case of it): it is a shard of another study file, or of another version of this one");
-    for (const std::string& record : absorbed.left_behind) std::cerr << "beamid merge: left behind: " << record << "\n";
+    // A shard of another study holds thousands: the first ten named, the rest counted (the adversarial pass's P8).
+    constexpr std::size_t kNamed = 10;
+    for (std::size_t i = 0; i < absorbed.left_behind.size() && i < kNamed; ++i)
+      std::cerr << "beamid merge: left behind: " << absorbed.left_behind[i] << "\n";
+    if (absorbed.left_behind.size() > kNamed)
+      std::cerr << "beamid merge: left behind: " << absorbed.left_behind.size() - kNamed << " more record(s) of " << dir
+                << "/store\n";
     left_behind += static_cast<int>(absorbed.left_behind.size());
   }
   try {

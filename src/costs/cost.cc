@@ -112,8 +112,11 @@ std::optional<std::string> validation_error(const CostOptions& o) {
   if (auto error = model_pole_names().violation("model_poles", o.model_poles)) return error;
   if (auto error = mode_weight_names().violation("mode_weight", o.mode_weight)) return error;
   const std::pair<const char*, double> sds[] = {{"noise_sd", o.noise_sd}, {"force_noise_sd", o.force_noise_sd}};
+  // Squared, each must stay a normal double: 1e160 overflowed every bin's weight to 0 and the fit "converged" at its
+  // start with cost 0; 1e-200 underflowed it (the adversarial pass's P1, P2).
   for (const auto& [key, value] : sds)
-    if (!(std::isfinite(value) && value >= 0)) return std::string(key) + " = " + format_value(value) + ": must be >= 0";
+    if (!(value == 0 || (value >= 1e-150 && value <= 1e150)))
+      return std::string(key) + " = " + format_value(value) + ": must be 0 or in [1e-150, 1e150]";
   if (o.force_noise_sd > 0 && !(o.noise_sd > 0))
     return "force_noise_sd = " + format_value(o.force_noise_sd) +
            ": the errors-in-variables form weighs the force's noise against the response's: give noise_sd > 0 too";

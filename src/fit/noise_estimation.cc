@@ -1,5 +1,7 @@
 #include "fit/noise_estimation.h"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -30,6 +32,48 @@ std::optional<std::string> not_a_repeat(const simulation::Experiment& a, const s
         "its measured force differs from record 1's (taps of a hammer are not repeats: use noise_model "
         "'estimated')");
   return std::nullopt;
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// What makes records repeats beyond their experiments (the adversarial pass's P3, P4): they share their response and
+// differ by noise. Each record's least-squares scale on the records' mean, a = <z, zbar> / <zbar, zbar>, is 1 within
+// its noise (sd about sigma / |zbar|); a tap at another force or through another gain is not a repeat. And their
+// differences are their noise, not less: the median over the bins of the repeats' variance is not 100 times below that
+// of the first record's own noise floor by the local polynomial method (unbiased where the response is smooth, so its
+// median is the floor's; a genuine repeat's ratio is about 1), or the records share their noise (a copy, a channel
+// recorded twice, rounded).
+void check_repeats(const std::string& key, const std::vector<Record>& records, const std::vector<double>& mean,
+                   double noise_variance) {
+  double mean_square = 0;
+  for (const double v : mean) mean_square += v * v;
+  const double sd = std::sqrt(noise_variance / mean_square);
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    double dot = 0;
+    for (std::size_t i = 0; i < mean.size(); ++i) dot += records[r].data[i] * mean[i];
+    const double scale = dot / mean_square;
+    if (std::abs(scale - 1) > std::max(0.1, 5 * sd))
+      throw InputError(key + ": record " + std::to_string(r + 1) + " (" + records[r].name + ") is " +
+                       format_rounded(scale, 3) +
+                       " times the records' mean response: repeats share their response and differ by noise (another "
+                       "force or gain is not a repeat)");
+  }
+  const int samples = static_cast<int>(mean.size());
+  if (samples < 28) return;  // too short for one local polynomial window
+  signal::Dft dft(samples, records.front().experiment.dt_s);
+  std::vector<signal::Spectrum> spectra;
+  for (const Record& r : records) spectra.push_back(dft.transform(r.data));
+  const std::vector<double> repeated = signal::repeated_record_variance(spectra, 0).variance;
+  const std::vector<double> floor = signal::local_polynomial_variance(spectra.front(), {}).variance;
+  const auto inner = [](const std::vector<double>& v) { return std::vector<double>(v.begin() + 1, v.end() - 1); };
+  const double ratio = median(inner(repeated)) / median(inner(floor));
+  if (ratio < 0.01)
+    throw InputError(key + ": the records differ by " + format_rounded(ratio, 2) +
+                     " of record 1's own noise floor (median over the bins): they share their noise (a copy, one "
+                     "channel recorded twice, or rounded), and their differences are not the noise of a repeat");
 }
 
 }  // namespace
@@ -121,6 +165,7 @@ FitResult fit_with_repeated_noise(const FitOptions& o, const std::vector<Record>
     }
     deviations.push_back(std::move(d));
   }
+  check_repeats(key, records, mean, power);
   std::vector<Record> weighed = records;
   std::string described;
   if (o.cost.name == costs::kMaxLikelihoodCost) {

@@ -531,8 +531,12 @@ expect_error "force noise without the column" "--force-noise-level = '0.01': is 
   simulate "${S[@]}" --force-noise-level 0.01
 expect_error "force column of a pluck" "--force-column records a pulse's force" simulate "${S[@]}" \
   --excitation pluck --force-column
+expect_error "force column of a pulse between samples" "--pulse-width = '5e-04': falls between the force column's" \
+  simulate "${S[@]}" --pulse-width 0.0005 --force-column
 # The errors-in-variables form needs both noise levels and the measured force.
 M=(--data "$tmp/hammer.csv" --channel displacement_m --beam banks-aluminium --elements 6 --estimate EI --cost freq-ml)
+expect_error "force noise sd overflowing" "--noise-sd = '1e+160': must be 0 or in [1e-150, 1e150]" \
+  fit "${M[@]}" --force-channel force_N --force-noise-sd 1e160 --noise-sd 1e160
 expect_error "force noise sd alone" "--force-noise-sd = '0.1': weighs the force's noise against the response's" \
   fit "${M[@]}" --force-channel force_N --force-noise-sd 0.1
 expect_error "noise sd alone" "--noise-sd = '0.1': is the errors-in-variables form's" \

@@ -98,6 +98,15 @@ TEST(RepeatedNoise, RefusesWhatIsNotARepeat) {
   std::vector<Record> same = {records.front(), records.front()};
   // Two records of the same samples are refused by every joint fit (they count one measurement twice).
   EXPECT_NE(message(same).find("hold the same samples"), std::string::npos) << message(same);
+  // A tap at another force (or through another gain) shares no response with the others (the adversarial pass's P4),
+  // and a copy rounded to 6 digits shares their noise (P3): neither is a repeat.
+  std::vector<Record> louder = records;
+  for (double& v : louder[1].data) v *= 2;
+  EXPECT_NE(message(louder).find("times the records' mean response"), std::string::npos) << message(louder);
+  std::vector<Record> rounded = {records.front(), records.front()};
+  rounded[1].name = "copy";
+  for (double& v : rounded[1].data) v = std::stod(format_rounded(v, 6));
+  EXPECT_NE(message(rounded).find("they share their noise"), std::string::npos) << message(rounded);
   std::vector<Record> hammer = records;
   for (Record& r : hammer) {
     r.experiment.excitation = simulation::kSampledForce;

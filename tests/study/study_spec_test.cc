@@ -270,6 +270,12 @@ TEST(StudySpec, AMeasuredForceItsNoiseAndTheErrorsInVariablesMethodAreReadAndRef
             "s.toml:23: methods.direct.errors_in_variables is freq-ml's form; this method also runs time");
   EXPECT_NE(error_of(force + "\n[outputs]\nefficiency = true\n").find("compares with the bound for a known force"),
             std::string::npos);
+  // The errors-in-variables weights need the response's noise given: with an estimated one every case failed at run
+  // time (the adversarial pass's P6).
+  EXPECT_NE(
+      error_of(replaced(force, "errors_in_variables = true", "errors_in_variables = true\nnoise_model = \"estimated\""))
+          .find("with noise_model = 'estimated' it has none"),
+      std::string::npos);
 }
 
 TEST(StudySpec, AModalDampingTruthIsReadNamedInTheIdsAndRefusedInAControl) {
@@ -304,6 +310,10 @@ TEST(StudySpec, AFiniteBandwidthSensorIsReadNamedInTheIdsAndRefusedWhereItCannot
                 .find("filters the truth's output as no fitted model does"),
             std::string::npos);
   EXPECT_NE(error_of(replaced(sensed, "samples = 256", "samples = 2097152")).find("16 times finer: at most 1048576"),
+            std::string::npos);
+  // An order without a cut-off would be an unread key (the adversarial pass's P7).
+  EXPECT_NE(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nsensor_filter_order = 4"))
+                .find("needs sensor_bandwidth_hz > 0"),
             std::string::npos);
 }
 

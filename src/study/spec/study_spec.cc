@@ -130,6 +130,9 @@ void read_truth(const config::Document& document, const std::string& directory, 
            "gives the truth a damping law no fitted model has; control = true fits the truth's own model");
   t.sensor.cutoff_hz = r.number("sensor_bandwidth_hz", 0.0, non_negative, "must be >= 0 (0: an ideal sensor)");
   t.sensor.order = r.integer("sensor_filter_order", 4, 1, 8);
+  if (r.has("sensor_filter_order") && !(t.sensor.cutoff_hz > 0))
+    r.fail("sensor_filter_order", std::to_string(t.sensor.order),
+           "is the sensor filter's: needs sensor_bandwidth_hz > 0 (an ideal sensor has no filter)");
   if (auto error = signal::validation_error(t.sensor, t.experiment.dt_s))
     r.fail("sensor_bandwidth_hz", format_value(t.sensor.cutoff_hz), error->substr(error->find(": ") + 2));
   // The truth is simulated oversampling times finer: 2^24 fine samples (128 MB a record) at most.
@@ -232,6 +235,10 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
         m.noise_model = text == "truth" || text == costs::kEstimatedNoise ? text : noise_model_of(r, "noise_model");
       }
       m.errors_in_variables = r.boolean("errors_in_variables", false);
+      if (m.errors_in_variables && m.noise_model == costs::kEstimatedNoise)
+        r.fail("errors_in_variables", "true",
+               "weighs each bin by the response's noise given: with noise_model = 'estimated' it has none (give "
+               "'truth' or a model)");
       if (m.errors_in_variables && spec.truth.force_noise <= 0)
         r.fail("errors_in_variables", "true",
                "weighs the force channel's noise: needs [truth] excitation = 'force' and force_noise > 0");
