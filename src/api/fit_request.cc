@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "api/model_notes.h"
+#include "api/record_checks.h"
 #include "core/errors.h"
 #include "core/limits.h"
 #include "galerkin/second_order_system.h"
@@ -50,104 +51,6 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
 }
 
 namespace {
-
-// The model's time base is the record's: a forced experiment starts at t = 0 (a free decay is timed from its first
-// sample), and a --dt or --samples given must agree with the data.
-void match_record(const FitRequest& request, const io::TimeSeries& data, simulation::Experiment& experiment) {
-  const Caller& caller = request.caller;
-  // --resample-rate leaves out the low-pass's half-length at each end (io/time_series.h), so a resampled record no
-  // longer starts at the excitation: said by name (the error blamed a cut the user had not made: the seventeenth
-  // pass's P5).
-  if (experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s &&
-      data.notes.find("resampled from") != std::string::npos)
-    refuse(caller, "--data = '" + data.path + "': resampled (--resample-rate), it starts at t = " +
-                       format_value(data.t0_s) + " s, not at the " + experiment.excitation +
-                       "'s t = 0: the resampler leaves out its low-pass's first samples, where the filter is cut "
-                       "short; fit it as a free decay (--excitation free-decay) or resample the record beforehand");
-  if (experiment.excitation != simulation::kFreeDecay && std::abs(data.t0_s) > 1e-9 * data.dt_s)
-    refuse(caller, "--data = '" + data.path + "': first time " + format_value(data.t0_s) +
-                       " s: must be 0 (the experiment starts at t = 0; a record cut from later is a free decay: "
-                       "--excitation free-decay)");
-  if (request.experiment.dt_s && std::abs(experiment.dt_s - data.dt_s) > 1e-9 * data.dt_s)
-    refuse(caller, "dt", format_value(*request.experiment.dt_s),
-           "must equal the data's time step " + format_value(data.dt_s) + " s");
-  if (request.experiment.samples && experiment.samples != static_cast<int>(data.values.size()))
-    refuse(caller, "samples", std::to_string(*request.experiment.samples),
-           "must equal the data's " + std::to_string(data.values.size()));
-  experiment.dt_s = data.dt_s;
-  experiment.samples = static_cast<int>(data.values.size());
-}
-
-// A measured force (--force-channel) and what reads it: the same length as the response, not a response channel too
-// (by name or by index), and only where it is modelled.
-void check_force_channel(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
-                         const simulation::Experiment& experiment) {
-  const Caller& caller = request.caller;
-  const std::string& force = request.experiment.force_channel;
-  if (request.cost.force_noise_sd && experiment.excitation != simulation::kSampledForce)
-    refuse(caller, "force-noise-sd", format_value(*request.cost.force_noise_sd),
-           "is the measured force's noise: give the record's force with --force-channel");
-  if (experiment.excitation != simulation::kSampledForce) return;
-  if (request.windows)
-    refuse(caller, "windows", std::to_string(*request.windows),
-           "cuts the record into windows that start after the force; with --force-channel each window's force "
-           "history is not modelled yet");
-  for (const io::TimeSeries& channel : channels) {
-    if (channel.value_column == force)
-      refuse(caller, "force-channel", force, "is also a response --channel: the force drives the model");
-    if (experiment.force_samples_N.size() != channel.values.size())
-      refuse(caller, "force-channel", force,
-             "has " + std::to_string(experiment.force_samples_N.size()) + " samples; the response '" +
-                 channel.value_column + "' has " + std::to_string(channel.values.size()));
-  }
-  // The modal cost's pencil reads the free decay after a pulse; after a measured force it would read the forced part.
-  if (request.cost.name == costs::kModalCost)
-    refuse(caller, "cost", costs::kModalCost,
-           "identifies the free decay after a modelled pulse; with --force-channel use time, freq-band, freq-ml or a "
-           "spike cost");
-  // The errors-in-variables form reads the model's transfer function, which the exact propagator gives.
-  if (request.cost.force_noise_sd && request.integrator && *request.integrator != simulation::kFast)
-    refuse(caller, "integrator", *request.integrator,
-           "has no transfer function for --force-noise-sd's errors-in-variables form: use the default (fast)");
-}
-
-// A force that few samples resolve (a hammer pulse a few samples wide) is not linear between them, as the model holds
-// it: a sin^2 pulse 4 samples wide holds 7.6 % of its energy above a quarter of the rate and biased EI by 0.4 %, one
-// 20 samples wide 1e-5 of it and 1e-5 of EI (README). Said on `warnings`, not refused: a noisy channel has energy there
-// too (white noise: half of its own), so the line is drawn at 5 % of the force's.
-void warn_unresolved_force(const FitRequest& request, const fit::FitOptions& o, std::ostream& warnings) {
-  if (o.experiment.excitation != simulation::kSampledForce) return;
-  signal::Dft dft(static_cast<int>(o.experiment.force_samples_N.size()), o.experiment.dt_s);
-  const double upper = signal::upper_band_energy_fraction(dft.transform(o.experiment.force_samples_N));
-  if (upper > 0.05)
-    warnings << request.caller.label << ": the force channel '" << request.experiment.force_channel << "' holds "
-             << format_rounded(100 * upper) << " % of its energy above a quarter of the sampling rate ("
-             << format_rounded(0.25 / o.experiment.dt_s)
-             << " Hz): its samples do not resolve it, and the model holds it linear between them (a sin^2 pulse "
-                "4 samples wide holds 7.6 % and biased EI by 0.4 %); sample faster, or low-pass the channel before "
-                "sampling\n";
-}
-
-// A record that states what it measures (its unit, io/units.h) is not fitted as another quantity: a velocity in m/s
-// fitted as a displacement "converged" with EI on its bound, without a word (the adversarial pass's V013-V016). A
-// free decay's mode amplitudes are solved for, so its quantity does not matter (simulation/free_decay.h).
-void check_quantity(const Caller& caller, const std::vector<io::TimeSeries>& channels,
-                    const simulation::Experiment& experiment) {
-  if (experiment.excitation == simulation::kFreeDecay) return;
-  for (const io::TimeSeries& record : channels) {
-    if (io::is_non_motion_unit(record.unit))
-      refuse(caller, "data", record.path,
-             record.value_column + " is in " + record.unit +
-                 ", a raw sensor signal, not a motion: convert it to m, m/s "
-                 "or m/s^2 with the sensor's sensitivity (or fit it as --excitation free-decay, whose amplitudes are "
-                 "free)");
-    const std::string quantity = io::quantity_of(record.unit);
-    if (!quantity.empty() && quantity != experiment.output)
-      refuse(caller, "output", experiment.output,
-             "the record " + record.path + " (" + record.value_column + ") is in " + record.unit + ", a " + quantity +
-                 ": give --output " + quantity + " (or name the column for what it holds)");
-  }
-}
 
 // --welch K: the spikes picked on Welch's average of the (detrended) record, each refined on the whole record's DFT:
 // its largest local maximum within one Welch bin ((K + 1)/2 of the record's), which the cost's +-5 % window around
