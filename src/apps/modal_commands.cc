@@ -51,7 +51,13 @@ int run_modal_id(const Flags& a, std::ostream& out) {
               m.drift_hz, m.span_low_hz, m.span_high_hz, m.uncertainty_hz, m.damping_ratio_uncertainty()});
   }
   out << csv.str();
-  for (const std::string& note : r.notes) std::cerr << "beamid modal-id: " << note << "\n";
+  // One note per mode: with --modes 64 on a record of two, 102 lines of them (the second adversarial pass of
+  // 2026-11-28, P2). The first ten are said, the rest counted; the table holds every mode.
+  constexpr std::size_t kSaid = 10;
+  for (std::size_t i = 0; i < r.notes.size() && i < kSaid; ++i) std::cerr << "beamid modal-id: " << r.notes[i] << "\n";
+  if (r.notes.size() > kSaid)
+    std::cerr << "beamid modal-id: " << r.notes.size() - kSaid
+              << " more notes on the modes (fewer --modes, or the modes the record shows, keep them to the point)\n";
   std::cerr << "beamid modal-id (commit " << io::commit_label() << "): " << data.path << ", " << data.values.size()
             << " samples at dt = " << data.dt_s << " s; matrix pencil, model order "
             << signal::model_order(o, data.values) << "\n";

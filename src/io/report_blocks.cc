@@ -13,6 +13,7 @@ namespace {
 const std::string kBegin = "<!-- BEGIN GENERATED ";
 const std::string kEnd = "<!-- END GENERATED ";
 const std::string kClose = " -->";
+const std::string kByteOrderMark = "\xEF\xBB\xBF";
 
 // The block name if `line` is exactly a marker of the given kind.
 bool marker(const std::string& line, const std::string& kind, std::string* name) {
@@ -34,13 +35,20 @@ std::vector<Block> scan(const std::vector<std::string>& lines, const std::string
   Block current{};
   for (std::size_t i = 0; i < lines.size(); ++i) {
     std::string name;
-    if (marker(lines[i], kBegin, &name)) {
+    // A UTF-8 byte-order mark before the first line's marker hid it (the second adversarial pass of 2026-11-28, P7).
+    const std::string& line = i == 0 && lines[i].rfind(kByteOrderMark, 0) == 0 ? lines[i].substr(3) : lines[i];
+    if ((line.rfind(kBegin, 0) == 0 || line.rfind(kEnd, 0) == 0) && !marker(line, kBegin, &name) &&
+        !marker(line, kEnd, &name))
+      throw InputError(source + ":" + std::to_string(i + 1) +
+                       ": a GENERATED marker with text beside it: a marker stands alone on its line, "
+                       "'<!-- BEGIN GENERATED name -->' or '<!-- END GENERATED name -->'");
+    if (marker(line, kBegin, &name)) {
       if (open)
         throw InputError(source + ":" + std::to_string(i + 1) + ": BEGIN GENERATED " + name + " inside open block '" +
                          current.name + "' (opened at line " + std::to_string(current.begin_line + 1) + ")");
       open = true;
       current = {name, i, 0};
-    } else if (marker(lines[i], kEnd, &name)) {
+    } else if (marker(line, kEnd, &name)) {
       if (!open || name != current.name)
         throw InputError(source + ":" + std::to_string(i + 1) + ": END GENERATED " + name +
                          (open ? " does not close block '" + current.name + "'" : " without a BEGIN"));

@@ -36,7 +36,23 @@ TEST(ReportBlocks, AFileWithWindowsLineEndsIsUpdatedAndKeepsThem) {
             "<!-- BEGIN GENERATED b -->\r\nnew b\r\n<!-- END GENERATED b -->\r\nend\r\n");
 }
 
+TEST(ReportBlocks, AByteOrderMarkBeforeTheFirstMarkerIsKeptAndTheMarkerFound) {
+  // An editor's UTF-8 byte-order mark hid a first-line marker: "END GENERATED a without a BEGIN" at line 3 (the
+  // second adversarial pass of 2026-11-28, P7).
+  const std::string bom = "\xEF\xBB\xBF<!-- BEGIN GENERATED a -->\nold\n<!-- END GENERATED a -->\n";
+  EXPECT_EQ(block_names(bom, "R.md"), (std::vector<std::string>{"a"}));
+  EXPECT_EQ(replace_blocks(bom, {{"a", "new\n"}}, "R.md"),
+            "\xEF\xBB\xBF<!-- BEGIN GENERATED a -->\nnew\n<!-- END GENERATED a -->\n");
+}
+
 TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
+  // A marker with text beside it is no marker, and said so at its line.
+  try {
+    block_names("x\n<!-- BEGIN GENERATED a --> junk\n<!-- END GENERATED a -->\n", "R.md");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("R.md:2: a GENERATED marker with text beside it", 0), 0u) << e.what();
+  }
   EXPECT_THROW(block_names("<!-- BEGIN GENERATED a -->\n", "R.md"), InputError);
   try {
     block_names("x\n<!-- BEGIN GENERATED a -->\n<!-- END GENERATED b -->\n", "R.md");

@@ -127,6 +127,10 @@ TEST(Execute, AFiniteBandwidthSensorFiltersTheTruthByItsResponse) {
     EXPECT_NEAR(std::abs(ratio) / std::abs(h), 1.0, 0.01) << f << " Hz";
     EXPECT_NEAR(std::arg(ratio / h), 0.0, 0.01) << f << " Hz";
   }
+  // A cut-off far below the modes leaves no vibration: the truth fails, saying why.
+  spec.truth.sensor.cutoff_hz = 0.01;
+  const std::string status = run_truth(spec, truth).text("status");
+  EXPECT_EQ(status.rfind("failed: the sensor filter at 0.01 Hz keeps ", 0), 0u) << status;
 }
 
 TEST(Execute, AMeasuredForceDrivesTheTruthAndTheFitsAndItsNoiseReachesThem) {

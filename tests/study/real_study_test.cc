@@ -263,6 +263,12 @@ TEST(RealStudy, BadRecordsAndCandidatesAreErrorsNamingTheLineAndKey) {
   const std::string unnamed = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"\"\n";
   EXPECT_NE(load_error("unnamed", unnamed).find("must be a non-empty name"), std::string::npos)
       << load_error("unnamed", unnamed);
+  // A quote, comma or newline in a name broke the CSV tables' rows (the second adversarial pass of 2026-11-28, P1).
+  for (const char* name : {"a\\\"b", "a,b", "a\\nb"}) {
+    const std::string quoted = std::string(kTwoRecords) + fit + "\n[[candidate]]\nname = \"" + name + "\"\n";
+    EXPECT_NE(load_error("quoted", quoted).find("must hold no quote, comma or control character"), std::string::npos)
+        << load_error("quoted", quoted);
+  }
   const std::string outside =
       std::string(kTwoRecords) + fit +
       "\n[[candidate]]\nname = \"stiff\"\nvalues = { EI = 1000.0 }\nbounds = { EI = [1.0, 10.0] }\n";

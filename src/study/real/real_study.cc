@@ -86,11 +86,28 @@ std::map<int, std::vector<std::string>> read_fixed(Table& r, const std::vector<R
   return fixed;
 }
 
+// A record's or candidate's name labels table rows: a quote, a comma or a control character in it broke the CSV
+// tables' rows and every message about it (the second adversarial pass's P1). Nothing, or the constraint.
+std::string label_problem(const std::string& name) {
+  if (name.find_first_not_of(" \t") == std::string::npos) return "must be a non-empty name (it labels table rows)";
+  for (const char c : name)
+    if (c == '"' || c == ',' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must hold no quote, comma or control character (it labels the rows of CSV tables)";
+  return "";
+}
+// The name as an error shows it on one line: control characters as '?'.
+std::string printable(std::string name) {
+  for (char& c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return "'" + name + "'";
+}
+
 RealRecordSpec read_record(Table r, const std::string& default_name,
                            const std::function<std::string(const std::string&)>& relative) {
   const auto positive = [](double v) { return v > 0; };
   RealRecordSpec s;
   s.name = r.string("name", default_name);
+  if (const std::string problem = label_problem(s.name); !problem.empty()) r.fail("name", printable(s.name), problem);
   s.file = relative(r.string("file", std::nullopt));
   if (!io::is_existing_file(s.file)) r.fail("file", "'" + s.file + "'", "must be an existing record file");
   s.channel = r.string("channel", "");
@@ -162,8 +179,7 @@ CandidateSpec read_candidate(const config::Node& item, std::size_t k, const Cand
   CandidateSpec c = given;
   c.name = r.string("name", std::nullopt);
   // It names the candidate's rows in every table (an empty one was accepted: the fourth pass's Q440).
-  if (c.name.find_first_not_of(" \t") == std::string::npos)
-    r.fail("name", "'" + c.name + "'", "must be a non-empty name (it labels the candidate's rows)");
+  if (const std::string problem = label_problem(c.name); !problem.empty()) r.fail("name", printable(c.name), problem);
   for (const CandidateSpec& other : s.candidates)
     if (other.name == c.name) r.fail("name", "'" + c.name + "'", "must differ from every other candidate's");
   if (r.has("beam")) {

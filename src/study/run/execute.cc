@@ -235,7 +235,16 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
         r.set("cvode_max_difference_over_max_y", difference / y_max);
       }
     }
-    if (sensor.cutoff_hz > 0 && trace.ok()) trace.y = signal::sense(sensor, trace.y, experiment.dt_s);
+    // A cut-off below the modes leaves no vibration to fit (0.001 Hz kept 2e-12 of it and every fit ran on nothing:
+    // the second adversarial pass of 2026-11-28, P4): the truth fails, saying so.
+    double kept = 1;
+    if (sensor.cutoff_hz > 0 && trace.ok()) {
+      std::vector<double> ideal(static_cast<std::size_t>(experiment.samples));
+      for (std::size_t i = 0; i < ideal.size(); ++i)
+        ideal[i] = trace.y[i * static_cast<std::size_t>(sensor.oversampling)];
+      trace.y = signal::sense(sensor, trace.y, experiment.dt_s);
+      kept = signal::rms(trace.y) / signal::rms(ideal);
+    }
     const galerkin::StateSpaceModes modes(system);
     std::vector<double> f, zeta;
     for (const auto& m : modes.underdamped_modes()) {
@@ -246,7 +255,10 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
     // let every time fit "converge" at cost 0 on nothing; it fails, and its cases with it, saying why.
     double peak = 0;
     for (const double y : trace.y) peak = std::max(peak, std::abs(y));
-    r.set("status", !trace.ok() ? trace.status
+    r.set("status", !trace.ok()       ? trace.status
+                    : !(kept >= 0.01) ? "failed: the sensor filter at " + format_value(sensor.cutoff_hz) +
+                                            " Hz keeps " + format_value(kept) +
+                                            " of the truth's RMS: it removes the vibration (a cut-off below the modes)"
                     : !(peak >= 1e-150 && peak <= 1e150)
                         ? "failed: the truth record's peak is " + format_value(peak) +
                               ", outside [1e-150, 1e150]: no vibration to fit (sensor or force at the clamp, or a "
