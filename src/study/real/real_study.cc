@@ -86,13 +86,14 @@ std::map<int, std::vector<std::string>> read_fixed(Table& r, const std::vector<R
   return fixed;
 }
 
-// A record's or candidate's name labels table rows: a quote, a comma or a control character in it broke the CSV
-// tables' rows and every message about it (the second adversarial pass's P1). Nothing, or the constraint.
+// A record's or candidate's name labels table rows: a quote or a control character in it broke the CSV tables' rows
+// and every message about it (the second adversarial pass of 2026-11-28, P1; a comma is quoted). Nothing, or the
+// constraint.
 std::string label_problem(const std::string& name) {
   if (name.find_first_not_of(" \t") == std::string::npos) return "must be a non-empty name (it labels table rows)";
   for (const char c : name)
-    if (c == '"' || c == ',' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      return "must hold no quote, comma or control character (it labels the rows of CSV tables)";
+    if (c == '"' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must hold no quote or control character (it labels the rows of CSV tables)";
   return "";
 }
 // The name as an error shows it on one line: control characters as '?'.
@@ -267,7 +268,16 @@ void check_beams(const RealStudySpec& s, const std::string& path) {
         // the bounds the beam file's own values met (a 1e9 kg tip set here failed its fit with no reason)
         if (auto error = model::rig_implausibility(beam)) throw InputError("values: " + *error);
         for (const auto& lists : {c.estimate, c.per_record})
-          for (const std::string& key : lists) model::parameter_value(beam, key);
+          for (const std::string& key : lists) {
+            // An estimated key's start, the beam's value, must lie in its bounds: one outside was found at fit time,
+            // each fit of the candidate a failed row and exit 3 (the second adversarial pass of 2026-11-28, P6).
+            const double start = model::parameter_value(beam, key);
+            const auto b = c.bounds.find(key);
+            if (b != c.bounds.end() && !(start >= b->second.first && start <= b->second.second))
+              throw InputError("the start of " + key + ", " + format_value(start) +
+                               " (the beam's value), lies outside its bounds [" + format_value(b->second.first) + ", " +
+                               format_value(b->second.second) + "]: set it with values or widen the bounds");
+          }
       } catch (const InputError& error) {
         throw InputError(where + error.what());
       }
