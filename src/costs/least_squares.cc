@@ -143,7 +143,7 @@ class BandCost final : public Cost {
       e.residuals(static_cast<Eigen::Index>(2 * b)) = r.real();
       e.residuals(static_cast<Eigen::Index>(2 * b + 1)) = r.imag();
     }
-    if (uses_transfer_function()) project_out_transient(model, e.residuals);
+    if (uses_transfer_function() && !project_out_transient(model, e)) return e;
     e.value = e.residuals.squaredNorm();
     return e;
   }
@@ -202,8 +202,11 @@ class BandCost final : public Cost {
     }
     return true;
   }
-  // r minus its weighted least-squares fit by the transient terms (above), in place.
-  void project_out_transient(const ModelResponse& model, Eigen::VectorXd& r) const {
+  // e.residuals minus their weighted least-squares fit by the transient terms (above), in place; false with the status
+  // set when those terms would take up more than half of the band's residuals (a narrow band or a short record: what
+  // is left would be fitted by the transient, not by the model).
+  bool project_out_transient(const ModelResponse& model, Evaluation& e) const {
+    Eigen::VectorXd& r = e.residuals;
     const auto rows = static_cast<Eigen::Index>(2 * bins_.size());
     const auto modes = static_cast<Eigen::Index>(model.poles_rad_s.size());
     Eigen::MatrixXd basis(rows, 2 * modes + 1);
@@ -229,7 +232,14 @@ class BandCost final : public Cost {
     // Column pivoting: the terms of modes far above the band are nearly the constant, and of each other.
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(basis);
     qr.setThreshold(1e-10);
+    if (2 * qr.rank() > rows) {
+      e.status = "the errors-in-variables form takes out " + std::to_string(qr.rank()) +
+                 " transient terms (one per mode), more than half of the band's " + std::to_string(rows) +
+                 " residuals: widen the band (--min-frequency, --max-frequency) or give a longer record";
+      return false;
+    }
     r -= basis * qr.solve(r);
+    return true;
   }
 
   std::vector<int> bins_;

@@ -285,6 +285,16 @@ TEST(NoiseWeightedCost, TheErrorsInVariablesFormWeighsEachBinAndProjectsOutTheTr
   }
   EXPECT_NEAR(e.value / (squares - projection * projection / weight), 1.0, 1e-12);
   EXPECT_FALSE(c->evaluate(ModelResponse{y, none}).ok());
+  // A band of 6 bins (12 residuals) against the transients of 8 modes (17 terms) would be fitted by the transient
+  // alone: refused in words, never a cost of 0.
+  CostOptions narrow = o;
+  narrow.spikes.max_frequency_hz = 5;
+  auto n = make_cost(narrow, z, kDt);
+  std::vector<std::complex<double>> poles;
+  for (int m = 1; m <= 8; ++m) poles.emplace_back(-0.5 * m, 2 * std::numbers::pi * 7.0 * m);
+  const Evaluation refused = n->evaluate(ModelResponse{y, poles, &frf});
+  EXPECT_FALSE(refused.ok());
+  EXPECT_NE(refused.status.find("more than half of the band's 12 residuals"), std::string::npos) << refused.status;
 }
 
 TEST(NoiseWeightedCost, TheErrorsInVariablesCostAtTheTruthIsASumOfIndependentBins) {
