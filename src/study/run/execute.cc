@@ -37,21 +37,19 @@ simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
   return e;
 }
 
-// The experiment sampled `factor` times finer over the same time: a sampled force interpolated linearly between its
-// samples (exactly the force it holds), held after the last.
+// The experiment sampled `factor` times finer over the same time; a sampled force as the simulator holds it
+// (ResponseProblem::force_N: linear between its samples, held after the last).
 simulation::Experiment finer(const simulation::Experiment& e, int factor) {
   simulation::Experiment fine = e;
   fine.dt_s = e.dt_s / factor;
   fine.samples = e.samples * factor;
   if (!e.force_samples_N.empty()) {
+    simulation::ResponseProblem held;
+    held.force_samples_N = e.force_samples_N;
+    held.dt_s = e.dt_s;
     fine.force_samples_N.resize(static_cast<std::size_t>(fine.samples));
-    const std::size_t last = e.force_samples_N.size() - 1;
-    for (std::size_t j = 0; j < fine.force_samples_N.size(); ++j) {
-      const std::size_t i = std::min(j / static_cast<std::size_t>(factor), last);
-      const double t = static_cast<double>(j % static_cast<std::size_t>(factor)) / factor;
-      fine.force_samples_N[j] =
-          i == last ? e.force_samples_N[last] : (1 - t) * e.force_samples_N[i] + t * e.force_samples_N[i + 1];
-    }
+    for (std::size_t j = 0; j < fine.force_samples_N.size(); ++j)
+      fine.force_samples_N[j] = held.force_N(static_cast<double>(j) * fine.dt_s);
   }
   return fine;
 }
