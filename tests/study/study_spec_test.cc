@@ -400,6 +400,41 @@ TEST(StudyPlan, StartDistanceUnitsShareDirectionsAndTheRecord) {
   for (std::size_t i = 0; i + 2 < without.units.size(); ++i) EXPECT_EQ(without.units[i].id, plan.units[i].id);
 }
 
+TEST(StudyPlan, StartDistanceRecordsEachHaveTheirOwnNoiseAndReference) {
+  const std::string text = std::string(kValid) +
+                           "\n[start_distance]\noffsets = [0.001, 0.01]\ndirections = 2\nnoise = 0.01\nrecords = 3\n"
+                           "runs = [\"time/direct\"]\n";
+  const Plan plan = make_plan(parse_study(text, "s.toml", "."));
+  std::vector<const Unit*> starts;
+  for (const auto& u : plan.units)
+    if (u.kind == UnitKind::Start) starts.push_back(&u);
+  // Per record: the fit from the truth plus 2 offsets x 2 directions.
+  ASSERT_EQ(starts.size(), 3u * (1 + 2 * 2));
+  std::map<int, std::set<std::uint64_t>> noise;
+  std::map<int, int> references;
+  std::set<std::string> ids;
+  for (const Unit* u : starts) {
+    noise[u->replicate].insert(u->noise_seed);
+    references[u->replicate] += u->index < 0 ? 1 : 0;
+    ids.insert(u->id);
+  }
+  EXPECT_EQ(ids.size(), starts.size());
+  ASSERT_EQ(noise.size(), 3u);
+  for (const auto& [record, seeds] : noise) {
+    EXPECT_EQ(seeds.size(), 1u);          // one record for every start of it
+    EXPECT_EQ(references.at(record), 1);  // and its own reference minimum
+  }
+  EXPECT_NE(*noise[0].begin(), *noise[1].begin());
+  // Record r is the sweep's replicate-r draw at that noise: the cases of kValid (noise 0.01, replicate 0) see
+  // record 0.
+  for (const auto& u : plan.units)
+    if (u.kind == UnitKind::Case && u.noise == 0.01 && u.replicate == 0) EXPECT_EQ(u.noise_seed, *noise[0].begin());
+  // Noise-free records are all one record.
+  EXPECT_EQ(error_of(replaced(text, "noise = 0.01\nrecords", "noise = 0\nrecords")),
+            "s.toml:34: start_distance.records = 3: must be 1 when noise = 0 (noise-free records are all the same "
+            "record)");
+}
+
 TEST(StudyPlan, ShardsPartitionTheUnits) {
   const Plan plan = make_plan(parse_study(kValid, "s.toml", "."));
   std::multiset<std::string> seen;

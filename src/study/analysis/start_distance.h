@@ -43,6 +43,25 @@ HalfRadius half_radius(const std::vector<double>& offsets, const std::vector<dou
 // "0.31 %", "< 0.05 %" or "> 20 %".
 std::string radius_text(const HalfRadius& r);
 
+// One start's outcome in a run over several records: which record, direction and offset, and whether it reached
+// its record's reference minimum.
+struct ReachOutcome {
+  int record = 0, direction = 0;
+  double offset = 0;
+  bool reached = false;
+};
+// The 50 % radius of a fitted reach curve (issue 35): the logistic P(reach) = 1 / (1 + exp(-(a + b ln r))) fitted to
+// the outcomes by Firth's penalised likelihood (statistics.h), r50 = exp(-a / b). `below` or `above` (value: that end
+// of offsets, the range tried) when r50 lies outside the offsets or the curve does not fall (b >= 0: then by the
+// share reached). Where the fit fails, the pooled rates' half_radius.
+HalfRadius reach_radius(const std::vector<double>& offsets, const std::vector<ReachOutcome>& outcomes);
+// Its 95 % interval across records: `resamples` bootstrap resamples of the records (with replacement, each
+// record's outcomes kept together), r50 refitted on each, the 2.5 % and 97.5 % quantiles of ln r50 (a censored
+// resample at its end of the range). {low, high}.
+std::pair<HalfRadius, HalfRadius> reach_radius_interval(const std::vector<double>& offsets,
+                                                        const std::vector<ReachOutcome>& outcomes, int records,
+                                                        std::uint64_t seed, int resamples);
+
 // The curves of a finished study.
 struct StartCurvePoint {
   double offset = 0;
@@ -61,11 +80,29 @@ struct StartRun {
   double predicted_basin = std::nan(""), predicted_basin_decay = std::nan("");
   double predicted_basin_highest_decay = std::nan("");
   int limiting_mode = 0;
-  const LandscapeRow* reference = nullptr;     // the fit from the truth (nullptr when missing)
-  bool reference_ok = false;                   // it did not fail
-  std::vector<StartCurvePoint> points;         // by offset
-  HalfRadius radius, radius_low, radius_high;  // from the rates, their Wilson lower and upper bounds
+  const LandscapeRow* reference = nullptr;  // the fit from the truth on record 0 (nullptr when missing)
+  bool reference_ok = false;                // some record's fit from the truth did not fail
+  // start_distance.records: each record's fit from the truth is its own reference; a record whose reference failed
+  // or is missing is left out of the curve (counted here).
+  int records = 1, references_failed = 0;
+  std::vector<const LandscapeRow*> references;  // by record
+  std::vector<ReachOutcome> outcomes;           // every start of the counted records
+  std::vector<StartCurvePoint> points;          // by offset, pooled over records
+  // One record: from the rates, their Wilson lower and upper bounds. Several: the fitted reach curve and its
+  // bootstrap interval across records (reach_radius).
+  HalfRadius radius, radius_low, radius_high;
 };
+// Two runs of one experiment compared on the same starts (issue 35: paired, as they share records, directions and
+// offsets): the starts both runs counted, split by outcome, and the exact McNemar p-value of the discordant ones.
+struct StartPair {
+  int experiment = 0;
+  std::size_t first = 0, second = 0;  // indices into StartDistanceMetrics::runs
+  int matched = 0, both = 0, first_only = 0, second_only = 0, neither = 0;
+  double p_value = 1;
+};
+// Every pair of runs within each experiment, in run order.
+std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs);
+
 struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print "-" for them)
   int fitted_modes = 0;
   double highest_mode_hz = std::nan("");  // the truth's mode `fitted_modes`
@@ -85,7 +122,8 @@ struct StartDistanceMetrics {  // predictions NaN when unknown (the tables print
   double predicted_basin_highest_decay = std::nan("");  // 1 / (2 f T_eff) of mode `fitted_modes`
   int experiments = 1;
   std::vector<StartRun> runs;  // experiment-major, then in the order of start_distance.runs
-  std::vector<bool> reached;   // per results.starts row
+  std::vector<StartPair> pairs;
+  std::vector<bool> reached;  // per results.starts row
 };
 // Fills the predictions above (highest_mode_hz, record_s, predicted_basin, limiting_mode ...
 // predicted_basin_highest_decay) for the first m.fitted_modes modes of natural frequencies f (Hz) and damping ratios

@@ -262,37 +262,44 @@ void plan_bounds(const StudySpec& spec, Plan& plan) {
 }
 
 // Every start-distance run from the truth (index -1: the reference minimum), then from every offset in every
-// direction, on one record per experiment (start_distance.noise, replicate 0): the first experiment's, or every one's.
+// direction, on each of start_distance.records noise records per experiment (record r is the sweep's replicate-r
+// draw at start_distance.noise): the first experiment's, or every one's.
 void plan_starts(const StudySpec& spec, const std::string& fit, Plan& plan) {
   const auto& d = spec.start_distance;
   for (std::size_t ti = 0; ti < (d.every_experiment ? plan.truths.size() : 1); ++ti)
-    for (std::size_t si = 0; si < (d.every_experiment ? spec.sweep.samples.size() : 1); ++si) {
-      const Unit& truth = plan.truths[ti];
-      const int samples = spec.sweep.samples[si];
-      const std::string base = truth.canonical + ";record_samples=" + std::to_string(samples) +
-                               ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
-      const std::uint64_t noise_seed = record_noise_seed(spec, truth, samples, d.noise, 0);
-      for (const auto& [cost, method] : d.runs)
-        for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
-          for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
-            Unit u = unit_on(UnitKind::Start, plan, ti, samples);
-            u.elements = d.elements;
-            u.cost = cost;
-            u.method = method;
-            u.noise = d.noise;
-            u.index = k;
-            u.offset = oi < 0 ? 0.0 : d.offsets[static_cast<std::size_t>(oi)];
-            u.noise_seed = noise_seed;
-            // The direction's identity is its index among `directions` (its seed derives from the study seed and
-            // the index alone, so every run, offset and experiment shares the directions).
-            u.canonical = "start;" + base + ";cost=" + cost + ";method=" + method_text(spec.method(method)) +
-                          (k < 0 ? std::string(";start=truth")
-                                 : ";offset=" + io::round_trip(u.offset) + ";direction=" + std::to_string(k) + "/" +
-                                       std::to_string(d.directions));
-            identify(u, spec);
-            plan.units.push_back(u);
-          }
-    }
+    for (std::size_t si = 0; si < (d.every_experiment ? spec.sweep.samples.size() : 1); ++si)
+      for (int record = 0; record < d.records; ++record) {
+        const Unit& truth = plan.truths[ti];
+        const int samples = spec.sweep.samples[si];
+        const std::string base = truth.canonical + ";record_samples=" + std::to_string(samples) +
+                                 ";noise=" + io::round_trip(d.noise) + ";N=" + std::to_string(d.elements) + ";" + fit;
+        // With one record, the unit's text is what it was before records existed (a resumed store stays valid).
+        const std::string record_text =
+            d.records > 1 ? ";record=" + std::to_string(record) + "/" + std::to_string(d.records) : std::string();
+        const std::uint64_t noise_seed = record_noise_seed(spec, truth, samples, d.noise, record);
+        for (const auto& [cost, method] : d.runs)
+          for (int oi = -1; oi < static_cast<int>(d.offsets.size()); ++oi)
+            for (int k = oi < 0 ? -1 : 0; k < (oi < 0 ? 0 : d.directions); ++k) {
+              Unit u = unit_on(UnitKind::Start, plan, ti, samples);
+              u.elements = d.elements;
+              u.cost = cost;
+              u.method = method;
+              u.noise = d.noise;
+              u.replicate = record;
+              u.index = k;
+              u.offset = oi < 0 ? 0.0 : d.offsets[static_cast<std::size_t>(oi)];
+              u.noise_seed = noise_seed;
+              // The direction's identity is its index among `directions` and its record (its seed derives from the
+              // study seed, the record and the index alone, so every run, offset and experiment shares them).
+              u.canonical = "start;" + base + ";cost=" + cost + ";method=" + method_text(spec.method(method)) +
+                            (k < 0 ? std::string(";start=truth")
+                                   : ";offset=" + io::round_trip(u.offset) + ";direction=" + std::to_string(k) + "/" +
+                                         std::to_string(d.directions)) +
+                            record_text;
+              identify(u, spec);
+              plan.units.push_back(u);
+            }
+      }
 }
 
 // The overlay case of each cost: its fit is also shown in time and frequency (overlay.csv, spectrum.csv).
@@ -336,6 +343,17 @@ Plan make_plan(const StudySpec& spec) {
     throw InputError(spec.path + ": [sweep] makes " + io::round_trip(cases) + " cases: more than the " +
                      io::round_trip(core::kMaxStudyUnits) +
                      " units a study may plan (about 1 s and 1 KB each); split it into several study files");
+  const auto& d = spec.start_distance;
+  const double starts = d.enabled
+                            ? static_cast<double>(d.runs.size()) *
+                                  static_cast<double>(d.offsets.size() * static_cast<std::size_t>(d.directions) + 1) *
+                                  d.records * static_cast<double>(std::max<std::size_t>(1, w.pulse_width_s.size())) *
+                                  static_cast<double>(w.samples.size())
+                            : 0.0;
+  if (starts > core::kMaxStudyUnits)
+    throw InputError(spec.path + ": [start_distance] makes up to " + io::round_trip(starts) + " fits: more than the " +
+                     io::round_trip(core::kMaxStudyUnits) +
+                     " units a study may plan (about 1 s and 1 KB each); lower records, directions or offsets");
   Plan plan;
   plan_truths(spec, plan);
   const std::string fit = fit_text(spec);

@@ -427,9 +427,12 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       // at the same frequency offset of the same modes.
       const galerkin::SplineSpace space(unit.elements);
       const galerkin::BeamForms forms(space, spec.truth.parameters.l, spec.truth.parameters.support);
+      // With several records, each draws its own directions (one record: the index alone names it, as before).
+      const std::string direction_name =
+          "start-direction;" + std::to_string(unit.index) +
+          (spec.start_distance.records > 1 ? ";record=" + std::to_string(unit.replicate) : std::string());
       const Eigen::VectorXd u =
-          random_direction(core::derive_seed(spec.seed, "start-direction;" + std::to_string(unit.index)),
-                           static_cast<int>(spec.fit.estimate.size()));
+          random_direction(core::derive_seed(spec.seed, direction_name), static_cast<int>(spec.fit.estimate.size()));
       const OffsetStart s =
           offset_start(forms, spec.truth.parameters, spec.fit.estimate, spikes, u, unit.offset, spec.fit.bound_factor);
       for (const auto& key : spec.fit.estimate) set(o.start, key, value(s.start, key));

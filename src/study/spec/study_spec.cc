@@ -333,6 +333,10 @@ void read_start_distance(const config::Document& document, int finest_fit, Study
     d.directions = r.integer("directions", d.directions, 1, 100000);
     d.noise = r.number(
         "noise", 0.0, [](double v) { return v >= 0 && v <= 1; }, "must be in [0, 1] (a fraction of the clean RMS)");
+    d.records = r.integer("records", d.records, 1, 100000);
+    if (d.records > 1 && d.noise == 0)
+      r.fail("records", std::to_string(d.records),
+             "must be 1 when noise = 0 (noise-free records are all the same record)");
     d.agreement = r.number(
         "agreement", d.agreement, [](double v) { return v > 0 && v < 1; }, "must be in (0, 1)");
     d.damping_agreement = r.number(
@@ -355,7 +359,8 @@ void read_start_distance(const config::Document& document, int finest_fit, Study
       d.runs.emplace_back(cost, method);
     }
     d.every_experiment = r.string("experiments", "first", {"first", "all"}) == "all";
-    r.finish({"elements", "offsets", "directions", "noise", "agreement", "damping_agreement", "runs", "experiments"});
+    r.finish({"elements", "offsets", "directions", "records", "noise", "agreement", "damping_agreement", "runs",
+              "experiments"});
   }
 }
 

@@ -141,7 +141,12 @@ struct StartDistanceSpec {
   std::vector<double> offsets;                            // r, relative frequency offsets (0.0015 = 0.15 %)
   int directions = 30;                                    // per offset
   std::vector<std::pair<std::string, std::string>> runs;  // (cost, method name)
-  double noise = 0;                                       // of the one record every fit sees
+  double noise = 0;                                       // the records' noise level
+  // Independent noise records per experiment (issue 35: records are the replication unit). Record r is the sweep's
+  // replicate-r draw at `noise`; each has its own fit from the truth (its reference minimum) and its own directions
+  // (`directions` per offset), so that a radius's interval is a bootstrap across records, not across directions of
+  // one record. 1: one record for every fit (the directions' seeds then name the direction alone).
+  int records = 1;
   double agreement = 1e-3;
   double damping_agreement = 1e-2;
   // false: the first experiment only (truth pulse width and record length); true: every experiment of the sweep

@@ -23,6 +23,37 @@ std::string experiment_csv(const StartRun& run) {
          std::to_string(run.samples) + "," + std::to_string(run.modes_in_data);
 }
 
+// With several records: the fitted reach curves (reach.csv) and the runs compared in pairs on the same starts
+// (pairs.csv), one file each.
+Rendered render_reach_curves(const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  os << "cost,method,records,references_failed,starts,reached,half_radius,half_radius_low,half_radius_high,position,"
+        "experiment,pulse_width_s,samples,modes_in_data\n";
+  for (const auto& run : m.runs) {
+    int reached = 0;
+    for (const auto& o : run.outcomes) reached += o.reached ? 1 : 0;
+    const auto value = [&](const HalfRadius& h) { return io::round_trip(run.reference_ok ? h.value : std::nan("")); };
+    os << run.cost << "," << run.method << "," << run.records << "," << run.references_failed << ","
+       << run.outcomes.size() << "," << reached << "," << value(run.radius) << "," << value(run.radius_low) << ","
+       << value(run.radius_high) << "," << (run.reference_ok ? flag(run.radius) : "-") << experiment_csv(run) << "\n";
+  }
+  return {"start_distance/reach.csv", os.str()};
+}
+
+Rendered render_pairs(const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  os << "experiment,first,second,matched_starts,both_reached,first_only,second_only,neither,rate_difference,"
+        "mcnemar_p\n";
+  for (const auto& p : m.pairs) {
+    const StartRun &a = m.runs[p.first], &b = m.runs[p.second];
+    os << p.experiment << "," << a.cost << "/" << a.method << "," << b.cost << "/" << b.method << "," << p.matched
+       << "," << p.both << "," << p.first_only << "," << p.second_only << "," << p.neither << ","
+       << io::round_trip(p.matched > 0 ? static_cast<double>(p.first_only - p.second_only) / p.matched : std::nan(""))
+       << "," << io::round_trip(p.p_value) << "\n";
+  }
+  return {"start_distance/pairs.csv", os.str()};
+}
+
 }  // namespace
 
 RenderedFiles render_start_distance(const StudyResults& results, const StartDistanceMetrics& m) {
@@ -85,12 +116,18 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
          << run.fitted_modes << "\n";
     files.push_back({"start_distance/radius.csv", os.str()});
   }
+  if (spec.start_distance.records > 1) {
+    files.push_back(render_reach_curves(m));
+    files.push_back(render_pairs(m));
+  }
   {
     std::ostringstream os;
     // With several experiments, each row opens with its own: modes in the data (fitted) and the pulse width.
     const bool several = m.experiments > 1;
-    os << (several ? "| modes in data (fitted) | pulse |" : "|")
-       << " cost | method | 50 % radius (95 % interval) | x 1/(2 f T) | x min_k 1/(2 f_k T_eff,k) |";
+    const int records = spec.start_distance.records;
+    os << (several ? "| modes in data (fitted) | pulse |" : "|") << " cost | method | 50 % radius (95 % interval"
+       << (records > 1 ? " across " + std::to_string(records) + " records" : std::string())
+       << ") | x 1/(2 f T) | x min_k 1/(2 f_k T_eff,k) |";
     for (double r : spec.start_distance.offsets) os << " " << pct(r) << " |";
     os << " evaluations (median) |\n|" << (several ? "---|---|" : "") << "---|---|---|---|---|";
     for (std::size_t j = 0; j < spec.start_distance.offsets.size(); ++j) os << "---|";
