@@ -176,6 +176,50 @@ TEST(StartDistance, PairedComparisonCountsTheSameStartsOnly) {
   EXPECT_DOUBLE_EQ(pairs[0].p_value, mcnemar_exact_p(2, 0));  // 2 x 1/4 = 0.5
 }
 
+TEST(StartDistance, ReferenceErrorsCountEveryRecordAgainstItsExperimentsBound) {
+  StudySpec spec;
+  spec.truth.parameters = model::preset("banks-aluminium");
+  spec.fit.estimate = {"EI"};
+  spec.start_distance.elements = 16;
+  spec.start_distance.noise = 0.01;
+  const double ei = spec.truth.parameters.EI;
+  // Three records' fits from the truth: +1 %, +3 % and a failed one (not counted), on truth 0.
+  std::vector<Unit> units(5);
+  for (int k = 0; k < 3; ++k) units[static_cast<std::size_t>(k)].replicate = k;
+  const auto row = [](const Unit& u, const std::string& status, double estimate) {
+    LandscapeRow r;
+    r.unit = &u;
+    r.record.set("status", status);
+    r.record.set("estimate.EI", estimate);
+    return r;
+  };
+  const std::vector<LandscapeRow> refs = {row(units[0], "converged", 1.01 * ei), row(units[1], "converged", 1.03 * ei),
+                                          row(units[2], "failed", std::nan(""))};
+  // Bounds: one for another truth (ignored), one for this experiment at the start-distance N and noise.
+  units[3].truth = 1, units[3].elements = 16, units[3].noise = 0.01;
+  units[4].truth = 0, units[4].elements = 16, units[4].noise = 0.01;
+  StudyResults results;
+  results.spec = &spec;
+  for (int i = 3; i < 5; ++i) {
+    LandscapeRow b;
+    b.unit = &units[static_cast<std::size_t>(i)];
+    b.record.set("status", std::string("ok"));
+    b.record.set("relative_sd.EI", i == 3 ? 1.0 : 0.01);
+    results.bounds.push_back(b);
+  }
+  StartRun run;
+  run.truth = 0;
+  for (const auto& r : refs) run.references.push_back(&r);
+  const auto e = reference_errors(results, run);
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].errors.count, 2);
+  EXPECT_NEAR(e[0].errors.mean, 0.02, 1e-12);
+  EXPECT_NEAR(e[0].mcse, std::sqrt(2e-4) / std::sqrt(2.0), 1e-12);  // sd of {1 %, 3 %} = sqrt(2) %
+  EXPECT_NEAR(e[0].errors.rmse, std::sqrt((1e-4 + 9e-4) / 2), 1e-12);
+  EXPECT_EQ(e[0].bound, 0.01);
+  EXPECT_NEAR(e[0].efficiency(), std::sqrt(5e-4) / 0.01, 1e-9);
+}
+
 TEST(StartDistance, ReachingMeansAgreeingWithTheFitFromTheTruth) {
   StudySpec spec;
   spec.fit.estimate = {"EI", "gamma"};

@@ -67,6 +67,18 @@ void start_distance_findings(const StartDistanceMetrics& m, Findings& f) {
                                   : std::string()),
            -1, -1});
     }
+  // Paired on the same starts (several records): every run against the first of its experiment, by McNemar's test
+  // at the 5 % level on the starts one of the two reaches and the other does not.
+  for (const StartPair& p : m.pairs) {
+    const StartRun &a = m.runs[p.first], &b = m.runs[p.second];
+    if (m.runs.front().records < 2 || a.cost != m.runs.front().cost || a.method != m.runs.front().method) continue;
+    f.claims.push_back({p.second_only > p.first_only && p.p_value < 0.05,
+                        name(b) + " reaches the minimum from more of the same starts than " + name(a) + " (of " +
+                            std::to_string(p.matched) + " starts, it alone reaches from " +
+                            std::to_string(p.second_only) + ", the other alone from " + std::to_string(p.first_only) +
+                            "; McNemar p = " + g3(p.p_value) + ")",
+                        -1, -1});
+  }
   // Every run against the first of its experiment (the study lists time/direct first).
   for (const StartRun& first : m.runs) {
     if (first.cost != m.runs.front().cost || first.method != m.runs.front().method || !first.reference_ok) continue;

@@ -179,6 +179,30 @@ std::pair<HalfRadius, HalfRadius> reach_radius_interval(const std::vector<double
   return {bound(0.025), bound(0.975)};
 }
 
+std::vector<ReferenceErrors> reference_errors(const StudyResults& results, const StartRun& run) {
+  const StudySpec& spec = *results.spec;
+  const auto& d = spec.start_distance;
+  const LandscapeRow* bound = nullptr;
+  for (const auto& b : results.bounds)
+    if (b.unit->truth == run.truth && b.unit->samples == run.samples && b.unit->elements == d.elements &&
+        b.unit->noise == d.noise && b.record.text("status") == "ok")
+      bound = &b;
+  std::vector<ReferenceErrors> out;
+  for (const auto& key : spec.fit.estimate) {
+    ReferenceErrors e;
+    e.parameter = key;
+    const double truth = model::parameter_value(spec.truth.parameters, key);
+    std::vector<double> errors;
+    for (const LandscapeRow* r : run.references)
+      if (r && r->record.text("status") != "failed") errors.push_back(r->record.number("estimate." + key) / truth - 1);
+    e.errors = stats(errors);
+    if (e.errors.count > 1) e.mcse = e.errors.std / std::sqrt(e.errors.count);
+    if (bound) e.bound = bound->record.number("relative_sd." + key);
+    out.push_back(e);
+  }
+  return out;
+}
+
 std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs) {
   std::vector<StartPair> pairs;
   // An outcome's key within its experiment: the same record, direction and offset.
@@ -202,6 +226,33 @@ std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs) {
       pairs.push_back(p);
     }
   return pairs;
+}
+
+// A run's 50 % radius and its interval: with several records the reach curve and its bootstrap across records
+// (seeded by the study seed, the run and the experiment, so that the tables are byte-identical between runs); with
+// one, the crossing of the rates and of their Wilson bounds.
+void set_radius(const StudySpec& spec, int experiment, StartRun& run) {
+  const auto& d = spec.start_distance;
+  if (!run.reference_ok) return;
+  if (d.records > 1) {
+    run.radius = reach_radius(d.offsets, run.outcomes);
+    const std::uint64_t seed = core::derive_seed(
+        spec.seed, "reach-bootstrap;" + run.cost + "/" + run.method + ";" + std::to_string(experiment));
+    std::tie(run.radius_low, run.radius_high) =
+        reach_radius_interval(d.offsets, run.outcomes, d.records, seed, kBootstrapResamples);
+    return;
+  }
+  std::vector<double> offsets, rates, lows, highs;
+  for (const auto& p : run.points) {
+    const auto [low, high] = wilson_interval(p.reached, p.fits);
+    offsets.push_back(p.offset);
+    rates.push_back(p.rate());
+    lows.push_back(low);
+    highs.push_back(high);
+  }
+  run.radius = half_radius(offsets, rates);
+  run.radius_low = half_radius(offsets, lows);
+  run.radius_high = half_radius(offsets, highs);
 }
 
 StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
@@ -260,30 +311,18 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
         p.median_evaluations = median(evaluations);
         run.points.push_back(p);
       }
+      for (const auto& row : results.starts)
+        if (in_experiment(*row.unit) && row.unit->cost == cost && row.unit->method == method) {
+          ++run.fits_run;
+          run.budget_exhausted += row.record.text("status") == "max-evaluations" ? 1 : 0;
+        }
+      run.reference_errors = reference_errors(results, run);
       if (run.reference) {
         const Record& r = run.reference->record;
         run.fitted_modes = r.has("fitted_modes") ? static_cast<int>(r.number("fitted_modes")) : 0;
         run.modes_in_data = r.has("modes_in_data") ? static_cast<int>(r.number("modes_in_data")) : 0;
       }
-      if (run.reference_ok && d.records > 1) {
-        run.radius = reach_radius(d.offsets, run.outcomes);
-        const std::uint64_t seed =
-            core::derive_seed(spec.seed, "reach-bootstrap;" + cost + "/" + method + ";" + std::to_string(ei));
-        std::tie(run.radius_low, run.radius_high) =
-            reach_radius_interval(d.offsets, run.outcomes, d.records, seed, kBootstrapResamples);
-      } else if (run.reference_ok) {
-        std::vector<double> offsets, rates, lows, highs;
-        for (const auto& p : run.points) {
-          const auto [low, high] = wilson_interval(p.reached, p.fits);
-          offsets.push_back(p.offset);
-          rates.push_back(p.rate());
-          lows.push_back(low);
-          highs.push_back(high);
-        }
-        run.radius = half_radius(offsets, rates);
-        run.radius_low = half_radius(offsets, lows);
-        run.radius_high = half_radius(offsets, highs);
-      }
+      set_radius(spec, static_cast<int>(ei), run);
       run.record_s = samples * spec.truth.experiment.dt_s;
       StartDistanceMetrics prediction;
       prediction.fitted_modes = run.fitted_modes;

@@ -14,6 +14,7 @@
 #include "galerkin/second_order_system.h"
 #include "model/beam_parameters.h"
 #include "study/analysis/results.h"
+#include "study/analysis/statistics.h"
 
 namespace beamid::study {
 
@@ -62,6 +63,17 @@ std::pair<HalfRadius, HalfRadius> reach_radius_interval(const std::vector<double
                                                         const std::vector<ReachOutcome>& outcomes, int records,
                                                         std::uint64_t seed, int resamples);
 
+// A run's fits from the truth over its records, for one parameter (issue 35: over every fit of the cell, none
+// selected by where it ended): relative errors (estimate - truth) / truth, the mean's Monte-Carlo standard error
+// sd / sqrt(fits), and the Cramér-Rao bound of the fitted model for the records' noise (NaN without a bound unit
+// for the experiment at start_distance.elements and .noise).
+struct ReferenceErrors {
+  std::string parameter;
+  Stats errors;
+  double mcse = std::nan(""), bound = std::nan("");
+  double efficiency() const { return errors.rmse / bound; }  // RMSE / bound
+};
+
 // The curves of a finished study.
 struct StartCurvePoint {
   double offset = 0;
@@ -85,9 +97,13 @@ struct StartRun {
   // start_distance.records: each record's fit from the truth is its own reference; a record whose reference failed
   // or is missing is left out of the curve (counted here).
   int records = 1, references_failed = 0;
-  std::vector<const LandscapeRow*> references;  // by record
-  std::vector<ReachOutcome> outcomes;           // every start of the counted records
-  std::vector<StartCurvePoint> points;          // by offset, pooled over records
+  std::vector<const LandscapeRow*> references;    // by record
+  std::vector<ReachOutcome> outcomes;             // every start of the counted records
+  std::vector<StartCurvePoint> points;            // by offset, pooled over records
+  std::vector<ReferenceErrors> reference_errors;  // per estimated parameter, over the counted records
+  // Every fit of the run (from the truth and the offsets) and those whose evaluation budget ran out (status
+  // "max-evaluations": where a derivative-free search's budget binds, the tables count it).
+  int fits_run = 0, budget_exhausted = 0;
   // One record: from the rates, their Wilson lower and upper bounds. Several: the fitted reach curve and its
   // bootstrap interval across records (reach_radius).
   HalfRadius radius, radius_low, radius_high;
@@ -100,6 +116,9 @@ struct StartPair {
   int matched = 0, both = 0, first_only = 0, second_only = 0, neither = 0;
   double p_value = 1;
 };
+// The reference errors of a run whose references, truth and samples are set (start_distance_metrics fills them).
+std::vector<ReferenceErrors> reference_errors(const StudyResults& results, const StartRun& run);
+
 // Every pair of runs within each experiment, in run order.
 std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs);
 

@@ -52,6 +52,31 @@ std::vector<std::pair<std::string, std::string>> plot_links(const StudySpec& spe
   return images;
 }
 
+// The start-distance paragraphs: the curves, and with several records the fits from the truth.
+void report_start_distance(const StudySpec& spec, const RenderedFiles& tables, std::ostringstream& report) {
+  const auto& d = spec.start_distance;
+  report << "Start-distance curves at N = " << d.elements << " (noise " << pct(d.noise) << "; " << d.directions
+         << " random directions per offset in the log space of the estimated parameters; a start \"reaches\" when "
+            "every estimate is within "
+         << pct(d.agreement) << " (damping " << pct(d.damping_agreement) << ") of the same run's fit from the truth"
+         << (d.records > 1 ? " on the same record; " + std::to_string(d.records) + " independent noise records" : "")
+         << "). Columns: the share of starts that reach it at each frequency offset of the fitted modes; "
+         << (d.records > 1 ? "the 50 % radius of a logistic reach curve in log offset (Firth's fit), with a 95 % "
+                             "bootstrap interval across records, "
+                           : "the offset where that share falls through one half, with the interval from the 95 % "
+                             "Wilson bounds, ")
+         << "and its ratio to the predicted 1/(2 f T):\n\n"
+         << read(tables, "start_distance.md") << "\n";
+  if (has(tables, "start_distance_reference.md"))
+    report << "The fits from the truth, one per record (every fit counted: none is set aside for where it "
+              "ended): bias of the relative error with its Monte-Carlo standard error (* beyond 2 MCSE), and RMSE "
+              "over the Cramér-Rao bound of the fitted model for the records' noise (under model error the bound "
+              "is the fitted model's, so RMSE / bound above 1 includes the bias the model error causes); the last "
+              "column counts the run's fits (from the truth and every offset) that ran out of their evaluation "
+              "budget:\n\n"
+           << read(tables, "start_distance_reference.md") << "\n";
+}
+
 }  // namespace
 
 std::string render_report_block(const StudyResults& results, const Findings& findings, const RenderedFiles& tables) {
@@ -125,17 +150,7 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
     report << "Each local fit's final cost minus the reference minimum (the lowest over the cost's fits; \"reached\": "
               "every estimate within the success tolerance of the reference's):\n\n"
            << read(tables, "landscape/multistart.md") << "\n";
-  if (has(tables, "start_distance.md")) {
-    const auto& d = spec.start_distance;
-    report << "Start-distance curves at N = " << d.elements << " (noise " << pct(d.noise) << "; " << d.directions
-           << " random directions per offset in the log space of the estimated parameters; a start \"reaches\" when "
-              "every estimate is within "
-           << pct(d.agreement) << " (damping " << pct(d.damping_agreement)
-           << ") of the same run's fit from the truth). Columns: the share of starts that reach it at each frequency "
-              "offset of the fitted modes; the offset where that share falls through one half, with the interval "
-              "from the 95 % Wilson bounds, and its ratio to the predicted 1/(2 f T):\n\n"
-           << read(tables, "start_distance.md") << "\n";
-  }
+  if (has(tables, "start_distance.md")) report_start_distance(spec, tables, report);
   // Plot links, SVG beside each PNG.
   const std::string p = "plots/" + spec.name + "/";
   const std::vector<std::pair<std::string, std::string>> images = plot_links(spec, tables);

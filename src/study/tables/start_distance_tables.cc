@@ -1,5 +1,6 @@
 #include "study/tables/start_distance_tables.h"
 
+#include <cmath>
 #include <sstream>
 
 #include "io/text.h"
@@ -52,6 +53,44 @@ Rendered render_pairs(const StartDistanceMetrics& m) {
        << "," << io::round_trip(p.p_value) << "\n";
   }
   return {"start_distance/pairs.csv", os.str()};
+}
+
+// With several records: each run's fits from the truth, per parameter (reference.csv), and as the report's table
+// (start_distance_reference.md: bias +- MCSE and RMSE / bound per parameter, with the budget count).
+Rendered render_reference_csv(const StudySpec& spec, const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  os << "cost,method,parameter,fits,records,bias,mcse,sd,rmse,bound,rmse_over_bound,fits_run,budget_exhausted,"
+        "experiment,pulse_width_s,samples,modes_in_data\n";
+  for (const auto& run : m.runs)
+    for (const auto& e : run.reference_errors)
+      os << run.cost << "," << run.method << "," << e.parameter << "," << e.errors.count << ","
+         << spec.start_distance.records << "," << io::round_trip(e.errors.mean) << "," << io::round_trip(e.mcse) << ","
+         << io::round_trip(e.errors.std) << "," << io::round_trip(e.errors.rmse) << "," << io::round_trip(e.bound)
+         << "," << io::round_trip(e.efficiency()) << "," << run.fits_run << "," << run.budget_exhausted
+         << experiment_csv(run) << "\n";
+  return {"start_distance/reference.csv", os.str()};
+}
+
+Rendered render_reference_md(const StudySpec& spec, const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  const bool several = m.experiments > 1;
+  os << (several ? "| modes in data |" : "|") << " cost | method | fits |";
+  for (const auto& key : spec.fit.estimate) os << " " << key << " bias (MCSE) | " << key << " RMSE / bound |";
+  os << " budget exhausted |\n|" << (several ? "---|" : "") << "---|---|---|";
+  for (std::size_t i = 0; i < spec.fit.estimate.size(); ++i) os << "---|---|";
+  os << "---|\n";
+  for (const auto& run : m.runs) {
+    if (several) os << "| " << run.modes_in_data << " ";
+    const int fits = run.reference_errors.empty() ? 0 : run.reference_errors.front().errors.count;
+    os << "| " << run.cost << " | " << run.method << " | " << fits << "/" << run.records << " |";
+    for (const auto& e : run.reference_errors) {
+      const bool significant = std::abs(e.errors.mean) > 2 * e.mcse;
+      os << " " << pct(e.errors.mean) << " (" << pct(e.mcse) << ")" << (significant ? " *" : "") << " | "
+         << g3(e.efficiency()) << " |";
+    }
+    os << " " << run.budget_exhausted << "/" << run.fits_run << " |\n";
+  }
+  return {"start_distance_reference.md", os.str()};
 }
 
 }  // namespace
@@ -119,6 +158,8 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
   if (spec.start_distance.records > 1) {
     files.push_back(render_reach_curves(m));
     files.push_back(render_pairs(m));
+    files.push_back(render_reference_csv(spec, m));
+    files.push_back(render_reference_md(spec, m));
   }
   {
     std::ostringstream os;
