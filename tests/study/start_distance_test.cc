@@ -220,6 +220,47 @@ TEST(StartDistance, ReferenceErrorsCountEveryRecordAgainstItsExperimentsBound) {
   EXPECT_NEAR(e[0].efficiency(), std::sqrt(5e-4) / 0.01, 1e-9);
 }
 
+TEST(StartDistance, ModeErrorsPairTheFittedModesWithTheTruthsByIndex) {
+  StudySpec spec;
+  StudyResults results;
+  results.spec = &spec;
+  Record truth;
+  truth.set("mode_frequency_hz", std::vector<double>{2.0, 20.0, 60.0});
+  truth.set("mode_damping_ratio", std::vector<double>{0.01, 0.002, 0.004});
+  results.truths.push_back(truth);
+  std::vector<Unit> units(3);
+  std::vector<LandscapeRow> refs(3);
+  // Record 0: mode 1 at +1 %, damping +10 %; record 1: -1 % and +30 %; record 2 failed (not counted).
+  const std::vector<std::vector<double>> f = {{2.02, 20.0}, {1.98, 20.2}, {}}, z = {{0.011, 0.002}, {0.013, 0.001}, {}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    refs[k].unit = &units[k];
+    refs[k].record.set("status", std::string(k < 2 ? "converged" : "failed"));
+    if (k < 2) {
+      refs[k].record.set("fitted_mode_frequency_hz", f[k]);
+      refs[k].record.set("fitted_mode_damping_ratio", z[k]);
+    }
+  }
+  StartRun run;
+  run.truth = 0;
+  for (const auto& r : refs) run.references.push_back(&r);
+  const auto e = mode_errors(results, run, 3);
+  // Three modes asked, the truth has three, but the fits recorded two: mode 3 has no fit.
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[0].mode, 1);
+  EXPECT_EQ(e[0].frequency.count, 2);
+  EXPECT_NEAR(e[0].frequency.mean, 0.0, 1e-12);
+  EXPECT_NEAR(e[0].frequency.rmse, 0.01, 1e-12);
+  EXPECT_NEAR(e[0].damping.mean, 0.2, 1e-12);
+  EXPECT_NEAR(e[0].damping_mcse, std::sqrt(0.02) / std::sqrt(2.0), 1e-12);  // sd of {0.1, 0.3}
+  EXPECT_NEAR(e[1].frequency.mean, 0.005, 1e-12);
+  EXPECT_NEAR(e[1].damping.mean, -0.25, 1e-12);
+  EXPECT_EQ(e[2].frequency.count, 0);
+  EXPECT_EQ(e[2].truth_frequency_hz, 60.0);
+  // No modes recorded for the truth: nothing to judge.
+  results.truths[0] = Record();
+  EXPECT_TRUE(mode_errors(results, run, 3).empty());
+}
+
 TEST(StartDistance, ReachingMeansAgreeingWithTheFitFromTheTruth) {
   StudySpec spec;
   spec.fit.estimate = {"EI", "gamma"};

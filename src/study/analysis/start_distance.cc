@@ -203,6 +203,37 @@ std::vector<ReferenceErrors> reference_errors(const StudyResults& results, const
   return out;
 }
 
+std::vector<ModeErrors> mode_errors(const StudyResults& results, const StartRun& run, int modes) {
+  std::vector<ModeErrors> out;
+  const auto t = static_cast<std::size_t>(run.truth);
+  if (t >= results.truths.size() || !results.truths[t].has("mode_frequency_hz") ||
+      !results.truths[t].has("mode_damping_ratio"))
+    return out;
+  const std::vector<double> f0 = results.truths[t].numbers("mode_frequency_hz"),
+                            z0 = results.truths[t].numbers("mode_damping_ratio");
+  for (int k = 0; k < modes && static_cast<std::size_t>(k) < std::min(f0.size(), z0.size()); ++k) {
+    ModeErrors e;
+    e.mode = k + 1;
+    e.truth_frequency_hz = f0[static_cast<std::size_t>(k)];
+    e.truth_damping_ratio = z0[static_cast<std::size_t>(k)];
+    std::vector<double> df, dz;
+    for (const LandscapeRow* r : run.references) {
+      if (!r || r->record.text("status") == "failed" || !r->record.has("fitted_mode_frequency_hz")) continue;
+      const std::vector<double> f = r->record.numbers("fitted_mode_frequency_hz"),
+                                z = r->record.numbers("fitted_mode_damping_ratio");
+      if (static_cast<std::size_t>(k) >= std::min(f.size(), z.size())) continue;
+      df.push_back(f[static_cast<std::size_t>(k)] / e.truth_frequency_hz - 1);
+      dz.push_back(z[static_cast<std::size_t>(k)] / e.truth_damping_ratio - 1);
+    }
+    e.frequency = stats(df);
+    e.damping = stats(dz);
+    if (e.frequency.count > 1) e.frequency_mcse = e.frequency.std / std::sqrt(e.frequency.count);
+    if (e.damping.count > 1) e.damping_mcse = e.damping.std / std::sqrt(e.damping.count);
+    out.push_back(e);
+  }
+  return out;
+}
+
 std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs) {
   std::vector<StartPair> pairs;
   // An outcome's key within its experiment: the same record, direction and offset.
@@ -322,6 +353,7 @@ StartDistanceMetrics start_distance_metrics(const StudyResults& results) {
         run.fitted_modes = r.has("fitted_modes") ? static_cast<int>(r.number("fitted_modes")) : 0;
         run.modes_in_data = r.has("modes_in_data") ? static_cast<int>(r.number("modes_in_data")) : 0;
       }
+      run.mode_errors = mode_errors(results, run, run.fitted_modes);
       set_radius(spec, static_cast<int>(ei), run);
       run.record_s = samples * spec.truth.experiment.dt_s;
       StartDistanceMetrics prediction;

@@ -74,6 +74,17 @@ struct ReferenceErrors {
   double efficiency() const { return errors.rmse / bound; }  // RMSE / bound
 };
 
+// A run's fits from the truth, for one mode of the data (issue 35: damping judged per mode, since under a damping law
+// the model lacks cDI and gamma have no true value): the fitted model's k-th damped mode against the truth's k-th
+// (natural frequency and damping ratio, the truth's as its beam has them, before any sensor), as relative errors
+// over the records with their Monte-Carlo standard errors.
+struct ModeErrors {
+  int mode = 0;  // 1-based
+  double truth_frequency_hz = std::nan(""), truth_damping_ratio = std::nan("");
+  Stats frequency, damping;  // relative errors f_fit / f_truth - 1 and zeta_fit / zeta_truth - 1
+  double frequency_mcse = std::nan(""), damping_mcse = std::nan("");
+};
+
 // The curves of a finished study.
 struct StartCurvePoint {
   double offset = 0;
@@ -101,6 +112,7 @@ struct StartRun {
   std::vector<ReachOutcome> outcomes;             // every start of the counted records
   std::vector<StartCurvePoint> points;            // by offset, pooled over records
   std::vector<ReferenceErrors> reference_errors;  // per estimated parameter, over the counted records
+  std::vector<ModeErrors> mode_errors;            // per mode of the data (fitted_modes), over the counted records
   // Every fit of the run (from the truth and the offsets) and those whose evaluation budget ran out (status
   // "max-evaluations": where a derivative-free search's budget binds, the tables count it).
   int fits_run = 0, budget_exhausted = 0;
@@ -118,6 +130,9 @@ struct StartPair {
 };
 // The reference errors of a run whose references, truth and samples are set (start_distance_metrics fills them).
 std::vector<ReferenceErrors> reference_errors(const StudyResults& results, const StartRun& run);
+
+// The same run's mode errors for its first `modes` modes (empty when the truth's modes or the fits' are not recorded).
+std::vector<ModeErrors> mode_errors(const StudyResults& results, const StartRun& run, int modes);
 
 // Every pair of runs within each experiment, in run order.
 std::vector<StartPair> paired_comparisons(const std::vector<StartRun>& runs);

@@ -408,6 +408,9 @@ Record run_landscape(const StudySpec& spec, const Unit& unit, const Record& trut
   });
 }
 
+// The fitted model's modes a fit from the truth records: at most 6 are fitted (fit.spikes), 8 leave a margin.
+constexpr std::size_t kRecordedModes = 8;
+
 Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
   Record prefilled;
   record_unrun_fit(prefilled, spec.fit.estimate);
@@ -440,7 +443,25 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
       r.set("shrunk", s.shrunk ? 1.0 : 0.0);
     }
     for (const auto& key : spec.fit.estimate) r.set("start." + key, value(o.start, key));
-    record_fit(r, fit::fit(o, data));
+    const fit::FitResult result = fit::fit(o, data);
+    record_fit(r, result);
+    // A fit from the truth also records its model's damped modes, so that the tables can judge frequency and damping
+    // per mode against the truth's own (issue 35: under a damping law the model lacks, cDI and gamma have no true
+    // value, but every mode's damping ratio has).
+    if (unit.index < 0 && result.status != "failed") {
+      model::BeamParameters fitted = spec.truth.parameters;
+      for (const auto& p : result.parameters) set(fitted, p.key, p.estimate);
+      const galerkin::SplineSpace space(unit.elements);
+      const galerkin::BeamForms forms(space, fitted.l, fitted.support);
+      std::vector<double> f, zeta;
+      for (const auto& m : galerkin::StateSpaceModes(galerkin::combine(forms, fitted)).underdamped_modes()) {
+        if (f.size() >= kRecordedModes) break;
+        f.push_back(m.frequency_hz);
+        zeta.push_back(m.damping_ratio);
+      }
+      r.set("fitted_mode_frequency_hz", f);
+      r.set("fitted_mode_damping_ratio", zeta);
+    }
   });
 }
 

@@ -75,6 +75,12 @@ void report_start_distance(const StudySpec& spec, const RenderedFiles& tables, s
               "column counts the run's fits (from the truth and every offset) that ran out of their evaluation "
               "budget:\n\n"
            << read(tables, "start_distance_reference.md") << "\n";
+  if (has(tables, "start_distance_modes.md"))
+    report << "The same fits judged per mode of the data: the fitted model's natural frequency f_k and damping ratio "
+              "zeta_k against the truth beam's own (before the sensor), bias of the relative error with its "
+              "Monte-Carlo standard error (* beyond 2 MCSE). Under a damping law the model lacks, cDI and gamma have "
+              "no true value, but every mode's damping ratio has:\n\n"
+           << read(tables, "start_distance_modes.md") << "\n";
 }
 
 }  // namespace

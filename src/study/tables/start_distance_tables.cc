@@ -1,5 +1,6 @@
 #include "study/tables/start_distance_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -93,6 +94,78 @@ Rendered render_reference_md(const StudySpec& spec, const StartDistanceMetrics& 
   return {"start_distance_reference.md", os.str()};
 }
 
+// With several records: each run's fitted modes against the truth's, per mode (reference_modes.csv), and as the
+// report's table (start_distance_modes.md: frequency and damping-ratio errors with their MCSE, * beyond 2 MCSE).
+Rendered render_modes_csv(const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  os << "cost,method,mode,truth_frequency_hz,truth_damping_ratio,fits,frequency_bias,frequency_mcse,frequency_rmse,"
+        "damping_bias,damping_mcse,damping_rmse,experiment,pulse_width_s,samples,modes_in_data\n";
+  for (const auto& run : m.runs)
+    for (const auto& e : run.mode_errors)
+      os << run.cost << "," << run.method << "," << e.mode << "," << io::round_trip(e.truth_frequency_hz) << ","
+         << io::round_trip(e.truth_damping_ratio) << "," << e.frequency.count << "," << io::round_trip(e.frequency.mean)
+         << "," << io::round_trip(e.frequency_mcse) << "," << io::round_trip(e.frequency.rmse) << ","
+         << io::round_trip(e.damping.mean) << "," << io::round_trip(e.damping_mcse) << ","
+         << io::round_trip(e.damping.rmse) << experiment_csv(run) << "\n";
+  return {"start_distance/reference_modes.csv", os.str()};
+}
+
+Rendered render_modes_md(const StartDistanceMetrics& m) {
+  std::size_t modes = 0;
+  for (const auto& run : m.runs) modes = std::max(modes, run.mode_errors.size());
+  std::ostringstream os;
+  const bool several = m.experiments > 1;
+  os << (several ? "| modes in data |" : "|") << " cost | method |";
+  for (std::size_t k = 1; k <= modes; ++k) os << " f" << k << " | zeta" << k << " |";
+  os << "\n|" << (several ? "---|" : "") << "---|---|";
+  for (std::size_t k = 0; k < modes; ++k) os << "---|---|";
+  os << "\n";
+  const auto cell = [](const Stats& s, double mcse) {
+    return s.count == 0 ? std::string("-")
+                        : pct(s.mean) + " (" + pct(mcse) + ")" + (std::abs(s.mean) > 2 * mcse ? " *" : "");
+  };
+  for (const auto& run : m.runs) {
+    if (several) os << "| " << run.modes_in_data << " ";
+    os << "| " << run.cost << " | " << run.method << " |";
+    for (std::size_t k = 0; k < modes; ++k) {
+      if (k < run.mode_errors.size())
+        os << " " << cell(run.mode_errors[k].frequency, run.mode_errors[k].frequency_mcse) << " | "
+           << cell(run.mode_errors[k].damping, run.mode_errors[k].damping_mcse) << " |";
+      else
+        os << " - | - |";
+    }
+    os << "\n";
+  }
+  return {"start_distance_modes.md", os.str()};
+}
+
+// Compute beside success (issue 35 item 3), per run: its fits, their model evaluations and seconds (median and
+// total). Seconds change from run to run, so they live in a timings file of their own (start_distance/timings.csv),
+// beside timings.csv, and never in a table or the report block.
+Rendered render_run_timings(const StudyResults& results, const StartDistanceMetrics& m) {
+  std::ostringstream os;
+  os << "cost,method,fits,median_evaluations,total_evaluations,median_seconds,total_seconds,experiment,"
+        "pulse_width_s,samples,modes_in_data\n";
+  for (const auto& run : m.runs) {
+    std::vector<double> evaluations, seconds;
+    for (const auto& row : results.starts)
+      if (row.unit->truth == run.truth && row.unit->samples == run.samples && row.unit->cost == run.cost &&
+          row.unit->method == run.method) {
+        evaluations.push_back(row.record.number("evaluations"));
+        seconds.push_back(row.record.has("wall_time_s") ? row.record.number("wall_time_s") : std::nan(""));
+      }
+    const auto total = [](const std::vector<double>& v) {
+      double sum = 0;
+      for (double x : v) sum += std::isfinite(x) ? x : 0;
+      return sum;
+    };
+    os << run.cost << "," << run.method << "," << evaluations.size() << "," << io::round_trip(median(evaluations))
+       << "," << io::round_trip(total(evaluations)) << "," << io::round_trip(median(seconds)) << ","
+       << io::round_trip(total(seconds)) << experiment_csv(run) << "\n";
+  }
+  return {"start_distance/timings.csv", os.str()};
+}
+
 }  // namespace
 
 RenderedFiles render_start_distance(const StudyResults& results, const StartDistanceMetrics& m) {
@@ -160,6 +233,9 @@ RenderedFiles render_start_distance(const StudyResults& results, const StartDist
     files.push_back(render_pairs(m));
     files.push_back(render_reference_csv(spec, m));
     files.push_back(render_reference_md(spec, m));
+    files.push_back(render_modes_csv(m));
+    files.push_back(render_modes_md(m));
+    files.push_back(render_run_timings(results, m));
   }
   {
     std::ostringstream os;
