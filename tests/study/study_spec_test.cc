@@ -435,6 +435,25 @@ TEST(StudyPlan, StartDistanceRecordsEachHaveTheirOwnNoiseAndReference) {
             "record)");
 }
 
+TEST(StudyPlan, StartDistanceRecordsBringTheirBoundOnce) {
+  const auto bounds = [](const std::string& text) {
+    std::vector<std::pair<double, int>> out;
+    for (const auto& u : make_plan(parse_study(text, "s.toml", ".")).units)
+      if (u.kind == UnitKind::Bound) out.emplace_back(u.noise, u.elements);
+    return out;
+  };
+  const std::string starts =
+      "\n[start_distance]\nelements = 8\noffsets = [0.01]\ndirections = 1\nnoise = 0.01\n"
+      "runs = [\"time/direct\"]\n";
+  // No efficiency output and one record: no bound.
+  EXPECT_TRUE(bounds(std::string(kValid) + starts).empty());
+  // Several records: the start distance's experiment, at its noise and N.
+  EXPECT_EQ(bounds(std::string(kValid) + starts + "records = 2\n"), (std::vector<std::pair<double, int>>{{0.01, 8}}));
+  // With the sweep's bounds as well, that setting once, after the sweep's own (noise 0.01 at N = 4 and 8).
+  EXPECT_EQ(bounds(std::string(kValid) + starts + "records = 2\n[outputs]\nefficiency = true\n"),
+            (std::vector<std::pair<double, int>>{{0.01, 4}, {0.01, 8}}));
+}
+
 TEST(StudyPlan, ShardsPartitionTheUnits) {
   const Plan plan = make_plan(parse_study(kValid, "s.toml", "."));
   std::multiset<std::string> seen;

@@ -241,24 +241,37 @@ void plan_landscape(const StudySpec& spec, const std::string& fit, Plan& plan) {
     }
 }
 
-// The Cramér-Rao bound of every noisy experiment and N of the sweep (no noise, no bound).
+// The Cramér-Rao bounds: with outputs.efficiency, of every noisy experiment and N of the sweep (no noise, no bound);
+// with start_distance.records > 1, of every experiment the start-distance runs use, at its N and noise (the fits from
+// the truth over the records are set against it: start_distance.h, ReferenceErrors). Each setting once.
 void plan_bounds(const StudySpec& spec, Plan& plan) {
+  const auto& d = spec.start_distance;
   for (std::size_t ti = 0; ti < plan.truths.size(); ++ti)
-    for (int samples : spec.sweep.samples)
-      for (double noise : spec.sweep.noise)
-        for (int n : spec.sweep.elements) {
-          if (noise == 0) continue;
-          Unit u = unit_on(UnitKind::Bound, plan, ti, samples);
-          u.elements = n;
-          u.noise = noise;
-          std::ostringstream os;
-          os << "bound;" << plan.truths[ti].canonical << ";record_samples=" << samples
-             << ";noise=" << io::round_trip(noise) << ";N=" << n << ";estimate=";
-          for (const auto& key : spec.fit.estimate) os << key << ",";
-          u.canonical = os.str();
-          identify(u, spec);
-          plan.units.push_back(u);
-        }
+    for (std::size_t si = 0; si < spec.sweep.samples.size(); ++si) {
+      const int samples = spec.sweep.samples[si];
+      // (noise, N) in the sweep's order, then the start distance's when it is not among them.
+      std::vector<std::pair<double, int>> settings;
+      if (spec.outputs.efficiency)
+        for (double noise : spec.sweep.noise)
+          for (int n : spec.sweep.elements)
+            if (noise > 0) settings.emplace_back(noise, n);
+      const bool starts_here = d.every_experiment || (ti == 0 && si == 0);
+      if (d.enabled && d.records > 1 && d.noise > 0 && starts_here &&
+          std::find(settings.begin(), settings.end(), std::pair(d.noise, d.elements)) == settings.end())
+        settings.emplace_back(d.noise, d.elements);
+      for (const auto& [noise, n] : settings) {
+        Unit u = unit_on(UnitKind::Bound, plan, ti, samples);
+        u.elements = n;
+        u.noise = noise;
+        std::ostringstream os;
+        os << "bound;" << plan.truths[ti].canonical << ";record_samples=" << samples
+           << ";noise=" << io::round_trip(noise) << ";N=" << n << ";estimate=";
+        for (const auto& key : spec.fit.estimate) os << key << ",";
+        u.canonical = os.str();
+        identify(u, spec);
+        plan.units.push_back(u);
+      }
+    }
 }
 
 // Every start-distance run from the truth (index -1: the reference minimum), then from every offset in every
@@ -359,7 +372,7 @@ Plan make_plan(const StudySpec& spec) {
   const std::string fit = fit_text(spec);
   plan_cases(spec, fit, plan);
   if (spec.landscape.enabled) plan_landscape(spec, fit, plan);
-  if (spec.outputs.efficiency) plan_bounds(spec, plan);
+  plan_bounds(spec, plan);
   if (spec.start_distance.enabled) plan_starts(spec, fit, plan);
   mark_overlays(spec, plan);
   plan_frequencies(spec, plan);
