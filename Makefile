@@ -9,10 +9,10 @@ BEAMID     := $(BUILD)/beamid
 .PHONY: fuzz all deps build binary test test-unit test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature; the
-# comparison files are issue 35's design: 30 minutes of them on two cores, measured at a9b913c), and
+# comparison files are issue 35's design: about 60 minutes of them on two cores, measured at 721ddf5), and
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
 # the 30 minutes `make study` may take on two cores. On a cluster, any of them runs as shards (README.md).
-STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
+STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick comparison-thick-control comparison-thick-n48 comparison-thick-sensor paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
 REAL_STUDIES ?= real-steel real-steel-candidates synthetic-strip real-unb-tipmass
 FULL_STUDIES ?= start-distance-thick efficiency-thick windows windows-thick modes-basin modes-basin-thick modes-efficiency modes-efficiency-thick landscape-thick
 STUDY_JOBS ?= 0
