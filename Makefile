@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 BEAMID     := $(BUILD)/beamid
 
-.PHONY: fuzz all deps build binary test test-unit test-slurm test-sanitize bench verify report clean study study-full study-smoke plots golden install
+.PHONY: fuzz all deps build binary test test-unit test-slurm test-sanitize bench verify report report-check clean study study-full study-smoke plots golden install
 
 # The studies of `make study`, in the order REPORT.md presents them (studies/*.toml; smoke is CI's miniature; the
 # comparison files are issue 35's design: about 60 minutes of them on two cores, measured at 721ddf5), and
@@ -126,6 +126,12 @@ verify: binary
 report: binary
 	$(BEAMID) report --update REPORT.md --results results
 	/usr/bin/python3 tools/report_html.py REPORT.md REPORT.html
+
+# The one-commit rule (issue 35): fails with one line naming the blocks of REPORT.md when they come from more than
+# one commit, a dirty tree, or name none; `python3 tools/report_commits.py REPORT.md` lists them by commit. Not part
+# of `make report` until `make study` regenerates every block at one commit.
+report-check:
+	/usr/bin/python3 tools/report_commits.py REPORT.md --check
 
 # Every study (each resumes from its results/<study>/store/ if interrupted), then plots and REPORT.md. Tables are
 # byte-identical run to run; only results/*/timings.csv changes.
