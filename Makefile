@@ -12,7 +12,7 @@ BEAMID     := $(BUILD)/beamid
 # comparison files are issue 35's design: about 60 minutes of them on two cores, measured at 721ddf5), and
 # those only `make study-full` adds (their committed results name the commit that made them): together they exceed
 # the 30 minutes `make study` may take on two cores. On a cluster, any of them runs as shards (README.md).
-STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick comparison-thick-control comparison-thick-n48 comparison-thick-sensor paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
+STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick comparison-thick-control comparison-thick-n48 comparison-thick-damping comparison-thick-sensor paper thick modes landscape start-distance efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
 REAL_STUDIES ?= real-steel real-steel-candidates synthetic-strip real-unb-tipmass
 FULL_STUDIES ?= start-distance-thick efficiency-thick windows windows-thick modes-basin modes-basin-thick modes-efficiency modes-efficiency-thick landscape-thick
 STUDY_JOBS ?= 0
