@@ -256,7 +256,7 @@ void stayed_errors(const std::vector<const CaseRow*>& members, const std::string
   fits = static_cast<int>(members.size());
   stayed = static_cast<int>(values.size());
   errors = stats(values);
-  mcse = errors.std / std::sqrt(static_cast<double>(errors.count));
+  mcse = errors.mcse();
 }
 
 }  // namespace

@@ -196,7 +196,7 @@ std::vector<ReferenceErrors> reference_errors(const StudyResults& results, const
     for (const LandscapeRow* r : run.references)
       if (r && r->record.text("status") != "failed") errors.push_back(r->record.number("estimate." + key) / truth - 1);
     e.errors = stats(errors);
-    if (e.errors.count > 1) e.mcse = e.errors.std / std::sqrt(e.errors.count);
+    e.mcse = e.errors.mcse();
     if (bound) e.bound = bound->record.number("relative_sd." + key);
     out.push_back(e);
   }
@@ -227,8 +227,8 @@ std::vector<ModeErrors> mode_errors(const StudyResults& results, const StartRun&
     }
     e.frequency = stats(df);
     e.damping = stats(dz);
-    if (e.frequency.count > 1) e.frequency_mcse = e.frequency.std / std::sqrt(e.frequency.count);
-    if (e.damping.count > 1) e.damping_mcse = e.damping.std / std::sqrt(e.damping.count);
+    e.frequency_mcse = e.frequency.mcse();
+    e.damping_mcse = e.damping.mcse();
     out.push_back(e);
   }
   return out;

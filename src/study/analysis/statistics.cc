@@ -37,6 +37,8 @@ std::string count_with_interval(int successes, int cases) {
   return buf;
 }
 
+double Stats::mcse() const { return count > 1 ? std / std::sqrt(static_cast<double>(count)) : kNaN; }
+
 Stats stats(const std::vector<double>& values) {
   Stats s;
   s.mean = s.std = s.rmse = s.median = kNaN;

@@ -15,6 +15,8 @@ double median(std::vector<double> values);
 struct Stats {
   int count = 0;                   // finite values
   double mean, std, rmse, median;  // NaN when undefined (std needs two values)
+  // The Monte-Carlo standard error of the mean, std / sqrt(count) (comparison.md section 4; NaN under two values).
+  double mcse() const;
 };
 Stats stats(const std::vector<double>& values);
 

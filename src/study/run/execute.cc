@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/hash.h"
@@ -197,6 +199,22 @@ Overlay case_overlay(const StudySpec& spec, const Unit& unit, const Record& trut
 
 }  // namespace
 
+namespace {
+
+// The natural frequencies (Hz) and damping ratios of a system's underdamped modes, lowest first, at most `limit`.
+std::pair<std::vector<double>, std::vector<double>> mode_lists(
+    const galerkin::SecondOrderSystem& system, std::size_t limit = std::numeric_limits<std::size_t>::max()) {
+  std::pair<std::vector<double>, std::vector<double>> out;
+  for (const auto& m : galerkin::StateSpaceModes(system).underdamped_modes()) {
+    if (out.first.size() >= limit) break;
+    out.first.push_back(m.frequency_hz);
+    out.second.push_back(m.damping_ratio);
+  }
+  return out;
+}
+
+}  // namespace
+
 Record run_truth(const StudySpec& spec, const Unit& truth) {
   Record record = timed(Record(), Failure::InStatus, [&](Record& r) {
     const model::BeamParameters beam = spec.truth.parameters;
@@ -243,12 +261,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
       trace.y = signal::sense(sensor, trace.y, experiment.dt_s);
       kept = signal::rms(trace.y) / signal::rms(ideal);
     }
-    const galerkin::StateSpaceModes modes(system);
-    std::vector<double> f, zeta;
-    for (const auto& m : modes.underdamped_modes()) {
-      f.push_back(m.frequency_hz);
-      zeta.push_back(m.damping_ratio);
-    }
+    const auto [f, zeta] = mode_lists(system);
     // A truth that holds no vibration (sensor or force at the clamp, a pulse of 1e300 s, a step of 1e-300 s) would
     // let every time fit "converge" at cost 0 on nothing; it fails, and its cases with it, saying why.
     double peak = 0;
@@ -449,16 +462,8 @@ Record run_start(const StudySpec& spec, const Unit& unit, const Record& truth) {
     // per mode against the truth's own (issue 35: under a damping law the model lacks, cDI and gamma have no true
     // value, but every mode's damping ratio has).
     if (unit.index < 0 && result.status != "failed") {
-      model::BeamParameters fitted = spec.truth.parameters;
-      for (const auto& p : result.parameters) set(fitted, p.key, p.estimate);
-      const galerkin::SplineSpace space(unit.elements);
-      const galerkin::BeamForms forms(space, fitted.l, fitted.support);
-      std::vector<double> f, zeta;
-      for (const auto& m : galerkin::StateSpaceModes(galerkin::combine(forms, fitted)).underdamped_modes()) {
-        if (f.size() >= kRecordedModes) break;
-        f.push_back(m.frequency_hz);
-        zeta.push_back(m.damping_ratio);
-      }
+      const auto [f, zeta] =
+          mode_lists(galerkin::assemble(galerkin::SplineSpace(unit.elements), result.beam), kRecordedModes);
       r.set("fitted_mode_frequency_hz", f);
       r.set("fitted_mode_damping_ratio", zeta);
     }
