@@ -8,6 +8,7 @@
 #include "api/record_checks.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "fit/sensed_output.h"
 #include "galerkin/second_order_system.h"
 #include "galerkin/spline_space.h"
 #include "io/resources.h"
@@ -148,6 +149,33 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
 
 }  // namespace
 
+namespace {
+
+// --sensor-bandwidth and its order and oversampling: the record's anti-alias filter in the model, validated.
+signal::SensorFilter sensor_filter_of(const FitRequest& request, const simulation::Experiment& experiment) {
+  const Caller& caller = request.caller;
+  signal::SensorFilter f;
+  if (!request.sensor_bandwidth_hz) {
+    if (request.sensor_filter_order)
+      refuse(caller, "sensor-filter-order", std::to_string(*request.sensor_filter_order),
+             "is the order of the --sensor-bandwidth filter: give its cut-off too");
+    if (request.sensor_oversampling)
+      refuse(caller, "sensor-oversampling", std::to_string(*request.sensor_oversampling),
+             "is how finely the --sensor-bandwidth filter's model is simulated: give its cut-off too");
+    return f;
+  }
+  f.cutoff_hz = *request.sensor_bandwidth_hz;
+  f.order = request.sensor_filter_order.value_or(f.order);
+  f.oversampling = request.sensor_oversampling.value_or(f.oversampling);
+  if (!(f.cutoff_hz > 0))
+    refuse(caller, "sensor-bandwidth", format_value(f.cutoff_hz), "must be > 0 Hz (leave it out for no filter)");
+  if (auto error = fit::sensed_validation_error(f, experiment))
+    refuse(caller, "sensor-bandwidth", format_value(f.cutoff_hz), *error);
+  return f;
+}
+
+}  // namespace
+
 fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
                             std::ostream& warnings, bool* welch_picked) {
   const Caller& caller = request.caller;
@@ -236,6 +264,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
       refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
   o.of_interest = request.of_interest;
+  o.sensor = sensor_filter_of(request, o.experiment);
   pick_spikes(request, data, o, welch_picked);
   o.start = request.beam;
   for (const auto& e : o.estimate)

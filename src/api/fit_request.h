@@ -54,6 +54,11 @@ struct FitRequest {
   std::optional<std::string> detrend;         // --detrend (default linear for a free decay, none otherwise)
   std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments
   std::optional<int> windows;                 // --windows K: also the spread of the estimates over K windows
+  // --sensor-bandwidth, --sensor-filter-order, --sensor-oversampling: the record's anti-alias filter in the model
+  // (fit/sensed_output.h; unset: none)
+  std::optional<double> sensor_bandwidth_hz;
+  std::optional<int> sensor_filter_order;
+  std::optional<int> sensor_oversampling;
 };
 
 // What compute_fit returns: the options the request gave, the records (several for several channels, else none: one

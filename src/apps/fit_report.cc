@@ -299,7 +299,11 @@ void header_section(Markdown& md, const FitReportInput& in, const costs::Evaluat
   md << (in.channels.size() > 1 ? ", fitted jointly: the modes and spikes below are the first's" : "") << ")\n";
   md << "- model: beam `" << in.beam_name << "` (known parameters and start), N = " << o.elements << ", "
      << o.experiment.excitation << " excitation, " << o.experiment.output << " output, integrator "
-     << o.simulator.integrator << "\n";
+     << o.simulator.integrator;
+  if (o.sensor.cutoff_hz > 0)
+    md << ", the sensor's order-" << o.sensor.order << " Butterworth low-pass at " << g(o.sensor.cutoff_hz)
+       << " Hz in the model (simulated " << o.sensor.oversampling << " times finer)";
+  md << "\n";
   md << "- cost `" << o.cost.name << "`";
   if (costs::is_spike_cost(o.cost.name))
     md << ", NM = " << o.cost.spikes.count << " spikes (rule " << o.cost.spikes.rule << "), window "

@@ -166,6 +166,9 @@ api::FitRequest fit_request_of(const Flags& a, const std::optional<io::TimeSerie
   if (a.has("detrend")) r.detrend = a.text("detrend");
   r.welch = a.optional_integer("welch");
   r.windows = a.optional_integer("windows");
+  r.sensor_bandwidth_hz = a.optional_number("sensor-bandwidth");
+  r.sensor_filter_order = a.optional_integer("sensor-filter-order");
+  r.sensor_oversampling = a.optional_integer("sensor-oversampling");
   return r;
 }
 

@@ -302,7 +302,13 @@ std::vector<FlagSpec> fit_flags() {
       integer_flag("windows",
                    "also fit K disjoint windows of the record(s) and report the estimates' spread over them, an "
                    "uncertainty that admits model error (default: not done)",
-                   2, 64)};
+                   2, 64),
+      number_flag("sensor-bandwidth",
+                  "the record's anti-alias filter in the model: a Butterworth low-pass of this cut-off, Hz, applied "
+                  "to the model's output simulated --sensor-oversampling times finer (default: none)"),
+      integer_flag("sensor-filter-order", "that filter's order (default 4)", 1, 8),
+      integer_flag("sensor-oversampling", "the model simulated this many times finer for the filter (default 16)", 2,
+                   64)};
   for (const auto& more : {experiment_flag_specs(), cost_flags(true), import_flags()})
     flags.insert(flags.end(), more.begin(), more.end());
   for (FlagSpec& f : flags) {  // lists: one record per channel, each at its own sensor position

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "fit/sensed_output.h"
 #include "galerkin/second_order_system.h"
 #include "simulation/sensitivities.h"
 
@@ -117,7 +118,9 @@ CramerRaoBound cramer_rao_bound(const LogModel& model, const Eigen::VectorXd& lo
 CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elements,
                                      const simulation::Experiment& experiment, const std::vector<std::string>& keys,
                                      double noise_sd, const simulation::SimulatorOptions& simulator,
-                                     const SensitivityOptions& options) {
+                                     const SensitivityOptions& options, const signal::SensorFilter& sensor) {
+  if (auto error = sensed_validation_error(sensor, experiment)) throw InputError("Cramér-Rao bound: " + *error);
+  const simulation::Experiment simulated = simulated_experiment(experiment, sensor);
   if (keys.empty()) throw InputError("Cramér-Rao bound: no parameter to bound");
   Eigen::VectorXd log_q(static_cast<Eigen::Index>(keys.size()));
   for (std::size_t k = 0; k < keys.size(); ++k) {
@@ -136,8 +139,9 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   const galerkin::BeamForms forms(space, beam.l, beam.support);
   if (simulation::has_exact_sensitivities(experiment, keys) && simulator.integrator == simulation::kFast) {
     check_noise(noise_sd);
-    const simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, experiment, keys);
+    simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, simulated, keys);
     if (!s.trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + s.trace.status);
+    sense_columns(sensor, experiment.dt_s, s.dy_dq);
     CramerRaoBound b;
     b.keys = keys;
     b.method = "exact";
@@ -152,8 +156,9 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
     model::BeamParameters b = beam;
     for (std::size_t k = 0; k < keys.size(); ++k)
       model::set_parameter_value(b, keys[k], std::exp(x(static_cast<Eigen::Index>(k))));
-    simulation::Trace trace = simulation::simulate(forms, b, experiment, simulator);
+    simulation::Trace trace = simulation::simulate(forms, b, simulated, simulator);
     if (!trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + trace.status);
+    sense_output(sensor, experiment.dt_s, trace.y);
     return std::move(trace.y);
   };
   CramerRaoBound b = cramer_rao_bound(model, log_q, noise_sd, options);

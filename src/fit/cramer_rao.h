@@ -23,6 +23,7 @@
 
 #include "model/beam_parameters.h"
 #include "signal/noise.h"
+#include "signal/sensor_filter.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 
@@ -57,11 +58,12 @@ CramerRaoBound cramer_rao_bound(const LogModel& model, const Eigen::VectorXd& lo
 // The bound for the beam parameters `keys` (each > 0 in `beam`, not l) of the output of `experiment` from the
 // Galerkin model of order `elements` with the given simulator: with the exact sensitivities of the modal closed form
 // for a pulse and the fast integrator, else with Ridders' differences of the simulator. InputError for a bad key or
-// a parameter that is 0.
+// a parameter that is 0. With a sensor filter (a cut-off > 0), the bound of the record as that sensor delivers it
+// (fit/sensed_output.h: the sensitivities simulated finer, filtered and decimated, exactly).
 CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elements,
                                      const simulation::Experiment& experiment, const std::vector<std::string>& keys,
                                      double noise_sd, const simulation::SimulatorOptions& simulator = {},
-                                     const SensitivityOptions& options = {});
+                                     const SensitivityOptions& options = {}, const signal::SensorFilter& sensor = {});
 
 // The bound in coloured noise of process sd b.noise_sd (issue 33): F = W^T W / sigma^2 with W the sensitivities
 // whitened for the model (signal::whiten: X^T R^-1 X, R the noise's correlation matrix; time-domain for an AR process,

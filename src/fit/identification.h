@@ -42,6 +42,7 @@
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
 #include "model/beam_parameters.h"
+#include "signal/sensor_filter.h"
 #include "simulation/experiment.h"
 #include "simulation/simulator.h"
 
@@ -59,6 +60,9 @@ struct FitOptions {
   int elements = 16;                       // Galerkin order N
   simulation::Experiment experiment;       // dt_s and samples must match the data
   simulation::SimulatorOptions simulator;  // "fast" by default
+  // The measurement chain's anti-alias filter, in the model (fit/sensed_output.h): a record filtered before sampling
+  // is fitted by the model filtered alike. A cut-off of 0: none (the model's output is the beam's, sampled).
+  signal::SensorFilter sensor;
   costs::CostOptions cost;
   std::vector<EstimatedParameter> estimate;
   std::string scaling = "linear";   // "linear" | "log"

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/limits.h"
+#include "fit/sensed_output.h"
 #include "galerkin/modes.h"
 #include "galerkin/second_order_system.h"
 #include "simulation/free_decay.h"
@@ -20,6 +21,10 @@ struct Objective::Impl {
   galerkin::SplineSpace space;
   galerkin::BeamForms forms;
   simulation::Experiment experiment;
+  // The sensor's filter in the model (fit/sensed_output.h) and the experiment the model is simulated on: the
+  // record's, or finer when the filter is on.
+  signal::SensorFilter sensor;
+  simulation::Experiment simulated;
   std::unique_ptr<simulation::Simulator> simulator;
   bool needs_poles;
   std::vector<double> data;  // free decay: the amplitudes are solved against it
@@ -40,15 +45,21 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
     throw InputError("experiment: samples = " + std::to_string(o.experiment.samples) + ": the data have " +
                      std::to_string(data.size()));
   if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
+  if (auto error = sensed_validation_error(o.sensor, o.experiment)) throw InputError(*error);
   costs::CostOptions cost_options = o.cost;  // the modal cost identifies the decay after the pulse
   if (o.experiment.excitation == simulation::kPulse)
     cost_options.first_free_sample =
         static_cast<int>(std::min<double>(data.size(), std::floor(o.experiment.pulse_width_s / o.experiment.dt_s) + 1));
   cost_ = costs::make_cost(cost_options, data, o.experiment.dt_s);
   const galerkin::SplineSpace space(o.elements);
+  // A transfer function at the DFT bins (freq-ml with a sampled force) is the beam's, not the sensed record's.
+  if (o.sensor.cutoff_hz > 0 && cost_->uses_transfer_function())
+    throw InputError("sensor filter in the model: the " + o.cost.name +
+                     " cost reads the beam's transfer function at the DFT bins, which the filter in the model does not "
+                     "reach (fit it without the filter, or with the time or freq-band cost)");
   impl_ =
-      std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l, o.start.support), o.experiment,
-                                  simulation::make_simulator(o.simulator),
+      std::make_unique<Impl>(Impl{space, galerkin::BeamForms(space, o.start.l, o.start.support), o.experiment, o.sensor,
+                                  simulated_experiment(o.experiment, o.sensor), simulation::make_simulator(o.simulator),
                                   o.cost.name == costs::kModalCost || (o.cost.name == costs::kSpikeSmoothCost &&
                                                                        o.cost.model_poles == costs::kEigenvaluePoles),
                                   o.experiment.excitation == "free-decay" ? data : std::vector<double>{}});
@@ -76,11 +87,13 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
   try {
     if (impl_->pole_jacobian) return evaluate_with_pole_jacobian(beam, keys, jacobian);
     simulation::SensitivityTrace s =
-        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->experiment, keys);
+        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->simulated, keys);
     if (!s.trace.ok()) {
       out.evaluation.status = s.trace.status;
       return out;
     }
+    sense_output(impl_->sensor, impl_->experiment.dt_s, s.trace.y);
+    sense_columns(impl_->sensor, impl_->experiment.dt_s, s.dy_dq);
     out.y = std::move(s.trace.y);
     out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
     if (out.evaluation.ok())
@@ -127,12 +140,13 @@ Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParame
     }
   } else {
     const simulation::ResponseProblem problem =
-        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+        simulation::make_problem(impl_->forms, system, impl_->simulated, beam.l);
     simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
       return out;
     }
+    sense_output(impl_->sensor, impl_->experiment.dt_s, trace.y);
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
   }
@@ -184,13 +198,14 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
       return out;
     }
-    simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
+    simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->simulated, beam.l);
     problem.frf = cost_->uses_transfer_function();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
       return out;
     }
+    sense_output(impl_->sensor, impl_->experiment.dt_s, trace.y);
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
     frf = std::move(trace.frf);

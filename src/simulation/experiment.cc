@@ -90,6 +90,22 @@ std::string output_column(const std::string& output) {
   }
 }
 
+Experiment finer(const Experiment& e, int factor) {
+  if (factor < 1) throw InputError("finer: factor = " + std::to_string(factor) + ": must be >= 1");
+  Experiment fine = e;
+  fine.dt_s = e.dt_s / factor;
+  fine.samples = e.samples * factor;
+  if (!e.force_samples_N.empty()) {
+    ResponseProblem held;
+    held.force_samples_N = e.force_samples_N;
+    held.dt_s = e.dt_s;
+    fine.force_samples_N.resize(static_cast<std::size_t>(fine.samples));
+    for (std::size_t j = 0; j < fine.force_samples_N.size(); ++j)
+      fine.force_samples_N[j] = held.force_N(static_cast<double>(j) * fine.dt_s);
+  }
+  return fine;
+}
+
 std::vector<double> sampled_pulse(const Experiment& e) {
   ResponseProblem pulse;
   pulse.amplitude_N = e.force_amplitude_N;

@@ -45,6 +45,11 @@ struct Experiment {
   std::vector<double> force_samples_N;
 };
 
+// The experiment sampled `factor` times finer over the same time (dt_s / factor, samples x factor): what a sensor
+// of finite bandwidth is simulated on before its filter and decimation (signal/sensor_filter.h). A sampled force is
+// given as the simulator holds it (ResponseProblem::force_N: linear between its samples, held after the last).
+Experiment finer(const Experiment& experiment, int factor);
+
 // The sin^2 pulse's force at every sample, F0 sin^2(pi t_i / tau) for t_i <= tau and 0 after (force_amplitude_N,
 // pulse_width_s, dt_s, samples): what a force channel records of the pulse, to drive excitation "force" with.
 std::vector<double> sampled_pulse(const Experiment& experiment);

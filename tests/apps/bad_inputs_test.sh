@@ -764,6 +764,15 @@ expect_error "duration 0" "beamid spikes: --duration = '0': must be > 0 (s)" spi
 expect_error "order too high" "beamid modal-id: --order = '3000': must be at most the pencil parameter" modal-id \
   --data "$tmp/z.csv" --modes 2 --order 3000
 
+# The record's anti-alias filter in the model: a cut-off the fine record cannot realise, an order without a cut-off,
+# and a free decay, whose amplitudes the filter's transient would not match.
+expect_error "a sensor cut-off too high" "beamid fit: --sensor-bandwidth = '2500': sensor cut-off = 2500 Hz: must be below" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --sensor-bandwidth 2500
+expect_error "a filter order alone" "beamid fit: --sensor-filter-order = '6': is the order of the --sensor-bandwidth" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --sensor-filter-order 6
+expect_error "a filter on a free decay" "a free decay's amplitudes are solved against the data" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --excitation free-decay --sensor-bandwidth 100
+
 # Every command's error line begins with its command (a bare "beamid:" before: the sixth pass's S377, S475).
 expect_error "report of a missing file" "beamid report: $tmp/none.md: cannot read the report given to --update" \
   report --update "$tmp/none.md" --results "$tmp"

@@ -311,6 +311,14 @@ TEST(StudySpec, AFiniteBandwidthSensorIsReadNamedInTheIdsAndRefusedWhereItCannot
             std::string::npos);
   EXPECT_NE(error_of(replaced(sensed, "samples = 256", "samples = 2097152")).find("16 times finer: at most 1048576"),
             std::string::npos);
+  // The filter in a method's fitted model: read, in the cases' ids, and refused without a filter to put there.
+  const StudySpec known = parse_study(
+      replaced(sensed, "strategy = \"direct\"", "strategy = \"direct\"\nsensor_in_model = true"), "s.toml", ".");
+  EXPECT_TRUE(known.methods.at(0).sensor_in_model);
+  EXPECT_NE(make_plan(known).units.front().id, make_plan(s).units.front().id);
+  EXPECT_EQ(error_of(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nsensor_in_model = true")),
+            "s.toml:21: methods.direct.sensor_in_model = true: puts the truth's sensor filter in the fitted model: "
+            "needs [truth] sensor_bandwidth_hz > 0");
   // An order without a cut-off would be an unread key (the adversarial pass's P7).
   EXPECT_NE(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nsensor_filter_order = 4"))
                 .find("needs sensor_bandwidth_hz > 0"),

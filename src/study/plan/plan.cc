@@ -68,7 +68,7 @@ std::string method_text(const MethodSpec& m) {
          (m.eps1_factor == 1 ? std::string() : "/eps1_factor:" + io::round_trip(m.eps1_factor)) +
          (m.eps2_factor == 1 ? std::string() : "/eps2_factor:" + io::round_trip(m.eps2_factor)) +
          (m.noise_model.empty() ? std::string() : "/noise_model:" + m.noise_model) +
-         (m.errors_in_variables ? "/errors_in_variables" : "");
+         (m.errors_in_variables ? "/errors_in_variables" : "") + (m.sensor_in_model ? "/sensor_in_model" : "");
 }
 
 std::string fit_text(const StudySpec& spec) {

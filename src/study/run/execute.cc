@@ -39,23 +39,6 @@ simulation::Experiment experiment_of(const StudySpec& spec, const Unit& unit) {
   return e;
 }
 
-// The experiment sampled `factor` times finer over the same time; a sampled force as the simulator holds it
-// (ResponseProblem::force_N: linear between its samples, held after the last).
-simulation::Experiment finer(const simulation::Experiment& e, int factor) {
-  simulation::Experiment fine = e;
-  fine.dt_s = e.dt_s / factor;
-  fine.samples = e.samples * factor;
-  if (!e.force_samples_N.empty()) {
-    simulation::ResponseProblem held;
-    held.force_samples_N = e.force_samples_N;
-    held.dt_s = e.dt_s;
-    fine.force_samples_N.resize(static_cast<std::size_t>(fine.samples));
-    for (std::size_t j = 0; j < fine.force_samples_N.size(); ++j)
-      fine.force_samples_N[j] = held.force_N(static_cast<double>(j) * fine.dt_s);
-  }
-  return fine;
-}
-
 // The clean record of a unit: the truth's samples cut to the unit's record length.
 std::vector<double> clean_record(const Record& truth, int samples) {
   std::vector<double> y = truth.numbers("y");
@@ -106,6 +89,7 @@ fit::FitOptions unit_options(const StudySpec& spec, const Unit& unit, int spikes
     o.cost.eps1_factor = m.eps1_factor;
     o.cost.eps2_factor = m.eps2_factor;
     if (!m.noise_model.empty()) o.cost.noise_model = m.noise_model == "truth" ? spec.truth.noise_model : m.noise_model;
+    if (m.sensor_in_model) o.sensor = spec.truth.sensor;
   }
   if (unit.kind == UnitKind::Case)
     for (const auto& [key, factor] : spec.start(unit.start).factor) set(o.start, key, value(o.start, key) * factor);
@@ -233,7 +217,8 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
         galerkin::with_modal_damping(galerkin::combine(forms, beam), spec.truth.modal_damping_ratio);
     // A sensor of finite bandwidth (TruthSpec::sensor): the truth simulated finer, filtered, and sampled.
     const signal::SensorFilter& sensor = spec.truth.sensor;
-    const simulation::Experiment simulated = sensor.cutoff_hz > 0 ? finer(experiment, sensor.oversampling) : experiment;
+    const simulation::Experiment simulated =
+        sensor.cutoff_hz > 0 ? simulation::finer(experiment, sensor.oversampling) : experiment;
     simulation::Trace trace = simulation::simulate(forms, system, beam.l, simulated, options);
     if (truth.cvode_check && trace.ok()) {
       simulation::SimulatorOptions check;
@@ -480,8 +465,9 @@ Record run_bound(const StudySpec& spec, const Unit& unit, const Record& truth) {
     require_truth(truth);
     // The noise the cases add: level x RMS of the clean record (signal/noise.h).
     const double noise_sd = unit.noise * signal::rms(clean_record(truth, unit.samples));
+    // Of the record as the truth's sensor delivers it (its filter, when it has one, in the model).
     fit::CramerRaoBound b = fit::beam_cramer_rao_bound(spec.truth.parameters, unit.elements, experiment_of(spec, unit),
-                                                       spec.fit.estimate, noise_sd);
+                                                       spec.fit.estimate, noise_sd, {}, {}, spec.truth.sensor);
     // In the records' coloured noise of that process sd, the bound of the whitened sensitivities.
     if (spec.truth.noise_model != "white")
       b = fit::coloured_bound(b, signal::parse_noise_model(spec.truth.noise_model));

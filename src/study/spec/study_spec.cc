@@ -242,8 +242,12 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
       if (m.errors_in_variables && spec.truth.force_noise <= 0)
         r.fail("errors_in_variables", "true",
                "weighs the force channel's noise: needs [truth] excitation = 'force' and force_noise > 0");
+      m.sensor_in_model = r.boolean("sensor_in_model", false);
+      if (m.sensor_in_model && !(spec.truth.sensor.cutoff_hz > 0))
+        r.fail("sensor_in_model", "true",
+               "puts the truth's sensor filter in the fitted model: needs [truth] sensor_bandwidth_hz > 0");
       r.finish({"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor",
-                "noise_model", "errors_in_variables"});
+                "noise_model", "errors_in_variables", "sensor_in_model"});
       spec.methods.push_back(m);
     }
   }

@@ -96,6 +96,9 @@ struct MethodSpec {
   // freq-ml's errors-in-variables form with the records' true noise levels (the response's sd, the force channel's
   // sd): each bin over its response noise plus the force's through the model (costs/least_squares.h).
   bool errors_in_variables = false;
+  // The truth's sensor filter ([truth] sensor_bandwidth_hz) in the fitted model (fit/sensed_output.h): a method that
+  // knows the measurement chain, as least squares on a record from a known anti-alias filter is run.
+  bool sensor_in_model = false;
 };
 
 struct SweepSpec {
