@@ -152,7 +152,10 @@ void pick_spikes(const FitRequest& request, const io::TimeSeries& data, fit::Fit
 namespace {
 
 // --sensor-bandwidth and its order and oversampling: the record's anti-alias filter in the model, validated.
-signal::SensorFilter sensor_filter_of(const FitRequest& request, const simulation::Experiment& experiment) {
+// The model with the filter runs R times finer: its record and, for an exact Jacobian, a sensitivity column per
+// estimated parameter, at that length, are guarded against the machine's memory (`samples`: the records' total).
+signal::SensorFilter sensor_filter_of(const FitRequest& request, const simulation::Experiment& experiment,
+                                      double samples, std::ostream& warnings) {
   const Caller& caller = request.caller;
   signal::SensorFilter f;
   if (!request.sensor_bandwidth_hz) {
@@ -171,6 +174,14 @@ signal::SensorFilter sensor_filter_of(const FitRequest& request, const simulatio
     refuse(caller, "sensor-bandwidth", format_value(f.cutoff_hz), "must be > 0 Hz (leave it out for no filter)");
   if (auto error = fit::sensed_validation_error(f, experiment))
     refuse(caller, "sensor-bandwidth", format_value(f.cutoff_hz), *error);
+  // --windows fits every window after the first as a free decay from an unknown state, which the filter's transient
+  // would not match (fit/sensed_output.h): every one would fail after the whole fit had run.
+  if (request.windows)
+    refuse(caller, "windows", std::to_string(*request.windows),
+           "fits the windows after the first as free decays, which a model with --sensor-bandwidth cannot (leave out "
+           "one of them)");
+  guard_run_size(caller, request.elements, samples * f.oversampling,
+                 core::kSimulateBytesPerSample + 8.0 * static_cast<double>(request.estimate.size()), warnings);
   return f;
 }
 
@@ -264,12 +275,13 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
     if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
       refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
   o.of_interest = request.of_interest;
-  o.sensor = sensor_filter_of(request, o.experiment);
+  const double samples = static_cast<double>(data.values.size() * channels.size());
+  o.sensor = sensor_filter_of(request, o.experiment, samples, warnings);
   pick_spikes(request, data, o, welch_picked);
   o.start = request.beam;
   for (const auto& e : o.estimate)
     model::set_parameter_value(o.start, e.key, model::parameter_value(o.start, e.key) * request.start_scale);
-  warn_long_fit(o, static_cast<double>(data.values.size() * channels.size()), caller, warnings);
+  warn_long_fit(o, samples * (o.sensor.cutoff_hz > 0 ? o.sensor.oversampling : 1), caller, warnings);
   return o;
 }
 

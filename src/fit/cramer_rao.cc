@@ -141,7 +141,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
     check_noise(noise_sd);
     simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, simulated, keys);
     if (!s.trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + s.trace.status);
-    sense_columns(sensor, experiment.dt_s, s.dy_dq);
+    sense_columns(sensor, experiment, s.dy_dq);
     CramerRaoBound b;
     b.keys = keys;
     b.method = "exact";
@@ -158,7 +158,7 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
       model::set_parameter_value(b, keys[k], std::exp(x(static_cast<Eigen::Index>(k))));
     simulation::Trace trace = simulation::simulate(forms, b, simulated, simulator);
     if (!trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + trace.status);
-    sense_output(sensor, experiment.dt_s, trace.y);
+    sense_output(sensor, experiment, trace.y);
     return std::move(trace.y);
   };
   CramerRaoBound b = cramer_rao_bound(model, log_q, noise_sd, options);

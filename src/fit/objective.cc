@@ -92,8 +92,8 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
       out.evaluation.status = s.trace.status;
       return out;
     }
-    sense_output(impl_->sensor, impl_->experiment.dt_s, s.trace.y);
-    sense_columns(impl_->sensor, impl_->experiment.dt_s, s.dy_dq);
+    sense_output(impl_->sensor, impl_->experiment, s.trace.y);
+    sense_columns(impl_->sensor, impl_->experiment, s.dy_dq);
     out.y = std::move(s.trace.y);
     out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
     if (out.evaluation.ok())
@@ -139,14 +139,16 @@ Objective::Output Objective::evaluate_with_pole_jacobian(const model::BeamParame
       return out;
     }
   } else {
+    // The cost reads the poles alone, which the sensor's filter does not move: the record's own grid gives them, and
+    // the unfiltered output is not handed on.
     const simulation::ResponseProblem problem =
-        simulation::make_problem(impl_->forms, system, impl_->simulated, beam.l);
+        simulation::make_problem(impl_->forms, system, impl_->experiment, beam.l);
     simulation::Trace trace = simulation::ModalSimulator().run(modes, system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
       return out;
     }
-    sense_output(impl_->sensor, impl_->experiment.dt_s, trace.y);
+    if (impl_->sensor.cutoff_hz > 0) trace.y.clear();
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
   }
@@ -198,14 +200,21 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
       return out;
     }
-    simulation::ResponseProblem problem = simulation::make_problem(impl_->forms, system, impl_->simulated, beam.l);
+    // With the sensor's filter, the model runs on the finer grid where its output is read; a cost that reads only
+    // the poles (modal), which the filter does not move, gets them from the record's grid, and no unfiltered output.
+    const bool sensed = impl_->sensor.cutoff_hz > 0 && (response == Response::always || cost_->uses_response());
+    simulation::ResponseProblem problem =
+        simulation::make_problem(impl_->forms, system, sensed ? impl_->simulated : impl_->experiment, beam.l);
     problem.frf = cost_->uses_transfer_function();
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
       return out;
     }
-    sense_output(impl_->sensor, impl_->experiment.dt_s, trace.y);
+    if (sensed)
+      sense_output(impl_->sensor, impl_->experiment, trace.y);
+    else if (impl_->sensor.cutoff_hz > 0)
+      trace.y.clear();
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);
     frf = std::move(trace.frf);

@@ -1,13 +1,31 @@
 #include "fit/sensed_output.h"
 
+#include <cstdint>
+
+#include "core/errors.h"
+#include "core/limits.h"
+
 namespace beamid::fit {
 
 std::optional<std::string> sensed_validation_error(const signal::SensorFilter& sensor,
                                                    const simulation::Experiment& experiment) {
   if (auto error = signal::validation_error(sensor, experiment.dt_s)) return error;
-  if (sensor.cutoff_hz > 0 && experiment.excitation == simulation::kFreeDecay)
+  if (!(sensor.cutoff_hz > 0)) return std::nullopt;
+  if (experiment.excitation == simulation::kFreeDecay)
     return "sensor filter in the model: a free decay's amplitudes are solved against the data from an unknown state, "
-           "which the filter's transient would not match (give a pulse, pluck or sampled force)";
+           "which the filter's transient would not match (give a pulse or a pluck)";
+  if (experiment.excitation == simulation::kSampledForce)
+    return "sensor filter in the model: with a measured force, the acquisition's filter is on the force channel "
+           "too, so the recorded response is the model's to the recorded force already (the beam is linear); a "
+           "filter in the model would count it twice";
+  const std::int64_t fine = static_cast<std::int64_t>(experiment.samples) * sensor.oversampling;
+  if (fine > core::kMaxSamples)
+    return "sensor filter in the model: the model simulated " + std::to_string(sensor.oversampling) +
+           " times finer would hold " + std::to_string(fine) + " samples: at most " +
+           std::to_string(core::kMaxSamples) + " (a shorter record, or a lower --sensor-oversampling)";
+  if (experiment.dt_s / sensor.oversampling < 1e-9)
+    return "sensor filter in the model: the model's step dt / " + std::to_string(sensor.oversampling) + " = " +
+           format_value(experiment.dt_s / sensor.oversampling) + " s: must be at least 1e-9 s (a lower oversampling)";
   return std::nullopt;
 }
 
@@ -15,18 +33,23 @@ simulation::Experiment simulated_experiment(const simulation::Experiment& record
   return sensor.cutoff_hz > 0 ? simulation::finer(record, sensor.oversampling) : record;
 }
 
-void sense_output(const signal::SensorFilter& sensor, double dt_s, std::vector<double>& y) {
-  if (sensor.cutoff_hz > 0) y = signal::sense(sensor, y, dt_s);
+std::optional<double> level_before(const simulation::Experiment& record, const std::vector<double>& output) {
+  if (record.output == simulation::kDisplacement) return output.empty() ? 0.0 : output.front();
+  return 0.0;
 }
 
-void sense_columns(const signal::SensorFilter& sensor, double dt_s, Eigen::MatrixXd& columns) {
+void sense_output(const signal::SensorFilter& sensor, const simulation::Experiment& record, std::vector<double>& y) {
+  if (sensor.cutoff_hz > 0) y = signal::sense(sensor, y, record.dt_s, level_before(record, y));
+}
+
+void sense_columns(const signal::SensorFilter& sensor, const simulation::Experiment& record, Eigen::MatrixXd& columns) {
   if (!(sensor.cutoff_hz > 0)) return;
   const Eigen::Index fine = columns.rows();
   Eigen::MatrixXd sensed(fine / sensor.oversampling, columns.cols());
   std::vector<double> column(static_cast<std::size_t>(fine));
   for (Eigen::Index k = 0; k < columns.cols(); ++k) {
     Eigen::VectorXd::Map(column.data(), fine) = columns.col(k);
-    const std::vector<double> out = signal::sense(sensor, column, dt_s);
+    const std::vector<double> out = signal::sense(sensor, column, record.dt_s, level_before(record, column));
     sensed.col(k) = Eigen::VectorXd::Map(out.data(), static_cast<Eigen::Index>(out.size()));
   }
   columns = std::move(sensed);

@@ -18,18 +18,26 @@
 namespace beamid::fit {
 
 // The first violated constraint of a filter in a fit's model, or nothing: the filter's own (signal::validation_error
-// at the record's step), and an experiment the model simulates from a known start (a pulse, a pluck or a sampled
-// force: a free decay's amplitudes are solved against the data, which a filter's transient would not match).
+// at the record's step); a model simulated from a known start (a pulse or a pluck: a free decay's amplitudes are
+// solved against the data, which the filter's transient would not match); no measured force (a data-acquisition
+// system filters its force channel as it filters the response, and the beam is linear, so the recorded response is
+// already the model's response to the recorded force: a filter in the model would count it twice); and a fine record
+// within the simulator's limits (dt / R >= 1e-9 s, Nbar R <= core::kMaxSamples).
 std::optional<std::string> sensed_validation_error(const signal::SensorFilter& sensor,
                                                    const simulation::Experiment& experiment);
 
 // The experiment the model is simulated on: the record's, or `oversampling` times finer when the filter is on.
 simulation::Experiment simulated_experiment(const simulation::Experiment& record, const signal::SensorFilter& sensor);
 
-// The output simulated on simulated_experiment's grid, as the sensor delivers it at the record's step dt_s (in place;
-// nothing without a filter).
-void sense_output(const signal::SensorFilter& sensor, double dt_s, std::vector<double>& y);
-// The same for every column of a samples x parameters matrix (d y / d q).
-void sense_columns(const signal::SensorFilter& sensor, double dt_s, Eigen::MatrixXd& columns);
+// What the sensor measured before t = 0, the filter's starting level (signal::sense): a displacement's first sample
+// (at rest, or a pluck's static deflection), 0 for a velocity or an acceleration (at rest before a release or a force).
+std::optional<double> level_before(const simulation::Experiment& record, const std::vector<double>& output);
+
+// The output simulated on simulated_experiment's grid, as the sensor delivers it on the record's (in place; nothing
+// without a filter).
+void sense_output(const signal::SensorFilter& sensor, const simulation::Experiment& record, std::vector<double>& y);
+// The same for every column of a samples x parameters matrix (d y / d q: the levels before t = 0 are the
+// derivatives of the output's, so each column is sensed by the same rule).
+void sense_columns(const signal::SensorFilter& sensor, const simulation::Experiment& record, Eigen::MatrixXd& columns);
 
 }  // namespace beamid::fit

@@ -51,7 +51,8 @@ std::vector<Section> sections(const SensorFilter& f, double fine_dt_s) {
 
 }  // namespace
 
-std::vector<double> sense(const SensorFilter& f, const std::vector<double>& fine, double dt_s) {
+std::vector<double> sense(const SensorFilter& f, const std::vector<double>& fine, double dt_s,
+                          std::optional<double> level_before) {
   if (auto error = validation_error(f, dt_s)) throw InputError(*error);
   const auto r = static_cast<std::size_t>(f.oversampling);
   if (fine.empty() || fine.size() % r != 0)
@@ -60,8 +61,9 @@ std::vector<double> sense(const SensorFilter& f, const std::vector<double>& fine
   std::vector<double> y = fine;
   if (f.cutoff_hz > 0)
     for (const Section& s : sections(f, dt_s / f.oversampling)) {
-      // The steady state of a constant input y[0] (unit DC gain: the output is y[0] too).
-      const double x0 = y.front();
+      // The steady state of a constant input x0, the level before t = 0 (unit DC gain: every section's output is x0
+      // too, so the next section starts from the same level).
+      const double x0 = level_before.value_or(fine.front());
       double s2 = s.b2 * x0 - s.a2 * x0, s1 = s.b1 * x0 - s.a1 * x0 + s2;
       for (double& v : y) {
         const double x = v;

@@ -5,9 +5,8 @@
 // 0.42 / f_c s that a model without the filter reads as a stiffness and damping error). It is realised on a record
 // sampled R times faster than the one it delivers, by the bilinear transform with the frequency prewarped at f_c (exact
 // there; below f_c the digital response follows the analog one to about (pi f / (R f_s))^2 / 3 in frequency), in
-// second-order sections with their zeros at Nyquist, started in the steady state of the record's first sample (the
-// sensor has measured the beam at rest, or at a pluck's static deflection, before t = 0); then every R-th sample is
-// kept.
+// second-order sections with their zeros at Nyquist, started in the steady state of what the sensor measured before
+// t = 0 (the beam at rest, or a displacement held at a pluck's static deflection); then every R-th sample is kept.
 #pragma once
 
 #include <complex>
@@ -26,9 +25,13 @@ struct SensorFilter {
 // fine rate's Nyquist frequency (R f_s / 8), where the bilinear transform follows the analog filter.
 std::optional<std::string> validation_error(const SensorFilter& filter, double dt_s);
 
-// The filtered record of `fine` (sampled at dt_s / R), every R-th sample kept: fine.size() / R samples. InputError
-// for an invalid filter or a fine record whose length is not a multiple of R.
-std::vector<double> sense(const SensorFilter& filter, const std::vector<double>& fine, double dt_s);
+// The filtered record of `fine` (sampled at dt_s / R), every R-th sample kept: fine.size() / R samples. The filter
+// starts in the steady state of a constant input `level_before`, what the sensor saw before t = 0 (the first sample
+// when not given: a displacement held at a pluck's static deflection, or a beam at rest; a velocity or an
+// acceleration is 0 before a release or a force, whatever its first sample). InputError for an invalid filter or a
+// fine record whose length is not a multiple of R.
+std::vector<double> sense(const SensorFilter& filter, const std::vector<double>& fine, double dt_s,
+                          std::optional<double> level_before = std::nullopt);
 
 // The digital filter's response at f (Hz) on the fine grid (for checks against the analog magnitude).
 std::complex<double> sensor_response(const SensorFilter& filter, double dt_s, double frequency_hz);

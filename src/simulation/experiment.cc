@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/limits.h"
 
 namespace beamid::simulation {
 
@@ -92,6 +93,9 @@ std::string output_column(const std::string& output) {
 
 Experiment finer(const Experiment& e, int factor) {
   if (factor < 1) throw InputError("finer: factor = " + std::to_string(factor) + ": must be >= 1");
+  if (static_cast<long long>(e.samples) * factor > core::kMaxSamples)
+    throw InputError("finer: " + std::to_string(e.samples) + " samples " + std::to_string(factor) +
+                     " times finer: more than " + std::to_string(core::kMaxSamples));
   Experiment fine = e;
   fine.dt_s = e.dt_s / factor;
   fine.samples = e.samples * factor;

@@ -772,6 +772,8 @@ expect_error "a filter order alone" "beamid fit: --sensor-filter-order = '6': is
   fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --sensor-filter-order 6
 expect_error "a filter on a free decay" "a free decay's amplitudes are solved against the data" \
   fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --excitation free-decay --sensor-bandwidth 100
+expect_error "a filter with windows" "beamid fit: --windows = '2': fits the windows after the first as free decays" \
+  fit --data "$tmp/record.csv" "${S[@]}" --estimate EI --cost time --sensor-bandwidth 100 --windows 2
 
 # Every command's error line begins with its command (a bare "beamid:" before: the sixth pass's S377, S475).
 expect_error "report of a missing file" "beamid report: $tmp/none.md: cannot read the report given to --update" \

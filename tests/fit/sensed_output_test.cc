@@ -129,6 +129,47 @@ TEST(SensedOutput, TheBoundIsThatOfTheSensedRecord) {
   }
 }
 
+TEST(SensedOutput, TheModalCostReadsThePolesTheFilterLeavesAlone) {
+  // Modal updating compares the record's identified poles with the model's eigenvalues: the filter moves neither
+  // the model's poles nor the cost, so with and without it in the model the cost is the same number (both evaluate
+  // the same eigen-decomposition; the record's own grid gives the poles), and no unfiltered output is handed on.
+  const auto truth = model::preset("banks-aluminium");
+  FitOptions o = options_for(truth, kFilter);
+  o.cost.name = costs::kModalCost;
+  o.cost.spikes.count = 3;
+  const std::vector<double> data = sensed_record(truth, o.experiment, kFilter);
+  Objective with(o, data);
+  o.sensor = {};
+  Objective without(o, data);
+  const Objective::Output a = with.evaluate(o.start), b = without.evaluate(o.start);
+  ASSERT_TRUE(a.evaluation.ok()) << a.evaluation.status;
+  EXPECT_EQ(a.evaluation.value, b.evaluation.value);
+  EXPECT_TRUE(a.y.empty());
+  // Asked for the output (a report's overlay), it is the sensed one: the record itself at the truth, to round-off.
+  const Objective::Output shown = with.evaluate(truth, Objective::Response::always);
+  ASSERT_EQ(shown.y.size(), data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) EXPECT_NEAR(shown.y[i], data[i], 1e-12 * 1e3) << i;
+}
+
+TEST(SensedOutput, ThePluckedAccelerationStartsFromRest) {
+  // A pluck's acceleration is -c^T M^-1 K w0 at the release and 0 before it: the sensor sees a step, and the model
+  // with the filter delivers the record that signal::sense gives from a level of 0, not from its first sample.
+  const auto truth = model::preset("banks-aluminium");
+  simulation::Experiment e = experiment_for(truth.l);
+  e.excitation = simulation::kPluck;
+  e.output = simulation::kAcceleration;
+  e.samples = 512;
+  const galerkin::SplineSpace space(kElements);
+  const auto fine = simulation::simulate(galerkin::BeamForms(space, truth.l, truth.support), truth,
+                                         simulation::finer(e, kFilter.oversampling), {});
+  ASSERT_TRUE(fine.ok());
+  ASSERT_GT(std::abs(fine.y.front()), 0.0);
+  std::vector<double> y = fine.y;
+  sense_output(kFilter, e, y);
+  EXPECT_EQ(y, signal::sense(kFilter, fine.y, e.dt_s, 0.0));
+  EXPECT_NE(y, signal::sense(kFilter, fine.y, e.dt_s));
+}
+
 TEST(SensedOutput, RefusesWhatItCannotModel) {
   const auto truth = model::preset("banks-aluminium");
   simulation::Experiment decay = experiment_for(truth.l);
@@ -137,6 +178,17 @@ TEST(SensedOutput, RefusesWhatItCannotModel) {
   EXPECT_FALSE(sensed_validation_error({}, decay).has_value());  // no filter: nothing to refuse
   // A cut-off past a quarter of the fine record's Nyquist frequency (16 kHz / 8 = 2 kHz here).
   EXPECT_TRUE(sensed_validation_error({2500, 4, 16}, experiment_for(truth.l)).has_value());
+  // A measured force went through the acquisition's filter too: the filter would be counted twice.
+  simulation::Experiment forced = experiment_for(truth.l);
+  forced.excitation = simulation::kSampledForce;
+  EXPECT_NE(sensed_validation_error(kFilter, forced).value_or("").find("count it twice"), std::string::npos);
+  // The finer record past the simulator's limits: too many samples, or a step below 1e-9 s.
+  simulation::Experiment huge = experiment_for(truth.l);
+  huge.samples = 1 << 25;  // 2^29 fine samples, above core::kMaxSamples = 2^28
+  EXPECT_NE(sensed_validation_error(kFilter, huge).value_or("").find("samples: at most"), std::string::npos);
+  simulation::Experiment fast = experiment_for(truth.l);
+  fast.dt_s = 1e-8;
+  EXPECT_NE(sensed_validation_error({1e5, 4, 16}, fast).value_or("").find("at least 1e-9 s"), std::string::npos);
   FitOptions o = options_for(truth, kFilter);
   o.experiment.excitation = simulation::kFreeDecay;
   EXPECT_THROW(Objective(o, std::vector<double>(4096, 1.0)), InputError);

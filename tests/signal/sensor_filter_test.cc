@@ -51,6 +51,19 @@ TEST(SensorFilter, DeliversASinusoidScaledAndDelayedByItsResponseAndStartsSteady
   for (const double v : sense(f, constant, kDt)) EXPECT_NEAR(v, 0.7, 1e-12);
 }
 
+TEST(SensorFilter, StartsFromTheLevelBeforeTheRecord) {
+  // A record that is 0.7 from its first sample on, after 0 before it (an acceleration at a release): the filter sees
+  // a step, so the delivered record starts near 0 and rises to 0.7 (a low-pass's step response: its slowest pole
+  // pair decays at 2 pi 200 sin(pi / 8) = 481 /s, so after 40 ms it has settled to e^-19 = 5e-9 of the step, well
+  // inside the 1e-6 asked), unlike the steady start of a level held before.
+  const SensorFilter f{200, 4, 16};
+  const std::vector<double> constant(16000, 0.7);
+  const std::vector<double> step = sense(f, constant, kDt, 0.0);
+  EXPECT_LT(std::abs(step.front()), 0.07);  // the first delivered sample is 1/16 ms into the step: under a tenth of it
+  for (std::size_t i = 40; i < step.size(); ++i) EXPECT_NEAR(step[i], 0.7, 1e-6) << i;
+  EXPECT_EQ(sense(f, constant, kDt, 0.7), sense(f, constant, kDt));  // the level held before: the default
+}
+
 TEST(SensorFilter, RefusesWhatItCannotRealise) {
   EXPECT_TRUE(validation_error(SensorFilter{200, 0, 16}, kDt).has_value());
   EXPECT_TRUE(validation_error(SensorFilter{200, 9, 16}, kDt).has_value());

@@ -307,7 +307,7 @@ TEST(StudySpec, AFiniteBandwidthSensorIsReadNamedInTheIdsAndRefusedWhereItCannot
             "s.toml:11: truth.sensor_bandwidth_hz = 2500: must be below 2000 Hz (a quarter of the Nyquist frequency of "
             "the 16x faster record the filter runs on, where its digital form follows the analog one)");
   EXPECT_NE(error_of(replaced(sensed, "beam = \"banks-aluminium\"", "beam = \"banks-aluminium\"\ncontrol = true"))
-                .find("filters the truth's output as no fitted model does"),
+                .find("filters the truth's output as the fitted model does only with a method's sensor_in_model"),
             std::string::npos);
   EXPECT_NE(error_of(replaced(sensed, "samples = 256", "samples = 2097152")).find("16 times finer: at most 1048576"),
             std::string::npos);

@@ -191,9 +191,12 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   // study's 762 units took 6.5 min on 2 threads).
   int longest = 0;
   for (int n : spec.sweep.samples) longest = std::max(longest, n);
+  // A truth measured through a sensor filter is simulated oversampling times finer, and so is a method's model with
+  // that filter in it (sensor_in_model): each thread holds a record that much longer.
+  const double fine = spec.truth.sensor.cutoff_hz > 0 ? spec.truth.sensor.oversampling : 1;
   io::check_memory("beamid study " + spec.path,
                    8.0 * spec.truth.experiment.samples * static_cast<double>(plan.truths.size()) +
-                       jobs * core::kRecordBytesPerSample * longest,
+                       jobs * core::kRecordBytesPerSample * longest * fine,
                    log);
   if (mine.size() > 20000)
     log << "beamid study: " << mine.size() << " units: at about 1 s each that is "

@@ -15,6 +15,7 @@
 #include "costs/cost.h"
 #include "fit/identification.h"
 #include "fit/optimizer.h"
+#include "fit/sensed_output.h"
 #include "io/files.h"
 #include "io/text.h"
 #include "model/beam_parameters.h"
@@ -143,7 +144,8 @@ void read_truth(const config::Document& document, const std::string& directory, 
                " times finer: at most " + std::to_string(kMaxFineSamples / t.sensor.oversampling) + " samples");
   if (t.sensor.cutoff_hz > 0 && t.control)
     r.fail("sensor_bandwidth_hz", format_value(t.sensor.cutoff_hz),
-           "filters the truth's output as no fitted model does; control = true fits the truth's own model");
+           "filters the truth's output as the fitted model does only with a method's sensor_in_model; control = true "
+           "fits the truth's own model");
   r.finish({"beam", "elements", "control", "rtol", "dt_s", "samples", "excitation", "force_x_m", "force_amplitude_N",
             "pulse_width_s", "sensor_x_m", "output", "noise_model", "force_noise", "modal_damping_ratio",
             "sensor_bandwidth_hz", "sensor_filter_order"});
@@ -246,6 +248,9 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
       if (m.sensor_in_model && !(spec.truth.sensor.cutoff_hz > 0))
         r.fail("sensor_in_model", "true",
                "puts the truth's sensor filter in the fitted model: needs [truth] sensor_bandwidth_hz > 0");
+      if (m.sensor_in_model)
+        if (auto error = fit::sensed_validation_error(spec.truth.sensor, spec.truth.experiment))
+          r.fail("sensor_in_model", "true", *error);
       r.finish({"strategy", "optimizer", "starts", "refine", "window", "frequency_weight", "eps1_factor", "eps2_factor",
                 "noise_model", "errors_in_variables", "sensor_in_model"});
       spec.methods.push_back(m);

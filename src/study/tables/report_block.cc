@@ -1,5 +1,6 @@
 #include "study/tables/report_block.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "io/provenance.h"
@@ -101,7 +102,12 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
            << " added to every mode (a damping law the fitted model lacks)";
   if (spec.truth.sensor.cutoff_hz > 0)
     report << ", measured through an order-" << spec.truth.sensor.order << " Butterworth anti-alias filter of cut-off "
-           << g3(spec.truth.sensor.cutoff_hz) << " Hz (a sensor the fitted model lacks)";
+           << g3(spec.truth.sensor.cutoff_hz) << " Hz ("
+           << (std::any_of(spec.methods.begin(), spec.methods.end(),
+                           [](const MethodSpec& m) { return m.sensor_in_model; })
+                   ? "in the fitted model only for the methods with sensor_in_model"
+                   : "a sensor the fitted model lacks")
+           << ")";
   if (spec.truth.experiment.excitation == simulation::kSampledForce)
     report << ", driven by its force channel's samples"
            << (spec.truth.force_noise > 0 ? " (white noise of " + pct(spec.truth.force_noise) +
