@@ -1,12 +1,13 @@
 #!/usr/bin/python3
-"""REPORT.md -> REPORT.html: one self-contained page (issue 13, item 3).
+"""REPORT.md -> REPORT.html: the report as one page, its figures as the files beside it (issue 13 item 3, issue 35
+item 5: the page with every SVG inline was 39 MB).
 
 The Markdown is rendered by Debian's python3-markdown (tables, fenced code, and heading anchors from its toc
 extension, so every study's section has an id to link to). Every link to a plot, plots/<study>/<name>.png, stays a
-link, now to the figure on the page; the figure follows the paragraph, list item or table row that links it, as
-inline SVG (the .svg that plots/make_plots.sh writes beside each .png) with its element ids prefixed per figure, so
-that the gnuplot ids repeated in every file (gnuplot_canvas, gpDot, clip paths) do not collide. A linked plot
-without an .svg is named in a visible note and on stderr, never silently dropped.
+link, now to the figure on the page; the figure follows the paragraph, list item or table row that links it, as an
+image of the .svg that plots/make_plots.sh writes beside each .png, by its path relative to the page (so the page is
+read beside plots/, as REPORT.html is in the repository). A linked plot without an .svg is named in a visible note
+and on stderr, never silently dropped.
 
 Usage: report_html.py REPORT.md REPORT.html
 """
@@ -20,18 +21,6 @@ import markdown
 PLOT_LINK = re.compile(r"\]\((plots/[^)\s]+)\.png\)")
 
 
-def inline_svg(path: pathlib.Path, prefix: str) -> str:
-    """The SVG file as an element for the page: without its XML prolog, ids prefixed, sized to the page width."""
-    svg = path.read_text(encoding="utf-8")
-    svg = re.sub(r"<\?xml[^>]*\?>", "", svg)
-    svg = re.sub(r"<!DOCTYPE[^>]*>", "", svg)
-    svg = re.sub(r"""\bid=(["'])([^"']+)\1""", lambda m: f'id={m.group(1)}{prefix}{m.group(2)}{m.group(1)}', svg)
-    svg = re.sub(r"url\(#([^)]+)\)", lambda m: f"url(#{prefix}{m.group(1)})", svg)
-    svg = re.sub(r"""(href=["'])#""", lambda m: f"{m.group(1)}#{prefix}", svg)
-    svg = re.sub(r"<svg\b", '<svg style="max-width:100%;height:auto"', svg, count=1)
-    return svg.strip()
-
-
 def figure_block(root: pathlib.Path, plot: str, number: int, missing: list) -> str:
     anchor = "fig-" + re.sub(r"[^A-Za-z0-9]+", "-", plot)
     svg_path = root / (plot + ".svg")
@@ -40,14 +29,15 @@ def figure_block(root: pathlib.Path, plot: str, number: int, missing: list) -> s
         missing.append(plot)
         return (f'<figure id="{anchor}" class="missing"><figcaption>{caption}: no SVG beside it '
                 f'(run make plots)</figcaption></figure>')
-    return (f'<figure id="{anchor}">{inline_svg(svg_path, f"f{number}-")}'
+    source = html.escape(plot + ".svg", quote=True)
+    return (f'<figure id="{anchor}"><img src="{source}" alt="{caption}" style="max-width:100%;height:auto">'
             f'<figcaption>{caption}</figcaption></figure>')
 
 
 def with_figures(text: str, root: pathlib.Path, missing: list) -> tuple:
     """The Markdown with a placeholder block after each block (paragraph, list, table) that links plots, and the
-    figures' HTML for each placeholder (put in after the conversion: 35 MB of SVG through the Markdown parser would
-    take minutes)."""
+    figures' HTML for each placeholder (put in after the conversion, which would otherwise wrap them in
+    paragraphs)."""
     blocks = re.split(r"\n\s*\n", text)
     out, seen, figures_of, number = [], set(), [], 0
     for block in blocks:
