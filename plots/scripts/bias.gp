@@ -5,6 +5,9 @@
 # dash/point type = the rest of the series name (method, noise). Series are shifted slightly
 # along x so their error bars do not hide each other. Lower bar ends below the axis are clipped
 # to it, non-positive RMSEs are drawn on the bottom axis, nan values are left out.
+# More than six series are split into panels, one per noise level (the series name's last two
+# words), or, with one noise level, one per method (its second word), so that a panel holds at
+# most about six (issue 35: 18 series on one axis were unreadable); the panels share the y range.
 load lib.'/common.gp'
 set datafile separator comma
 f  = sprintf("%s/bias_%s.csv", dir, param)
@@ -51,11 +54,67 @@ set xlabel "N (finite elements)" offset 0, 0.6
 set ylabel sprintf("RMSE of relative error in %s", param) noenhanced
 set key outside bottom center horizontal samplen 3 width 1 height 1 noenhanced
 
+# Panels: the key of each series, and the distinct keys in order of first appearance.
+array P[ns]; array K[ns]
+npanel = 0
+bynoise = 0
+do for [k = 1:ns] { if (words(T[k]) >= 3 && word(T[k], words(T[k]) - 1) eq "noise") { bynoise = 1 } }
+do for [k = 1:ns] {
+  key = ns <= 6 ? "" : bynoise ? word(T[k], words(T[k]) - 1)." ".word(T[k], words(T[k])) : word(T[k], 2)
+  P[k] = 0
+  do for [j = 1:npanel] { if (P[k] == 0 && K[j] eq key) { P[k] = j } }
+  if (P[k] == 0) { npanel = npanel + 1; K[npanel] = key; P[k] = npanel }
+}
+if (bynoise && npanel == 1 && ns > 6) {  # one noise level: by method instead
+  npanel = 0
+  do for [k = 1:ns] {
+    key = word(T[k], 2)
+    P[k] = 0
+    do for [j = 1:npanel] { if (P[k] == 0 && K[j] eq key) { P[k] = j } }
+    if (P[k] == 0) { npanel = npanel + 1; K[npanel] = key; P[k] = npanel }
+  }
+}
+# Within a panel: the style by what is left of the name once the cost and the panel's key are
+# taken out, and the shift along x by the series' rank in its panel.
+array R[ns]; array M[npanel]
+do for [q = 1:npanel] { M[q] = 0 }
+nstyle = 0
+do for [k = 1:ns] {
+  M[P[k]] = M[P[k]] + 1
+  R[k] = M[P[k]]
+  rest = T[k][strlen(word(T[k], 1)) + 1:]
+  if (strlen(K[P[k]]) > 0 && strstrt(rest, K[P[k]]) > 0) {
+    at = strstrt(rest, K[P[k]])
+    rest = rest[1:at - 1].rest[at + strlen(K[P[k]]):]
+  }
+  S[k] = 0
+  do for [j = 1:k - 1] { if (S[k] == 0 && T[j][strlen(word(T[j], 1)) + 1:] eq rest) { S[k] = S[j] } }
+  if (S[k] == 0) {
+    do for [j = 1:k - 1] {
+      rj = T[j][strlen(word(T[j], 1)) + 1:]
+      if (strlen(K[P[j]]) > 0 && strstrt(rj, K[P[j]]) > 0) { at = strstrt(rj, K[P[j]]); rj = rj[1:at - 1].rj[at + strlen(K[P[j]]):] }
+      if (S[k] == 0 && rj eq rest) { S[k] = S[j] }
+    }
+  }
+  if (S[k] == 0) { nstyle = nstyle + 1; S[k] = nstyle }
+}
+pshift(k) = exp(0.01 * xspan * (R[k] - (M[P[k]] + 1) / 2.0))
+ncol = npanel > 1 ? 2 : 1
+nrow = (npanel + ncol - 1) / ncol
+
 do for [fmt in "png svg"] {
-  eval term(fmt, 1200, 800, name)
-  set title sprintf("Accuracy of %s against mesh size: RMSE over cases of the relative error, bars = 1 sd (series shifted apart in N)\n%s", param, prov) noenhanced
-  # x : y (clipped) : y - sd (clipped) : y + sd ; a missing sd gives no bar
-  plot for [k = 1:ns] f skip 1 using ($1 * shift(k)):(rmse(2 * k)):(clip(rmse(2 * k) - colz(2 * k + 1))):(rmse(2 * k) + colz(2 * k + 1)) \
-       with yerrorlines lw 2 ps 1.3 pt (S[k] == 1 ? 7 : S[k] == 2 ? 5 : S[k] == 3 ? 9 : S[k] + 4) dt S[k] \
-       lc rgb costcolor(word(T[k], 1)) title T[k]
+  eval term(fmt, 1200, npanel > 1 ? 560 * nrow + 80 : 800, name)
+  if (npanel > 1) {
+    set multiplot layout nrow, ncol title sprintf("Accuracy of %s against mesh size: RMSE over cases of the relative error, bars = 1 sd (series shifted apart in N)\n%s", param, prov) noenhanced
+  }
+  do for [q = 1:npanel] {
+    if (npanel > 1) { set title K[q] noenhanced } else {
+      set title sprintf("Accuracy of %s against mesh size: RMSE over cases of the relative error, bars = 1 sd (series shifted apart in N)\n%s", param, prov) noenhanced
+    }
+    # x : y (clipped) : y - sd (clipped) : y + sd ; a missing sd gives no bar
+    plot for [k = 1:ns] f skip 1 using ($1 * pshift(k)):(P[k] == q ? rmse(2 * k) : NaN):(clip(rmse(2 * k) - colz(2 * k + 1))):(rmse(2 * k) + colz(2 * k + 1)) \
+         with yerrorlines lw 2 ps 1.3 pt (S[k] == 1 ? 7 : S[k] == 2 ? 5 : S[k] == 3 ? 9 : S[k] + 4) dt S[k] \
+         lc rgb costcolor(word(T[k], 1)) title (P[k] == q ? T[k] : "")
+  }
+  if (npanel > 1) { unset multiplot }
 }
