@@ -124,6 +124,7 @@ verify: binary
 	$(BEAMID) report --update REPORT.md --results results
 
 report: binary
+	@if [ -f results/comparison/start_distance/reference.csv ]; then /usr/bin/python3 tools/design_tables.py results; fi
 	$(BEAMID) report --update REPORT.md --results results
 	/usr/bin/python3 tools/report_html.py REPORT.md REPORT.html
 
@@ -145,6 +146,7 @@ study: binary
 	  $(BEAMID) real studies/$$s.toml; \
 	done
 	$(MAKE) --no-print-directory plots
+	/usr/bin/python3 tools/design_tables.py results
 	$(BEAMID) report --update REPORT.md --results results
 	/usr/bin/python3 tools/report_html.py REPORT.md REPORT.html
 

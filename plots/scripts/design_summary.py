@@ -33,9 +33,22 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def ordered(runs):
+    """The runs in the order they first appear, each "-sensed" run (the sensor's filter in the fitted model) right
+    after the run it varies, so that the two stand side by side."""
+    plain = [r for r in runs if not r.endswith("-sensed")]
+    out = []
+    for r in plain:
+        out.append(r)
+        if r + "-sensed" in runs:
+            out.append(r + "-sensed")
+    out += [r for r in runs if r not in out]
+    return out
+
+
 def main(results, out):
-    lines = ["# beam truth modes run x radius_pct low_pct high_pct position worst_stiffness_efficiency median_seconds"]
-    runs = []
+    header = "# beam truth modes run x radius_pct low_pct high_pct position worst_stiffness_efficiency median_seconds"
+    records, runs = [], []
     for study, beam, truth in STUDIES:
         folder = os.path.join(results, study, "start_distance")
         if not os.path.exists(os.path.join(folder, "reach.csv")):
@@ -60,14 +73,18 @@ def main(results, out):
             ]
             worst = max(efficiencies) if efficiencies else float("nan")
             seconds = timings.get((r["cost"], r["method"], r["experiment"]), "nan")
-            pct = lambda v: repr(100 * float(v))
-            lines.append(" ".join([
-                beam, '"' + truth + '"', r["modes_in_data"], '"' + run + '"', str(runs.index(run)),
-                pct(r["half_radius"]), pct(r["half_radius_low"]), pct(r["half_radius_high"]), r["position"],
-                repr(worst), seconds
-            ]))
-    if len(lines) == 1:
+            records.append((beam, truth, r, run, worst, seconds))
+    if not records:
         sys.exit("design_summary.py: no design study has results in " + results)
+    runs = ordered(runs)
+    pct = lambda v: repr(100 * float(v))
+    lines = [header]
+    for beam, truth, r, run, worst, seconds in records:
+        lines.append(" ".join([
+            beam, '"' + truth + '"', r["modes_in_data"], '"' + run + '"', str(runs.index(run)),
+            pct(r["half_radius"]), pct(r["half_radius_low"]), pct(r["half_radius_high"]), r["position"],
+            repr(worst), seconds
+        ]))
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "summary.dat"), "w") as f:
         f.write("\n".join(lines) + "\n")
