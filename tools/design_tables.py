@@ -147,6 +147,17 @@ def answer(thin, thick):
                 if control.of(control.reference, run, control.experiments[0]) else "-",
                 " / ".join("%.2g" % error.seconds(run, x) for x in e)))
         out.append("")
+    # The evaluation budget where it bound: the fits of every run of every design study that ran out of it.
+    spent = []
+    for s in thin + thick:
+        if not s.present:
+            continue
+        for r in s.reference:
+            if r["parameter"] == "EI" and int(r["budget_exhausted"]) > 0:
+                spent.append("`%s` %s/%s in `%s` (%s modes)" % (run_name(r["cost"], r["method"]), r["budget_exhausted"],
+                                                               r["fits_run"], s.name, r["modes_in_data"]))
+    out.append("Fits that ran out of their evaluation budget (3,000 a stage): " +
+               ("; ".join(spent) if spent else "none") + ".\n")
     return "\n".join(out)
 
 
