@@ -22,11 +22,11 @@ do for [k = 1:nr] { set xtics add (word(runs, k) k - 1) }
 set logscale y
 set key noenhanced font ',12'
 do for [fmt in "png svg"] {
-  eval term(fmt, 1500, 430 * nb + 200, name)
+  eval term(fmt, 1500, 430 * nb + 250, name)
   # Fixed margins, so that the panels of a row align; the key (the same four series in every panel) is in the
   # radius panel's empty lower right.
-  set multiplot layout nb, 3 margins 0.06, 0.98, 140.0 / (430 * nb + 200), 1 - 110.0 / (430 * nb + 200) \
-      spacing 0.075, 190.0 / (430 * nb + 200) title "Every method at its best practice, with and without model error\n".prov noenhanced
+  set multiplot layout nb, 3 margins 0.06, 0.98, 190.0 / (430 * nb + 250), 1 - 110.0 / (430 * nb + 250) \
+      spacing 0.075, 240.0 / (430 * nb + 250) title "Every method at its best practice, with and without model error\n".prov noenhanced
   do for [bi = 1:nb] {
     b = word(beams, bi)
     m1 = word(modes_of(b), 1)
