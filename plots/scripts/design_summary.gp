@@ -1,4 +1,4 @@
-# design_summary.gp: the design's summary figure (issue 35, REPORT.md 2.0). Per method (x) and beam (rows), three
+# design_summary.gp: the design's summary figure (issue 35, REPORT.md's one-page answer). Per method (x) and beam (rows), three
 # panels: the 50 % start-distance radius with its bootstrap interval across records (a censored radius, beyond the
 # largest offset tried, is an up-triangle at 20 %; below the smallest a down-triangle at 0.1 %), the worst RMSE /
 # Cramer-Rao bound over the stiffness and mass parameters of the fits from the truth, and the median seconds per fit

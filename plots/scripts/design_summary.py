@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""design_summary.py RESULTS_DIR OUTPUT_DIR: the data of the design's summary figure (issue 35, REPORT.md 2.0).
+"""design_summary.py RESULTS_DIR OUTPUT_DIR: the data of the design's summary figure (issue 35, REPORT.md's one-page answer).
 
 Reads, for each study of the design that has results (comparison, comparison-control, comparison-thick and
 comparison-thick-control when present), its start_distance/reach.csv (50 % radius and bootstrap interval),
