@@ -13,9 +13,12 @@ where worst_stiffness_efficiency is the largest RMSE / bound over the stiffness 
 the ones every beam's modes determine), and x the run's position on the figure's axis. Only the standard library:
 the plots need nothing beyond Debian's python3 and gnuplot.
 """
-import csv
 import os
 import sys
+
+# The design's run names, their order and the CSV reader are tools/design_tables.py's, which the report's tables use.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from design_tables import ordered, rows, run_name  # noqa: E402
 
 # (study folder, beam, truth label): the label says whether the truth has the model errors.
 STUDIES = [
@@ -25,25 +28,6 @@ STUDIES = [
     ("comparison-thick-control", "thick", "no model error"),
 ]
 STIFFNESS = {"EI", "rho", "kAG"}
-WINDOWS = {"hann", "exponential", "rectangular"}
-
-
-def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def ordered(runs):
-    """The runs in the order they first appear, each "-sensed" run (the sensor's filter in the fitted model) right
-    after the run it varies, so that the two stand side by side."""
-    plain = [r for r in runs if not r.endswith("-sensed")]
-    out = []
-    for r in plain:
-        out.append(r)
-        if r + "-sensed" in runs:
-            out.append(r + "-sensed")
-    out += [r for r in runs if r not in out]
-    return out
 
 
 def main(results, out):
@@ -60,9 +44,7 @@ def main(results, out):
         if os.path.exists(timing_file):
             timings = {(r["cost"], r["method"], r["experiment"]): r["median_seconds"] for r in rows(timing_file)}
         for r in reach:
-            # (3.5)'s best window differs by beam (Hann thin, exponential thick): one column for both.
-            method = "window" if r["method"] in WINDOWS else r["method"]
-            run = r["cost"] + "/" + method
+            run = run_name(r["cost"], r["method"])
             if run not in runs:
                 runs.append(run)
             efficiencies = [

@@ -218,8 +218,7 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
         galerkin::with_modal_damping(galerkin::combine(forms, beam), spec.truth.modal_damping_ratio);
     // A sensor of finite bandwidth (TruthSpec::sensor): the truth simulated finer, filtered, and sampled.
     const signal::SensorFilter& sensor = spec.truth.sensor;
-    const simulation::Experiment simulated =
-        sensor.cutoff_hz > 0 ? simulation::finer(experiment, sensor.oversampling) : experiment;
+    const simulation::Experiment simulated = fit::simulated_experiment(experiment, sensor);
     simulation::Trace trace = simulation::simulate(forms, system, beam.l, simulated, options);
     if (truth.cvode_check && trace.ok()) {
       simulation::SimulatorOptions check;
