@@ -13,16 +13,11 @@ set datafile separator comma
 f  = sprintf("%s/bias_%s.csv", dir, param)
 ns = (ncols(f) - 1) / 2
 
-# series titles from the header, trailing " rmse" removed; style index per distinct remainder
-array T[ns]; array S[ns]
-nstyle = 0
+# series titles from the header, trailing " rmse" removed
+array T[ns]
 do for [k = 1:ns] {
   t = header(f, 2 * k)
   T[k] = (strlen(t) > 5 && t[strlen(t) - 4:] eq " rmse") ? t[1:strlen(t) - 5] : t
-  rest = T[k][strlen(word(T[k], 1)) + 1:]
-  S[k] = 0
-  do for [j = 1:k - 1] { if (S[k] == 0 && T[j][strlen(word(T[j], 1)) + 1:] eq rest) { S[k] = S[j] } }
-  if (S[k] == 0) { nstyle = nstyle + 1; S[k] = nstyle }
 }
 
 # y range from the finite positive values (awk, so that all-nan columns cannot break it).
@@ -34,9 +29,7 @@ ymin = real(word(range, 1)) / 2
 ymax = real(word(range, 2)) * 2
 clip(y) = y < ymin ? ymin : y
 rmse(k) = (valid(k) && abs(column(k)) < 1e300) ? clip(column(k)) : NaN   # nan: left out, <= 0: bottom axis
-# small multiplicative x offset per series: 1 % of the log x span each
 xspan = real(system(sprintf("awk -F, 'NR > 1 && $1 > 0 {lo = (lo == \"\" || $1 < lo) ? $1 : lo; hi = ($1 > hi) ? $1 : hi} END {printf \"%%.9e\\n\", (hi > lo) ? log(hi / lo) : 1}' '%s'", f)))
-shift(k) = exp(0.01 * xspan * (k - (ns + 1) / 2.0))
 
 # x tics at the N values present
 eval "set xtics (".system(sprintf("awk -F, 'NR > 1 {printf \"%%s%%s\", (NR > 2 ? \",\" : \"\"), $1}' '%s'", f)).")"
@@ -54,51 +47,35 @@ set xlabel "N (finite elements)" offset 0, 0.6
 set ylabel sprintf("RMSE of relative error in %s", param) noenhanced
 set key outside bottom center horizontal samplen 3 width 1 height 1 noenhanced
 
-# Panels: the key of each series, and the distinct keys in order of first appearance.
+# Panels: each series' key (its noise level, the name's last two words; or its method, the second word, when there
+# is one noise level), and the distinct keys in order of first appearance.
+noise_of(k) = words(T[k]) >= 3 && word(T[k], words(T[k]) - 1) eq "noise" ? word(T[k], words(T[k]) - 1)." ".word(T[k], words(T[k])) : ""
+levels = 0
+do for [k = 1:ns] { new = 1; do for [j = 1:k - 1] { if (noise_of(j) eq noise_of(k)) { new = 0 } }; levels = levels + new }
+key_of(k) = ns <= 6 ? "" : (levels > 1 && noise_of(k) ne "") ? noise_of(k) : word(T[k], 2)
 array P[ns]; array K[ns]
 npanel = 0
-bynoise = 0
-do for [k = 1:ns] { if (words(T[k]) >= 3 && word(T[k], words(T[k]) - 1) eq "noise") { bynoise = 1 } }
 do for [k = 1:ns] {
-  key = ns <= 6 ? "" : bynoise ? word(T[k], words(T[k]) - 1)." ".word(T[k], words(T[k])) : word(T[k], 2)
   P[k] = 0
-  do for [j = 1:npanel] { if (P[k] == 0 && K[j] eq key) { P[k] = j } }
-  if (P[k] == 0) { npanel = npanel + 1; K[npanel] = key; P[k] = npanel }
+  do for [j = 1:npanel] { if (P[k] == 0 && K[j] eq key_of(k)) { P[k] = j } }
+  if (P[k] == 0) { npanel = npanel + 1; K[npanel] = key_of(k); P[k] = npanel }
 }
-if (bynoise && npanel == 1 && ns > 6) {  # one noise level: by method instead
-  npanel = 0
-  do for [k = 1:ns] {
-    key = word(T[k], 2)
-    P[k] = 0
-    do for [j = 1:npanel] { if (P[k] == 0 && K[j] eq key) { P[k] = j } }
-    if (P[k] == 0) { npanel = npanel + 1; K[npanel] = key; P[k] = npanel }
-  }
-}
-# Within a panel: the style by what is left of the name once the cost and the panel's key are
-# taken out, and the shift along x by the series' rank in its panel.
-array R[ns]; array M[npanel]
+# Within a panel: the style by what is left of the name once the cost and the panel's key are taken out (the same
+# method looks the same in every panel), and the shift along x by the series' rank in its panel.
+strip(t, key) = (strlen(key) > 0 && strstrt(t, key) > 0) ? t[1:strstrt(t, key) - 1].t[strstrt(t, key) + strlen(key):] : t
+rest_of(k) = strip(T[k][strlen(word(T[k], 1)) + 1:], K[P[k]])
+array S[ns]; array R[ns]; array M[npanel]
 do for [q = 1:npanel] { M[q] = 0 }
 nstyle = 0
 do for [k = 1:ns] {
   M[P[k]] = M[P[k]] + 1
   R[k] = M[P[k]]
-  rest = T[k][strlen(word(T[k], 1)) + 1:]
-  if (strlen(K[P[k]]) > 0 && strstrt(rest, K[P[k]]) > 0) {
-    at = strstrt(rest, K[P[k]])
-    rest = rest[1:at - 1].rest[at + strlen(K[P[k]]):]
-  }
   S[k] = 0
-  do for [j = 1:k - 1] { if (S[k] == 0 && T[j][strlen(word(T[j], 1)) + 1:] eq rest) { S[k] = S[j] } }
-  if (S[k] == 0) {
-    do for [j = 1:k - 1] {
-      rj = T[j][strlen(word(T[j], 1)) + 1:]
-      if (strlen(K[P[j]]) > 0 && strstrt(rj, K[P[j]]) > 0) { at = strstrt(rj, K[P[j]]); rj = rj[1:at - 1].rj[at + strlen(K[P[j]]):] }
-      if (S[k] == 0 && rj eq rest) { S[k] = S[j] }
-    }
-  }
+  do for [j = 1:k - 1] { if (S[k] == 0 && rest_of(j) eq rest_of(k)) { S[k] = S[j] } }
   if (S[k] == 0) { nstyle = nstyle + 1; S[k] = nstyle }
 }
-pshift(k) = exp(0.01 * xspan * (R[k] - (M[P[k]] + 1) / 2.0))
+# small multiplicative x offset per series within its panel: 1 % of the log x span each
+shift(k) = exp(0.01 * xspan * (R[k] - (M[P[k]] + 1) / 2.0))
 ncol = npanel > 1 ? 2 : 1
 nrow = (npanel + ncol - 1) / ncol
 
@@ -112,7 +89,7 @@ do for [fmt in "png svg"] {
       set title sprintf("Accuracy of %s against mesh size: RMSE over cases of the relative error, bars = 1 sd (series shifted apart in N)\n%s", param, prov) noenhanced
     }
     # x : y (clipped) : y - sd (clipped) : y + sd ; a missing sd gives no bar
-    plot for [k = 1:ns] f skip 1 using ($1 * pshift(k)):(P[k] == q ? rmse(2 * k) : NaN):(clip(rmse(2 * k) - colz(2 * k + 1))):(rmse(2 * k) + colz(2 * k + 1)) \
+    plot for [k = 1:ns] f skip 1 using ($1 * shift(k)):(P[k] == q ? rmse(2 * k) : NaN):(clip(rmse(2 * k) - colz(2 * k + 1))):(rmse(2 * k) + colz(2 * k + 1)) \
          with yerrorlines lw 2 ps 1.3 pt (S[k] == 1 ? 7 : S[k] == 2 ? 5 : S[k] == 3 ? 9 : S[k] + 4) dt S[k] \
          lc rgb costcolor(word(T[k], 1)) title (P[k] == q ? T[k] : "")
   }
