@@ -239,6 +239,19 @@ void add_counters(void* cvode, bool dense, SimulationStats& stats) {
   CVodeGetNumNonlinSolvConvFails(cvode, &value), stats.nonlinear_convergence_failures += value;
 }
 
+// After sample i: whether the run has taken more than `budget` steps (0: no budget), counting those of an earlier
+// session (the one before the pulse's end) in trace.stats; if so, the trace says so and keeps samples 0..i.
+bool stopped_by_budget(void* cvode, long budget, int i, const ResponseProblem& p, Trace& trace) {
+  if (budget <= 0) return false;
+  long steps = 0;
+  CVodeGetNumSteps(cvode, &steps);
+  if (trace.stats.steps + steps <= budget) return false;
+  trace.y.resize(static_cast<std::size_t>(i) + 1);
+  trace.status = "cvode: stopped at its budget of " + std::to_string(budget) + " steps after " + std::to_string(i + 1) +
+                 " of " + std::to_string(p.samples) + " samples (t = " + format_value(i * p.dt_s) + " s)";
+  return true;
+}
+
 // Step-size diagnosis (SimulationStats::dominant_error_block): per output time, the block of the component with the
 // largest weighted local error estimate, and the last step and order.
 class StepDiagnosis {
@@ -315,26 +328,28 @@ std::string failure_status(const std::string& what, int flag, const std::string&
   return status;
 }
 
-// The one-time note of CvodeOptions::progress: after each output sample, the time the rest will take at the pace so
-// far; said once, when 2 s have passed and more than 5 s remain.
+// The note of CvodeOptions::progress: after each output sample, the time the rest will take at the pace so far; said
+// when 2 s have passed and more than 5 s remain, and again whenever the expected whole run has doubled since it was
+// last said (the pace can fall steeply: a pulse as long as the record said "about 6 s more" and ran 400 s).
 class ProgressNote {
  public:
   ProgressNote(std::ostream* out, int samples) : out_(out), samples_(samples) {}
   void after(int sample) {
-    if (!out_ || said_) return;
+    if (!out_) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rest = elapsed * (samples_ - sample - 1) / (sample + 1);
-    if (elapsed < 2 || rest < 5) return;
+    if (elapsed < 2 || rest < 5 || (said_total_s_ > 0 && elapsed + rest < 2 * said_total_s_)) return;
     *out_ << "beamid: cvode: about " << static_cast<long>(std::ceil(rest)) << " s more for this run (" << sample + 1
-          << " of " << samples_ << " samples in " << static_cast<long>(elapsed)
-          << " s: the beam's lightly damped modes force small steps); --integrator fast gives the exact response\n";
-    said_ = true;
+          << " of " << samples_ << " samples in " << static_cast<long>(elapsed) << " s"
+          << (said_total_s_ > 0 ? ", slower than said before" : "")
+          << ": the beam's lightly damped modes force small steps); --integrator fast gives the exact response\n";
+    said_total_s_ = elapsed + rest;
   }
 
  private:
   std::ostream* out_;
   int samples_;
-  bool said_ = false;
+  double said_total_s_ = 0;  // the whole run's expected time when last said; 0: not said yet
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -431,6 +446,7 @@ Trace CvodeSimulator::run(const galerkin::SecondOrderSystem& system, const Respo
       note.after(i);
     }
     trace.y[i] = sensor_output(p, rhs, t_out, N_VGetArrayPointer(s.y), accel);
+    if (i + 1 < p.samples && stopped_by_budget(s.cvode, options_.max_total_steps, i, p, trace)) break;
   }
   add_counters(s.cvode, dense, trace.stats);
   trace.stats.linear_solver_setups += structured.factorizations;

@@ -31,6 +31,8 @@ std::optional<std::string> validation_error(const SimulatorOptions& o) {
     return "cvode.max_order = " + std::to_string(o.cvode.max_order) + ": must be in 1..5";
   if (o.cvode.max_steps_per_sample < 1)
     return "cvode.max_steps_per_sample = " + std::to_string(o.cvode.max_steps_per_sample) + ": must be >= 1";
+  if (o.cvode.max_total_steps < 0)
+    return "cvode.max_total_steps = " + std::to_string(o.cvode.max_total_steps) + ": must be >= 0 (0: no budget)";
   return std::nullopt;
 }
 

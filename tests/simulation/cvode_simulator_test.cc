@@ -76,6 +76,33 @@ TEST(CvodeSimulator, FailureIsAStatusNotAnException) {
   EXPECT_NE(t.status.find("CV_TOO_MUCH_WORK"), std::string::npos) << t.status;
 }
 
+TEST(CvodeSimulator, AStepBudgetStopsTheRunWithTheSamplesItReached) {
+  // An oscillator of 11 Hz over 500 samples of 1 ms takes some hundreds of steps at rtol 1e-10; a budget of 50 stops
+  // it early, with a status that says where, and y holds exactly the samples reached, each equal to the unbudgeted
+  // run's (the same steps up to there: to round-off, 1e-12 of max |y|).
+  const auto s = testing::oscillator(2.0, 0.7, 5000.0);
+  const auto p = testing::release(0.01, 0, 1e-3, 500);
+  CvodeOptions budgeted;
+  budgeted.max_total_steps = 50;
+  const Trace whole = CvodeSimulator(CvodeOptions{}).run(s, p), cut = CvodeSimulator(budgeted).run(s, p);
+  ASSERT_TRUE(whole.ok()) << whole.status;
+  ASSERT_GT(whole.stats.steps, 50);
+  EXPECT_FALSE(cut.ok());
+  EXPECT_NE(cut.status.find("stopped at its budget of 50 steps after " + std::to_string(cut.y.size()) + " of 500"),
+            std::string::npos)
+      << cut.status;
+  ASSERT_GT(cut.y.size(), 1u);
+  ASSERT_LT(cut.y.size(), 500u);
+  EXPECT_GE(cut.stats.steps, 50);
+  const double peak = 0.01;
+  for (std::size_t i = 0; i < cut.y.size(); ++i) EXPECT_NEAR(cut.y[i], whole.y[i], 1e-12 * peak) << i;
+  // A budget the run stays within changes nothing.
+  budgeted.max_total_steps = whole.stats.steps + 1;
+  const Trace within = CvodeSimulator(budgeted).run(s, p);
+  EXPECT_TRUE(within.ok()) << within.status;
+  EXPECT_EQ(within.y, whole.y);
+}
+
 TEST(CvodeSimulator, ANarrowPulseIsIntegratedToItsOwnSize) {
   // A pulse far shorter than the beam's period moves it by its impulse, omega tau / 2 of the static deflection; with
   // tolerances sized to the static deflection CVODE was 1.9e-4 of the peak off at tau = 1e-8 s (acceleration, 125 %

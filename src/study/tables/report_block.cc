@@ -114,9 +114,13 @@ std::string render_report_block(const StudyResults& results, const Findings& fin
                                                 " of the force's RMS on the channel of every "
                                                 "noisy record, which drives the fits)"
                                           : std::string());
-  if (!results.truths.empty() && results.truths.front().has("cvode_max_difference_over_max_y"))
+  if (!results.truths.empty() && results.truths.front().has("cvode_max_difference_over_max_y")) {
+    const Record& first = results.truths.front();
     report << " (CVODE at rtol " << g3(spec.truth.rtol) << " agrees to "
-           << g3(results.truths.front().number("cvode_max_difference_over_max_y")) << " of max |y|)";
+           << g3(first.number("cvode_max_difference_over_max_y")) << " of max |y|";
+    if (first.text("cvode_status") != "ok") report << "; " << first.text("cvode_status");
+    report << ")";
+  }
   report << "; success = every one of ";
   for (std::size_t i = 0; i < keys.size(); ++i) report << (i ? ", " : "") << keys[i];
   report << " within " << pct(spec.fit.success_tolerance) << " of the truth";
