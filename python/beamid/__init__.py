@@ -432,6 +432,12 @@ def _check_type(command, name, kind, value):
         ok = _is(str, value) or isinstance(value, os.PathLike)
     else:
         ok = _is(_KINDS[kind], value)
+    # A NUL cannot reach a command line, and the core's file names end at one: report="a\0b.md" wrote the file "a"
+    # (the twenty-first pass's P7).
+    texts = [value] if isinstance(value, str) else [v for v in value if isinstance(v, str)] \
+        if isinstance(value, (list, tuple)) else [os.fspath(value)] if isinstance(value, os.PathLike) else []
+    if ok and any("\0" in str(t) for t in texts):
+        raise ValueError(f"{command}(): {name} = {value!r}: holds a NUL character, which no flag's value may hold")
     if not ok:
         names = {float: "a number", int: "an integer", str: "a string", bool: "True or False"}
         if isinstance(item, tuple):  # channel: a name or a 1-based index

@@ -12,6 +12,7 @@
 
 #include "apps/cli.h"
 #include "core/allocator.h"
+#include "io/files.h"
 
 namespace {
 
@@ -57,7 +58,8 @@ class RecordingOutput : public std::streambuf {
 }  // namespace
 
 int main(int argc, char** argv) {
-  beamid::core::keep_freed_memory();  // core/allocator.h
+  beamid::core::keep_freed_memory();    // core/allocator.h
+  beamid::io::guard_standard_output();  // no input is read from the file the results go to (io/files.h)
   RecordingOutput output;
   std::streambuf* const original = std::cout.rdbuf(&output);
   int status = beamid::apps::run_command_line(std::vector<std::string>(argv, argv + argc), std::cout, std::cerr);

@@ -155,6 +155,15 @@ int dispatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
   } catch (const OutputError& error) {
     err << prefixed(error.what(), command->name) << "\n";
     return 1;
+  } catch (const std::bad_alloc&) {
+    // Every input that sizes the work is guarded before it runs; a request that still exceeds the memory the process
+    // may have (a ulimit, a cgroup) says so instead of "internal error: std::bad_alloc".
+    err << prefixed(
+               "out of memory: this run needs more memory than the process may use here (a ulimit or a "
+               "container's limit); give smaller inputs, or run where more memory is available",
+               command->name)
+        << "\n";
+    return 1;
   } catch (const std::exception& error) {
     err << "beamid: internal error: " << error.what() << "\n";
     return 1;

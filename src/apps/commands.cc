@@ -121,6 +121,16 @@ int run_verify(const Flags& a, std::ostream& out) {
     for (const auto& entry : std::filesystem::directory_iterator(output, ec)) {
       const std::string name = entry.path().filename().string();
       const auto& ours = verification_files();
+      // An interrupted run's temporary of one of its tables ("frequencies.csv.tmp") is its own leftover: removed
+      // (a killed verify refused to run again into its folder: the twenty-first pass's P10).
+      const auto own_table = [&](const std::string& table) {
+        return std::any_of(ours.begin(), ours.end(), [&](const auto& f) { return f.first == table; });
+      };
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 && entry.is_regular_file() &&
+          !entry.is_symlink() && own_table(name.substr(0, name.size() - 4))) {
+        std::filesystem::remove(entry.path(), ec);
+        continue;
+      }
       const auto own = std::find_if(ours.begin(), ours.end(), [&](const auto& f) { return f.first == name; });
       const bool written_by_verify = own != ours.end() && entry.is_regular_file() &&
                                      io::read_file_head(entry.path(), "cannot read", own->second.size()) == own->second;
@@ -134,12 +144,16 @@ int run_verify(const Flags& a, std::ostream& out) {
   return 0;
 }
 
+// A report and each block's source are read whole: 64 MB is hundreds of times REPORT.md with every block (a 1 GB
+// source ended in std::bad_alloc under a 3 GB limit: the twenty-first pass's P4).
+constexpr std::uintmax_t kMaxReportBytes = std::uintmax_t{64} << 20;
+
 int run_report(const Flags& a, std::ostream& out) {
   const std::string path = a.text("update");
   // Read as every user file is: a pipe or a device is refused at once, not waited on (io::read_file). The report
   // first: a missing one was blamed on the default --results (the thirteenth pass's 11).
   std::ostringstream text;
-  text << io::read_file(path, "cannot read the report given to --update");
+  text << io::read_file(path, "cannot read the report given to --update", kMaxReportBytes);
   const std::filesystem::path results = a.text_or("results", "results");
   if (!std::filesystem::is_directory(results)) {
     if (!a.has("results"))
@@ -155,19 +169,23 @@ int run_report(const Flags& a, std::ostream& out) {
     a.require(false, "update", where.substr(0, where.find(':')) + ": a binary file, not a Markdown report");
   }
   std::map<std::string, std::string> contents;
-  for (const auto& name : io::block_names(text.str(), path)) {
+  const std::vector<std::string> names = io::block_names(text.str(), path);
+  const std::vector<std::size_t> lines = io::block_lines(text.str(), path);
+  for (std::size_t b = 0; b < names.size(); ++b) {
+    const std::string& name = names[b];
+    // Errors about a block name the report's line of its BEGIN marker (the twenty-first pass's P9).
+    const std::string where = "beamid report: " + path + ":" + std::to_string(lines[b]);
     // A block's text comes from results/<name>.md and nowhere else (io::block_source), and never from the report
     // itself (it would paste itself in).
-    const std::filesystem::path file = io::block_source(results, name, "beamid report: " + path);
+    const std::filesystem::path file = io::block_source(results, name, where);
     std::error_code ec;
     if (std::filesystem::equivalent(file, path, ec) && !ec)
-      throw InputError("beamid report: " + path + ": block '" + name + "' would read the report itself (" +
-                       file.string() + ")");
+      throw InputError(where + ": block '" + name + "' would read the report itself (" + file.string() + ")");
     if (!std::filesystem::exists(file, ec)) {
       out << "report: block '" << name << "' kept: " << file.string() << " does not exist\n";
       continue;
     }
-    std::string content = io::read_file(file, "block '" + name + "': cannot read its source");
+    std::string content = io::read_file(file, "block '" + name + "': cannot read its source", kMaxReportBytes);
     // A source is one of beamid's tables: text, and no marker of its own, which would break the next refresh (its
     // END line closed the block early: the sixteenth pass's P8).
     if (content.find('\0') != std::string::npos)

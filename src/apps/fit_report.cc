@@ -557,6 +557,11 @@ void check_report_outputs(const Flags& a) {
               "exists and is not a fit report beamid wrote: move it, or choose another report name");
   }
   const std::string side = report + ".spectra.csv";
+  // A folder where either file's temporary goes failed the report after the fit, leaving the spectra written (the
+  // twenty-first pass's P5): said before the fit.
+  for (const std::string& output : {report, side})
+    if (const std::string problem = io::temporary_problem(output); !problem.empty())
+      a.require(false, "report", problem);
   const std::string problem = io::replaceable_output_problem(side);
   a.require(problem.empty(), "report", "its side file '" + side + "' " + problem);
   if (!io::is_existing_file(side)) return;

@@ -85,8 +85,8 @@ int run_merge(const Flags& a, std::ostream& out) {
       std::error_code ec;
       if (!keep) std::filesystem::remove_all(folder, ec);
     }
-  } created{std::filesystem::exists(output, exists_ec) ? output + "/store" : output,
-            std::filesystem::exists(output + "/store", exists_ec)};
+  } created{std::filesystem::exists(std::filesystem::symlink_status(output, exists_ec)) ? output + "/store" : output,
+            std::filesystem::exists(std::filesystem::symlink_status(output + "/store", exists_ec))};
   if (problem.empty()) problem = io::claim_store(output + "/store", spec.path);
   if (!problem.empty()) {
     if (a.has("output")) a.require(false, "output", problem);

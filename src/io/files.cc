@@ -1,10 +1,14 @@
 #include "io/files.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -45,6 +49,7 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
                                   const std::string& study_file, const std::string& study_name) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  if (std::string problem = dangling_link_problem(folder); !problem.empty()) return problem;
   if (!fs::exists(folder, ec)) return "";
   if (!fs::is_directory(folder, ec)) return "exists and is not a folder";
   const fs::path root = fs::weakly_canonical(folder, ec);
@@ -107,13 +112,28 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   return "";
 }
 
+std::string dangling_link_problem(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
+    if (fs::is_symlink(fs::symlink_status(p, ec)) && !fs::exists(p, ec)) {
+      const fs::path target = fs::read_symlink(p, ec);
+      return p.string() + ": is a symbolic link to " + target.string() +
+             ", which does not exist or leads in a loop: create its target, or give another folder";
+    }
+    if (p == p.parent_path()) break;
+  }
+  return "";
+}
+
 std::string unwritable_folder_problem(const std::filesystem::path& folder) {
   namespace fs = std::filesystem;
   // The folders this check creates, leaf first, are removed again (when still empty): a command that then fails on
   // its inputs leaves no empty output folder behind.
   std::vector<fs::path> created;
   std::error_code ec;
-  for (fs::path p = folder; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+  if (std::string problem = dangling_link_problem(folder); !problem.empty()) return problem;
+  for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
     created.push_back(p);
     if (p == p.parent_path()) break;
   }
@@ -218,14 +238,54 @@ std::string replaceable_output_problem(const std::filesystem::path& path) {
   return "";
 }
 
+std::string temporary_problem(const std::filesystem::path& output) {
+  namespace fs = std::filesystem;
+  const fs::path temporary = output.string() + ".tmp";
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(temporary, ec);
+  if (ec || !fs::exists(status) || fs::is_regular_file(status) || fs::is_symlink(status)) return "";
+  return temporary.string() + ": " + replaceable_output_problem(temporary) + ", where beamid writes " +
+         output.filename().string() + " first (then renames it): remove it";
+}
+
 namespace {
 
 // The OS's reason for the last failed call, or a generic one.
 std::string os_reason(int error) { return error != 0 ? std::strerror(error) : "an unknown reason"; }
 
+// The temporary of write_file_atomic, "<path>.tmp", created exclusively and never through a link. A link planted
+// there made every write (a report, a store record) replace the file it pointed to, outside the output (the
+// twenty-first pass's P1), and a folder there failed every rerun naming the output instead (its P5). So a link there
+// is removed (the link, not what it points to), anything but a file is refused by name, and a file there is the
+// leftover of an interrupted write when it is over a minute old (removed), else another process's write in progress
+// (shards on one file system save the same truth record): then this write takes "<path>.<pid>-<n>.tmp" instead.
+int create_temporary(const std::filesystem::path& output, std::filesystem::path& temporary) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (const std::string problem = temporary_problem(output); !problem.empty()) throw OutputError(problem);
+  const fs::file_status status = fs::symlink_status(temporary, ec);
+  if (!ec && fs::exists(status)) {
+    const auto age = fs::file_time_type::clock::now() - fs::last_write_time(temporary, ec);
+    if (fs::is_symlink(status) || (!ec && age > std::chrono::minutes(1))) fs::remove(temporary, ec);
+  }
+  static std::atomic<long> sequence{0};
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    errno = 0;
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST || attempt > 0) break;
+    temporary = output.string() + "." + std::to_string(::getpid()) + "-" + std::to_string(++sequence) + ".tmp";
+  }
+  throw OutputError(output.string() + ": cannot write (" + os_reason(errno) + ")");
+}
+
 }  // namespace
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& text) {
+  // A NUL ends the name the system sees ("a\0b.md" wrote "a"): refused (the twenty-first pass's P7).
+  if (path.native().find('\0') != std::string::npos)
+    throw InputError(path.string().substr(0, path.native().find('\0')) +
+                     "...: the output's name holds a NUL character, which no file name may hold");
   // An output only replaces a regular file: a device (/dev/null), a pipe or a link given as an output path would be
   // replaced by a plain file (as root, /dev/null itself).
   if (const std::string problem = replaceable_output_problem(path); !problem.empty())
@@ -237,23 +297,26 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
       (existing.permissions() & std::filesystem::perms::owner_write) == std::filesystem::perms::none)
     throw InputError(path.string() + ": is read-only: make it writable to replace it, or choose another path");
   if (path.has_parent_path()) make_folder(path.parent_path());
-  const std::filesystem::path temporary = path.string() + ".tmp";
+  std::filesystem::path temporary = path.string() + ".tmp";
+  const int fd = create_temporary(path, temporary);
   // A failed or short write (a full disk, a read-only folder, a quota) names the OS's reason and leaves neither the
   // temporary nor a partial file under the final name.
   const auto fail = [&](int error) {
     std::filesystem::remove(temporary, ec);
     throw OutputError(path.string() + ": cannot write (" + os_reason(error) + ")");
   };
-  {
+  for (std::size_t written = 0; written < text.size();) {
     errno = 0;
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail(errno);
-    out << text;
-    out.flush();
-    if (!out) fail(errno);
-    out.close();
-    if (!out) fail(errno);
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      fail(error);
+    }
+    written += static_cast<std::size_t>(n);
   }
+  if (::close(fd) != 0) fail(errno);
   // The file it replaces keeps its permissions: a private (0600) or read-only report was rewritten as 0644, i.e.
   // made world-readable (the second adversarial pass's N528-N530).
   if (std::filesystem::is_regular_file(existing)) {
@@ -270,6 +333,27 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
 
 namespace {
 
+// guard_standard_output's file: its device and inode, once set.
+struct GuardedOutput {
+  bool set = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+};
+GuardedOutput& guarded_output() {
+  static GuardedOutput guarded;
+  return guarded;
+}
+
+}  // namespace
+
+void guard_standard_output() {
+  struct stat out {};
+  if (::fstat(STDOUT_FILENO, &out) == 0 && S_ISREG(out.st_mode))
+    guarded_output() = GuardedOutput{true, out.st_dev, out.st_ino};
+}
+
+namespace {
+
 // The file opened for reading after the refusals read_file lists but the size's.
 std::ifstream open_user_file(const std::filesystem::path& path, const std::string& cannot_read) {
   namespace fs = std::filesystem;
@@ -279,6 +363,12 @@ std::ifstream open_user_file(const std::filesystem::path& path, const std::strin
   if (!ec && fs::is_directory(status)) throw InputError(where + cannot_read + " (is a folder)");
   if (!ec && fs::exists(status) && !fs::is_regular_file(status))
     throw InputError(where + cannot_read + " (not a regular file)");
+  struct stat file {};
+  if (const GuardedOutput& g = guarded_output();
+      g.set && ::stat(path.c_str(), &file) == 0 && file.st_dev == g.device && file.st_ino == g.inode)
+    throw InputError(where +
+                     "is also the standard output (the shell's > or >>), which the results would overwrite "
+                     "or append to: an output never replaces an input; send the output elsewhere");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(where + cannot_read + (errno ? " (" + std::string(std::strerror(errno)) + ")" : ""));
@@ -296,7 +386,18 @@ std::string read_file(const std::filesystem::path& path, const std::string& cann
                      std::to_string(max_bytes) + " bytes (" + bytes_text(static_cast<double>(max_bytes)) +
                      ") such a file may have here");
   std::ifstream in = open_user_file(path, cannot_read);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Read at its size in one piece (an iterator's growth by doubling took twice the file's size at its peak), and to
+  // its end, never past max_bytes, should it have grown since.
+  std::string text;
+  if (!ec) text.reserve(static_cast<std::size_t>(std::min(size, max_bytes)));
+  std::array<char, 1 << 16> chunk{};
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes)
+      throw InputError(path.string() + ": more than the " + std::to_string(max_bytes) + " bytes (" +
+                       bytes_text(static_cast<double>(max_bytes)) + ") such a file may have here");
+  }
+  return text;
 }
 
 std::string read_file_head(const std::filesystem::path& path, const std::string& cannot_read, std::size_t bytes) {

@@ -1,7 +1,7 @@
-// Writing files so that a reader never sees half of one: the text goes to "<path>.tmp", which is then renamed over
-// the path (atomic on POSIX file systems). Folders are created as needed. InputError "path: cannot write (<the OS's
-// reason>)" when the file cannot be written, with the temporary removed; refused before anything is written when the
-// path exists and is not a regular file (replaceable_output_problem).
+// Writing files so that a reader never sees half of one: the text goes to "<path>.tmp" (created exclusively, never
+// through a link), which is then renamed over the path (atomic on POSIX file systems). Folders are created as needed.
+// InputError "path: cannot write (<the OS's reason>)" when the file cannot be written, with the temporary removed;
+// refused before anything is written when the path exists and is not a regular file (replaceable_output_problem).
 #pragma once
 
 #include <cstdint>
@@ -12,6 +12,10 @@
 namespace beamid::io {
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
+
+// Why write_file_atomic cannot write `output`'s temporary "<output>.tmp": something other than a file or a link is
+// there (a folder), which it does not remove; or "". For a check before a command computes.
+std::string temporary_problem(const std::filesystem::path& output);
 
 // Why an existing path cannot be an output ("is a folder", "is a symbolic link ...", "is not a regular file ..."), or
 // "" when it does not exist or is a regular file.
@@ -28,6 +32,11 @@ std::string replaceable_output_problem(const std::filesystem::path& path);
 // `beamid real` replaced another study's tables (the twelfth pass's P1).
 std::string output_folder_problem(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
                                   const std::string& study_file = "", const std::string& study_name = "");
+
+// Why `folder` cannot be created: it, or a folder above it, is a symbolic link that leads nowhere (dangling, or a
+// loop); "" otherwise. Such a link was taken for a missing folder, "created" (EEXIST: "File exists") and then removed
+// as one that had been made (the twenty-first pass's P3). unwritable_folder_problem and output_folder_problem say it.
+std::string dangling_link_problem(const std::filesystem::path& folder);
 
 // Why nothing can be written in `folder`, or "": it is created (with its parents) if missing, and a probe file is
 // created and removed in it. Checked before a command computes, so that an unwritable output costs no compute (a
@@ -59,6 +68,12 @@ void make_folder(const std::filesystem::path& path);
 // unreadable parent) is reported as absent, so that the caller's one-line error names it.
 bool is_existing_file(const std::filesystem::path& path);
 bool is_existing_folder(const std::filesystem::path& path);
+
+// The command line's standard output, when it is a regular file, is guarded from then on: every user file read_file
+// and read_file_head open is refused (InputError) when it is that same file. "beamid modes --beam b.toml >> b.toml"
+// appended to its own input (the twenty-first pass's P6), as did every command that prints to standard output. The
+// command line calls it once, before a command runs; the Python binding, which prints nothing, does not.
+void guard_standard_output();
 
 // The whole file, for every reader of user files (records, TOML files, study records). Refused before anything
 // is read, each an InputError: a missing or unreadable path ("path: <cannot_read> (No such file or directory)", the

@@ -109,6 +109,12 @@ std::vector<std::string> block_names(const std::string& text, const std::string&
   return names;
 }
 
+std::vector<std::size_t> block_lines(const std::string& text, const std::string& source_name) {
+  std::vector<std::size_t> lines;
+  for (const auto& b : scan(split_lines(text), source_name)) lines.push_back(b.begin_line + 1);
+  return lines;
+}
+
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
                            const std::string& source_name) {
   const std::vector<std::string> lines = split_lines(text);

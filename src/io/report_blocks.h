@@ -17,6 +17,10 @@ namespace beamid::io {
 // Names of the blocks in `text`, in order. InputError (naming source:line) for an unmatched or mismatched marker.
 std::vector<std::string> block_names(const std::string& text, const std::string& source_name);
 
+// The 1-based line of each block's BEGIN marker in `text`, in the order of block_names (so that an error about a
+// block names the report's line).
+std::vector<std::size_t> block_lines(const std::string& text, const std::string& source_name);
+
 // The file that fills block `name`: results/<name>.md. InputError naming the report (source_name) and the block when
 // the name would leave the results folder (empty, absolute, or through '..').
 std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,

@@ -74,11 +74,19 @@ fi
 # A report file that cannot be written after the fit (here its spectra's temporary name is taken by a folder, as a full
 # disk or a quota would fail it): exit 1, "the results could not be written", with the path and the OS's reason, not 2
 # (bad input); and no report left pointing at spectra that were not written (the twentieth pass's P3, P4).
-mkdir -p "$tmp/unwritable" "$tmp/unwritable/r.md.spectra.csv.tmp"
+# A name whose spectra temporary (r...r.md.spectra.csv.tmp, 257 characters) is too long for the file system fails at
+# the write, after the fit.
+long=$(printf 'r%.0s' $(seq 1 238)).md
+mkdir -p "$tmp/unwritable"
 timeout 60 "$BEAMID" fit --data "$tmp/record.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time \
-  --report "$tmp/unwritable/r.md" >/dev/null 2>"$tmp/err"; rc=$?
-if [ $rc -eq 1 ] && grep -qF "r.md.spectra.csv: cannot write (Is a directory)" "$tmp/err" &&
-   [ ! -e "$tmp/unwritable/r.md" ]; then ok; else bad "an unwritable report (exit $rc): $(tail -c 300 "$tmp/err")"; fi
+  --report "$tmp/unwritable/$long" >/dev/null 2>"$tmp/err"; rc=$?
+if [ $rc -eq 1 ] && grep -qF "$long.spectra.csv: cannot write (File name too long)" "$tmp/err" &&
+   [ -z "$(ls -A "$tmp/unwritable")" ]; then ok; else bad "an unwritable report (exit $rc): $(tail -c 300 "$tmp/err")"; fi
+# A folder where a temporary goes is not beamid's to remove: refused before the fit, naming it (it failed after the
+# fit, naming the output, and left the spectra: the twenty-first pass's P5).
+mkdir -p "$tmp/unwritable/r.md.spectra.csv.tmp"
+expect_error "a folder at the report's temporary" "r.md.spectra.csv.tmp: is a folder, where beamid writes r.md.spectra.csv first" \
+  fit --data "$tmp/record.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --report "$tmp/unwritable/r.md"
 # Coloured noise (issue 33): a model that is no stationary process, or one without a level to colour, is refused.
 expect_error "noise model not stationary" "--noise-model = 'ar:1.2': not stationary" simulate "${S[@]}" \
   --noise-level 0.01 --noise-model ar:1.2
@@ -778,6 +786,28 @@ expect_error "a filter with windows" "beamid fit: --windows = '2': fits the wind
 # Every command's error line begins with its command (a bare "beamid:" before: the sixth pass's S377, S475).
 expect_error "report of a missing file" "beamid report: $tmp/none.md: cannot read the report given to --update" \
   report --update "$tmp/none.md" --results "$tmp"
+
+# The twenty-first pass (issue 30). Standard output opened on an input (>>, 1<>) appended to it: refused, the input
+# unchanged (P6).
+"$BEAMID" simulate "${S[@]}" --samples 256 >"$tmp/own.csv"
+cp "$tmp/own.csv" "$tmp/own_before.csv"
+timeout 60 "$BEAMID" spikes --data "$tmp/own.csv" >>"$tmp/own.csv" 2>"$tmp/err"; rc=$?
+if [ $rc -eq 2 ] && grep -qF "own.csv: is also the standard output" "$tmp/err" && cmp -s "$tmp/own.csv" "$tmp/own_before.csv"
+then ok; else bad "stdout on the --data file (exit $rc): $(head -c 300 "$tmp/err")"; fi
+# An --output that is a link leading nowhere is named and kept (it was deleted: P3).
+ln -s "$tmp/not-mounted/results" "$tmp/dangling"
+expect_error "a dangling output link" "dangling: is a symbolic link to $tmp/not-mounted/results, which does not exist" \
+  study "$SRC/studies/smoke.toml" --output "$tmp/dangling"
+[ -L "$tmp/dangling" ] && ok || bad "the dangling --output link was removed"
+# A block name's error gives the report's line (P9).
+mkdir -p "$tmp/res9"
+printf 'x\n<!-- BEGIN GENERATED ../a/report -->\nold\n<!-- END GENERATED ../a/report -->\n' >"$tmp/r9.md"
+expect_error "a block name out of results" "r9.md:2: block '../a/report': must be a relative name" \
+  report --update "$tmp/r9.md" --results "$tmp/res9"
+# A killed verify's leftover temporary is its own: a rerun into the folder goes on (it was refused: P10).
+mkdir -p "$tmp/verify" && printf 'partial' >"$tmp/verify/frequencies.csv.tmp"
+if timeout 300 "$BEAMID" verify --output "$tmp/verify" >/dev/null 2>"$tmp/err" && [ ! -e "$tmp/verify/frequencies.csv.tmp" ] &&
+   [ -s "$tmp/verify/frequencies.csv" ]; then ok; else bad "verify over its own leftover: $(head -c 300 "$tmp/err")"; fi
 
 echo "bad inputs: $passed passed, $fail failed"
 [ $fail -eq 0 ]

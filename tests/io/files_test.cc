@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -37,14 +38,82 @@ std::string message_of(const std::function<void()>& f) {
 
 TEST(WriteFileAtomic, AFailedWriteNamesTheReasonAndLeavesNothingBehind) {
   const fs::path dir = scratch("failed");
-  // The temporary's name taken by a folder: the open fails with the OS's own reason.
-  fs::create_directory(dir / "out.csv.tmp");
-  const std::string m = message_of([&] { write_file_atomic(dir / "out.csv", "x\n"); });
-  EXPECT_NE(m.find("out.csv: cannot write (Is a directory)"), std::string::npos) << m;
-  // The machine's failure, not the input's: programs exit 1 for it, not 2 (the twentieth pass's P3).
-  fs::create_directory(dir / "out.csv.tmp");  // the failed write removed the (empty) folder with its temporary
-  EXPECT_THROW(write_file_atomic(dir / "out.csv", "x\n"), OutputError);
-  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+  // A name the system refuses: the open fails with the OS's own reason, and nothing is left under either name. The
+  // machine's failure, not the input's: programs exit 1 for it, not 2 (the twentieth pass's P3).
+  const fs::path long_name = dir / (std::string(300, 'x') + ".csv");
+  const std::string m = message_of([&] { write_file_atomic(long_name, "x\n"); });
+  EXPECT_NE(m.find(": cannot write (File name too long)"), std::string::npos) << m;
+  EXPECT_THROW(write_file_atomic(long_name, "x\n"), OutputError);
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+TEST(WriteFileAtomic, ItsTemporaryIsNeverWrittenThroughALinkNorAFolderRemoved) {
+  // A link planted at "<path>.tmp" made the write replace the file it pointed to (the twenty-first pass's P1): the
+  // link is removed, its target keeps its text, and the output is a regular file of its own.
+  const fs::path dir = scratch("temporary");
+  std::ofstream(dir / "victim.txt") << "precious\n";
+  fs::create_symlink(dir / "victim.txt", dir / "out.md.tmp");
+  write_file_atomic(dir / "out.md", "report\n");
+  std::string line;
+  std::getline(std::ifstream(dir / "victim.txt") >> std::ws, line);
+  EXPECT_EQ(line, "precious");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "out.md")));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "out.md.tmp")));
+  // A folder there is not ours to remove: refused, naming it (the error named the output: its P5), before and during
+  // the write.
+  fs::create_directories(dir / "t.csv.tmp" / "x");
+  EXPECT_NE(temporary_problem(dir / "t.csv").find("t.csv.tmp: is a folder"), std::string::npos);
+  const std::string m = message_of([&] { write_file_atomic(dir / "t.csv", "x\n"); });
+  EXPECT_NE(m.find("t.csv.tmp: is a folder, where beamid writes t.csv first"), std::string::npos) << m;
+  EXPECT_TRUE(fs::is_directory(dir / "t.csv.tmp" / "x"));
+  EXPECT_FALSE(fs::exists(dir / "t.csv"));
+  EXPECT_EQ(temporary_problem(dir / "out.md"), "");
+  // A file there: a leftover of an interrupted write when over a minute old (removed), else another process's write
+  // in progress (kept; this write takes a temporary of its own).
+  std::ofstream(dir / "a.csv.tmp") << "in progress";
+  write_file_atomic(dir / "a.csv", "a\n");
+  EXPECT_TRUE(fs::exists(dir / "a.csv.tmp"));
+  std::ofstream(dir / "b.csv.tmp") << "left over";
+  fs::last_write_time(dir / "b.csv.tmp", fs::file_time_type::clock::now() - std::chrono::minutes(5));
+  write_file_atomic(dir / "b.csv", "b\n");
+  EXPECT_FALSE(fs::exists(dir / "b.csv.tmp"));
+  for (const char* name : {"a.csv", "b.csv"}) {
+    std::getline(std::ifstream(dir / name), line);
+    EXPECT_EQ(line, std::string(1, name[0]));
+  }
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 6u);  // victim.txt, out.md, t.csv.tmp, a.csv, a.csv.tmp, b.csv: no temporary of this process left
+  fs::remove_all(dir);
+}
+
+TEST(OutputFolder, ALinkThatLeadsNowhereIsNamedAndKept) {
+  // Taken for a missing folder, a dangling link was "created" (File exists) and then removed (the twenty-first
+  // pass's P3).
+  const fs::path dir = scratch("dangling");
+  fs::create_symlink(dir / "not-mounted" / "results", dir / "out");
+  fs::create_symlink(dir / "loop", dir / "loop");
+  for (const fs::path& folder : {dir / "out", dir / "out" / "sub", dir / "loop"}) {
+    const std::string problem = unwritable_folder_problem(folder);
+    EXPECT_NE(problem.find("is a symbolic link to"), std::string::npos) << problem;
+    EXPECT_NE(problem.find("which does not exist or leads in a loop"), std::string::npos) << problem;
+    EXPECT_EQ(output_folder_problem(folder, {}), problem);
+  }
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "out")));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "loop")));
+  EXPECT_EQ(dangling_link_problem(dir / "new"), "");
+  fs::remove_all(dir);
+}
+
+TEST(ReadFile, AFileLargerThanItsKindMayBeIsRefusedBeforeItIsRead) {
+  // A 1 GB block source ended in std::bad_alloc under a 3 GB limit (the twenty-first pass's P4); the cap is the
+  // caller's, and a file at it is read whole.
+  const fs::path dir = scratch("sizes");
+  std::ofstream(dir / "f.md") << std::string(1000, 'a');
+  EXPECT_EQ(read_file(dir / "f.md", "cannot read", 1000).size(), 1000u);
+  const std::string m = message_of([&] { read_file(dir / "f.md", "cannot read", 999); });
+  EXPECT_NE(m.find("f.md: 1000 bytes: more than the 999 bytes"), std::string::npos) << m;
   fs::remove_all(dir);
 }
 

@@ -17,6 +17,8 @@ const std::string kReport =
 
 TEST(ReportBlocks, ReplacesOnlyNamedBlocks) {
   EXPECT_EQ(block_names(kReport, "R.md"), (std::vector<std::string>{"a/x", "b"}));
+  // Each block's BEGIN line, 1-based, for errors that name it (the twenty-first pass's P9).
+  EXPECT_EQ(block_lines(kReport, "R.md"), (std::vector<std::size_t>{3, 7}));
   const std::string out = replace_blocks(kReport, {{"b", "new b\n"}}, "R.md");
   EXPECT_EQ(out,
             "# Report\nprose\n<!-- BEGIN GENERATED a/x -->\nold x\n<!-- END GENERATED a/x -->\nmiddle\n"

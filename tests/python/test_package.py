@@ -518,3 +518,16 @@ def test_a_report_never_overwrites_the_record(tmp_path):
     with pytest.raises(beamid.InputError, match="would overwrite the --data file"):
         beamid.fit(str(record), beam="thick-steel", elements=6, estimate="EI", cost="time", report=str(record))
     assert record.read_bytes() == before
+
+
+def test_a_nul_in_a_flags_value_is_refused(tmp_path):
+    # report="a\0b.md" wrote the file "a", the name the system saw (the twenty-first pass's P7): a NUL in any text
+    # value is refused before the core runs, and nothing is written.
+    record = tmp_path / "record.csv"
+    record.write_text(run("simulate", "--beam", "thick-steel", "--elements", "6", "--samples", "256"))
+    os.chdir(tmp_path)
+    with pytest.raises(ValueError, match="report = 'a\\\\x00b.md': holds a NUL character"):
+        beamid.fit(str(record), beam="thick-steel", elements=6, estimate="EI", cost="time", report="a\0b.md")
+    with pytest.raises(ValueError, match="holds a NUL character"):
+        beamid.fit(str(record), beam="thick-steel", elements=6, estimate=["EI", "r\0ho"], cost="time")
+    assert sorted(os.listdir(tmp_path)) == ["record.csv"]

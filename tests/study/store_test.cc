@@ -74,6 +74,26 @@ TEST(Store, AbsorbCopiesAShardsRecords) {
   for (const auto& p : {a, b, merged}) fs::remove_all(p);
 }
 
+TEST(Store, AbsorbLeavesARecordOfAnotherBuildBehind) {
+  // A shard record of another build replaced the output's valid one before the merge failed on it (the twenty-first
+  // pass's P2): it is left behind and named, and the output's record is untouched.
+  const fs::path shard = scratch("shard-old"), merged = scratch("merged-new");
+  Record old_record, mine;
+  old_record.set("x", 1.0);
+  mine.set("x", 2.0);
+  Store(shard.string(), "build-a").save("u1", old_record);
+  const Store m(merged.string(), "build-b");
+  m.save("u1", mine);
+  const Store::Absorbed absorbed = m.absorb(shard.string());
+  EXPECT_EQ(absorbed.copied, 0);
+  ASSERT_EQ(absorbed.left_behind.size(), 1u);
+  EXPECT_NE(absorbed.left_behind[0].find("a record of another build (code build-a, this is build-b)"),
+            std::string::npos)
+      << absorbed.left_behind[0];
+  EXPECT_EQ(m.load("u1")->number("x"), 2.0);
+  for (const auto& p : {shard, merged}) fs::remove_all(p);
+}
+
 TEST(Store, RecordsOfAnEarlierBuildWithoutCheckLinesAreRecomputedQuietly) {
   const fs::path dir = scratch("earlier");
   std::ostringstream log;

@@ -135,6 +135,11 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
       error_of(replaced(kValid, "name = \"mini\"", "name = \"Mini Study\"")),
       "s.toml:2: study.name = 'Mini Study': must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
+  // max_spikes bounds spikes = "auto" only: beside a given count it was read by nothing (the twenty-first pass's P8).
+  EXPECT_NE(error_of(replaced(kValid, "[fit]", "[fit]\nspikes = 3\nmax_spikes = 2"))
+                .find("s.toml:14: fit.max_spikes = 2: is read only with spikes = \"auto\""),
+            std::string::npos)
+      << error_of(replaced(kValid, "[fit]", "[fit]\nspikes = 3\nmax_spikes = 2"));
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\npairs = [[\"EI\", \"gamma\"]]\n"),
             "s.toml:32: landscape.pairs element [...]: 'gamma' is not in fit.estimate");
   EXPECT_EQ(error_of(replaced(kValid, "[methods.direct]", "[methods.direct]\nwindow = \"kaiser\"")).substr(0, 75),

@@ -164,6 +164,28 @@ std::pair<int, int> present_and_failed(const StudySpec& spec, const Plan& plan, 
   return {present, failed};
 }
 
+// After a run: the tables, when every unit of the plan is in the store; else, for a shard, how many are; and for a
+// whole run whose saved units do not all read back (a store file replaced meanwhile), no tables and exit 1, not
+// "pending" as if a shard were missing (the twenty-first pass's P1).
+void finish_run(const StudySpec& spec, const Plan& plan, const std::vector<const Unit*>& mine, const Store& store,
+                const std::string& output_dir, std::ostream& log, RunSummary& summary) {
+  const auto [present, failed_units] = present_and_failed(spec, plan, mine, store);
+  summary.failed = failed_units;
+  if (present == static_cast<int>(plan.units.size())) {
+    write_tables(spec, plan, store, output_dir, log);
+    summary.tables = true;
+    log << "tables written to " << output_dir << "\n";
+  } else if (mine.size() == plan.units.size()) {
+    throw OutputError(store.directory() + ": " + std::to_string(plan.units.size() - present) + " of the " +
+                      std::to_string(plan.units.size()) +
+                      " units saved by this run could not be read back (the lines above say why); the tables are not "
+                      "written: run the study again to recompute them");
+  } else {
+    log << present << "/" << plan.units.size() << " units in " << store.directory()
+        << "; the tables are written once every shard is done (beamid merge)\n";
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> validation_error(const RunOptions& o) {
@@ -259,16 +281,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
     });
   }
   summary.computed = static_cast<int>(pending.size());
-  const auto [present, failed_units] = present_and_failed(spec, plan, mine, store);
-  summary.failed = failed_units;
-  if (present == static_cast<int>(plan.units.size())) {
-    write_tables(spec, plan, store, options.output_dir, log);
-    summary.tables = true;
-    log << "tables written to " << options.output_dir << "\n";
-  } else {
-    log << present << "/" << plan.units.size() << " units in " << store.directory()
-        << "; the tables are written once every shard is done (beamid merge)\n";
-  }
+  finish_run(spec, plan, mine, store, options.output_dir, log, summary);
   return summary;
 }
 

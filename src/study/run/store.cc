@@ -225,13 +225,19 @@ Store::Absorbed Store::absorb(const std::string& other, const Belongs& belongs) 
       continue;
     }
     const fs::path target = fs::path(directory_) / entry.path().filename();
-    const std::string text = io::read_file(entry.path(), "a study record");
+    const std::string text = io::read_file(entry.path(), "a study record", kMaxRecordBytes);
     std::string why;
     // A damaged shard record, or one under another unit's name, is left behind (and listed): the merge names it.
     const auto body = checked_body(text, why);
     if (body) {
       try {
-        why = binding_violation(Record::parse(*body, entry.path().string()), entry.path().stem().string());
+        // A record of another build would replace one of this build in the output, and then be recomputed (a merge
+        // that went on to fail had already replaced a valid record: the twenty-first pass's P2): left behind.
+        const Record r = Record::parse(*body, entry.path().string());
+        why = r.has("code") && r.text("code") != code_version_
+                  ? "a record of another build (code " + r.text("code").substr(0, 40) + ", this is " + code_version_ +
+                        "): run that shard again with this build"
+                  : binding_violation(r, entry.path().stem().string());
       } catch (const InputError& e) {
         why = e.what();
       }

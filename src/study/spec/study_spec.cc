@@ -176,6 +176,12 @@ void read_fit(const config::Document& document, StudySpec& spec) {
     }
   }
   f.max_spikes = r.integer("max_spikes", f.max_spikes, 1, core::kMaxSpikes);
+  // max_spikes bounds spikes = "auto" only: beside a given count it was read by nothing, even when it contradicted it
+  // (spikes = 3, max_spikes = 2: the twenty-first pass's P8).
+  if (r.has("max_spikes") && f.spikes > 0)
+    r.fail("max_spikes", std::to_string(f.max_spikes),
+           "is read only with spikes = \"auto\" (it bounds the count chosen), and spikes = " +
+               std::to_string(f.spikes) + " is given: leave max_spikes out");
   f.spike_rule = r.string("spike_rule", f.spike_rule, {"largest", "prominence"});
   f.min_frequency_hz = r.number("min_frequency_hz", 0.0, non_negative, "must be >= 0");
   f.max_frequency_hz = r.number("max_frequency_hz", 0.0, non_negative, "must be >= 0 (0: up to Nyquist)");
