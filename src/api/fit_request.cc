@@ -362,7 +362,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&budget, &on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich,
+  for (const std::string* note : {&budget, &rough, &on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich,
                                   &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
@@ -458,6 +458,13 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   else if (result.status != "failed" && result.covariance_status != "ok")
     // Every other reason the standard errors are NaN is said too (the twelfth pass's P4 printed NaN with no word).
     notes.no_errors = "the standard errors are not defined (NaN): " + result.covariance_status;
+  // A cost that is not smooth at the estimate (a jump between parameters 1e-10 apart: the twenty-first pass's P1)
+  // gives finite differences of garbage: the standard errors, and a "converged" that rests on them, say so.
+  if (result.status != "failed" && !result.roughness.empty())
+    notes.rough = "the cost is not smooth at the estimate (" + result.roughness +
+                  "): its standard errors are finite differences across a jump and cannot be trusted, nor can the "
+                  "optimizer's convergence; refit from other starts (--starts) or with another cost, and quote the "
+                  "spread over windows (--windows K)";
   if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
     notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
                         "; quote the spread over windows (--windows K) instead";

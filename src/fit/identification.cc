@@ -458,6 +458,10 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
                                               robust_lags(o.cost.name, objective.residual_count()));
   result.covariance_status = covariance.status;
   result.sandwich_status = covariance.ok() ? covariance.robust_status : covariance.status;
+  if (covariance.rough_coordinate >= 0)
+    result.roughness = "its derivative in " +
+                       map.estimated()[static_cast<std::size_t>(covariance.rough_coordinate)].key + " changes by " +
+                       format_rounded(100 * covariance.rough_change, 2) + " % between steps of 1e-6 and 1e-5";
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd robust_error = standard_error;
   if (covariance.ok()) {

@@ -153,6 +153,9 @@ struct FitResult {
   // "ok", or why the sandwich standard errors are NaN where the formal ones are not (optimizer.h: a residual of
   // leverage 1); the formal one's status when that is not "ok".
   std::string sandwich_status = "not computed";
+  // "" when the cost is smooth at the estimate, else what says it is not (Covariance::rough_coordinate): the estimate's
+  // key and how much its derivative changes between steps of 1e-6 and 1e-5 of it.
+  std::string roughness;
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages

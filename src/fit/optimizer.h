@@ -94,7 +94,17 @@ struct Covariance {
   // so that a caller can say which combination of parameters the data do not determine.
   Eigen::MatrixXd information;
   double residual_variance = 0;
+  // Whether the residuals are smooth at the estimate: the coordinate whose Jacobian column, differenced with steps h
+  // and 10 h, differs most, and by how much (|J_h - J_10h| / |J_10h|); rough_coordinate = -1 when none differs by
+  // more than kRoughJacobian. A cost that jumps between parameters 1e-10 apart gave columns of garbage, standard
+  // errors 20-160 times below the Cramer-Rao bound and "converged" 12 % off, with nothing said (the twenty-first
+  // pass's P1): the standard errors are kept, and the fit says they cannot be trusted.
+  int rough_coordinate = -1;
+  double rough_change = 0;
 };
+// On a smooth cost the central differences at h = 1e-6 and 10 h of the coordinate differ by their truncation error,
+// O((10 h)^2) of the column (a resonance 1e-3 wide moves by 1 % of its width at 10 h: 1e-4 of it); 10 % is a jump.
+inline constexpr double kRoughJacobian = 0.1;
 // The largest leverage at which the sandwich is formed: at h <= 1/2 at least half of every residual's variance (with
 // equal variances) is its own noise.
 inline constexpr double kMaxSandwichLeverage = 0.5;

@@ -106,6 +106,29 @@ Problem line_problem(const Eigen::VectorXd& e, const Eigen::VectorXd& times) {
   return p;
 }
 
+TEST(Optimizers, TheCovarianceSaysWhereTheResidualsAreNotSmooth) {
+  // A residual that jumps by 0.5 just beside the estimate, within the slope's first step h = 2e-6 (the
+  // errors-in-variables cost's round-off steps: the twenty-first pass's P1): the central differences at h and 10 h
+  // differ by far more than kRoughJacobian (0.5 / 2h against 0.5 / 20h, on a column of norm 144), and the coordinate
+  // is named; the same line without the jump is smooth (exact differences: no change beyond round-off).
+  Eigen::VectorXd e(40);
+  for (int i = 0; i < 40; ++i) e(i) = 0.3 * std::sin(1.7 * i);
+  const Problem smooth = line_problem(e, Eigen::VectorXd::LinSpaced(40, 0, 39));
+  const Eigen::Vector2d at(1.0, 2.0000000003);
+  const Covariance plain = covariance_at(smooth, at);
+  ASSERT_TRUE(plain.ok()) << plain.status;
+  EXPECT_EQ(plain.rough_coordinate, -1);
+  Problem rough = smooth;
+  rough.residuals = [smooth](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    smooth.residuals(x, r);
+    r(0) += x(1) > 2.0000000003 + 1e-6 ? 0.5 : 0.0;
+    return true;
+  };
+  const Covariance c = covariance_at(rough, at);
+  EXPECT_EQ(c.rough_coordinate, 1);
+  EXPECT_GT(c.rough_change, kRoughJacobian);
+}
+
 TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
   // y = a + b t at t = 0..39 with residual pattern e_i = 0.3 sin(1.7 i): cov = s^2 (X^T X)^-1, s^2 = |e|^2/(40 - 2).
   // (40 rows: the sandwich needs kMinSandwichTerms residuals' worth per estimate, and 10 rows give the slope 5.6.)
