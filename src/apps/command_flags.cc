@@ -64,12 +64,13 @@ std::vector<io::TimeSeries> read_channels(const Flags& a, const RecordReader& re
     // One column twice (by index and name, or twice the same) would count its data twice in a joint fit and
     // shrink the standard errors by sqrt(2): refused. Two columns are the same when their names and their samples
     // are (columns that share a name, as LVM and UFF channels may, are told apart by their data).
-    // --resample's interpolation error is said where the record is used (it was in the notes only Python showed).
-    if (const auto at = records.back().notes.find("resampled by a cubic spline");
-        at != std::string::npos && records.size() == 1)
-      std::cerr << "beamid " << a.command()
-                << ": --resample: " << records.back().notes.substr(at, records.back().notes.find("; ", at) - at)
-                << "\n";
+    // --resample's interpolation error is said where the record is used (it was in the notes only Python showed),
+    // and so is a time column too coarse to know the step by (time_series.h).
+    for (const auto& [note, prefix] :
+         {std::pair{"resampled by a cubic spline", "--resample: "}, std::pair{"the time column's values near", ""}})
+      if (const auto at = records.back().notes.find(note); at != std::string::npos && records.size() == 1)
+        std::cerr << "beamid " << a.command() << ": " << prefix
+                  << records.back().notes.substr(at, records.back().notes.find("; ", at) - at) << "\n";
     for (std::size_t k = 0; k + 1 < records.size(); ++k)
       if (records[k].value_column == records.back().value_column && records[k].values == records.back().values)
         a.require(false, "channel",

@@ -112,7 +112,6 @@ namespace {
 // anti-alias low-pass first), spanning +-32 periods of the lower rate: the Blackman window's transition band is then
 // about 3/32 of the rate wide, 0.40-0.50 of the new rate when decimating. Dividing by the weights' sum keeps a constant
 // constant, also at the record's ends.
-constexpr double kMaxUpsampling = 16;
 
 // Below kPassBand x the new rate the low-pass passes a record unchanged; between it and the new Nyquist frequency lies
 // its transition band (the Blackman window's 3/32 of the rate around the cutoff 0.45 rate).
@@ -211,12 +210,16 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   if (count > 1 << 28)
     throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz would make " + format_value(count) +
                      " samples: at most 2^28");
-  // Up-sampling adds no information, only samples for every fit to simulate: 1e7 Hz from 1652 Hz ran silently for
-  // minutes (the second pass's N514). A factor of 16 is more than any interpolation for plotting needs.
-  if (rate > kMaxUpsampling * fs)
-    throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz is " + format_rounded(rate / fs) +
-                     " times the record's " + format_rounded(fs) + " Hz: at most " + format_rounded(kMaxUpsampling) +
-                     " times (resampling up adds no information, only samples to simulate)");
+  // Up-sampling adds no information, only samples for every fit to simulate (1e7 Hz from 1652 Hz ran silently for
+  // minutes: the second pass's N514), and its interpolated samples are correlated: a fit took them as independent and
+  // its standard errors shrank by the square root of the factor (EI's 6.1e-5 to 2.3e-5 at 8x), and the pencil's
+  // damping ratio of mode 1 came out 40 % high at 16x (the twenty-first pass's P4). Refused; the record's own rate is
+  // as fine as its information.
+  if (rate > fs * (1 + 1e-9))
+    throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz is above the record's " +
+                     format_rounded(fs) +
+                     " Hz: resampling up adds no information, and its interpolated samples are correlated, which "
+                     "the standard errors and the pencil take as independent; give a rate at most the record's");
   check_memory(path + ": resampling to " + format_value(count) + " samples", 8 * count, std::cerr);
   const double cutoff = rate < fs ? 0.45 * rate : 0.5 * fs;
   std::vector<double> y(static_cast<std::size_t>(count));
@@ -333,7 +336,7 @@ void check_steps(const Samples& in, double median, double tolerance, double reso
 // mean step first missed the grid), a step of at least 1 ns and a record of at most 1e6 s (11 days; either way a unit
 // mistake: an LVM Delta_X of 1e-300 gave spikes at 3e297 Hz), and uniform to the printed resolution of the time
 // column, step by step and against the grid, unless o.resample.
-double checked_step(const Samples& in, const std::string& path, const ImportOptions& o) {
+double checked_step(Samples& in, const std::string& path, const ImportOptions& o) {
   const std::vector<double>& t = in.t;
   const std::string& column = in.series.time_column;
   if (in.declared_samples > 0 && static_cast<long>(in.v.size()) < in.declared_samples)
@@ -372,6 +375,18 @@ double checked_step(const Samples& in, const std::string& path, const ImportOpti
     throw InputError(path + ": the record lasts " + format_value(dt * static_cast<double>(t.size() - 1)) + " s (" +
                      std::to_string(t.size()) + " samples at dt = " + format_value(dt) +
                      " s): at most 1e6 s (is its time in seconds?)");
+  // The step is known from the span to within twice the times' resolution: beyond 1e-5 of itself (a frequency's
+  // relative uncertainty on a 1 % noise record of some seconds), every frequency read from the record carries that
+  // relative error, which no uncertainty counts (times near 1e11 s, 2.2e-5 s apart in their last digit, moved
+  // modal-id's frequency by 1.4e-6 beside an uncertainty of 1e-14: the twenty-first pass's P5). Said; epoch seconds
+  // (1.7e9 s) over 2 s know it to 4e-7, microsecond times over 0.25 s to 8e-6, and are silent.
+  const double largest = std::max(std::abs(t.front()), std::abs(t.back()));
+  const double unit = std::max(in.time_resolution, std::numeric_limits<double>::epsilon() * largest);
+  if (const double known = 2 * unit / (t.back() - t0); known > 1e-5)
+    in.series.notes += "the time column's values near " + format_rounded(largest, 3) + " s resolve only " +
+                       format_rounded(unit, 2) + " s, so the step is known to within " + format_rounded(known, 2) +
+                       " of itself, and so is every frequency read from the record (no uncertainty counts it): " +
+                       "write the times from the record's start, or give --sample-rate; ";
   if (o.resample) return dt;
   const double tolerance = std::max(1e-6 * dt, resolution + 1e-9 * dt);
   check_steps(in, median, tolerance, resolution);

@@ -159,7 +159,7 @@ sed 's/^X0\t.*/X0\tgarbage\t/' "$L" | head -c 200000 >"$tmp/x0.lvm"
 expect_error "LVM X0 garbage" "X0 = 'garbage': must be a finite number" spikes --data "$tmp/x0.lvm"
 # A signal that is a straight line in time (the time channel chosen as the signal: the seventh pass's N22) leaves
 # rounding after the detrend, whose "spikes" were printed.
-awk 'BEGIN { print "t_s,y (m)"; for (i = 0; i < 256; i++) printf "%.4f,%.4f\n", i / 1000, i / 1000 }' >"$tmp/ramp.csv"
+awk 'BEGIN { print "t_s,y (m)"; for (i = 0; i < 256; i++) printf "%.6f,%.4f\n", i / 1000, i / 1000 }' >"$tmp/ramp.csv"
 expect_error "ramp record" "is a straight line in time" spikes --data "$tmp/ramp.csv" --spikes 2
 # The ninth pass: a space-separated header that cuts a unit from its name, and an LVM header whose Samples is fewer
 # than its rows.
@@ -711,7 +711,7 @@ expect_error "structured npy" "a structured array (named fields) is not read" sp
   --sample-rate 1000
 expect_error "window to the end" "the window to the record's end from 4.092 s holds 4 samples" spikes \
   --data "$tmp/z.csv" --start 4.092
-expect_error "up-sampling" "is 1000 times the record's 1000 Hz: at most 16 times" spikes --data "$tmp/z.csv" \
+expect_error "up-sampling" "Hz is above the record's 1000 Hz: resampling up adds no information" spikes --data "$tmp/z.csv" \
   --resample-rate 1e6
 # A Cramer-Rao bound that would be 0 or inf is refused or said (N344, N345, N349, N352).
 expect_error "crb noise sd 1e300" "--noise-sd = '1e+300': must lie in [1e-150, 1e150]" crb "${S[@]}" --estimate EI \

@@ -596,7 +596,13 @@ TEST(RecordFormats, ResamplingToARateKeepsTheBandAndRemovesWhatAliases) {
     text += row;
   }
   const std::string path = write("tones.csv", text);
-  for (const double rate : {2500.0, 200.0}) {
+  // Up-sampling is refused: it adds no information and correlates the samples (the twenty-first pass's P4).
+  ImportOptions up;
+  up.resample_rate_hz = 2500;
+  EXPECT_NE(error_of(path, up).find("is above the record's 1000 Hz: resampling up adds no information"),
+            std::string::npos)
+      << error_of(path, up);
+  for (const double rate : {1000.0, 200.0}) {
     ImportOptions o;
     o.resample_rate_hz = rate;
     const TimeSeries s = read_time_series(path, o);
@@ -610,7 +616,7 @@ TEST(RecordFormats, ResamplingToARateKeepsTheBandAndRemovesWhatAliases) {
     double worst = 0;
     for (std::size_t i = 0; i < s.values.size(); ++i) {
       const double t = s.t0_s + static_cast<double>(i) / rate;
-      worst = std::max(worst, std::abs(s.values[i] - tone(t, rate > 1000)));
+      worst = std::max(worst, std::abs(s.values[i] - tone(t, rate >= 1000)));
     }
     EXPECT_LT(worst, 2e-3) << rate;
     EXPECT_NE(s.notes.find("resampled from 1000 Hz"), std::string::npos) << s.notes;
@@ -618,6 +624,26 @@ TEST(RecordFormats, ResamplingToARateKeepsTheBandAndRemovesWhatAliases) {
   ImportOptions o;
   o.resample_rate_hz = 2;  // 2 s at 2 Hz: 4 samples
   EXPECT_NE(error_of(path, o).find("at least 8 are needed"), std::string::npos);
+}
+
+TEST(RecordFormats, TimesTooLargeForTheirStepSayHowWellTheStepIsKnown) {
+  // 2,000 samples at 1 ms with times near 1e11 s, printed to 17 digits: a double there resolves 1.5e-5 s, so the step
+  // is known from the span (2 s) to about 2e-5 of itself, and every frequency with it (the twenty-first pass's P5:
+  // modal-id's frequency moved 1.4e-6 beside an uncertainty of 1e-14). Said; the same record from t = 0 is not.
+  std::string offset = "t_s,y_m\n", plain = offset;
+  char row[96];
+  for (int i = 0; i < 2000; ++i) {
+    const double y = std::sin(2 * std::numbers::pi * 10 * i * 1e-3);
+    std::snprintf(row, sizeof row, "%.17g,%.17g\n", 1e11 + i * 1e-3, y);
+    offset += row;
+    std::snprintf(row, sizeof row, "%.17g,%.17g\n", i * 1e-3, y);
+    plain += row;
+  }
+  const TimeSeries late = read_time_series(write("late.csv", offset), {});
+  EXPECT_NE(late.notes.find("the time column's values near 1e+11 s resolve only"), std::string::npos) << late.notes;
+  EXPECT_NE(late.notes.find("so the step is known to within"), std::string::npos) << late.notes;
+  const TimeSeries early = read_time_series(write("early.csv", plain), {});
+  EXPECT_EQ(early.notes.find("resolve only"), std::string::npos) << early.notes;
 }
 
 TEST(RecordFormats, ResamplingBelowARecordsContentIsRefusedOrSaid) {
