@@ -348,6 +348,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
     if (what.rfind(caller.label, 0) == 0) throw;
     refuse(caller, what);
   }
+  if (c.records.empty()) warn_noisy_force(request, o, data, c.result, warnings);
   // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
   if (request.windows && c.result.status != "failed") {
     try {

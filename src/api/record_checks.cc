@@ -1,5 +1,7 @@
 #include "api/record_checks.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/errors.h"
@@ -84,6 +86,75 @@ void warn_unresolved_force(const FitRequest& request, const fit::FitOptions& o, 
              << " Hz): its samples do not resolve it, and the model holds it linear between them (a sin^2 pulse "
                 "4 samples wide holds 7.6 % and biased EI by 0.4 %); sample faster, or low-pass the channel before "
                 "sampling\n";
+}
+
+namespace {
+
+// The sd of a measured force's noise, robustly (1.4826 x the median absolute deviation) from its samples after the hit:
+// from one hit's length past the last sample above a tenth of the peak to the end. 0 when fewer than 64 samples are
+// left (a force that lasts the record: a shaker, a stepped sine) or the peak is 0.
+double force_noise_after_hit(const std::vector<double>& force) {
+  double peak = 0;
+  for (double f : force) peak = std::max(peak, std::abs(f));
+  if (!(peak > 0)) return 0;
+  std::size_t first = force.size(), last = 0;
+  for (std::size_t i = 0; i < force.size(); ++i)
+    if (std::abs(force[i]) > 0.1 * peak) first = std::min(first, i), last = i;
+  const std::size_t from = last + 1 + (last - first + 1);
+  if (from + 64 > force.size()) return 0;
+  std::vector<double> quiet(force.begin() + static_cast<std::ptrdiff_t>(from), force.end());
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double centre = median(quiet);
+  for (double& q : quiet) q = std::abs(q - centre);
+  return 1.4826 * median(quiet);
+}
+
+}  // namespace
+
+// Output error takes the force as exact; its noise n_u reaches the response as G n_u, and the residual's bins carry
+// sd_Y^2 + |G(f_k)|^2 sd_U^2 (per sample, white), concentrated at the resonances, where the parameters are decided.
+// The formal errors count sd_Y only: on the thin beam with 2 % force noise they were 16-17x smaller than the
+// estimates' scatter over 25 records, with nothing said (the twenty-first pass's P2; REPORT C.6.4: 25-70x, and a
+// damping bias). Here sd_U comes from the channel after the hit, |G|^2 from the fitted model's response over the
+// force at the bins the force resolves (|U_k| at least 10 times its noise), and sd_Y^2 + (its share) from the
+// residual's mean square: said when the force's noise exceeds the residual's in some bin.
+void warn_noisy_force(const FitRequest& request, const fit::FitOptions& o, const std::vector<double>& data,
+                      const fit::FitResult& result, std::ostream& warnings) {
+  const std::vector<double>& force = o.experiment.force_samples_N;
+  if (o.experiment.excitation != simulation::kSampledForce || o.cost.force_noise_sd > 0 || result.status == "failed" ||
+      result.model_output.size() != data.size() || force.size() != data.size() || o.cost.name == costs::kModalCost)
+    return;
+  const double noise_sd_N = force_noise_after_hit(force);
+  double residual_square = 0;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    residual_square += (data[i] - result.model_output[i]) * (data[i] - result.model_output[i]);
+  residual_square /= static_cast<double>(data.size());
+  if (!(noise_sd_N > 0) || !(residual_square > 0)) return;
+  const auto n = static_cast<int>(data.size());
+  signal::Dft dft(n, o.experiment.dt_s);
+  const signal::Spectrum u = dft.transform(force), y = dft.transform(result.model_output);
+  // The DFT here is (1/Nbar) sum_i x_i e^{-j 2 pi k i / Nbar} (spectrum.h: Parseval over Nbar): white noise of sd s
+  // has s^2 / Nbar in each bin.
+  const double force_bin_variance = noise_sd_N * noise_sd_N / n;
+  double worst = 0, at_hz = 0;
+  for (std::size_t k = 1; k < u.half.size(); ++k) {
+    if (std::norm(u.half[k]) < 100 * force_bin_variance) continue;
+    const double ratio = std::norm(y.half[k]) / std::norm(u.half[k]) * noise_sd_N * noise_sd_N / residual_square;
+    if (ratio > worst) worst = ratio, at_hz = u.frequency_hz(static_cast<double>(k));
+  }
+  if (worst <= 1) return;
+  warnings << request.caller.label << ": the force channel '" << request.experiment.force_channel
+           << "' holds noise (sd " << format_rounded(noise_sd_N, 3)
+           << " N, from its samples after the hit), which the model passes on through its resonances: near "
+           << format_rounded(at_hz, 4) << " Hz it reaches " << format_rounded(worst, 2)
+           << " times the residual's power, and the " << o.cost.name
+           << " cost takes the force as exact, so its standard errors leave it out and understate the scatter "
+              "(16x with 2 % force noise on the thin beam), and the damping is biased (errors in variables: REPORT "
+              "C.6.4); fit freq-ml with --force-noise-sd "
+           << format_rounded(noise_sd_N, 3) << " --noise-sd S, or zero the channel after the hit (a force window)\n";
 }
 
 // A record that states what it measures (its unit, io/units.h) is not fitted as another quantity: a velocity in m/s

@@ -18,6 +18,11 @@ void check_force_channel(const FitRequest& request, const std::vector<io::TimeSe
                          const simulation::Experiment& experiment);
 // A force whose samples do not resolve it is said to be, on `warnings`.
 void warn_unresolved_force(const FitRequest& request, const fit::FitOptions& o, std::ostream& warnings);
+// After an output-error fit of a record driven by its force channel (time, freq-band, spike costs, freq-ml without
+// --force-noise-sd): when the channel's samples after the hit hold noise that, through the fitted model's resonances,
+// reaches more of a bin than the residual does, said on `warnings` (the fit's standard errors leave it out).
+void warn_noisy_force(const FitRequest& request, const fit::FitOptions& o, const std::vector<double>& data,
+                      const fit::FitResult& result, std::ostream& warnings);
 // A record in a unit that is not a motion (N, V) is refused unless the experiment is a free decay.
 void check_quantity(const Caller& caller, const std::vector<io::TimeSeries>& channels,
                     const simulation::Experiment& experiment);
