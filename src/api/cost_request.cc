@@ -144,7 +144,12 @@ costs::CostOptions cost_options(const CostRequest& request, const Caller& caller
     o.noise_model = costs::is_estimated_noise(*request.noise_model)
                         ? *request.noise_model
                         : parsed_noise_model(caller, *request.noise_model).text();
-  if (auto error = costs::validation_error(o)) refuse(caller, *error);
+  // Checked as the cost that reads it: a hybrid's force noise is its freq-ml refinement's (fit/identification.h),
+  // not its global cost's (the twenty-second pass's P2).
+  costs::CostOptions checked = o;
+  if (checked.force_noise_sd > 0 && std::find(also.begin(), also.end(), costs::kMaxLikelihoodCost) != also.end())
+    checked.name = costs::kMaxLikelihoodCost;
+  if (auto error = costs::validation_error(checked)) refuse(caller, *error);
   return o;
 }
 

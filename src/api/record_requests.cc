@@ -61,6 +61,7 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
   // pick took a 494 Hz pole for the 403.8 Hz mode (the eighteenth pass's P3).
   const auto alone = [&](double f) { return std::min(std::max(window, 1.5 * df_hz / f), 3 * df_hz / f); };
   std::string failure;
+  std::vector<std::string> failures(wanted.size());  // each pick's own, when measured alone
   try {
     r.measured = measure(wanted, joint);
   } catch (const std::exception& all) {
@@ -68,7 +69,8 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
     if (static_cast<int>(wanted.size()) <= kMaxSeparatelyMeasured)
       for (std::size_t k = 0; k < wanted.size(); ++k) try {
           r.measured[k] = measure({wanted[k]}, alone(wanted[k])).front();
-        } catch (const std::exception&) {
+        } catch (const std::exception& one) {
+          failures[k] = one.what();
         }
   }
   // Two picks that find one pole have one measured frequency between them, not each its own: the one nearer the pole
@@ -89,18 +91,21 @@ void measure_picks(SpikesResult& r, const std::vector<double>& values, double dt
     r.notes.push_back("no pole of its own for the spike(s) at " + shared +
                       ": a side lobe, a split peak or a mode the pencil merges with its neighbour; its "
                       "measured_frequency_hz is nan");
+  // Each missing pick with its own reason (the joint search's first failure named another pick's frequency: the
+  // twenty-second pass's P3).
   std::string missing;
   for (std::size_t k = 0; k < r.measured.size(); ++k) {
     if (std::isnan(r.measured[k].mode.frequency_hz)) {
       if (failure.empty()) continue;  // one without a pole of its own, said above
-      missing += (missing.empty() ? "" : ", ") + format_rounded(wanted[k], 6);
+      missing += (missing.empty() ? "" : "; ") + format_rounded(wanted[k], 6) + " Hz (" +
+                 (failures[k].empty() ? failure : failures[k]) + ")";
       continue;
     }
     if (const std::string note = signal::uncertainty_note(r.measured[k]); !note.empty()) r.notes.push_back(note);
   }
   if (!missing.empty())
-    r.measured_note = "no measured frequency for the spike(s) at " + missing + " Hz (" + failure +
-                      "): the pencil's poles near it are heavily damped, below the noise, or farther than the "
+    r.measured_note = "no measured frequency for the spike(s) at " + missing +
+                      ": the pencil's poles near it are heavily damped, below the noise, or farther than the "
                       "search window";
 }
 

@@ -260,7 +260,16 @@ void validate(const FitOptions& o) {
       throw InputError("start " + e.key + " = " + format_value(s) + ": outside its bounds [" + format_value(e.lower) +
                        ", " + format_value(e.upper) + "]");
   }
-  if (auto error = costs::validation_error(o.cost)) throw InputError(*error);
+  // A hybrid's force noise is its refinement's (freq-ml's errors-in-variables form): each stage's cost is checked as
+  // it runs (the global one was refused for it: the twenty-second pass's P2).
+  costs::CostOptions global = o.cost;
+  if (o.strategy == kHybrid) {
+    global.force_noise_sd = 0;
+    costs::CostOptions fine = o.cost;
+    fine.name = o.refine;
+    if (auto error = costs::validation_error(fine)) throw InputError(*error);
+  }
+  if (auto error = costs::validation_error(global)) throw InputError(*error);
   if (auto error = simulation::validation_error(o.experiment, o.start.l)) throw InputError(*error);
   if (auto error = simulation::validation_error(o.simulator)) throw InputError(*error);
 }
@@ -328,6 +337,7 @@ void check_first_step(const FitOptions& o, const ParameterMap& map) {
 FitResult fit_hybrid(const FitOptions& o, const std::vector<Record>& records) {
   FitOptions global = o;
   global.strategy = kDirect;
+  global.cost.force_noise_sd = 0;  // the refinement's (validate)
   const FitResult first = fit(global, records);
   FitOptions fine = o;
   fine.strategy = kDirect;

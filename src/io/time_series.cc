@@ -215,6 +215,12 @@ void resample_to_rate(TimeSeries& s, double rate, const std::string& path) {
   // its standard errors shrank by the square root of the factor (EI's 6.1e-5 to 2.3e-5 at 8x), and the pencil's
   // damping ratio of mode 1 came out 40 % high at 16x (the twenty-first pass's P4). Refused; the record's own rate is
   // as fine as its information.
+  // The record's own rate resamples nothing but cut the low-pass's 32 samples from each end, silently (the
+  // twenty-second pass's P8): refused.
+  if (std::abs(rate - fs) <= 1e-9 * fs)
+    throw InputError(path + ": --resample-rate " + format_value(rate) +
+                     " Hz is the record's own rate: there is "
+                     "nothing to resample (leave the flag out)");
   if (rate > fs * (1 + 1e-9))
     throw InputError(path + ": --resample-rate " + format_value(rate) + " Hz is above the record's " +
                      format_rounded(fs) +

@@ -122,8 +122,20 @@ TEST(FitRequest, AForceChannelsNoiseThatReachesPastTheResidualIsSaid) {
       counted.cost.force_noise_sd = force_sd;
       counted.cost.noise_sd = 0.01 * signal::rms(clean);
       std::ostringstream quiet;
-      compute_fit(counted, {response}, quiet);
+      const FitComputation direct = compute_fit(counted, {response}, quiet);
       EXPECT_EQ(quiet.str().find("holds noise"), std::string::npos) << quiet.str();
+      EXPECT_EQ(direct.result.status, "converged") << direct.result.termination;
+      // The same form as a hybrid's refinement: its force noise is the refinement's (it was refused as the global
+      // cost's: the twenty-second pass's P2), and the refinement runs it.
+      counted.cost.name = "spike-smooth";
+      counted.strategy = fit::kHybrid;
+      counted.refine = "freq-ml";
+      std::ostringstream hybrid_warnings;
+      const FitComputation hybrid = compute_fit(counted, {response}, hybrid_warnings);
+      EXPECT_EQ(hybrid.result.status, "converged") << hybrid.result.termination;
+      ASSERT_FALSE(hybrid.result.stages.empty());
+      EXPECT_NE(hybrid.result.stages.back().name.find("freq-ml from the spike-smooth estimate"), std::string::npos)
+          << hybrid.result.stages.back().name;
     }
   }
 }
