@@ -363,8 +363,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&budget, &rough, &on_bound, &explains_nothing, &pairing, &no_errors, &no_sandwich,
-                                  &correlated_bins, &failed, &identifiability})
+  for (const std::string* note : {&budget, &rough, &transient, &on_bound, &explains_nothing, &pairing, &no_errors,
+                                  &no_sandwich, &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -459,6 +459,18 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   else if (result.status != "failed" && result.covariance_status != "ok")
     // Every other reason the standard errors are NaN is said too (the twelfth pass's P4 printed NaN with no word).
     notes.no_errors = "the standard errors are not defined (NaN): " + result.covariance_status;
+  // The errors-in-variables form's free transient terms span every mode's free decay, and with them the response to a
+  // hit: a force of the wrong sign, a hundredth of its size or at the wrong place "converged" as well, EI within 1 SE,
+  // where the time cost explained none of the record (the twenty-second pass's P9). When they take out more than half
+  // of the weighted residual, the force did not decide the fit: said. (Forced right, they take a few terms' worth: 1
+  // %.)
+  if (result.status != "failed" && result.final_evaluation.transient_share > 0.5)
+    notes.transient = "the errors-in-variables form's free transient terms take out " +
+                      format_rounded(100 * result.final_evaluation.transient_share, 3) +
+                      " % of its weighted residual at the estimate: they, not the measured force, account for the "
+                      "response (a force of the wrong sign, scale or position would fit as well), and the estimate "
+                      "rests on the modes' frequencies and decay alone; check the force channel, its unit and "
+                      "--force-x, and compare a time-cost fit";
   // A cost that is not smooth at the estimate (a jump between parameters 1e-10 apart: the twenty-first pass's P1)
   // gives finite differences of garbage: the standard errors, and a "converged" that rests on them, say so.
   if (result.status != "failed" && !result.roughness.empty())

@@ -162,6 +162,10 @@ struct Evaluation {
   double amplitude_scale = 1;    // a (time) or s (spike costs)
   std::vector<SpikePair> pairs;  // spike costs
   std::string a4 = "ok";         // "ok" or the (A4) violation in words
+  // freq-ml's errors-in-variables form: the share of the weighted residual's sum of squares its free transient terms
+  // take out (least_squares.cc), NaN for every other cost. About (terms) / (residuals) when the forced response
+  // explains the record; near 1 when the terms, which span every mode's free decay, fit what the force should have.
+  double transient_share = std::numeric_limits<double>::quiet_NaN();
   bool ok() const { return status == "ok"; }
 };
 

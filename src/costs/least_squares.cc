@@ -259,6 +259,7 @@ class BandCost final : public Cost {
     const Eigen::BDCSVD<Eigen::MatrixXd> svd(basis, Eigen::ComputeThinU);
     const Eigen::VectorXd& s = svd.singularValues();
     const Eigen::VectorXd along = svd.matrixU().transpose() * r;
+    const double before = r.squaredNorm();
     double taken = 0;  // the terms' effective number, sum of the factors
     for (Eigen::Index i = 0; i < s.size(); ++i) {
       const double factor = s(i) * s(i) / (s(i) * s(i) + kSoftRank * kSoftRank);
@@ -271,6 +272,7 @@ class BandCost final : public Cost {
                  " residuals: widen the band (--min-frequency, --max-frequency) or give a longer record";
       return false;
     }
+    e.transient_share = before > 0 ? 1 - r.squaredNorm() / before : 0;
     return true;
   }
   static constexpr double kSoftRank = 1e-6;
