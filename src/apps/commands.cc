@@ -121,16 +121,9 @@ int run_verify(const Flags& a, std::ostream& out) {
     for (const auto& entry : std::filesystem::directory_iterator(output, ec)) {
       const std::string name = entry.path().filename().string();
       const auto& ours = verification_files();
-      // An interrupted run's temporary of one of its tables ("frequencies.csv.tmp") is its own leftover: removed
-      // (a killed verify refused to run again into its folder: the twenty-first pass's P10).
-      const auto own_table = [&](const std::string& table) {
-        return std::any_of(ours.begin(), ours.end(), [&](const auto& f) { return f.first == table; });
-      };
-      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 && entry.is_regular_file() &&
-          !entry.is_symlink() && own_table(name.substr(0, name.size() - 4))) {
-        std::filesystem::remove(entry.path(), ec);
-        continue;
-      }
+      // A temporary of beamid's (io::is_leftover_temporary: a killed run's, or another verify's in progress) is no
+      // user's file (a killed verify refused to run again into its folder: the twenty-first pass's P10); left alone.
+      if (io::is_leftover_temporary(entry.path()) && entry.is_regular_file() && !entry.is_symlink()) continue;
       const auto own = std::find_if(ours.begin(), ours.end(), [&](const auto& f) { return f.first == name; });
       const bool written_by_verify = own != ours.end() && entry.is_regular_file() &&
                                      io::read_file_head(entry.path(), "cannot read", own->second.size()) == own->second;

@@ -557,11 +557,13 @@ void check_report_outputs(const Flags& a) {
               "exists and is not a fit report beamid wrote: move it, or choose another report name");
   }
   const std::string side = report + ".spectra.csv";
-  // A folder where either file's temporary goes failed the report after the fit, leaving the spectra written (the
-  // twenty-first pass's P5): said before the fit.
+  // A name the file system cannot hold failed the report after the fit (the twenty-second pass's P13): said before.
   for (const std::string& output : {report, side})
-    if (const std::string problem = io::temporary_problem(output); !problem.empty())
-      a.require(false, "report", problem);
+    if (std::filesystem::path(output).filename().string().size() > 255)
+      a.require(false, "report",
+                "'" + std::filesystem::path(output).filename().string().substr(0, 40) + "...' is " +
+                    std::to_string(std::filesystem::path(output).filename().string().size()) +
+                    " bytes long: a file name holds at most 255 (the report's spectra go to REPORT.spectra.csv)");
   const std::string problem = io::replaceable_output_problem(side);
   a.require(problem.empty(), "report", "its side file '" + side + "' " + problem);
   if (!io::is_existing_file(side)) return;

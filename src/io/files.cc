@@ -106,7 +106,11 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
       return "holds the results of another study, '" + owner +
              "' (its manifest.json), whose tables this run would replace: give this study its own --output";
   }
-  if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && !fs::is_empty(folder, ec))
+  // (A killed first write's temporary alone is beamid's own, not the user's: io::is_leftover_temporary.)
+  bool users_files = false;
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+    if (!is_leftover_temporary(it->path())) users_files = true;
+  if (!fs::exists(folder / "manifest.json", ec) && !fs::exists(folder / "store", ec) && users_files)
     return "holds files but no manifest.json or store/ (it is not an earlier output of beamid), which the tables "
            "could overwrite; write into a new or empty folder";
   return "";
@@ -238,14 +242,9 @@ std::string replaceable_output_problem(const std::filesystem::path& path) {
   return "";
 }
 
-std::string temporary_problem(const std::filesystem::path& output) {
-  namespace fs = std::filesystem;
-  const fs::path temporary = output.string() + ".tmp";
-  std::error_code ec;
-  const fs::file_status status = fs::symlink_status(temporary, ec);
-  if (ec || !fs::exists(status) || fs::is_regular_file(status) || fs::is_symlink(status)) return "";
-  return temporary.string() + ": " + replaceable_output_problem(temporary) + ", where beamid writes " +
-         output.filename().string() + " first (then renames it): remove it";
+bool is_leftover_temporary(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  return name.rfind(kTemporaryPrefix, 0) == 0 && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
 }
 
 namespace {
@@ -253,28 +252,21 @@ namespace {
 // The OS's reason for the last failed call, or a generic one.
 std::string os_reason(int error) { return error != 0 ? std::strerror(error) : "an unknown reason"; }
 
-// The temporary of write_file_atomic, "<path>.tmp", created exclusively and never through a link. A link planted
-// there made every write (a report, a store record) replace the file it pointed to, outside the output (the
-// twenty-first pass's P1), and a folder there failed every rerun naming the output instead (its P5). So a link there
-// is removed (the link, not what it points to), anything but a file is refused by name, and a file there is the
-// leftover of an interrupted write when it is over a minute old (removed), else another process's write in progress
-// (shards on one file system save the same truth record): then this write takes "<path>.<pid>-<n>.tmp" instead.
+// The temporary of write_file_atomic: "<folder>/.beamid-<pid>-<n>.tmp", a name of beamid's own beside the output,
+// created exclusively and never through a link. "<path>.tmp" was a user's name too: a link planted there made every
+// write replace the file it led to (the twenty-first pass's P1), a folder there failed the write, and a user's
+// REPORT.md.tmp was deleted (the twenty-second pass's P8); it made a 252-255 byte name unwritable (P13), and two
+// processes writing one output removed each other's (P14). A leftover of a killed run is a hidden file of that
+// pattern (is_leftover_temporary).
 int create_temporary(const std::filesystem::path& output, std::filesystem::path& temporary) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (const std::string problem = temporary_problem(output); !problem.empty()) throw OutputError(problem);
-  const fs::file_status status = fs::symlink_status(temporary, ec);
-  if (!ec && fs::exists(status)) {
-    const auto age = fs::file_time_type::clock::now() - fs::last_write_time(temporary, ec);
-    if (fs::is_symlink(status) || (!ec && age > std::chrono::minutes(1))) fs::remove(temporary, ec);
-  }
   static std::atomic<long> sequence{0};
-  for (int attempt = 0; attempt < 2; ++attempt) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    temporary = output.parent_path() / (std::string(kTemporaryPrefix) + std::to_string(::getpid()) + "-" +
+                                        std::to_string(++sequence) + ".tmp");
     errno = 0;
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd >= 0) return fd;
-    if (errno != EEXIST || attempt > 0) break;
-    temporary = output.string() + "." + std::to_string(::getpid()) + "-" + std::to_string(++sequence) + ".tmp";
+    if (errno != EEXIST) break;  // a leftover of another process of this pid: the next number
   }
   throw OutputError(output.string() + ": cannot write (" + os_reason(errno) + ")");
 }
@@ -297,7 +289,7 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
       (existing.permissions() & std::filesystem::perms::owner_write) == std::filesystem::perms::none)
     throw InputError(path.string() + ": is read-only: make it writable to replace it, or choose another path");
   if (path.has_parent_path()) make_folder(path.parent_path());
-  std::filesystem::path temporary = path.string() + ".tmp";
+  std::filesystem::path temporary;
   const int fd = create_temporary(path, temporary);
   // A failed or short write (a full disk, a read-only folder, a quota) names the OS's reason and leaves neither the
   // temporary nor a partial file under the final name.

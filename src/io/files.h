@@ -1,5 +1,6 @@
-// Writing files so that a reader never sees half of one: the text goes to "<path>.tmp" (created exclusively, never
-// through a link), which is then renamed over the path (atomic on POSIX file systems). Folders are created as needed.
+// Writing files so that a reader never sees half of one: the text goes to a temporary of beamid's own beside it
+// (".beamid-<pid>-<n>.tmp", created exclusively, never through a link), which is then renamed over the path (atomic
+// on POSIX file systems). Folders are created as needed.
 // InputError "path: cannot write (<the OS's reason>)" when the file cannot be written, with the temporary removed;
 // refused before anything is written when the path exists and is not a regular file (replaceable_output_problem).
 #pragma once
@@ -13,9 +14,10 @@ namespace beamid::io {
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& text);
 
-// Why write_file_atomic cannot write `output`'s temporary "<output>.tmp": something other than a file or a link is
-// there (a folder), which it does not remove; or "". For a check before a command computes.
-std::string temporary_problem(const std::filesystem::path& output);
+// The prefix of write_file_atomic's temporaries (".beamid-<pid>-<n>.tmp" beside the output), and whether a path is
+// one: the leftover of a killed write, which a folder check takes for beamid's own and may remove.
+inline constexpr const char* kTemporaryPrefix = ".beamid-";
+bool is_leftover_temporary(const std::filesystem::path& path);
 
 // Why an existing path cannot be an output ("is a folder", "is a symbolic link ...", "is not a regular file ..."), or
 // "" when it does not exist or is a regular file.

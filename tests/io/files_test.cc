@@ -48,43 +48,39 @@ TEST(WriteFileAtomic, AFailedWriteNamesTheReasonAndLeavesNothingBehind) {
   fs::remove_all(dir);
 }
 
-TEST(WriteFileAtomic, ItsTemporaryIsNeverWrittenThroughALinkNorAFolderRemoved) {
-  // A link planted at "<path>.tmp" made the write replace the file it pointed to (the twenty-first pass's P1): the
-  // link is removed, its target keeps its text, and the output is a regular file of its own.
+TEST(WriteFileAtomic, ItsTemporaryIsANameOfItsOwnAndTouchesNoUsersFile) {
+  // "<path>.tmp" was a user's name too: a link planted there made the write replace the file it led to (the
+  // twenty-first pass's P1), a folder there failed it, a user's REPORT.md.tmp was deleted (the twenty-second pass's
+  // P8), and a 252-255 byte name could not be written (its P13). The temporary is ".beamid-<pid>-<n>.tmp": every such
+  // file of the user's is left as it was, the output is a regular file of its own, and no temporary is left.
   const fs::path dir = scratch("temporary");
   std::ofstream(dir / "victim.txt") << "precious\n";
   fs::create_symlink(dir / "victim.txt", dir / "out.md.tmp");
-  write_file_atomic(dir / "out.md", "report\n");
-  std::string line;
-  std::getline(std::ifstream(dir / "victim.txt") >> std::ws, line);
-  EXPECT_EQ(line, "precious");
-  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "out.md")));
-  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "out.md.tmp")));
-  // A folder there is not ours to remove: refused, naming it (the error named the output: its P5), before and during
-  // the write.
   fs::create_directories(dir / "t.csv.tmp" / "x");
-  EXPECT_NE(temporary_problem(dir / "t.csv").find("t.csv.tmp: is a folder"), std::string::npos);
-  const std::string m = message_of([&] { write_file_atomic(dir / "t.csv", "x\n"); });
-  EXPECT_NE(m.find("t.csv.tmp: is a folder, where beamid writes t.csv first"), std::string::npos) << m;
-  EXPECT_TRUE(fs::is_directory(dir / "t.csv.tmp" / "x"));
-  EXPECT_FALSE(fs::exists(dir / "t.csv"));
-  EXPECT_EQ(temporary_problem(dir / "out.md"), "");
-  // A file there: a leftover of an interrupted write when over a minute old (removed), else another process's write
-  // in progress (kept; this write takes a temporary of its own).
-  std::ofstream(dir / "a.csv.tmp") << "in progress";
+  std::ofstream(dir / "a.csv.tmp") << "mine";
+  write_file_atomic(dir / "out.md", "report\n");
+  write_file_atomic(dir / "t.csv", "t\n");
   write_file_atomic(dir / "a.csv", "a\n");
-  EXPECT_TRUE(fs::exists(dir / "a.csv.tmp"));
-  std::ofstream(dir / "b.csv.tmp") << "left over";
-  fs::last_write_time(dir / "b.csv.tmp", fs::file_time_type::clock::now() - std::chrono::minutes(5));
-  write_file_atomic(dir / "b.csv", "b\n");
-  EXPECT_FALSE(fs::exists(dir / "b.csv.tmp"));
-  for (const char* name : {"a.csv", "b.csv"}) {
+  const std::string long_name(255, 'n');
+  write_file_atomic(dir / long_name, "long\n");
+  std::string line;
+  std::getline(std::ifstream(dir / "victim.txt"), line);
+  EXPECT_EQ(line, "precious");
+  std::getline(std::ifstream(dir / "a.csv.tmp"), line);
+  EXPECT_EQ(line, "mine");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir / "out.md.tmp")));
+  EXPECT_TRUE(fs::is_directory(dir / "t.csv.tmp" / "x"));
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "out.md")));
+  for (const char* name : {"t.csv", "a.csv"}) {
     std::getline(std::ifstream(dir / name), line);
     EXPECT_EQ(line, std::string(1, name[0]));
   }
-  std::size_t files = 0;
-  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
-  EXPECT_EQ(files, 6u);  // victim.txt, out.md, t.csv.tmp, a.csv, a.csv.tmp, b.csv: no temporary of this process left
+  std::getline(std::ifstream(dir / long_name), line);
+  EXPECT_EQ(line, "long");
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_FALSE(is_leftover_temporary(entry.path())) << entry.path();
+  EXPECT_TRUE(is_leftover_temporary(dir / ".beamid-12-3.tmp"));
+  EXPECT_FALSE(is_leftover_temporary(dir / "out.md.tmp"));
   fs::remove_all(dir);
 }
 
