@@ -54,12 +54,27 @@ std::string output_folder_problem(const std::filesystem::path& folder, const std
   if (!fs::is_directory(folder, ec)) return "exists and is not a folder";
   const fs::path root = fs::weakly_canonical(folder, ec);
   if (ec) return "";
+  // Inside by path, or by the folder itself among the input's parents (its device and inode): a bind mount of the
+  // folder elsewhere passed the path check, and the study's table replaced the study file (the twenty-second pass's
+  // P2).
+  struct stat folder_stat {};
+  const bool have_folder_stat = ::stat(folder.c_str(), &folder_stat) == 0;
+  const auto under_folder = [&](const fs::path& file) {
+    if (!have_folder_stat) return false;
+    for (fs::path p = file.parent_path(); !p.empty(); p = p.parent_path()) {
+      struct stat parent {};
+      if (::stat(p.c_str(), &parent) == 0 && parent.st_dev == folder_stat.st_dev && parent.st_ino == folder_stat.st_ino)
+        return true;
+      if (p == p.parent_path()) break;
+    }
+    return false;
+  };
   for (const std::string& input : inputs) {
     if (input.empty()) continue;
     const fs::path file = fs::weakly_canonical(input, ec);
     if (ec) continue;
     const auto [end, at] = std::mismatch(root.begin(), root.end(), file.begin(), file.end());
-    if (end == root.end())
+    if (end == root.end() || under_folder(file))
       return "holds the input " + input +
              " (an output folder holds what beamid writes, and an output there could replace an input of the same "
              "name): write into a new or empty folder";

@@ -135,6 +135,13 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
       error_of(replaced(kValid, "name = \"mini\"", "name = \"Mini Study\"")),
       "s.toml:2: study.name = 'Mini Study': must be a non-empty word of a-z, 0-9, '-', '_' (it names results/<name>/)");
   EXPECT_EQ(error_of("[study]\nname = 'x'\nquestion = 'q'\nseed = 1\n"), "s.toml:1: missing table [truth]");
+  // A method's or start's name is a value of the tables' rows: a comma in one broke them (the twenty-second pass's P3).
+  EXPECT_NE(error_of(replaced(kValid, "[methods.direct]", "[methods.'a,b']")).find("[methods.'a,b']: its name must be"),
+            std::string::npos)
+      << error_of(replaced(kValid, "[methods.direct]", "[methods.'a,b']"));
+  EXPECT_NE(error_of(replaced(kValid, "[starts.near]", "[starts.'']")).find("[starts.'']: its name must be"),
+            std::string::npos)
+      << error_of(replaced(kValid, "[starts.near]", "[starts.'']"));
   // max_spikes bounds spikes = "auto" only: beside a given count it was read by nothing (the twenty-first pass's P8).
   EXPECT_NE(error_of(replaced(kValid, "[fit]", "[fit]\nspikes = 3\nmax_spikes = 2"))
                 .find("s.toml:14: fit.max_spikes = 2: is read only with spikes = \"auto\""),

@@ -1,6 +1,7 @@
 #include "study/spec/study_spec.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -202,11 +203,27 @@ void read_fit(const config::Document& document, StudySpec& spec) {
             "damping_tolerance"});
 }
 
+// A start's or a method's name is a value of the tables' rows (cases.csv, summary.csv) and part of a run's name
+// ("time/direct"): a non-empty word of letters, digits, '-', '_', '.' and '+'. A comma, a quote or a newline in one
+// broke the tables' rows, and an empty one was taken (the twenty-second pass's P3).
+void check_row_name(const Table& parent, const std::string& table, const std::string& name) {
+  if (!name.empty() && name.size() <= 64 &&
+      name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_.+") == std::string::npos)
+    return;
+  std::string shown;
+  for (const char c : name.substr(0, 64))
+    shown += std::isprint(static_cast<unsigned char>(c)) ? std::string(1, c) : "?";
+  throw InputError(parent.where(name) + ": [" + table + ".'" + shown + "']: " +
+                   "its name must be a word of 1-64 letters, digits, '-', '_', '.' or '+' (it names rows of the "
+                   "tables)");
+}
+
 // [starts.NAME] and [methods.NAME].
 void read_starts_and_methods(const config::Document& document, StudySpec& spec) {
   // [starts.NAME]: a factor for every estimated key, strictly inside the bounds.
   if (const auto starts = document.table("starts", false)) {
     for (const auto& [n, node] : starts->entries()) {
+      check_row_name(*starts, "starts", n);
       Table r = node.table("starts." + n + ".", "starts." + n);
       StartSpec s{n, {}};
       r.only_keys(spec.fit.estimate);
@@ -223,6 +240,7 @@ void read_starts_and_methods(const config::Document& document, StudySpec& spec) 
     std::vector<std::string> optimizers = fit::optimizer_names().names();
     optimizers.insert(optimizers.begin(), "default");
     for (const auto& [n, node] : methods->entries()) {
+      check_row_name(*methods, "methods", n);
       Table r = node.table("methods." + n + ".", "methods." + n);
       MethodSpec m;
       m.name = n;
