@@ -202,15 +202,6 @@ def _beam_argument(flags):
     return dict(flags, beam=BEAM_DICT), beam_toml(value)
 
 
-def _append_beam_to_report(flags, text):
-    """A report of a fit of a beam dict names "<beam dict>" and carries its TOML, so that it can be re-run."""
-    report = flags.get("report")
-    if text is not None and report and os.path.isfile(report):
-        with open(report, "a", encoding="utf-8") as f:
-            f.write("\n## The beam (given as a dict from Python; save as beam.toml to re-run)\n\n```toml\n" + text
-                    + "```\n")
-
-
 def _record_flags(data, flags):
     """Splits ``data`` into the --data flag (a path) or an array for the core (--data then reads "<array>")."""
     if data is None or isinstance(data, (str, os.PathLike)):
@@ -320,8 +311,8 @@ def fit(data, time=None, **flags) -> "FitResult":
     ``report=PATH`` writes the command's Markdown report (and PATH.spectra.csv beside it), creating its folder."""
     array, f = _record_flags(data, flags)
     f, toml = _beam_argument(f)
+    # (A beam dict's TOML ends the report, written with it by the core.)
     result = FitResult._from_core(_call(_core.fit, _arguments(f), toml, array, time))
-    _append_beam_to_report(f, toml)
     for message in result.messages:
         warnings.warn("beamid fit: " + message, stacklevel=3)
     return result

@@ -355,6 +355,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     modes = apps::compare_modes(input);
     apps::FitReportInput with_modes = input;
     with_modes.modes = &*modes;
+    with_modes.beam_toml = beam_toml ? &*beam_toml : nullptr;
     if (a.has("report")) apps::write_fit_report(a.text("report"), with_modes);
   }
   const fit::FitResult& r = c->result;

@@ -539,6 +539,9 @@ FitReport render_fit_report(const std::string& path, const FitReportInput& in) {
   report.spectra_path = path + ".spectra.csv";
   report.spectra_csv = spectra_section(md, in, first, report.spectra_path);
   report.markdown = md.str();
+  if (in.beam_toml)
+    report.markdown += "\n## The beam (given as a dict from Python; save as beam.toml to re-run)\n\n```toml\n" +
+                       *in.beam_toml + "```\n";
   return report;
 }
 

@@ -26,6 +26,10 @@ struct FitReportInput {
   // compare_modes(*this) when the caller has it already (the command line and Python print it beside the report):
   // the report takes it instead of running the record's pencils again (8 % of a measured record's modal fit).
   const ModeComparison* modes = nullptr;
+  // A beam given as TOML text (Python's beam dict, named "<beam dict>"): the report ends with it, so that the fit can
+  // be re-run from the report; written with the report, in one piece (appended afterwards by Python, it was cut by a
+  // full disk and crossed with another thread's report: the twenty-second pass's P5, P7).
+  const std::string* beam_toml = nullptr;
 };
 
 // The identified modes beside the data's: the model's underdamped modes at the estimate, each paired by frequency

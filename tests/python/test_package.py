@@ -531,3 +531,22 @@ def test_a_nul_in_a_flags_value_is_refused(tmp_path):
     with pytest.raises(ValueError, match="holds a NUL character"):
         beamid.fit(str(record), beam="thick-steel", elements=6, estimate=["EI", "r\0ho"], cost="time")
     assert sorted(os.listdir(tmp_path)) == ["record.csv"]
+
+
+def test_a_beam_dicts_report_carries_its_toml_in_one_write(tmp_path):
+    # The report of a fit of a beam dict ends with the beam's TOML, written with the report by the core (appended
+    # afterwards, it was cut by a full disk and crossed with another thread's: the twenty-second pass's P5, P7): once,
+    # at the end, and it reads back as the beam that was fitted.
+    record = tmp_path / "record.csv"
+    record.write_text(run("simulate", "--beam", "thick-steel", "--elements", "6", "--samples", "256"))
+    beam = dict(beamid.beam("thick-steel"))
+    report = tmp_path / "fit.md"
+    beamid.fit(str(record), beam=beam, elements=6, estimate="EI", cost="time", report=str(report))
+    text = report.read_text()
+    heading = "## The beam (given as a dict from Python; save as beam.toml to re-run)"
+    assert text.count(heading) == 1
+    toml = text.split(heading, 1)[1].split("```toml\n", 1)[1]
+    assert toml.endswith("```\n")
+    saved = tmp_path / "beam.toml"
+    saved.write_text(toml[:-len("```\n")])
+    assert beamid.beam(str(saved)) == beamid.beam("thick-steel")
