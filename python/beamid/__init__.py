@@ -66,15 +66,19 @@ def _wait_for_core():
         _running.discard(done)
 
 
-def _call(function, *args):
+def _call(function, *args, abandonable=False):
     """Runs a core computation on a worker thread and waits for it there, so that Ctrl-C (or a Jupyter interrupt)
     raises KeyboardInterrupt in the caller at once. The core cannot be stopped part-way: an interrupted computation
     finishes in the background and its result is dropped (the interpreter waits for it at exit). From other threads
     the core is called directly."""
     if threading.current_thread() is not threading.main_thread():
-        return function(*args)
+        return function(*args, None) if abandonable else function(*args)
     box = {}
     done = threading.Event()
+    # Set when the caller is interrupted: a computation that writes files (fit's report) then writes none.
+    abandoned = threading.Event()
+    if abandonable:
+        args = args + (abandoned,)
 
     def work():
         try:
@@ -86,8 +90,12 @@ def _call(function, *args):
 
     _running.add(done)
     threading.Thread(target=work, name="beamid-core", daemon=True).start()
-    while not done.wait(0.05):
-        pass
+    try:
+        while not done.wait(0.05):
+            pass
+    except BaseException:
+        abandoned.set()
+        raise
     _running.discard(done)
     if "error" in box:
         raise box["error"]
@@ -312,7 +320,7 @@ def fit(data, time=None, **flags) -> "FitResult":
     array, f = _record_flags(data, flags)
     f, toml = _beam_argument(f)
     # (A beam dict's TOML ends the report, written with it by the core.)
-    result = FitResult._from_core(_call(_core.fit, _arguments(f), toml, array, time))
+    result = FitResult._from_core(_call(_core.fit, _arguments(f), toml, array, time, abandonable=True))
     for message in result.messages:
         warnings.warn("beamid fit: " + message, stacklevel=3)
     return result

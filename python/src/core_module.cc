@@ -335,8 +335,11 @@ void check_before_reading(const apps::Flags& a, const std::optional<ArrayRecord>
                       core::kRecordBytesPerSample, later);
 }
 
+// `abandoned`: None, or a threading.Event the package sets when the caller was interrupted (Ctrl-C) while this ran
+// on its worker thread: the fit then finishes in the background, but writes no report (an interrupted fit replaced a
+// newer fit's report at the same path 12 s later: the twenty-second pass's P1).
 py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
-                const py::object& data, const py::object& time) {
+                const py::object& data, const py::object& time, const py::object& abandoned) {
   std::ostringstream warned;
   const auto array = array_record(data, time);
   std::optional<api::FitComputation> c;
@@ -356,7 +359,12 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     apps::FitReportInput with_modes = input;
     with_modes.modes = &*modes;
     with_modes.beam_toml = beam_toml ? &*beam_toml : nullptr;
-    if (a.has("report")) apps::write_fit_report(a.text("report"), with_modes);
+    bool interrupted = false;
+    if (!abandoned.is_none()) {
+      py::gil_scoped_acquire locked;
+      interrupted = abandoned.attr("is_set")().cast<bool>();
+    }
+    if (a.has("report") && !interrupted) apps::write_fit_report(a.text("report"), with_modes);
   }
   const fit::FitResult& r = c->result;
   py::dict d;

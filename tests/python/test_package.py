@@ -550,3 +550,21 @@ def test_a_beam_dicts_report_carries_its_toml_in_one_write(tmp_path):
     saved = tmp_path / "beam.toml"
     saved.write_text(toml[:-len("```\n")])
     assert beamid.beam(str(saved)) == beamid.beam("thick-steel")
+
+
+def test_a_fit_interrupted_by_ctrl_c_writes_no_report(tmp_path):
+    # Interrupted (KeyboardInterrupt), a fit finishes on its worker thread in the background; it wrote its report then,
+    # over a newer fit's at the same path (the twenty-second pass's P1). Now it writes none: after it has finished
+    # (the package waits for it), the report is absent.
+    import _thread
+    record = tmp_path / "slow.csv"
+    record.write_text(run("simulate", "--beam", "banks-aluminium", "--elements", "12", "--samples", "4096",
+                          "--output", "velocity", "--noise-level", "0.01"))
+    report = tmp_path / "r.md"
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        beamid.fit(str(record), beam="banks-aluminium", elements=16, estimate="EI,rho,cDI,gamma", cost="time",
+                   output="velocity", starts=30, report=str(report))
+    beamid._wait_for_core()
+    assert not report.exists()
