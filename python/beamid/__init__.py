@@ -140,6 +140,9 @@ def beam_toml(parameters):
     """TOML text for a beam file (the [beam] table, then [[attachment]] and [support]) from a dict as :func:`beam`
     returns it: every key of the [beam] table, "attachmentK.x/m/J/c" for bodies on the span and "support.k_theta",
     "support.k_w" for a compliant clamp (infinite or absent: rigid)."""
+    if not isinstance(parameters, dict):  # a preset's name gave an AttributeError (the twenty-second pass's P16)
+        raise TypeError(f"beam_toml(): {parameters!r}: must be a dict of a beam's parameters, as beam() returns it "
+                        "(beam('banks-aluminium') for a preset's)")
     lines, attachments, support = ["[beam]"], {}, {}
     for key, value in parameters.items():
         if not isinstance(key, str):  # {1: 2} failed inside str.partition with an AttributeError

@@ -13,6 +13,13 @@ import numpy as np
 def read_table(path, as_dict=False):
     """One CSV table: a structured array (one field per column), or with ``as_dict`` a dict of column arrays."""
     # utf-8-sig: a byte-order mark (as spreadsheets write one) is no part of the first column's name.
+    # As the command line reads a user's file: a pipe or a device is refused, not waited on or read without end, and
+    # a table past 1 GiB is no table beamid wrote (a FIFO hung and /dev/zero ran to a MemoryError: the twenty-second
+    # pass's P11).
+    if not os.path.isfile(path):
+        raise ValueError(f"{path}: not a regular file (a folder, a pipe or a device): a results table is a CSV file")
+    if os.path.getsize(path) > 1 << 30:
+        raise ValueError(f"{path}: {os.path.getsize(path)} bytes: more than the 1073741824 a results table may have")
     with open(path, newline="", encoding="utf-8-sig") as f:
         try:
             rows = list(csv.reader(f, strict=True))  # strict: an unclosed quote is an error, not a field to the end
@@ -58,7 +65,8 @@ def _column(fields):
 
 
 def load_results(folder, as_dict=False):
-    """Every CSV table of a study's results folder, by name without ``.csv`` (``cases``, ``summary``, ...): structured
+    """Every CSV table of a study's results folder, by name without ``.csv`` (``cases``, ``summary``, ...; those of its
+    ``landscape/`` and ``start_distance/`` folders as ``landscape/<name>``, ``start_distance/<name>``): structured
     arrays, or with ``as_dict`` dicts of column arrays. The folder's manifest.json is under ``"manifest"`` as a dict.
     A folder without manifest.json is refused: it is not one that beamid study or beamid real wrote (whatever CSV
     files it held were returned as if they were a study's tables)."""
@@ -68,12 +76,22 @@ def load_results(folder, as_dict=False):
         raise ValueError(f"{folder}: no manifest.json: not a results folder that beamid study or beamid real wrote "
                          "(a shard's folder gets its tables from beamid merge)")
     tables = {}
-    for name in sorted(os.listdir(folder)):
-        path = os.path.join(folder, name)
-        if name.endswith(".csv") and os.path.isfile(path):
-            tables[name[:-4]] = read_table(path, as_dict=as_dict)
+    # The tables of the subfolders a study writes too, as "landscape/<name>" and "start_distance/<name>" (they were
+    # left out: the twenty-second pass's P6).
+    for sub in ("", "landscape", "start_distance"):
+        where = os.path.join(folder, sub)
+        if not os.path.isdir(where):
+            continue
+        for name in sorted(os.listdir(where)):
+            path = os.path.join(where, name)
+            if name.endswith(".csv") and os.path.isfile(path):
+                tables[(sub + "/" if sub else "") + name[:-4]] = read_table(path, as_dict=as_dict)
     manifest = os.path.join(folder, "manifest.json")
-    if os.path.isfile(manifest):
-        with open(manifest, encoding="utf-8") as f:
+    if os.path.getsize(manifest) > 1 << 26:
+        raise ValueError(f"{manifest}: {os.path.getsize(manifest)} bytes: more than the 67108864 a manifest may have")
+    with open(manifest, encoding="utf-8") as f:
+        try:
             tables["manifest"] = json.load(f)
+        except (json.JSONDecodeError, UnicodeDecodeError) as error:  # named: it named no file (the pass's P15)
+            raise ValueError(f"{manifest}: not the manifest.json beamid writes: {error}") from None
     return tables

@@ -335,6 +335,23 @@ void check_before_reading(const apps::Flags& a, const std::optional<ArrayRecord>
                       core::kRecordBytesPerSample, later);
 }
 
+// Whether `event` (None, or a threading.Event) is set; called without the GIL.
+bool is_set(const py::object& event) {
+  if (event.is_none()) return false;
+  py::gil_scoped_acquire locked;
+  return event.attr("is_set")().cast<bool>();
+}
+
+// fit's report (with a beam dict's TOML), unless the caller was interrupted meanwhile (`abandoned`, below).
+void write_report(const apps::Flags& a, const apps::FitReportInput& input, const apps::ModeComparison& modes,
+                  const std::optional<std::string>& beam_toml, const py::object& abandoned) {
+  if (!a.has("report") || is_set(abandoned)) return;
+  apps::FitReportInput with = input;
+  with.modes = &modes;
+  with.beam_toml = beam_toml ? &*beam_toml : nullptr;
+  apps::write_fit_report(a.text("report"), with);
+}
+
 // `abandoned`: None, or a threading.Event the package sets when the caller was interrupted (Ctrl-C) while this ran
 // on its worker thread: the fit then finishes in the background, but writes no report (an interrupted fit replaced a
 // newer fit's report at the same path 12 s later: the twenty-second pass's P1).
@@ -356,15 +373,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
     const apps::FitReportInput input{
         c->options, c->result, channels.front(), beam_name, a.arguments(), channels, c->spread ? &*c->spread : nullptr};
     modes = apps::compare_modes(input);
-    apps::FitReportInput with_modes = input;
-    with_modes.modes = &*modes;
-    with_modes.beam_toml = beam_toml ? &*beam_toml : nullptr;
-    bool interrupted = false;
-    if (!abandoned.is_none()) {
-      py::gil_scoped_acquire locked;
-      interrupted = abandoned.attr("is_set")().cast<bool>();
-    }
-    if (a.has("report") && !interrupted) apps::write_fit_report(a.text("report"), with_modes);
+    write_report(a, input, *modes, beam_toml, abandoned);
   }
   const fit::FitResult& r = c->result;
   py::dict d;

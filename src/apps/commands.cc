@@ -181,6 +181,11 @@ int run_report(const Flags& a, std::ostream& out) {
     std::string content = io::read_file(file, "block '" + name + "': cannot read its source", kMaxReportBytes);
     // A source is one of beamid's tables: text, and no marker of its own, which would break the next refresh (its
     // END line closed the block early: the sixteenth pass's P8).
+    // Text, as the report itself must be: a control byte other than a tab or a line end (an ESC in a study file's
+    // name reached a block through report.md) was pasted, and the next refresh refused the report as binary (the
+    // twenty-second pass's P4).
+    if (auto problem = io::binary_text_problem(content, file.string()))
+      throw InputError("beamid report: " + *problem + " (block '" + name + "': its source must be text)");
     if (content.find('\0') != std::string::npos)
       throw InputError("beamid report: " + file.string() + ": block '" + name +
                        "': its source holds NUL bytes, no text");

@@ -30,8 +30,9 @@ namespace {
 // The "study_file" string of a manifest.json beamid wrote (io::json_string escapes '"' and '\\'), or "".
 // The string value of a top-level `field` of a manifest.json ("" when absent).
 std::string manifest_field(const std::filesystem::path& manifest, const std::string& field) {
-  std::ifstream in(manifest);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Capped as every file read is: a 2 GB manifest.json was read whole into "out of memory", naming no file (the
+  // twenty-second pass's P10); beamid's own are a few kB.
+  const std::string text = read_file(manifest, "cannot read the output folder's manifest", std::uintmax_t{16} << 20);
   const std::string key = "\"" + field + "\": \"";
   auto at = text.find(key);
   if (at == std::string::npos) return "";

@@ -568,3 +568,24 @@ def test_a_fit_interrupted_by_ctrl_c_writes_no_report(tmp_path):
                    output="velocity", starts=30, report=str(report))
     beamid._wait_for_core()
     assert not report.exists()
+
+
+def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
+    # A study's landscape/ and start_distance/ tables were left out, a damaged manifest.json raised a JSONDecodeError
+    # that named no file, and read_table waited on a pipe (the twenty-second pass's P6, P15, P11).
+    (tmp_path / "manifest.json").write_text("{}", encoding="utf-8")
+    (tmp_path / "cases.csv").write_text("a,b\n1,2\n", encoding="utf-8")
+    for sub in ("landscape", "start_distance"):
+        (tmp_path / sub).mkdir()
+        (tmp_path / sub / "radius.csv").write_text("x\n3\n", encoding="utf-8")
+    tables = beamid.load_results(str(tmp_path))
+    assert set(tables) == {"cases", "landscape/radius", "start_distance/radius", "manifest"}
+    assert tables["start_distance/radius"]["x"][0] == 3
+    (tmp_path / "manifest.json").write_text("{", encoding="utf-8")
+    with pytest.raises(ValueError, match=re.escape(str(tmp_path / "manifest.json")) + ": not the manifest.json"):
+        beamid.load_results(str(tmp_path))
+    os.mkfifo(tmp_path / "pipe.csv")
+    with pytest.raises(ValueError, match="not a regular file"):
+        beamid.read_table(str(tmp_path / "pipe.csv"))
+    with pytest.raises(TypeError, match="must be a dict"):
+        beamid.beam_toml("banks-aluminium")
