@@ -34,7 +34,7 @@ struct SpikesResult {
   bool welch = false;  // the spectrum is Welch's average (magnitudes only)
   // The sub-bin frequency and decay rate of the peak at `bin` (the three-bin estimate, signal/spikes.h): a bin's
   // frequency is up to half a bin off (4.293 against 4.268 Hz). NaN on Welch's average (it has no phases) or where
-  // the estimate fails or strays beyond a bin.
+  // the estimate fails or strays beyond a bin; a negative decay rate (leakage, not a decay) is NaN too.
   signal::PoleEstimate subbin(int bin) const;
   // Per pick, its mode by the measured-frequency estimator that modal-id, fit and real share (signal/measured_modes.h:
   // the matrix pencil's pole nearest the pick, with its uncertainty); mode.frequency_hz NaN where none was measured,
