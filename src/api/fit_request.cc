@@ -478,6 +478,13 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
                   "): its standard errors are finite differences across a jump and cannot be trusted, nor can the "
                   "optimizer's convergence; refit from other starts (--starts) or with another cost, and quote the "
                   "spread over windows (--windows K)";
+  // A cliff or a strong curvature within one standard error (the twenty-second pass's P5): the standard errors
+  // describe a quadratic the cost is not.
+  else if (result.status != "failed" && !result.nonquadratic.empty())
+    notes.rough = "the cost is not quadratic within the standard errors (" + result.nonquadratic +
+                  "): a cliff or a strong curvature lies within them, so they are no interval and cannot be "
+                  "trusted, nor can the optimizer's convergence; refit from other starts (--starts) or with a "
+                  "smooth cost (time, spike-smooth, freq-ml), and quote the spread over windows (--windows K)";
   if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
     notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
                         "; quote the spread over windows (--windows K) instead";

@@ -9,6 +9,7 @@
 #include "api/model_notes.h"
 #include "core/errors.h"
 #include "core/limits.h"
+#include "fit/identifiability.h"
 #include "galerkin/modes.h"
 #include "model/exact_frequencies.h"
 #include "signal/noise.h"
@@ -293,7 +294,16 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   // information" for a zero force or a sensor at the clamp, where simulate names the cause).
   if (r.bound.sensitivities.size() > 0 && r.bound.sensitivities.cwiseAbs().maxCoeff() == 0)
     refuse(caller, kZeroResponse);
-  if (r.bound.status != "ok") throw NumericalError(caller.label + ": " + r.bound.status);
+  if (r.bound.status != "ok") {
+    // Named: the direction in ln q along which the output does not change (the twenty-second pass's P7).
+    const Eigen::VectorXd& v = r.bound.null_direction;
+    const std::string along = v.size() == static_cast<Eigen::Index>(r.keys.size())
+                                  ? " (the output does not change along " +
+                                        fit::combination_text(r.keys, {v.data(), v.data() + v.size()}) +
+                                        ": estimate fewer of them, or fix one)"
+                                  : "";
+    throw NumericalError(caller.label + ": " + r.bound.status + along);
+  }
   // A bound that is 0 or infinite is no bound (a force of 1e-300 N against a noise of 0.01 printed inf): said.
   for (Eigen::Index i = 0; i < r.bound.sd.size(); ++i)
     if (!(r.bound.sd(i) > 0 && std::isfinite(r.bound.sd(i))))

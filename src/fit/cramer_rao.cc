@@ -76,6 +76,7 @@ CramerRaoBound bound_from_sensitivities(CramerRaoBound b) {
                "): some combination of the parameters does not change the output";
     b.relative_sd = Eigen::VectorXd::Constant(p, nan);
     b.sd = b.relative_sd;
+    b.null_direction = svd.matrixV().col(p - 1);
     return b;
   }
   // F^-1 = sigma^2 (J^T J)^-1 = sigma^2 V S^-2 V^T.

@@ -34,17 +34,20 @@ struct SensitivityOptions {
 };
 
 struct CramerRaoBound {
-  std::vector<std::string> keys;      // parameter names, in the order of the vectors below
-  Eigen::VectorXd values;             // q at which the bound holds
-  double noise_sd = 0;                // sigma, in the units of the samples
-  Eigen::MatrixXd sensitivities;      // J: samples x parameters, d y_i / d ln q_k
-  Eigen::MatrixXd covariance;         // F^-1 = sigma^2 (J^T J)^-1, of ln q (empty when F is singular)
-  Eigen::VectorXd relative_sd;        // sqrt(diag F^-1): the bound on sd(q_hat_k) / q_k (NaN when F is singular)
-  Eigen::VectorXd sd;                 // relative_sd * values: the bound on sd(q_hat_k) in q's units
-  std::string method = "ridders";     // "exact" (simulation/sensitivities.h) or "ridders" (extrapolated differences)
-  double step_agreement = 0;          // ridders: max over the columns of Ridders' error estimate / max |J_k|
-  double rcond = 0;                   // reciprocal condition number of J (smallest / largest singular value)
-  std::string status = "ok";          // "ok" or why the bound is not available (singular Fisher information, ...)
+  std::vector<std::string> keys;   // parameter names, in the order of the vectors below
+  Eigen::VectorXd values;          // q at which the bound holds
+  double noise_sd = 0;             // sigma, in the units of the samples
+  Eigen::MatrixXd sensitivities;   // J: samples x parameters, d y_i / d ln q_k
+  Eigen::MatrixXd covariance;      // F^-1 = sigma^2 (J^T J)^-1, of ln q (empty when F is singular)
+  Eigen::VectorXd relative_sd;     // sqrt(diag F^-1): the bound on sd(q_hat_k) / q_k (NaN when F is singular)
+  Eigen::VectorXd sd;              // relative_sd * values: the bound on sd(q_hat_k) in q's units
+  std::string method = "ridders";  // "exact" (simulation/sensitivities.h) or "ridders" (extrapolated differences)
+  double step_agreement = 0;       // ridders: max over the columns of Ridders' error estimate / max |J_k|
+  double rcond = 0;                // reciprocal condition number of J (smallest / largest singular value)
+  std::string status = "ok";       // "ok" or why the bound is not available (singular Fisher information, ...)
+  // When F is singular: the unit direction in ln q that the output does not determine (V's last column), so that the
+  // caller can name the combination (the twenty-second pass's P7: "some combination" named none).
+  Eigen::VectorXd null_direction;
   std::string noise_model = "white";  // the noise's colour (signal/noise.h); noise_sd is its process sd
 };
 

@@ -113,13 +113,23 @@ std::string Identifiability::scope() const {
   return out + ")";
 }
 
-std::string Identifiability::combination(const std::vector<double>& v) const {
+std::string Identifiability::combination(const std::vector<double>& v) const { return combination_text(keys, v); }
+
+std::string combination_text(const std::vector<std::string>& keys, const std::vector<double>& v) {
+  // Signed so that the first printed component is positive: a direction and its opposite read the same.
+  double sign = 1;
+  for (std::size_t i = 0; i < keys.size() && i < v.size(); ++i)
+    if (std::abs(v[i]) >= 0.05) {
+      sign = v[i] < 0 ? -1 : 1;
+      break;
+    }
   std::string out;
   for (std::size_t i = 0; i < keys.size() && i < v.size(); ++i) {
-    if (std::abs(v[i]) < 0.05) continue;
+    const double c = sign * v[i];
+    if (std::abs(c) < 0.05) continue;
     char number[32];
-    std::snprintf(number, sizeof number, "%.2f", std::abs(v[i]));
-    out += (out.empty() ? (v[i] < 0 ? "-" : "") : (v[i] < 0 ? " - " : " + ")) + std::string(number) + " ln " + keys[i];
+    std::snprintf(number, sizeof number, "%.2f", std::abs(c));
+    out += (out.empty() ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ")) + std::string(number) + " ln " + keys[i];
   }
   return out;
 }

@@ -51,6 +51,10 @@ struct Identifiability {
   std::string combination(const std::vector<double>& components) const;
 };
 
+// "0.71 ln EI - 0.71 ln rho": the direction v over `keys` as text, components under 0.05 left out, signed so that the
+// first printed component is positive.
+std::string combination_text(const std::vector<std::string>& keys, const std::vector<double>& v);
+
 // What the verdict is about, per estimated coordinate (in the map's order); empty vectors: every one of interest,
 // none on a bound. When no free parameter is of interest, the verdict is about every free one.
 struct VerdictScope {

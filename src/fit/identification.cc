@@ -472,6 +472,11 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
     result.roughness = "its derivative in " +
                        map.estimated()[static_cast<std::size_t>(covariance.rough_coordinate)].key + " changes by " +
                        format_rounded(100 * covariance.rough_change, 2) + " % between steps of 1e-6 and 1e-5";
+  if (covariance.nonquadratic_coordinate >= 0)
+    result.nonquadratic =
+        "one standard error of " + map.estimated()[static_cast<std::size_t>(covariance.nonquadratic_coordinate)].key +
+        " away, its sum of squares changes by " + format_rounded(covariance.nonquadratic_rise, 3) +
+        " where its derivatives at the estimate predict " + format_rounded(covariance.quadratic_rise, 3);
   Eigen::VectorXd standard_error = Eigen::VectorXd::Constant(map.size(), std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd robust_error = standard_error;
   if (covariance.ok()) {

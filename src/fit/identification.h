@@ -156,6 +156,9 @@ struct FitResult {
   // "" when the cost is smooth at the estimate, else what says it is not (Covariance::rough_coordinate): the estimate's
   // key and how much its derivative changes between steps of 1e-6 and 1e-5 of it.
   std::string roughness;
+  // "" when the cost is quadratic over one standard error of each parameter, else what says it is not
+  // (Covariance::nonquadratic_coordinate): the key, the sum of squares' change there and its prediction.
+  std::string nonquadratic;
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages

@@ -217,6 +217,35 @@ void form_sandwich(const Eigen::MatrixXd& jacobian, const Eigen::MatrixXd& inver
   c.robust = inverse * meat * inverse;
 }
 
+// Covariance::nonquadratic_coordinate: the sum of squares one formal standard error either side of `at` against its
+// Gauss-Newton prediction (sides outside the bounds are skipped).
+void check_quadratic(detail::GuardedProblem& guarded, const Problem& problem, const Eigen::VectorXd& at,
+                     const Eigen::VectorXd& r, const Eigen::MatrixXd& jacobian, Covariance& c) {
+  const double cost = r.squaredNorm();
+  double worst = 0;
+  for (Eigen::Index i = 0; i < at.size(); ++i) {
+    const double sd = std::sqrt(c.matrix(i, i));
+    if (!(sd > 0) || !std::isfinite(sd)) continue;
+    const double q = sd * sd * jacobian.col(i).squaredNorm();
+    for (const double step : {sd, -sd}) {
+      Eigen::VectorXd x = at, moved;
+      x(i) += step;
+      if (x(i) < problem.lower(i) || x(i) > problem.upper(i) || !guarded.residuals(x, moved) ||
+          moved.size() != r.size() || !moved.allFinite())
+        continue;
+      const double rise = moved.squaredNorm() - cost;
+      const double predicted = (r + step * jacobian.col(i)).squaredNorm() - cost;
+      const double mismatch = std::abs(rise - predicted) / q;
+      if (mismatch > kNonQuadraticRise && mismatch > worst) {
+        worst = mismatch;
+        c.nonquadratic_coordinate = static_cast<int>(i);
+        c.nonquadratic_rise = rise;
+        c.quadratic_rise = predicted;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int lags) {
@@ -290,6 +319,7 @@ Covariance covariance_at(const Problem& problem, const Eigen::VectorXd& at, int 
   const Eigen::MatrixXd inverse = v * lambda.cwiseInverse().asDiagonal() * v.transpose();
   c.matrix = inverse * c.residual_variance;
   form_sandwich(jacobian, inverse, r, lags, c);
+  check_quadratic(guarded, problem, at, r, jacobian, c);
   return c;
 }
 

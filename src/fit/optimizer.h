@@ -101,7 +101,19 @@ struct Covariance {
   // pass's P1): the standard errors are kept, and the fit says they cannot be trusted.
   int rough_coordinate = -1;
   double rough_change = 0;
+  // Whether the cost is quadratic over the standard errors it reports: for each coordinate, the sum of squares one
+  // formal standard error away on either side against its Gauss-Newton prediction |r + s J_i|^2 (rise q_i = s^2
+  // |J_i|^2). The coordinate with the largest mismatch beyond kNonQuadraticRise q_i, with the actual and predicted
+  // rises; -1 when none. A cliff of the spike cost (3.5) 1e-3 from the estimate, where a model spike changes its bin,
+  // lies far beyond the steps of the Jacobian check above: Nelder-Mead stopped "converged" on it and the standard
+  // errors were printed with nothing said (the twenty-second pass's P5).
+  int nonquadratic_coordinate = -1;
+  double nonquadratic_rise = 0, quadratic_rise = 0;
 };
+// At one standard error a smooth cost's sum of squares rises by q_i (at least one residual variance) to within its
+// third-order term, small wherever the standard error means anything; a rise off by more than 2 q_i (below -q_i or
+// above 3 q_i) is a cliff, or a cost so far from quadratic that the standard error is no interval.
+inline constexpr double kNonQuadraticRise = 2.0;
 // On a smooth cost the central differences at h = 1e-6 and 10 h of the coordinate differ by their truncation error,
 // O((10 h)^2) of the column (a resonance 1e-3 wide moves by 1 % of its width at 10 h: 1e-4 of it); 10 % is a jump.
 inline constexpr double kRoughJacobian = 0.1;

@@ -63,22 +63,37 @@ std::vector<Block> scan(const std::vector<std::string>& lines, const std::string
   return blocks;
 }
 
-// Lines without their ends: a file written on Windows (CR LF) has its markers found as well (its markers ended in CR
-// and no block was found, "0 generated block(s) refreshed": the tenth pass's RP_6).
-std::vector<std::string> split_lines(const std::string& text) {
+// Each line as the file holds it, its end ('\n', '\r\n' or none for an unterminated last line) included: lines
+// outside the refreshed blocks are copied back byte for byte (the first line's end was given to every line, and a
+// CR elsewhere was dropped: the twenty-second pass's P9).
+std::vector<std::string> raw_lines(const std::string& text) {
   std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(line);
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = text.find('\n', start);
+    const std::size_t next = end == std::string::npos ? text.size() : end + 1;
+    lines.push_back(text.substr(start, next - start));
+    start = next;
   }
   return lines;
 }
 
-// The file's own line end, kept when it is rewritten: CR LF if its first line ends so.
-std::string line_end(const std::string& text) {
-  const std::size_t first = text.find('\n');
-  return first != std::string::npos && first > 0 && text[first - 1] == '\r' ? "\r\n" : "\n";
+// A line without its end: a file written on Windows (CR LF) has its markers found as well (its markers ended in CR
+// and no block was found, "0 generated block(s) refreshed": the tenth pass's RP_6).
+std::string without_end(std::string line) {
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines = raw_lines(text);
+  for (std::string& line : lines) line = without_end(std::move(line));
+  return lines;
+}
+
+// A refreshed block's lines end as its BEGIN marker's line does (CR LF in a Windows file).
+std::string line_end(const std::string& raw_line) {
+  return raw_line.size() >= 2 && raw_line.compare(raw_line.size() - 2, 2, "\r\n") == 0 ? "\r\n" : "\n";
 }
 
 }  // namespace
@@ -117,22 +132,22 @@ std::vector<std::size_t> block_lines(const std::string& text, const std::string&
 
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
                            const std::string& source_name) {
-  const std::vector<std::string> lines = split_lines(text);
-  const std::vector<Block> blocks = scan(lines, source_name);
-  const std::string eol = line_end(text);
+  const std::vector<std::string> raw = raw_lines(text);
+  const std::vector<Block> blocks = scan(split_lines(text), source_name);
   std::string out;
   std::size_t next = 0;
   for (const auto& b : blocks) {
-    for (; next <= b.begin_line; ++next) out += lines[next] + eol;
+    for (; next <= b.begin_line; ++next) out += raw[next];
     auto it = contents.find(b.name);
     if (it == contents.end()) {
-      for (; next < b.end_line; ++next) out += lines[next] + eol;
+      for (; next < b.end_line; ++next) out += raw[next];
     } else {
+      const std::string eol = line_end(raw[b.begin_line]);
       for (const std::string& line : split_lines(it->second)) out += line + eol;
       next = b.end_line;
     }
   }
-  for (; next < lines.size(); ++next) out += lines[next] + eol;
+  for (; next < raw.size(); ++next) out += raw[next];
   return out;
 }
 

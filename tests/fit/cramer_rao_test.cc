@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "fit/identifiability.h"
 #include "fit/identification.h"
 #include "signal/noise.h"
 #include "signal/spikes.h"
@@ -97,6 +98,13 @@ TEST(CramerRao, RefusesWhatHasNoBound) {
   const CramerRaoBound b = cramer_rao_bound(blind, x, 0.01);
   EXPECT_NE(b.status, "ok");
   EXPECT_TRUE(std::isnan(b.relative_sd(4)));
+  // The direction the output does not determine is given, to be named (the twenty-second pass's P7: "some
+  // combination" named none): here the fifth coordinate alone, to round-off in the exact-zero sensitivity column.
+  ASSERT_EQ(b.null_direction.size(), 5);
+  EXPECT_NEAR(std::abs(b.null_direction(4)), 1.0, 1e-12);
+  const std::vector<double> v(b.null_direction.data(), b.null_direction.data() + 5);
+  EXPECT_EQ(combination_text({"A", "alpha", "omega", "phi", "blind"}, v), "1.00 ln blind");
+  EXPECT_EQ(combination_text({"EI", "rho"}, {-0.6, 0.8}), "0.60 ln EI - 0.80 ln rho");  // signed: first one positive
   const auto beam = model::preset("banks-aluminium");
   simulation::Experiment e;
   EXPECT_THROW(beam_cramer_rao_bound(beam, 4, e, {"support.k_theta"}, 1e-6), InputError);  // a rigid clamp

@@ -129,6 +129,33 @@ TEST(Optimizers, TheCovarianceSaysWhereTheResidualsAreNotSmooth) {
   EXPECT_GT(c.rough_change, kRoughJacobian);
 }
 
+TEST(Optimizers, TheCovarianceSaysWhereACliffLiesWithinTheStandardErrors) {
+  // The twenty-second pass's P5: a cliff of the spike cost 1e-3 from the estimate, beyond the Jacobian check's 10 h,
+  // left the standard errors unquestioned. A line's sum of squares is exactly quadratic, so one standard error away
+  // (the intercept's: s^2 = 0.047, sd 0.068) it rises as predicted, to round-off. A residual (0 there) that jumps by
+  // 1 at half a standard error of the intercept adds 1 to the sum of squares there, against a predicted rise
+  // q = sd^2 |J_0|^2 = 0.0046 x 40 = 0.19: beyond kNonQuadraticRise q = 0.37, and the intercept is named.
+  Eigen::VectorXd e(40);
+  for (int i = 0; i < 40; ++i) e(i) = 0.3 * std::sin(1.7 * i);
+  const Problem smooth = line_problem(e, Eigen::VectorXd::LinSpaced(40, 0, 39));
+  const Eigen::Vector2d at(1.0, 2.0);
+  const Covariance plain = covariance_at(smooth, at);
+  ASSERT_TRUE(plain.ok()) << plain.status;
+  EXPECT_EQ(plain.nonquadratic_coordinate, -1);
+  Problem cliff = smooth;
+  cliff.residuals = [smooth](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    smooth.residuals(x, r);
+    r(0) += x(0) > 1.0 + 0.03 ? 1.0 : 0.0;
+    return true;
+  };
+  const Covariance c = covariance_at(cliff, at);
+  ASSERT_TRUE(c.ok()) << c.status;
+  EXPECT_EQ(c.rough_coordinate, -1);  // the Jacobian's steps (1e-6, 1e-5) do not reach it
+  EXPECT_EQ(c.nonquadratic_coordinate, 0);
+  // The jump of residual 0 (sd there) to sd + 1 adds 1 + 2 sd.
+  EXPECT_NEAR(c.nonquadratic_rise - c.quadratic_rise, 1 + 2 * std::sqrt(c.matrix(0, 0)), 1e-9);
+}
+
 TEST(Optimizers, CovarianceOfALinearFitIsTheTextbookOne) {
   // y = a + b t at t = 0..39 with residual pattern e_i = 0.3 sin(1.7 i): cov = s^2 (X^T X)^-1, s^2 = |e|^2/(40 - 2).
   // (40 rows: the sandwich needs kMinSandwichTerms residuals' worth per estimate, and 10 rows give the slope 5.6.)

@@ -38,6 +38,17 @@ TEST(ReportBlocks, AFileWithWindowsLineEndsIsUpdatedAndKeepsThem) {
             "<!-- BEGIN GENERATED b -->\r\nnew b\r\n<!-- END GENERATED b -->\r\nend\r\n");
 }
 
+TEST(ReportBlocks, LinesOutsideTheRefreshedBlocksAreKeptByteForByte) {
+  // The twenty-second pass's P9: the first line's end was given to every line, so a file with mixed ends lost its
+  // CRs outside the blocks, and an unterminated last line gained a newline.
+  const std::string mixed =
+      "# Report\nprose\r\n<!-- BEGIN GENERATED b -->\r\nold\r\n<!-- END GENERATED b -->\nmiddle\r\nend";
+  EXPECT_EQ(
+      replace_blocks(mixed, {{"b", "new 1\nnew 2\n"}}, "R.md"),
+      "# Report\nprose\r\n<!-- BEGIN GENERATED b -->\r\nnew 1\r\nnew 2\r\n<!-- END GENERATED b -->\nmiddle\r\nend");
+  EXPECT_EQ(replace_blocks(mixed, {}, "R.md"), mixed);
+}
+
 TEST(ReportBlocks, AByteOrderMarkBeforeTheFirstMarkerIsKeptAndTheMarkerFound) {
   // An editor's UTF-8 byte-order mark hid a first-line marker: "END GENERATED a without a BEGIN" at line 3 (the
   // second adversarial pass of 2026-11-28, P7).
