@@ -40,6 +40,9 @@ struct WindowSpread {
   // Per parameter, the converged windows where it is not on a bound: its statistics are over these only (a window's
   // cDI on its bound was counted in cDI's sd, the bound's value rather than the data's: the fifth pass's R284).
   std::vector<int> used_per_parameter;
+  // Some counted window has a parameter on its bound: the bound biases that window's other estimates as well, so the
+  // spread of the parameters off their bound holds that bias beside noise and model error (the verdict says so).
+  bool bound_bias = false;
 };
 
 // The smallest window, in samples: shorter windows resolve no mode below a few hundred bins.
