@@ -363,8 +363,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&budget, &rough, &transient, &on_bound, &explains_nothing, &pairing, &no_errors,
-                                  &no_sandwich, &correlated_bins, &failed, &identifiability})
+  for (const std::string* note : {&budget, &rough, &other_minimum, &transient, &on_bound, &explains_nothing, &pairing,
+                                  &no_errors, &no_sandwich, &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -399,6 +399,33 @@ std::string explained_note(const fit::FitResult& result) {
     }
   }
   return line.str();
+}
+
+// What the cost's shape around the estimate says of its standard errors: a jump (rough), a cliff or curvature
+// within them (not quadratic), another minimum nearly as low (other_minimum).
+void basin_notes(const fit::FitResult& result, FitNotes& notes) {
+  if (result.status == "failed") return;
+  // A cost that is not smooth at the estimate (a jump between parameters 1e-10 apart: the twenty-first pass's P1)
+  // gives finite differences of garbage: the standard errors, and a "converged" that rests on them, say so.
+  if (!result.roughness.empty())
+    notes.rough = "the cost is not smooth at the estimate (" + result.roughness +
+                  "): its standard errors are finite differences across a jump and cannot be trusted, nor can the "
+                  "optimizer's convergence; refit from other starts (--starts) or with another cost, and quote the "
+                  "spread over windows (--windows K)";
+  // A cliff or a strong curvature within one standard error (the twenty-second pass's P5): the standard errors
+  // describe a quadratic the cost is not.
+  else if (!result.nonquadratic.empty())
+    notes.rough = "the cost is not quadratic within the standard errors (" + result.nonquadratic +
+                  "): a cliff or a strong curvature lies within them, so they are no interval and cannot be "
+                  "trusted, nor can the optimizer's convergence; refit from other starts (--starts) or with a "
+                  "smooth cost (time, spike-smooth, freq-ml), and quote the spread over windows (--windows K)";
+  // Several minima the data hardly tell apart (adv51 P3: kAG 13 standard errors from a minimum 20 noise variances
+  // lower, "converged" with nothing said).
+  if (!result.other_minimum.empty())
+    notes.other_minimum = "the cost has another minimum nearly as low (" + result.other_minimum +
+                          "): the data hardly tell the two apart, and the standard errors describe the estimate's own "
+                          "basin only; compare the two (--start-scale, --bounds), fix what else is known, or use a "
+                          "cost whose basin is wider (modal, spike-smooth)";
 }
 
 }  // namespace
@@ -471,20 +498,7 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
                       "response (a force of the wrong sign, scale or position would fit as well), and the estimate "
                       "rests on the modes' frequencies and decay alone; check the force channel, its unit and "
                       "--force-x, and compare a time-cost fit";
-  // A cost that is not smooth at the estimate (a jump between parameters 1e-10 apart: the twenty-first pass's P1)
-  // gives finite differences of garbage: the standard errors, and a "converged" that rests on them, say so.
-  if (result.status != "failed" && !result.roughness.empty())
-    notes.rough = "the cost is not smooth at the estimate (" + result.roughness +
-                  "): its standard errors are finite differences across a jump and cannot be trusted, nor can the "
-                  "optimizer's convergence; refit from other starts (--starts) or with another cost, and quote the "
-                  "spread over windows (--windows K)";
-  // A cliff or a strong curvature within one standard error (the twenty-second pass's P5): the standard errors
-  // describe a quadratic the cost is not.
-  else if (result.status != "failed" && !result.nonquadratic.empty())
-    notes.rough = "the cost is not quadratic within the standard errors (" + result.nonquadratic +
-                  "): a cliff or a strong curvature lies within them, so they are no interval and cannot be "
-                  "trusted, nor can the optimizer's convergence; refit from other starts (--starts) or with a "
-                  "smooth cost (time, spike-smooth, freq-ml), and quote the spread over windows (--windows K)";
+  basin_notes(result, notes);
   if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
     notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
                         "; quote the spread over windows (--windows K) instead";

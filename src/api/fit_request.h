@@ -96,6 +96,7 @@ struct FitNotes {
   std::string correlated_bins;  // a window correlates the DFT bins the standard errors take as independent
   std::string budget;           // the evaluation budget ran out: the estimate is where the optimizer stopped
   std::string rough;            // the cost is not smooth at the estimate (FitResult::roughness)
+  std::string other_minimum;    // another start ended nearly as low, far away (FitResult::other_minimum)
   std::string transient;        // errors in variables: the free transient, not the force, accounts for the response
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;

@@ -223,6 +223,7 @@ int run_fit(const Flags& a, std::ostream& out) {
   const api::FitNotes notes = api::fit_notes(result, o.cost);
   if (!notes.budget.empty()) std::cerr << "beamid fit: " << notes.budget << "\n";
   if (!notes.rough.empty()) std::cerr << "beamid fit: " << notes.rough << "\n";
+  if (!notes.other_minimum.empty()) std::cerr << "beamid fit: " << notes.other_minimum << "\n";
   if (!notes.transient.empty()) std::cerr << "beamid fit: " << notes.transient << "\n";
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.explains_nothing.empty()) std::cerr << "beamid fit: " << notes.explains_nothing << "\n";

@@ -377,6 +377,9 @@ StrategyRun best_of_starts(JointObjective& objective, const ParameterMap& map, c
     seeded.optimizer.seed = o.seed + s;  // a distinct, reproducible stream per start
     StrategyRun run = run_strategy(objective, map, seeded, x_starts[s], records);
     result.evaluations += run.evaluations;
+    StartEnd end{run.cost, {}, !run.stages.empty() && run.stages.back().result.usable()};
+    for (int i = 0; i < map.size(); ++i) end.values.push_back(map.value(i, run.x(i)));
+    result.start_ends.push_back(std::move(end));
     if (s == 0 || run.cost < best.cost) {
       best = std::move(run);
       result.best_start = static_cast<int>(s);
@@ -526,6 +529,15 @@ void parameter_results(JointObjective& objective, const ParameterMap& map, const
     result.parameters.push_back(p);
   }
   if (at_bound && result.status != "failed") result.status += "-at-bound";
+  // Other minima: only where the starts' costs are the estimate's sum of squares (a noise reweighting changes it).
+  if (covariance.ok() && !(o.record_weights == kNoiseWeights && result.records.size() > 1)) {
+    std::vector<std::string> keys;
+    std::vector<double> values, errors;
+    for (const ParameterEstimate& p : result.parameters)
+      keys.push_back(p.key), values.push_back(p.estimate), errors.push_back(p.standard_error);
+    result.other_minimum =
+        other_minimum(result.start_ends, result.best_start, keys, values, errors, covariance.residual_variance);
+  }
   result.identifiability = identifiability_of(covariance, map, best.x, verdict_scope(map, o, result.parameters));
 }
 

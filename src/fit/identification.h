@@ -41,6 +41,7 @@
 #include "fit/identifiability.h"
 #include "fit/optimizer.h"
 #include "fit/parameter_map.h"
+#include "fit/start_minima.h"
 #include "model/beam_parameters.h"
 #include "signal/sensor_filter.h"
 #include "simulation/experiment.h"
@@ -159,6 +160,10 @@ struct FitResult {
   // "" when the cost is quadratic over one standard error of each parameter, else what says it is not
   // (Covariance::nonquadratic_coordinate): the key, the sum of squares' change there and its prediction.
   std::string nonquadratic;
+  // Where each start ended (fit/start_minima.h), and "" or the nearest other minimum nearly as low as the estimate
+  // yet far from it (other_minimum()): the cost has minima the data hardly tell apart.
+  std::vector<StartEnd> start_ends;
+  std::string other_minimum;
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages
