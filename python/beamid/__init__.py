@@ -418,13 +418,22 @@ def _is(type_, value):
     return any(_is(t, value) for t in type_)
 
 
+def _ndim(value):
+    """np.ndim, or -1 for a ragged nesting ([[2.46], 26.5]), whose np.ndim is NumPy's ValueError naming no argument
+    (the twenty-third pass's P8)."""
+    try:
+        return np.ndim(value)
+    except ValueError:
+        return -1
+
+
 def _check_type(command, name, kind, value):
     """TypeError unless the value has the flag's type (a list only where the flag takes one)."""
     item = _list_item(command, name)
-    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) == 1 and len(value) == 0:
+    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and _ndim(value) == 1 and len(value) == 0:
         # An empty list names nothing (it was told "must be a string or a list of them", which it is).
         raise InputError(f"{command}(): {name} = {value!r}: must not be empty")
-    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) == 1:
+    if item is not None and isinstance(value, (list, tuple, np.ndarray)) and _ndim(value) == 1:
         ok = all(_is(item, v) for v in value)
     elif item is not None:
         ok = _is(str, value) or _is(item, value)

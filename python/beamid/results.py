@@ -16,6 +16,8 @@ def read_table(path, as_dict=False):
     # As the command line reads a user's file: a pipe or a device is refused, not waited on or read without end, and
     # a table past 1 GiB is no table beamid wrote (a FIFO hung and /dev/zero ran to a MemoryError: the twenty-second
     # pass's P11).
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError(f"read_table(): path = {path!r}: must be a str or an os.PathLike (the table's file)")
     if not os.path.isfile(path):
         raise ValueError(f"{path}: not a regular file (a folder, a pipe or a device): a results table is a CSV file")
     if os.path.getsize(path) > 1 << 30:
@@ -30,6 +32,14 @@ def read_table(path, as_dict=False):
                              f"as UTF-8 CSV") from None
     if not rows:
         raise ValueError(f"{path}: empty file: a results table starts with a header line")
+    # A control byte (NUL, ...) is in no table beamid writes: a binary file was read as a table with one column named
+    # by its bytes (the twenty-third pass's P3).
+    for line, row in enumerate(rows, start=1):
+        for field in row:
+            bad = next((c for c in field if ord(c) < 32 and c not in "\t\r\n"), None)
+            if bad is not None:
+                raise ValueError(f"{path}:{line}: byte 0x{ord(bad):02X}, a control character: a binary file, not a "
+                                 f"results table (beamid writes its tables as text)")
     header, body = rows[0], rows[1:]
     if len(header) == 1 and ";" in header[0]:
         raise ValueError(f"{path}:1: one column named {header[0]!r}: a table separated by ';' is not one beamid writes "

@@ -308,11 +308,25 @@ std::string raw_signal_note(const io::TimeSeries& data, const std::string& what)
          " (frequencies and damping ratios do not depend on the unit; beamid fit needs the motion)";
 }
 
+// Whether the record's steps lie on a grid of `quantum`: at least 90 % of its nonzero steps within 1 % of a whole
+// number of quanta. The smallest step of a few full-precision samples is no quantum: 8 samples of a sine were called
+// "quantised coarsely (4.6 bits)" (the twenty-third pass's P5).
+bool on_grid(const std::vector<double>& v, double quantum) {
+  std::size_t steps = 0, on = 0;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double q = std::abs(v[i] - v[i - 1]) / quantum; q > 0) {
+      ++steps;
+      on += std::abs(q - std::round(q)) <= 0.01 ? 1 : 0;
+    }
+  return steps > 0 && on >= 0.9 * static_cast<double>(steps);
+}
+
 std::string quantisation_note(const io::TimeSeries& data) {
   const double quantum = io::record_quantum(data.values);
   double peak = 0;
   for (double v : data.values) peak = std::max(peak, std::abs(v));
   if (!std::isfinite(quantum) || !(peak / quantum < io::kFineQuantisation)) return "";
+  if (data.values.size() < kMinQuantisationSamples || !on_grid(data.values, quantum)) return "";
   return "the record is quantised coarsely: its step is " + format_rounded(quantum, 3) + ", 1/" +
          format_rounded(peak / quantum, 3) + " of its peak (" + format_rounded(std::log2(2 * peak / quantum), 2) +
          " bits over its range): below a few steps its quantisation error follows the signal instead of being white "

@@ -89,7 +89,10 @@ std::string window_transient_note(const signal::WindowOptions& window, std::size
 std::string raw_signal_note(const io::TimeSeries& data, const std::string& what);
 // A record of fewer than io::kFineQuantisation steps over its peak (under 10 bits over its range), said with its step:
 // a 5-bit record (32 levels), accepted once it was no longer taken for a dropout (the nineteenth pass's P4), listed a
-// steady 17.2 Hz line, a growing 12.3 Hz one and mode 1 with a negative damping ratio. "" otherwise.
+// steady 17.2 Hz line, a growing 12.3 Hz one and mode 1 with a negative damping ratio. "" otherwise, and "" when the
+// record has fewer than kMinQuantisationSamples samples or its steps are not whole numbers of its smallest one (no
+// grid: a few full-precision samples).
+inline constexpr std::size_t kMinQuantisationSamples = 64;
 std::string quantisation_note(const io::TimeSeries& data);
 // The frequencies above a resampled record's pass band (io::TimeSeries::pass_band_hz) named, with why they are no
 // modes ("" when none is); `what` is "pole" or "spike".

@@ -186,6 +186,7 @@ int run_report(const Flags& a, std::ostream& out) {
     // twenty-second pass's P4).
     if (auto problem = io::binary_text_problem(content, file.string()))
       throw InputError("beamid report: " + *problem + " (block '" + name + "': its source must be text)");
+    io::check_line_ends(content, file.string());
     if (content.find('\0') != std::string::npos)
       throw InputError("beamid report: " + file.string() + ": block '" + name +
                        "': its source holds NUL bytes, no text");

@@ -109,7 +109,12 @@ int run_merge(const Flags& a, std::ostream& out) {
     if (why.empty() && unit->second->kind != study::UnitKind::Truth) ++shard_units;
     return why.empty() ? why : "not this study's unit: " + why;
   };
-  std::stringstream list(a.text("shards"));
+  // getline drops an empty last item: a comma at the end was accepted, against this very rule (the twenty-third
+  // pass's P4).
+  const std::string shards = a.text("shards");
+  if (!shards.empty() && shards.back() == ',')
+    a.require(false, "shards", "names an empty folder (two commas together, or a comma at an end)");
+  std::stringstream list(shards);
   std::string dir;
   int records = 0, left_behind = 0;
   std::vector<std::string> seen;

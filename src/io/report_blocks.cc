@@ -14,6 +14,7 @@ const std::string kBegin = "<!-- BEGIN GENERATED ";
 const std::string kEnd = "<!-- END GENERATED ";
 const std::string kClose = " -->";
 const std::string kByteOrderMark = "\xEF\xBB\xBF";
+const std::string kBeginWord = "<!-- BEGIN GENERATED", kEndWord = "<!-- END GENERATED";
 
 // The block name if `line` is exactly a marker of the given kind.
 bool marker(const std::string& line, const std::string& kind, std::string* name) {
@@ -37,11 +38,22 @@ std::vector<Block> scan(const std::vector<std::string>& lines, const std::string
     std::string name;
     // A UTF-8 byte-order mark before the first line's marker hid it (the second adversarial pass of 2026-11-28, P7).
     const std::string& line = i == 0 && lines[i].rfind(kByteOrderMark, 0) == 0 ? lines[i].substr(3) : lines[i];
-    if ((line.rfind(kBegin, 0) == 0 || line.rfind(kEnd, 0) == 0) && !marker(line, kBegin, &name) &&
-        !marker(line, kEnd, &name))
-      throw InputError(source + ":" + std::to_string(i + 1) +
+    const std::string where = source + ":" + std::to_string(i + 1);
+    // An indented marker was no marker, and the error blamed its partner's line, or nothing was said at all (the
+    // twenty-third pass's P7); a marker without a name was blamed as "text beside it" (P6).
+    const std::size_t text_start = line.find_first_not_of(" \t");
+    const std::string text = text_start == std::string::npos ? "" : line.substr(text_start);
+    const bool begin_word = text.rfind(kBeginWord, 0) == 0, end_word = text.rfind(kEndWord, 0) == 0;
+    if ((begin_word || end_word) && text_start > 0)
+      throw InputError(where + ": an indented GENERATED marker: a marker starts its line, with nothing before it");
+    if ((begin_word || end_word) && !marker(line, kBegin, &name) && !marker(line, kEnd, &name)) {
+      const std::string rest = text.substr((begin_word ? kBeginWord : kEndWord).size());
+      if (rest.find_first_not_of(" \t") == rest.find("-->") && rest.find("-->") + 3 == rest.size())
+        throw InputError(where + ": a GENERATED marker without a block name: '<!-- BEGIN GENERATED name -->'");
+      throw InputError(where +
                        ": a GENERATED marker with text beside it: a marker stands alone on its line, "
                        "'<!-- BEGIN GENERATED name -->' or '<!-- END GENERATED name -->'");
+    }
     if (marker(line, kBegin, &name)) {
       if (open)
         throw InputError(source + ":" + std::to_string(i + 1) + ": BEGIN GENERATED " + name + " inside open block '" +
@@ -98,6 +110,16 @@ std::string line_end(const std::string& raw_line) {
 
 }  // namespace
 
+// Lines end in LF or CR LF: a CR alone (a classic Mac file) hid every marker, "0 generated block(s) refreshed" with
+// exit 0, or made the whole file one block's name (the twenty-third pass's P2).
+void check_line_ends(const std::string& text, const std::string& source) {
+  for (std::size_t at = text.find('\r'); at != std::string::npos; at = text.find('\r', at + 1))
+    if (at + 1 == text.size() || text[at + 1] != '\n')
+      throw InputError(source + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + at, '\n')) +
+                       ": a carriage return (CR) alone ends or splits this line: lines end in LF or CR LF (convert "
+                       "the file)");
+}
+
 std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,
                                    const std::string& source_name) {
   if (!stays_inside(name))
@@ -120,18 +142,21 @@ std::filesystem::path block_source(const std::filesystem::path& results, const s
 
 std::vector<std::string> block_names(const std::string& text, const std::string& source_name) {
   std::vector<std::string> names;
+  check_line_ends(text, source_name);
   for (const auto& b : scan(split_lines(text), source_name)) names.push_back(b.name);
   return names;
 }
 
 std::vector<std::size_t> block_lines(const std::string& text, const std::string& source_name) {
   std::vector<std::size_t> lines;
+  check_line_ends(text, source_name);
   for (const auto& b : scan(split_lines(text), source_name)) lines.push_back(b.begin_line + 1);
   return lines;
 }
 
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
                            const std::string& source_name) {
+  check_line_ends(text, source_name);
   const std::vector<std::string> raw = raw_lines(text);
   const std::vector<Block> blocks = scan(split_lines(text), source_name);
   std::string out;

@@ -26,6 +26,10 @@ std::vector<std::size_t> block_lines(const std::string& text, const std::string&
 std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,
                                    const std::string& source_name);
 
+// InputError naming source's line when a carriage return (CR) is not followed by LF: lines end in LF or CR LF, in a
+// report and in a block's source alike.
+void check_line_ends(const std::string& text, const std::string& source);
+
 // `text` with the content of each named block replaced by contents.at(name) (blocks not in `contents` are kept).
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
                            const std::string& source_name);

@@ -320,6 +320,11 @@ TEST(RecordNotes, ACoarselyQuantisedRecordIsSaidToBe) {
   EXPECT_EQ(quantisation_note(data), "");
   decay(0);
   EXPECT_EQ(quantisation_note(data), "");
+  // Eight full-precision samples of a sine: their smallest step is no quantum (the twenty-third pass's P5 called them
+  // 4.6 bits), and with so few samples nothing is said.
+  data.values.clear();
+  for (int i = 0; i < 8; ++i) data.values.push_back(std::sin(0.7 * i + 0.1));
+  EXPECT_EQ(quantisation_note(data), "");
 }
 
 }  // namespace

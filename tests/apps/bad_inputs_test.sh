@@ -209,6 +209,15 @@ else bad "damaged record with store/damaged a file: $(head -c 300 "$tmp/err")"; 
 "$BEAMID" study "$tmp/mini.toml" --shard 1/2 --output "$tmp/half" >/dev/null 2>&1
 expect_error "merge with a shard missing" "missing" merge "$tmp/mini.toml" --shards "$tmp/half" --output "$tmp/merged_half"
 [ ! -e "$tmp/merged_half" ] && ok || bad "a refused merge left $tmp/merged_half behind"
+# A truth whose every mode lies above the Nyquist frequency fails, said on the terminal, and its cases are rows with
+# its status (the twenty-third pass's P1: bias tables of aliases, with nothing said).
+sed 's/^samples = 256$/samples = 256\ndt_s = 10/' "$tmp/mini.toml" >"$tmp/alias.toml"
+"$BEAMID" study "$tmp/alias.toml" --output "$tmp/alias" >"$tmp/out" 2>&1
+if grep -qF "a truth record failed: every mode of the truth" "$tmp/out" && grep -qF "Nyquist" "$tmp/alias/cases.csv"
+then ok; else bad "aliased truth: $(head -c 300 "$tmp/out")"; fi
+# A comma at the end of --shards is refused as the message says, not dropped (the twenty-third pass's P4).
+expect_error "merge with a trailing comma" "comma at an end" merge "$tmp/mini.toml" --shards "$tmp/half," \
+  --output "$tmp/merged_comma"
 # Volts in another prefix are a unit of no motion, not metres; a prediction whose times start elsewhere is refused
 # under a window; a CVODE tolerance looser than 1e-3 of the response's size, a denormal pulse width and a force that
 # cannot move the model are refused.

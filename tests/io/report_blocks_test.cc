@@ -73,6 +73,32 @@ TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "R.md:3: END GENERATED b does not close block 'a'");
   }
+  // The twenty-third pass's P6, P7, P2: a marker without a name, an indented marker (no marker, and the error named
+  // its partner's line, or nothing was said), and CR-only line ends (no block found, exit 0) are each named at their
+  // line.
+  const auto error_of = [](const std::string& text) {
+    try {
+      block_names(text, "R.md");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of("x\n<!-- BEGIN GENERATED  -->\n"),
+            "R.md:2: a GENERATED marker without a block name: '<!-- BEGIN GENERATED name -->'");
+  EXPECT_EQ(error_of("<!-- END GENERATED -->\n"),
+            "R.md:1: a GENERATED marker without a block name: '<!-- BEGIN GENERATED name -->'");
+  EXPECT_EQ(error_of("  <!-- BEGIN GENERATED a -->\nold\n<!-- END GENERATED a -->\n"),
+            "R.md:1: an indented GENERATED marker: a marker starts its line, with nothing before it");
+  EXPECT_EQ(error_of("<!-- BEGIN GENERATED a -->\nold\n\t<!-- END GENERATED a -->\n"),
+            "R.md:3: an indented GENERATED marker: a marker starts its line, with nothing before it");
+  EXPECT_EQ(error_of("# Report\r<!-- BEGIN GENERATED a -->\rold\r<!-- END GENERATED a -->\r"),
+            "R.md:1: a carriage return (CR) alone ends or splits this line: lines end in LF or CR LF (convert the "
+            "file)");
+  EXPECT_EQ(error_of("# Report\r\nok\r\nbad\rline\r\n"),
+            "R.md:3: a carriage return (CR) alone ends or splits this line: lines end in LF or CR LF (convert the "
+            "file)");
+  EXPECT_THROW(replace_blocks("a\rb\n", {}, "R.md"), InputError);
 }
 
 }  // namespace

@@ -113,6 +113,9 @@ def test_signatures_come_from_the_command_registry_and_are_enforced():
         beamid.simulate(beam="thick-steel", elements=8, samples=True)
     with pytest.raises(TypeError, match="dt = '1e-4': must be a number"):
         beamid.simulate(beam="thick-steel", elements=8, dt="1e-4")
+    # A ragged list is a list of no numbers, said with its argument (NumPy's "inhomogeneous shape" named none).
+    with pytest.raises(TypeError, match=re.escape("spike_frequencies = [[2.46], 26.5]")):
+        beamid.spikes(data=np.zeros(64), sample_rate=100.0, spike_frequencies=[[2.46], 26.5])
     # Integral values are integers, NumPy scalars included; a float where an integer is due is not.
     assert beamid.simulate(beam="thick-steel", elements=np.int64(4), samples=16).shape == (16,)
     with pytest.raises(TypeError, match="elements = 4.0"):
@@ -589,3 +592,10 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
         beamid.read_table(str(tmp_path / "pipe.csv"))
     with pytest.raises(TypeError, match="must be a dict"):
         beamid.beam_toml("banks-aluminium")
+    # A binary file is no table, and None no path (the twenty-third pass's P3, P8: an empty table with a column
+    # named by NUL bytes, and os.stat's TypeError naming no argument).
+    (tmp_path / "bin.csv").write_bytes(b"\x00\x01\x02garbage")
+    with pytest.raises(ValueError, match="bin.csv:1: byte 0x00, a control character: a binary file"):
+        beamid.read_table(str(tmp_path / "bin.csv"))
+    with pytest.raises(TypeError, match="read_table\\(\\): path = None: must be a str or an os.PathLike"):
+        beamid.read_table(None)

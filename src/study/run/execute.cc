@@ -258,15 +258,24 @@ Record run_truth(const StudySpec& spec, const Unit& truth) {
     // let every time fit "converge" at cost 0 on nothing; it fails, and its cases with it, saying why.
     double peak = 0;
     for (const double y : trace.y) peak = std::max(peak, std::abs(y));
-    r.set("status", !trace.ok()       ? trace.status
-                    : !(kept >= 0.01) ? "failed: the sensor filter at " + format_value(sensor.cutoff_hz) +
-                                            " Hz keeps " + format_value(kept) +
-                                            " of the truth's RMS: it removes the vibration (a cut-off below the modes)"
-                    : !(peak >= 1e-150 && peak <= 1e150)
-                        ? "failed: the truth record's peak is " + format_value(peak) +
-                              ", outside [1e-150, 1e150]: no vibration to fit (sensor or force at the clamp, or a "
-                              "pulse far longer or shorter than the record's step?)"
-                        : trace.status);
+    // Every mode above the Nyquist frequency: the record holds only their aliases, and the fits' bias tables were
+    // artefacts of them, with nothing said (truth.dt_s = 10: the twenty-third pass's P1).
+    const double nyquist_hz = 0.5 / experiment.dt_s;
+    const bool aliased = !f.empty() && *std::min_element(f.begin(), f.end()) >= nyquist_hz;
+    r.set("status",
+          !trace.ok() ? trace.status
+          : aliased
+              ? "failed: every mode of the truth (the first at " + format_value(*std::min_element(f.begin(), f.end())) +
+                    " Hz) lies above the record's Nyquist frequency " + format_value(nyquist_hz) +
+                    " Hz (truth.dt_s = " + format_value(experiment.dt_s) + "): the record holds only their aliases"
+          : !(kept >= 0.01)
+              ? "failed: the sensor filter at " + format_value(sensor.cutoff_hz) + " Hz keeps " + format_value(kept) +
+                    " of the truth's RMS: it removes the vibration (a cut-off below the modes)"
+          : !(peak >= 1e-150 && peak <= 1e150)
+              ? "failed: the truth record's peak is " + format_value(peak) +
+                    ", outside [1e-150, 1e150]: no vibration to fit (sensor or force at the clamp, or a "
+                    "pulse far longer or shorter than the record's step?)"
+              : trace.status);
     r.set("y", trace.y);
     r.set("mode_frequency_hz", f);
     r.set("mode_damping_ratio", zeta);

@@ -1,5 +1,6 @@
 #include "study/run/runner.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -197,6 +198,24 @@ std::optional<std::string> validation_error(const RunOptions& o) {
   return std::nullopt;
 }
 
+namespace {
+
+// A failed truth is said once per reason (its cases become rows with its status): every mode above Nyquist or a
+// sensor cut-off below the modes left only failed rows, and nothing on the terminal said why (the twenty-third
+// pass's P1).
+void say_failed_truths(const std::vector<Record>& truths, std::ostream& log) {
+  std::vector<std::string> said;
+  for (const Record& t : truths) {
+    if (!t.has("status")) continue;
+    const std::string status = t.text("status");
+    if (status == "ok" || std::find(said.begin(), said.end(), status) != said.end()) continue;
+    said.push_back(status);
+    log << "beamid study: a truth record " << status << ": its cases are rows with that status\n" << std::flush;
+  }
+}
+
+}  // namespace
+
 RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostream& log, bool terminal) {
   if (auto e = validation_error(options)) throw InputError("beamid study: " + *e);
   if (const std::string problem =
@@ -267,6 +286,7 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
       progress.tick(r.text("status") != "ok");
     });
   }
+  say_failed_truths(truths, log);
   std::atomic<int> failed{0};
   if (!pending.empty()) {
     Progress progress(log, terminal, spec.name, static_cast<int>(pending.size()));
