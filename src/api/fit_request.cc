@@ -187,6 +187,20 @@ signal::SensorFilter sensor_filter_of(const FitRequest& request, const simulatio
 
 }  // namespace
 
+// --of-interest: estimated keys, each named once.
+void check_of_interest(const FitRequest& request, const fit::FitOptions& o) {
+  const Caller& caller = request.caller;
+  for (std::size_t k = 0; k < request.of_interest.size(); ++k) {
+    const std::string& key = request.of_interest[k];
+    if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
+      refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
+    // Named once, as in --estimate and --bounds (the twenty-third pass's P6 of adv55).
+    if (std::find(request.of_interest.begin(), request.of_interest.begin() + static_cast<std::ptrdiff_t>(k), key) !=
+        request.of_interest.begin() + static_cast<std::ptrdiff_t>(k))
+      refuse(caller, "of-interest", key, "is given twice: name each parameter once");
+  }
+}
+
 fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
                             std::ostream& warnings, bool* welch_picked) {
   const Caller& caller = request.caller;
@@ -271,9 +285,7 @@ fit::FitOptions fit_options(const FitRequest& request, const std::vector<io::Tim
            "--unknown-amplitude solves for the excitation's amplitude: --force-amplitude would be ignored "
            "(leave out one of them)");
   o.estimate = estimated_parameters(request);
-  for (const std::string& key : request.of_interest)
-    if (std::none_of(o.estimate.begin(), o.estimate.end(), [&](const auto& e) { return e.key == key; }))
-      refuse(caller, "of-interest", key, "is not estimated (--estimate names the keys the verdict can be about)");
+  check_of_interest(request, o);
   o.of_interest = request.of_interest;
   const double samples = static_cast<double>(data.values.size() * channels.size());
   o.sensor = sensor_filter_of(request, o.experiment, samples, warnings);
@@ -349,6 +361,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
     refuse(caller, what);
   }
   if (c.records.empty()) warn_noisy_force(request, o, data, c.result, warnings);
+  if (c.records.empty() && c.result.final_evaluation.transient_share > 0.5)
+    c.result.negated_force_rise = negated_force_rise(o, data, c.result);
   // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
   if (request.windows && c.result.status != "failed") {
     try {
@@ -363,8 +377,9 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
-  for (const std::string* note : {&budget, &rough, &other_minimum, &transient, &on_bound, &explains_nothing, &pairing,
-                                  &no_errors, &no_sandwich, &correlated_bins, &failed, &identifiability})
+  for (const std::string* note :
+       {&budget, &rough, &other_minimum, &few_degrees, &transient, &on_bound, &explains_nothing, &pairing, &no_errors,
+        &no_sandwich, &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -426,6 +441,25 @@ void basin_notes(const fit::FitResult& result, FitNotes& notes) {
                           "): the data hardly tell the two apart, and the standard errors describe the estimate's own "
                           "basin only; compare the two (--start-scale, --bounds), fix what else is known, or use a "
                           "cost whose basin is wider (modal, spike-smooth)";
+}
+
+// Standard errors from a residual variance of few degrees of freedom nu = m - n are themselves uncertain (relative sd
+// about 1/sqrt(2 nu)), and an interval needs Student's t: the modal cost of 3 modes for 4 parameters (nu = 2) put 9
+// of 24 model-exact fits beyond 2 standard errors, with nothing said but that the sandwich was undefined (the
+// twenty-third pass's adv55 P3). Said below 10 degrees of freedom, with the 97.5 % quantile of t.
+void few_degrees_note(const fit::FitResult& result, FitNotes& notes) {
+  const auto m = static_cast<long>(result.final_evaluation.residuals.size());
+  const auto n = static_cast<long>(result.parameters.size());
+  const long nu = m - n;
+  if (result.status == "failed" || result.covariance_status != "ok" || nu < 1 || nu >= 10) return;
+  static constexpr double kT975[] = {12.71, 4.30, 3.18, 2.78, 2.57, 2.45, 2.36, 2.31, 2.26};
+  notes.few_degrees = "the standard errors rest on a residual variance of " + std::to_string(nu) +
+                      " degree(s) of freedom (" + std::to_string(m) + " residuals, " + std::to_string(n) +
+                      " parameters): they are themselves uncertain by about " +
+                      format_rounded(100 / std::sqrt(2.0 * static_cast<double>(nu)), 2) +
+                      " %, and a 95 % interval is the estimate +- " + format_rounded(kT975[nu - 1], 3) +
+                      " standard errors (Student's t), not +- 2; compare the Cramer-Rao bound (beamid crb), fit more "
+                      "modes or spikes, or quote the spread over windows (--windows K)";
 }
 
 }  // namespace
@@ -491,14 +525,28 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   // where the time cost explained none of the record (the twenty-second pass's P9). When they take out more than half
   // of the weighted residual, the force did not decide the fit: said. (Forced right, they take a few terms' worth: 1
   // %.)
-  if (result.status != "failed" && result.final_evaluation.transient_share > 0.5)
-    notes.transient = "the errors-in-variables form's free transient terms take out " +
-                      format_rounded(100 * result.final_evaluation.transient_share, 3) +
-                      " % of its weighted residual at the estimate: they, not the measured force, account for the "
-                      "response (a force of the wrong sign, scale or position would fit as well), and the estimate "
-                      "rests on the modes' frequencies and decay alone; check the force channel, its unit and "
-                      "--force-x, and compare a time-cost fit";
+  // Unless the force, negated and refitted, costs clearly more (25 on the likelihood-scaled cost: a likelihood ratio
+  // of 4e-6):
+  // above 10 % force noise the terms take out over half with the right force, whose negation costs 200 more (the
+  // twenty-third pass's adv55 P2: the note sent users to check a right channel).
+  // Above 95 % the force accounts for under a twentieth whatever its negation costs: a channel of the wrong sign took
+  // 99.9 % on the thin beam, and its negation, refitted, cost 42 more (the wrong sign fitted better).
+  const double share = result.final_evaluation.transient_share;
+  if (result.status != "failed" && share > 0.5 && (share > 0.95 || !(result.negated_force_rise > kForceDecides)))
+    notes.transient =
+        "the errors-in-variables form's free transient terms take out " + format_rounded(100 * share, 3) +
+        " % of its weighted residual at the estimate" +
+        (!std::isfinite(result.negated_force_rise) ? std::string()
+         : result.negated_force_rise < 0
+             ? ", and the force negated fits better (refitted, its cost is " +
+                   format_rounded(-result.negated_force_rise, 3) + " lower: is the channel's sign wrong?)"
+             : ", and the force negated, refitted, costs " + format_rounded(result.negated_force_rise, 3) + " more") +
+        ": they, not the measured force, account for the "
+        "response (a force of the wrong sign, scale or position would fit as well), and the estimate "
+        "rests on the modes' frequencies and decay alone; check the force channel, its unit and "
+        "--force-x, and compare a time-cost fit";
   basin_notes(result, notes);
+  few_degrees_note(result, notes);
   if (result.status != "failed" && result.covariance_status == "ok" && result.sandwich_status != "ok")
     notes.no_sandwich = "the sandwich standard errors are not defined (NaN): " + result.sandwich_status +
                         "; quote the spread over windows (--windows K) instead";

@@ -87,6 +87,10 @@ std::vector<fit::EstimatedParameter> estimated_parameters(const FitRequest& requ
 
 // What beamid fit says about a result on stderr beside its summary line, each "" when there is nothing to say: the
 // estimates on a bound, a failure, weak identifiability.
+// The errors-in-variables form's transient note is not given when the force, negated and refitted, raises the
+// likelihood-scaled cost by more than this (a likelihood ratio of exp(-12.5) = 4e-6): the force decides the fit.
+inline constexpr double kForceDecides = 25;
+
 struct FitNotes {
   std::string on_bound, failed, identifiability;
   std::string explains_nothing;  // a least-squares fit that explains under half of a record (fit_notes)
@@ -97,6 +101,7 @@ struct FitNotes {
   std::string budget;           // the evaluation budget ran out: the estimate is where the optimizer stopped
   std::string rough;            // the cost is not smooth at the estimate (FitResult::roughness)
   std::string other_minimum;    // another start ended nearly as low, far away (FitResult::other_minimum)
+  std::string few_degrees;      // the residual variance rests on fewer than 10 degrees of freedom
   std::string transient;        // errors in variables: the free transient, not the force, accounts for the response
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;

@@ -297,11 +297,14 @@ CrbResult compute_crb(const CrbRequest& request, std::ostream& warnings) {
   if (r.bound.status != "ok") {
     // Named: the direction in ln q along which the output does not change (the twenty-second pass's P7).
     const Eigen::VectorXd& v = r.bound.null_direction;
-    const std::string along = v.size() == static_cast<Eigen::Index>(r.keys.size())
-                                  ? " (the output does not change along " +
-                                        fit::combination_text(r.keys, {v.data(), v.data() + v.size()}) +
-                                        ": estimate fewer of them, or fix one)"
-                                  : "";
+    const std::string along =
+        v.size() == static_cast<Eigen::Index>(r.keys.size())
+            ? " (the output does not change along " + fit::combination_text(r.keys, {v.data(), v.data() + v.size()}) +
+                  (r.bound.null_dimension > 1 ? ", nor along " + std::to_string(r.bound.null_dimension - 1) +
+                                                    " other direction(s) independent of it"
+                                              : "") +
+                  ": estimate fewer of them, or fix one)"
+            : "";
     throw NumericalError(caller.label + ": " + r.bound.status + along);
   }
   // A bound that is 0 or infinite is no bound (a force of 1e-300 N against a noise of 0.01 printed inf): said.

@@ -177,9 +177,17 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
     // nor model error, whatever its ratio to formal errors of the same size (the sixth pass's S264).
     if (spread.sd[i] <= 1e-9 * std::abs(result.parameters[i].estimate))
       line << ": at the level of rounding (a noise-free record the model fits exactly)";
-    else if (std::isfinite(ratio) && ratio <= 2)
+    else if (!std::isfinite(spread.sd[i]))
+      line << ": no spread";  // fewer than two windows off its bound
+    else if (!std::isfinite(ratio))
+      // No yardstick: said, with the likeliest cause when a window holds a parameter on its bound (an EI spread 87
+      // times its formal error was left without a word: the twenty-third pass's adv55 P4).
+      line << ": no verdict, the windows' own formal error being undefined"
+           << (spread.bound_bias ? " (a window holds a parameter on its bound, which also biases its other estimates)"
+                                 : " (a window's standard errors are not defined)");
+    else if (ratio <= 2)
       line << ": within the windows' noise";
-    else if (std::isfinite(ratio))
+    else
       // Beyond 2 the yardstick may be what is wrong: a window whose weaker modes lie near the noise has their
       // amplitudes fitted to it, and its formal error understates its scatter (a model-exact record at 2 % noise:
       // 1.3-4.5 times; a Monte Carlo of one such window, 2.1 times), and a window with a parameter held on its bound
@@ -224,6 +232,7 @@ int run_fit(const Flags& a, std::ostream& out) {
   if (!notes.budget.empty()) std::cerr << "beamid fit: " << notes.budget << "\n";
   if (!notes.rough.empty()) std::cerr << "beamid fit: " << notes.rough << "\n";
   if (!notes.other_minimum.empty()) std::cerr << "beamid fit: " << notes.other_minimum << "\n";
+  if (!notes.few_degrees.empty()) std::cerr << "beamid fit: " << notes.few_degrees << "\n";
   if (!notes.transient.empty()) std::cerr << "beamid fit: " << notes.transient << "\n";
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.explains_nothing.empty()) std::cerr << "beamid fit: " << notes.explains_nothing << "\n";

@@ -77,6 +77,7 @@ CramerRaoBound bound_from_sensitivities(CramerRaoBound b) {
     b.relative_sd = Eigen::VectorXd::Constant(p, nan);
     b.sd = b.relative_sd;
     b.null_direction = svd.matrixV().col(p - 1);
+    for (Eigen::Index k = 0; k < p; ++k) b.null_dimension += s(0) > 0 && s(k) / s(0) > 1e-12 ? 0 : 1;
     return b;
   }
   // F^-1 = sigma^2 (J^T J)^-1 = sigma^2 V S^-2 V^T.

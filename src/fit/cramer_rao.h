@@ -48,6 +48,8 @@ struct CramerRaoBound {
   // When F is singular: the unit direction in ln q that the output does not determine (V's last column), so that the
   // caller can name the combination (the twenty-second pass's P7: "some combination" named none).
   Eigen::VectorXd null_direction;
+  int null_dimension = 0;  // how many directions (singular values within 1e-12 of the largest): one is named
+
   std::string noise_model = "white";  // the noise's colour (signal/noise.h); noise_sd is its process sd
 };
 

@@ -164,6 +164,10 @@ struct FitResult {
   // yet far from it (other_minimum()): the cost has minima the data hardly tell apart.
   std::vector<StartEnd> start_ends;
   std::string other_minimum;
+  // The errors-in-variables form: its cost's rise with the measured force negated and the fit redone from the
+  // estimate (set by api::compute_fit, NaN otherwise): large when the force decides the fit, small when the free
+  // transient terms do, negative when the channel's sign is wrong.
+  double negated_force_rise = std::numeric_limits<double>::quiet_NaN();
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages

@@ -501,6 +501,13 @@ expect_notice "window spread within noise" "within the windows' noise" fit --dat
 expect_notice "window spread beyond noise" "or windows whose weaker modes lie near the noise" fit \
   --data "$tmp/noisy2.csv" --beam banks-aluminium --elements 6 --estimate EI,rho,gamma --cost time \
   --pulse-width 0.004 --windows 4
+# Without a yardstick (a window's formal errors undefined, its parameters on their bounds) the verdict says so and
+# why, not nothing (the twenty-third pass's adv55 P4: an EI spread 87 times its formal error, without a word).
+W=(--beam banks-aluminium --elements 8 --pulse-width 0.004 --output velocity --force-x 0.32)
+"$BEAMID" simulate "${W[@]}" --noise-level 0.01 --seed 1 >"$tmp/v1.csv"
+expect_notice "window spread without a yardstick" "no verdict, the windows' own formal error being undefined (a window" \
+  fit --data "$tmp/v1.csv" "${W[@]}" --estimate EI,rho,cDI,gamma --cost spike-smooth --start-scale 1.02 --spikes 4 \
+  --windows 2
 # A fit whose budget could run for minutes says so before it starts (the third pass's P302, P491); stopped at 5 s.
 timeout 5 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 6 --estimate EI --cost time \
   --pulse-width 0.004 --starts 1000 --max-evaluations 100000 >"$tmp/out" 2>"$tmp/err"
@@ -594,6 +601,7 @@ expect_error "crb of a free decay" "--excitation = 'free-decay': the bound is co
 # (EI is determined, no word), and --of-interest with the damping names cDI and gamma's weak combination.
 expect_error "of-interest not estimated" "--of-interest = 'rho': is not estimated" fit "${Z[@]}" --cost time \
   --of-interest rho
+expect_error "of-interest twice" "--of-interest = 'EI': is given twice" fit "${Z[@]}" --cost time --of-interest EI,EI
 "$BEAMID" fit --data "$tmp/z.csv" --beam banks-aluminium --elements 8 --pulse-width 0.004 --estimate EI,cDI,gamma \
   --cost time --max-evaluations 60 >/dev/null 2>"$tmp/err"
 grep -q "ill-conditioned" "$tmp/err" && bad "EI with the damping marginalised: $(head -c 300 "$tmp/err")" || ok

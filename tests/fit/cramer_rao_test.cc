@@ -104,6 +104,12 @@ TEST(CramerRao, RefusesWhatHasNoBound) {
   EXPECT_NEAR(std::abs(b.null_direction(4)), 1.0, 1e-12);
   const std::vector<double> v(b.null_direction.data(), b.null_direction.data() + 5);
   EXPECT_EQ(combination_text({"A", "alpha", "omega", "phi", "blind"}, v), "1.00 ln blind");
+  EXPECT_EQ(b.null_dimension, 1);
+  // Two blind coordinates: a two-dimensional null space, counted (the twenty-third pass's adv55 P5 named one).
+  const LogModel twice_blind = [&](const Eigen::VectorXd& x) { return model(x.head(4)); };
+  Eigen::VectorXd x6(6);
+  x6 << kTone.array().log().matrix(), 0.0, 0.0;
+  EXPECT_EQ(cramer_rao_bound(twice_blind, x6, 0.01).null_dimension, 2);
   EXPECT_EQ(combination_text({"EI", "rho"}, {-0.6, 0.8}), "0.60 ln EI - 0.80 ln rho");  // signed: first one positive
   const auto beam = model::preset("banks-aluminium");
   simulation::Experiment e;
