@@ -86,6 +86,22 @@ TEST(FitRequest, AForceChannelItsSamplesDoNotResolveIsSaidToBe) {
   }
 }
 
+// The thin beam at N = 6 driven by a 4 ms pulse at the tip, as a force channel records it: the force and the
+// response without noise.
+struct HitRecord {
+  simulation::Experiment experiment;
+  std::vector<double> clean_force, clean;
+};
+HitRecord hit_record() {
+  HitRecord h;
+  h.experiment.pulse_width_s = 0.004;
+  h.clean_force = simulation::sampled_pulse(h.experiment);
+  h.experiment.excitation = simulation::kSampledForce;
+  h.experiment.force_samples_N = h.clean_force;
+  h.clean = fit::same_model_record(model::preset("banks-aluminium"), h.experiment, 6);
+  return h;
+}
+
 TEST(FitRequest, AForceChannelsNoiseThatReachesPastTheResidualIsSaid) {
   // The thin beam at N = 6 driven by a 4 ms pulse as its force channel records it, the response with 1 % noise:
   // with 2 % noise on the force channel too, the time fit (output error) leaves out what that noise does through mode
@@ -93,12 +109,10 @@ TEST(FitRequest, AForceChannelsNoiseThatReachesPastTheResidualIsSaid) {
   // too small): said, with the channel's noise sd measured after the hit (within 10 % of the true one: a MAD over
   // 3,900 samples has a relative sd of about 2 %). Without force noise nothing is said; nor with the
   // errors-in-variables form, which counts it.
-  simulation::Experiment e;
-  e.pulse_width_s = 0.004;
-  const std::vector<double> clean_force = simulation::sampled_pulse(e);
-  e.excitation = simulation::kSampledForce;
-  e.force_samples_N = clean_force;
-  const std::vector<double> clean = fit::same_model_record(model::preset("banks-aluminium"), e, 6);
+  const HitRecord hit = hit_record();
+  const simulation::Experiment& e = hit.experiment;
+  const std::vector<double>& clean_force = hit.clean_force;
+  const std::vector<double>& clean = hit.clean;
   // And with 30 % force noise, where the warning went quiet as the noise grew: it read only the bins where the
   // force stood 100 times above its noise (the twenty-third pass's adv55 P1, at the errors-in-variables study's 20 %
   // with a 4 ms pulse).
@@ -150,12 +164,10 @@ TEST(FitRequest, TheErrorsInVariablesTransientNoteNeedsAForceThatDoesNotDecide) 
   // P2, at N = 8, with the terms taking out 79 %): it is now kept for forces whose negation costs under
   // kForceDecides more, or that leave the terms over 95 %. Here the right force leaves them 23 % (no note), and the
   // channel negated 99.9 %, its negation refitted costing 42 more: noted (measured).
-  simulation::Experiment e;
-  e.pulse_width_s = 0.004;
-  const std::vector<double> clean_force = simulation::sampled_pulse(e);
-  e.excitation = simulation::kSampledForce;
-  e.force_samples_N = clean_force;
-  const std::vector<double> clean = fit::same_model_record(model::preset("banks-aluminium"), e, 6);
+  const HitRecord hit = hit_record();
+  const simulation::Experiment& e = hit.experiment;
+  const std::vector<double>& clean_force = hit.clean_force;
+  const std::vector<double>& clean = hit.clean;
   io::TimeSeries response;
   response.path = "<test>";
   response.dt_s = e.dt_s;
