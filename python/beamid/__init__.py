@@ -215,10 +215,15 @@ def _beam_argument(flags):
 
 def _record_flags(data, flags):
     """Splits ``data`` into the --data flag (a path) or an array for the core (--data then reads "<array>")."""
-    if data is None or isinstance(data, (str, os.PathLike)):
+    # None is no record: "--data is required" named a command-line flag (the twenty-third pass's adv56 P6).
+    if data is None:
+        raise TypeError("data = None: a record is required, a path (str or os.PathLike) or an array of samples")
+    if isinstance(data, (str, os.PathLike)):
         return None, dict(flags, data=data)
     if isinstance(data, (bytes, bytearray)):
         raise TypeError("data: a path (str or os.PathLike) or an array of samples, not bytes")
+    if _ndim(data) < 0:  # a ragged nesting: NumPy's "inhomogeneous shape" named no argument
+        raise TypeError(f"data = {repr(data)[:80]}: a ragged list, no array of samples")
     if np.ma.isMaskedArray(data) and np.ma.is_masked(data):
         raise InputError("data: a masked array: fill or drop the masked samples first (a record is uniformly sampled)")
     array = np.asarray(data)

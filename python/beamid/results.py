@@ -6,6 +6,7 @@ quoted fields may hold commas, as the program quotes them.
 import csv
 import json
 import os
+import re
 
 import numpy as np
 
@@ -41,6 +42,9 @@ def read_table(path, as_dict=False):
                 raise ValueError(f"{path}:{line}: byte 0x{ord(bad):02X}, a control character: a binary file, not a "
                                  f"results table (beamid writes its tables as text)")
     header, body = rows[0], rows[1:]
+    # A Markdown table (beamid writes one beside each CSV) is no CSV table (the twenty-third pass's adv56 P7).
+    if header and header[0].lstrip().startswith("|"):
+        raise ValueError(f"{path}:1: a Markdown table ('|' columns): read the .csv table beside it")
     if len(header) == 1 and ";" in header[0]:
         raise ValueError(f"{path}:1: one column named {header[0]!r}: a table separated by ';' is not one beamid writes "
                          f"(its tables are comma-separated)")
@@ -68,6 +72,20 @@ def read_table(path, as_dict=False):
 
 
 def _column(fields):
+    """A column's values: integers as int64 (uint64 beyond it) when every field is a plain integer, numbers as float,
+    else text. A 64-bit seed read as a float lost its last digits (8633401241432287573 came back ...7232), and an
+    identifier of digits with a leading zero lost the zero (the twenty-third pass's adv56 P1): such a column, whose
+    integers float cannot hold exactly or whose text an integer would change, stays text or exact."""
+    plain = [x.strip() for x in fields]
+    if plain and all(re.fullmatch(r"[+-]?[0-9]+", x) for x in plain):
+        if any(re.fullmatch(r"[+-]?0[0-9]+", x) for x in plain):
+            return np.array(fields, dtype=str)  # identifiers: "007" is no 7
+        values = [int(x) for x in plain]
+        if all(-(1 << 63) <= v < (1 << 63) for v in values):
+            return np.array(values, dtype=np.int64)
+        if all(0 <= v < (1 << 64) for v in values):
+            return np.array(values, dtype=np.uint64)
+        return np.array(fields, dtype=str)
     try:
         return np.array([float(x) if x.strip() else np.nan for x in fields], dtype=float)
     except ValueError:
@@ -80,6 +98,8 @@ def load_results(folder, as_dict=False):
     arrays, or with ``as_dict`` dicts of column arrays. The folder's manifest.json is under ``"manifest"`` as a dict.
     A folder without manifest.json is refused: it is not one that beamid study or beamid real wrote (whatever CSV
     files it held were returned as if they were a study's tables)."""
+    if not isinstance(folder, (str, os.PathLike)) or isinstance(folder, bytes):
+        raise TypeError(f"load_results(): folder = {folder!r}: must be a str or an os.PathLike (the results folder)")
     if not os.path.isdir(folder):
         raise FileNotFoundError(f"{folder}: not a results folder (beamid study writes results/<study>/)")
     if not os.path.isfile(os.path.join(folder, "manifest.json")):

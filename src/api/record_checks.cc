@@ -99,9 +99,18 @@ double force_noise_after_hit(const std::vector<double>& force) {
   double peak = 0;
   for (double f : force) peak = std::max(peak, std::abs(f));
   if (!(peak > 0)) return 0;
-  std::size_t first = force.size(), last = 0;
+  // The hit: the run of samples above a tenth of the peak around the peak itself. (Every sample above it, anywhere,
+  // took a noise spike 2 s later for the hit's end when the noise reached 4 % of the peak, and nothing was said
+  // where the noise was worst: the twenty-third pass's adv57 P3.)
+  std::size_t first = 0;
   for (std::size_t i = 0; i < force.size(); ++i)
-    if (std::abs(force[i]) > 0.1 * peak) first = std::min(first, i), last = i;
+    if (std::abs(force[i]) == peak) {
+      first = i;
+      break;
+    }
+  std::size_t last = first;
+  while (first > 0 && std::abs(force[first - 1]) > 0.1 * peak) --first;
+  while (last + 1 < force.size() && std::abs(force[last + 1]) > 0.1 * peak) ++last;
   const std::size_t from = last + 1 + (last - first + 1);
   if (from + 64 > force.size()) return 0;
   std::vector<double> quiet(force.begin() + static_cast<std::ptrdiff_t>(from), force.end());

@@ -190,9 +190,8 @@ int run_report(const Flags& a, std::ostream& out) {
     if (content.find('\0') != std::string::npos)
       throw InputError("beamid report: " + file.string() + ": block '" + name +
                        "': its source holds NUL bytes, no text");
-    if (content.find("<!-- BEGIN GENERATED ") != std::string::npos ||
-        content.find("<!-- END GENERATED ") != std::string::npos)
-      throw InputError("beamid report: " + file.string() + ": block '" + name +
+    if (const std::size_t line = io::marker_line(content); line > 0)
+      throw InputError("beamid report: " + file.string() + ":" + std::to_string(line) + ": block '" + name +
                        "': its source holds a GENERATED marker, which would break the report's next refresh");
     contents[name] = std::move(content);
   }

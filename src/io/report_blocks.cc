@@ -1,6 +1,7 @@
 #include "io/report_blocks.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <sstream>
 
@@ -15,6 +16,17 @@ const std::string kEnd = "<!-- END GENERATED ";
 const std::string kClose = " -->";
 const std::string kByteOrderMark = "\xEF\xBB\xBF";
 const std::string kBeginWord = "<!-- BEGIN GENERATED", kEndWord = "<!-- END GENERATED";
+
+// A line meant as a marker: without its blanks and in lower case it starts "<!--begingenerated" or
+// "<!--endgenerated" ("<!--BEGIN GENERATED x-->", two spaces, lower case). Such a line that is no exact marker found
+// no block, "0 generated block(s) refreshed" with exit 0, and pasted from a block's source it broke the next
+// refresh (the twenty-third pass's adv56 P2, P5).
+bool looks_like_marker(const std::string& line) {
+  std::string squeezed;
+  for (const char c : line)
+    if (c != ' ' && c != '\t' && c != '\r') squeezed += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return squeezed.rfind("<!--begingenerated", 0) == 0 || squeezed.rfind("<!--endgenerated", 0) == 0;
+}
 
 // The block name if `line` is exactly a marker of the given kind.
 bool marker(const std::string& line, const std::string& kind, std::string* name) {
@@ -46,6 +58,10 @@ std::vector<Block> scan(const std::vector<std::string>& lines, const std::string
     const bool begin_word = text.rfind(kBeginWord, 0) == 0, end_word = text.rfind(kEndWord, 0) == 0;
     if ((begin_word || end_word) && text_start > 0)
       throw InputError(where + ": an indented GENERATED marker: a marker starts its line, with nothing before it");
+    if (!begin_word && !end_word && looks_like_marker(text))
+      throw InputError(where +
+                       ": a misspelt GENERATED marker: a marker is exactly '<!-- BEGIN GENERATED name -->' or "
+                       "'<!-- END GENERATED name -->' (single spaces, capitals)");
     if ((begin_word || end_word) && !marker(line, kBegin, &name) && !marker(line, kEnd, &name)) {
       const std::string rest = text.substr((begin_word ? kBeginWord : kEndWord).size());
       if (rest.find_first_not_of(" \t") == rest.find("-->") && rest.find("-->") + 3 == rest.size())
@@ -118,6 +134,15 @@ void check_line_ends(const std::string& text, const std::string& source) {
       throw InputError(source + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + at, '\n')) +
                        ": a carriage return (CR) alone ends or splits this line: lines end in LF or CR LF (convert "
                        "the file)");
+}
+
+std::size_t marker_line(const std::string& text) {
+  std::size_t number = 0;
+  for (const std::string& line : split_lines(text)) {
+    ++number;
+    if (looks_like_marker(line)) return number;
+  }
+  return 0;
 }
 
 std::filesystem::path block_source(const std::filesystem::path& results, const std::string& name,

@@ -30,6 +30,10 @@ std::filesystem::path block_source(const std::filesystem::path& results, const s
 // report and in a block's source alike.
 void check_line_ends(const std::string& text, const std::string& source);
 
+// The 1-based number of text's first line that is, or is meant as, a GENERATED marker (blanks and case aside), 0 when
+// none: a block's source must hold none, or the next refresh breaks.
+std::size_t marker_line(const std::string& text);
+
 // `text` with the content of each named block replaced by contents.at(name) (blocks not in `contents` are kept).
 std::string replace_blocks(const std::string& text, const std::map<std::string, std::string>& contents,
                            const std::string& source_name);

@@ -54,6 +54,12 @@ TEST(StartMinima, TheThinBeamsTimeFitOfEIAndKAGSaysItHasSeveralMinima) {
   ASSERT_EQ(several.status, "converged") << several.termination;
   ASSERT_EQ(several.start_ends.size(), 8u);
   EXPECT_NE(several.other_minimum.find("kAG = "), std::string::npos) << several.other_minimum;
+  // A hybrid runs the starts in its global stage, and says what they found there (it was lost: the twenty-third
+  // pass's adv57 P1).
+  o.strategy = kHybrid;
+  o.refine = "freq-band";
+  const FitResult hybrid = fit(o, data);
+  EXPECT_EQ(hybrid.other_minimum.rfind("in the time stage: ", 0), 0u) << hybrid.other_minimum;
 }
 
 }  // namespace

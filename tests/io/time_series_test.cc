@@ -419,6 +419,24 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
             std::string::npos)
       << error_of(write("scattered.csv", fast_decay(0.6)));
   EXPECT_NO_THROW(read_time_series(write("unclipped.csv", fast_decay(2.0))));
+  // A slow decay sampled fast on a 16-bit range holds its crest for several samples, entered and left by one quantum:
+  // no rail (the twenty-third pass's adv56 P3 refused a 2.46 Hz mode at 10 kHz peaking at 80 % of full scale). The
+  // same wave on a rail at 70 % of its amplitude arrives and leaves by 18 quanta a sample: clipped.
+  const auto slow_wave = [](double rail) {
+    const double quantum = 1.0 / 32768;  // 16 bits over [-1, 1]
+    std::string text = "t_s,a_m_s2\n";
+    for (int i = 0; i < 20000; ++i) {
+      const double t = i * 1e-4;
+      const double x =
+          std::clamp(0.8 * std::exp(-0.3 * t) * std::sin(2 * std::numbers::pi * 2.46 * t + 0.3), -rail, rail);
+      text += format_value(t) + "," + format_value(quantum * std::round(x / quantum)) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NO_THROW(read_time_series(write("crest.csv", slow_wave(1.0))));
+  EXPECT_NE(error_of(write("rail.csv", slow_wave(0.56))).find("consecutive samples at the record's peak"),
+            std::string::npos)
+      << error_of(write("rail.csv", slow_wave(0.56)));
   // A dropout: 100 zeros at 0.5 s inside a 30 Hz decay sampled at 1 kHz (the ninth pass's #6), named on its first line
   // (header line 1, sample i on line i + 2). The same decay quantised to a 16-bit range, whose tail rounds to zero for
   // the record's last second, is no dropout, nor is a 0.25 Hz swing of 5 % of the peak under it, whose turning point at

@@ -113,6 +113,11 @@ def test_signatures_come_from_the_command_registry_and_are_enforced():
         beamid.simulate(beam="thick-steel", elements=8, samples=True)
     with pytest.raises(TypeError, match="dt = '1e-4': must be a number"):
         beamid.simulate(beam="thick-steel", elements=8, dt="1e-4")
+    # A ragged record, or none, is said with its argument (NumPy's "inhomogeneous shape" and "--data" named none).
+    with pytest.raises(TypeError, match=re.escape("data = [[1, 2], [3]]: a ragged list")):
+        beamid.spikes([[1, 2], [3]])
+    with pytest.raises(TypeError, match="data = None: a record is required"):
+        beamid.spikes(None)
     # A ragged list is a list of no numbers, said with its argument (NumPy's "inhomogeneous shape" named none).
     with pytest.raises(TypeError, match=re.escape("spike_frequencies = [[2.46], 26.5]")):
         beamid.spikes(data=np.zeros(64), sample_rate=100.0, spike_frequencies=[[2.46], 26.5])
@@ -315,7 +320,9 @@ def test_load_results_reads_a_study():
         lines = f.read().splitlines()
     assert len(cases) == len(lines) - 1
     assert cases.dtype.names == tuple(lines[0].split(","))
-    assert cases["elements"].dtype == np.float64 and cases["cost"].dtype.kind == "U" and "manifest" in tables
+    # Integers stay integers (a 64-bit seed as a float lost its last digits), numbers are floats, the rest text.
+    assert cases["elements"].dtype == np.int64 and cases["cost"].dtype.kind == "U" and "manifest" in tables
+    assert cases["cost_value"].dtype == np.float64
     assert set(cases["cost"]) >= {"time", "spike", "spike-smooth"}
     columns = beamid.load_results(folder, as_dict=True)["cases"]
     assert np.array_equal(columns["elements"], cases["elements"])
@@ -599,3 +606,17 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
         beamid.read_table(str(tmp_path / "bin.csv"))
     with pytest.raises(TypeError, match="read_table\\(\\): path = None: must be a str or an os.PathLike"):
         beamid.read_table(None)
+    # A Markdown table is no CSV table; None and bytes are no folders; a 64-bit seed and an identifier with a leading
+    # zero come back exact (the twenty-third pass's adv56 P7, P6, P1: a float lost the seed's last digits).
+    (tmp_path / "summary.md").write_text("| cost | N |\n|---|---|\n| time | 4 |\n", encoding="utf-8")
+    with pytest.raises(ValueError, match="summary.md:1: a Markdown table"):
+        beamid.read_table(str(tmp_path / "summary.md"))
+    for folder in (None, b"."):
+        with pytest.raises(TypeError, match="load_results\\(\\): folder = "):
+            beamid.load_results(folder)
+    (tmp_path / "ids.csv").write_text("case_id,seed,x\n007,8633401241432287573,1.5\n012,18446744073709551615,2\n",
+                                      encoding="utf-8")
+    ids = beamid.read_table(str(tmp_path / "ids.csv"))
+    assert list(ids["case_id"]) == ["007", "012"]
+    assert int(ids["seed"][0]) == 8633401241432287573 and int(ids["seed"][1]) == 18446744073709551615
+    assert ids["x"][0] == 1.5

@@ -170,6 +170,12 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
                               "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\"]")),
             "s.toml:13: fit.max_frequency_hz is read by the spike costs, modal and freq-band; this study runs only "
             "time");
+  // The band lies below the truth record's Nyquist frequency, 500 Hz at the default dt (the twenty-third pass's
+  // adv56 P4: the spike costs took aliases for modes).
+  EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fit]\nmax_frequency_hz = 800.0")),
+            "s.toml:13: fit.max_frequency_hz = 800: must be at most the truth record's Nyquist frequency 500 Hz "
+            "(truth.dt_s = 0.001)");
+  EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fit]\nmax_frequency_hz = 500.0")), "no error");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nnoise = [0.0, 1.5]\n"),
             "s.toml:32: landscape.noise element 1.5: must be in [0, 1] (a fraction of the clean RMS)");
   EXPECT_EQ(error_of(std::string(kValid) + "\n[landscape]\ncost = [\"time\"]\nzoom_range_factor = 1.03\n"),

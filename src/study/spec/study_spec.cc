@@ -188,6 +188,16 @@ void read_fit(const config::Document& document, StudySpec& spec) {
   f.max_frequency_hz = r.number("max_frequency_hz", 0.0, non_negative, "must be >= 0 (0: up to Nyquist)");
   if (f.max_frequency_hz > 0 && f.max_frequency_hz <= f.min_frequency_hz)
     r.fail("max_frequency_hz", format_value(f.max_frequency_hz), "must exceed fit.min_frequency_hz");
+  // The band lies below the record's Nyquist frequency, as beamid real requires: above it the spike costs took the
+  // aliases of the truth's higher modes for modes (the twenty-third pass's adv56 P4).
+  const double nyquist_hz = 0.5 / spec.truth.experiment.dt_s;
+  if (f.max_frequency_hz > nyquist_hz)
+    r.fail("max_frequency_hz", format_value(f.max_frequency_hz),
+           "must be at most the truth record's Nyquist frequency " + format_value(nyquist_hz) +
+               " Hz (truth.dt_s = " + format_value(spec.truth.experiment.dt_s) + ")");
+  if (f.min_frequency_hz >= nyquist_hz)
+    r.fail("min_frequency_hz", format_value(f.min_frequency_hz),
+           "must be below the truth record's Nyquist frequency " + format_value(nyquist_hz) + " Hz");
   f.window = r.string("window", f.window, {"rectangular", "hann", "exponential"});
   f.frequency_weight = r.string("frequency_weight", f.frequency_weight, costs::frequency_weight_names().names());
   f.bound_factor = r.number(
