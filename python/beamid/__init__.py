@@ -215,7 +215,7 @@ def _beam_argument(flags):
 
 def _record_flags(data, flags):
     """Splits ``data`` into the --data flag (a path) or an array for the core (--data then reads "<array>")."""
-    # None is no record: "--data is required" named a command-line flag (the twenty-third pass's adv56 P6).
+    # None is no record: "--data is required" named a command-line flag (the twenty-fourth pass's adv56 P6).
     if data is None:
         raise TypeError("data = None: a record is required, a path (str or os.PathLike) or an array of samples")
     if isinstance(data, (str, os.PathLike)):

@@ -42,7 +42,7 @@ def read_table(path, as_dict=False):
                 raise ValueError(f"{path}:{line}: byte 0x{ord(bad):02X}, a control character: a binary file, not a "
                                  f"results table (beamid writes its tables as text)")
     header, body = rows[0], rows[1:]
-    # A Markdown table (beamid writes one beside each CSV) is no CSV table (the twenty-third pass's adv56 P7).
+    # A Markdown table (beamid writes one beside each CSV) is no CSV table (the twenty-fourth pass's adv56 P7).
     if header and header[0].lstrip().startswith("|"):
         raise ValueError(f"{path}:1: a Markdown table ('|' columns): read the .csv table beside it")
     if len(header) == 1 and ";" in header[0]:
@@ -74,7 +74,7 @@ def read_table(path, as_dict=False):
 def _column(fields):
     """A column's values: integers as int64 (uint64 beyond it) when every field is a plain integer, numbers as float,
     else text. A 64-bit seed read as a float lost its last digits (8633401241432287573 came back ...7232), and an
-    identifier of digits with a leading zero lost the zero (the twenty-third pass's adv56 P1): such a column, whose
+    identifier of digits with a leading zero lost the zero (the twenty-fourth pass's adv56 P1): such a column, whose
     integers float cannot hold exactly or whose text an integer would change, stays text or exact."""
     plain = [x.strip() for x in fields]
     if plain and all(re.fullmatch(r"[+-]?[0-9]+", x) for x in plain):

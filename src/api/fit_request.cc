@@ -525,7 +525,7 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   // where the time cost explained none of the record (the twenty-second pass's P9). When they take out more than half
   // of the weighted residual, the force did little to decide the fit: said, with what its negation, refitted, costs,
   // as a fact and no verdict on the channel. At 20 % force noise a right channel's terms take out 50-80 %, and its
-  // negation cost 200 more on some seeds and 108 less on others (the twenty-third pass's adv55 P2, adv57 P2): the
+  // negation cost 200 more on some seeds and 108 less on others (the twenty-third pass's adv55 P2, the twenty-fourth's adv57 P2): the
   // form cannot tell the sign there, and a note that asked to check a right channel, or suggested its sign was
   // wrong, misled. So it is not given where the negation costs over kForceDecides (25 on the likelihood-scaled cost,
   // a likelihood ratio of 4e-6) more, unless the terms take out over 95 % (the force then accounts for under a

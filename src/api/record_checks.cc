@@ -101,7 +101,7 @@ double force_noise_after_hit(const std::vector<double>& force) {
   if (!(peak > 0)) return 0;
   // The hit: the run of samples above a tenth of the peak around the peak itself. (Every sample above it, anywhere,
   // took a noise spike 2 s later for the hit's end when the noise reached 4 % of the peak, and nothing was said
-  // where the noise was worst: the twenty-third pass's adv57 P3.)
+  // where the noise was worst: the twenty-fourth pass's adv57 P3.)
   std::size_t first = 0;
   for (std::size_t i = 0; i < force.size(); ++i)
     if (std::abs(force[i]) == peak) {

@@ -54,7 +54,7 @@ FitResult chained(const FitResult& first, FitResult second, const std::string& f
   second.best_start = first.best_start;
   for (std::size_t i = 0; i < second.parameters.size(); ++i) second.parameters[i].start = first.parameters[i].start;
   // The starts ran in the first fit: its other minimum is the chain's (a hybrid or a noise-estimating fit from
-  // --starts K lost it, the second fit having one start: the twenty-third pass's adv57 P1), named as the first's.
+  // --starts K lost it, the second fit having one start: the twenty-fourth pass's adv57 P1), named as the first's.
   if (second.other_minimum.empty() && !first.other_minimum.empty())
     second.other_minimum =
         "in the " + first_name.substr(0, first_name.find_last_not_of(": ") + 1) + " stage: " + first.other_minimum;

@@ -20,7 +20,7 @@ const std::string kBeginWord = "<!-- BEGIN GENERATED", kEndWord = "<!-- END GENE
 // A line meant as a marker: without its blanks and in lower case it starts "<!--begingenerated" or
 // "<!--endgenerated" ("<!--BEGIN GENERATED x-->", two spaces, lower case). Such a line that is no exact marker found
 // no block, "0 generated block(s) refreshed" with exit 0, and pasted from a block's source it broke the next
-// refresh (the twenty-third pass's adv56 P2, P5).
+// refresh (the twenty-fourth pass's adv56 P2, P5).
 bool looks_like_marker(const std::string& line) {
   std::string squeezed;
   for (const char c : line)

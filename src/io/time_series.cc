@@ -560,7 +560,7 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
   // A plateau at the peak left by a rail: the signal arrives and leaves steeply, its neighbours more than two quanta
   // from the held value. A quantised record's turning point holds its crest too (a 2.46 Hz mode at 10 kHz on a
   // 16-bit range: about 11 samples within a quantum) but its neighbours are one quantum below, and it was refused
-  // as clipped (the twenty-third pass's adv56 P3); it is left to the quantisation note. Floating-point values never
+  // as clipped (the twenty-fourth pass's adv56 P3); it is left to the quantisation note. Floating-point values never
   // repeat at a turning point, and their quantum is round-off, so they keep the rule as it was.
   const double quantum = record_quantum(v);
   for (std::size_t i = 0; i + 2 < v.size(); ++i)

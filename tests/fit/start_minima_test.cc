@@ -54,7 +54,7 @@ TEST(StartMinima, TheThinBeamsTimeFitOfEIAndKAGSaysItHasSeveralMinima) {
   ASSERT_EQ(several.status, "converged") << several.termination;
   ASSERT_EQ(several.start_ends.size(), 8u);
   EXPECT_NE(several.other_minimum.find("kAG = "), std::string::npos) << several.other_minimum;
-  // A hybrid runs the starts in its global stage, and says what they found there (it was lost: the twenty-third
+  // A hybrid runs the starts in its global stage, and says what they found there (it was lost: the twenty-fourth
   // pass's adv57 P1).
   o.strategy = kHybrid;
   o.refine = "freq-band";

@@ -99,7 +99,7 @@ TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
             "R.md:3: a carriage return (CR) alone ends or splits this line: lines end in LF or CR LF (convert the "
             "file)");
   EXPECT_THROW(replace_blocks("a\rb\n", {}, "R.md"), InputError);
-  // A line meant as a marker but misspelt found no block, "0 refreshed" with exit 0 (the twenty-third pass's adv56
+  // A line meant as a marker but misspelt found no block, "0 refreshed" with exit 0 (the twenty-fourth pass's adv56
   // P5); in a block's source it broke the next refresh (P2): each is named at its line.
   for (const std::string misspelt : {"<!--BEGIN GENERATED x-->", "<!-- begin generated x -->",
                                      "<!--  END  GENERATED x -->", "<!-- BEGIN  GENERATED x -->"})

@@ -420,7 +420,7 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
       << error_of(write("scattered.csv", fast_decay(0.6)));
   EXPECT_NO_THROW(read_time_series(write("unclipped.csv", fast_decay(2.0))));
   // A slow decay sampled fast on a 16-bit range holds its crest for several samples, entered and left by one quantum:
-  // no rail (the twenty-third pass's adv56 P3 refused a 2.46 Hz mode at 10 kHz peaking at 80 % of full scale). The
+  // no rail (the twenty-fourth pass's adv56 P3 refused a 2.46 Hz mode at 10 kHz peaking at 80 % of full scale). The
   // same wave on a rail at 70 % of its amplitude arrives and leaves by 18 quanta a sample: clipped.
   const auto slow_wave = [](double rail) {
     const double quantum = 1.0 / 32768;  // 16 bits over [-1, 1]

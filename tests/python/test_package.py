@@ -607,7 +607,7 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
     with pytest.raises(TypeError, match="read_table\\(\\): path = None: must be a str or an os.PathLike"):
         beamid.read_table(None)
     # A Markdown table is no CSV table; None and bytes are no folders; a 64-bit seed and an identifier with a leading
-    # zero come back exact (the twenty-third pass's adv56 P7, P6, P1: a float lost the seed's last digits).
+    # zero come back exact (the twenty-fourth pass's adv56 P7, P6, P1: a float lost the seed's last digits).
     (tmp_path / "summary.md").write_text("| cost | N |\n|---|---|\n| time | 4 |\n", encoding="utf-8")
     with pytest.raises(ValueError, match="summary.md:1: a Markdown table"):
         beamid.read_table(str(tmp_path / "summary.md"))

@@ -170,7 +170,7 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
                               "cost = [\"time\", \"spike-smooth\"]", "cost = [\"time\"]")),
             "s.toml:13: fit.max_frequency_hz is read by the spike costs, modal and freq-band; this study runs only "
             "time");
-  // The band lies below the truth record's Nyquist frequency, 500 Hz at the default dt (the twenty-third pass's
+  // The band lies below the truth record's Nyquist frequency, 500 Hz at the default dt (the twenty-fourth pass's
   // adv56 P4: the spike costs took aliases for modes).
   EXPECT_EQ(error_of(replaced(kValid, "[fit]", "[fit]\nmax_frequency_hz = 800.0")),
             "s.toml:13: fit.max_frequency_hz = 800: must be at most the truth record's Nyquist frequency 500 Hz "

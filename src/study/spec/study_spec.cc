@@ -189,7 +189,7 @@ void read_fit(const config::Document& document, StudySpec& spec) {
   if (f.max_frequency_hz > 0 && f.max_frequency_hz <= f.min_frequency_hz)
     r.fail("max_frequency_hz", format_value(f.max_frequency_hz), "must exceed fit.min_frequency_hz");
   // The band lies below the record's Nyquist frequency, as beamid real requires: above it the spike costs took the
-  // aliases of the truth's higher modes for modes (the twenty-third pass's adv56 P4).
+  // aliases of the truth's higher modes for modes (the twenty-fourth pass's adv56 P4).
   const double nyquist_hz = 0.5 / spec.truth.experiment.dt_s;
   if (f.max_frequency_hz > nyquist_hz)
     r.fail("max_frequency_hz", format_value(f.max_frequency_hz),
