@@ -71,25 +71,39 @@ def read_table(path, as_dict=False):
     return table
 
 
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+_LEADING_ZERO = re.compile(r"[+-]?0[0-9]+")
+_NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?")
+_WORDS = {"nan", "+nan", "-nan", "inf", "+inf", "-inf", "infinity", "+infinity", "-infinity"}
+
+
 def _column(fields):
-    """A column's values: integers as int64 (uint64 beyond it) when every field is a plain integer, numbers as float,
-    else text. A 64-bit seed read as a float lost its last digits (8633401241432287573 came back ...7232), and an
-    identifier of digits with a leading zero lost the zero (the twenty-fourth pass's adv56 P1): such a column, whose
-    integers float cannot hold exactly or whose text an integer would change, stays text or exact."""
+    """A column's values: integers as int64 (uint64 beyond it) when every field is a plain integer; numbers as float
+    (empty cells NaN) when every field is a number float holds exactly enough; else text. A 64-bit seed read as a
+    float lost its last digits (8633401241432287573 came back ...7232), an identifier with a leading zero lost the
+    zero, "1_0" (Python's digit grouping) became 10 and "1234567e89012345" inf (the twenty-third pass's adv56 P1,
+    the twenty-fifth's adv58 P4): such a column stays exact or text."""
     plain = [x.strip() for x in fields]
-    if plain and all(re.fullmatch(r"[+-]?[0-9]+", x) for x in plain):
-        if any(re.fullmatch(r"[+-]?0[0-9]+", x) for x in plain):
-            return np.array(fields, dtype=str)  # identifiers: "007" is no 7
-        values = [int(x) for x in plain]
-        if all(-(1 << 63) <= v < (1 << 63) for v in values):
-            return np.array(values, dtype=np.int64)
-        if all(0 <= v < (1 << 64) for v in values):
-            return np.array(values, dtype=np.uint64)
-        return np.array(fields, dtype=str)
-    try:
-        return np.array([float(x) if x.strip() else np.nan for x in fields], dtype=float)
-    except ValueError:
-        return np.array(fields, dtype=str)
+    filled = [x for x in plain if x and x.lower() not in _WORDS]
+    text = np.array(fields, dtype=str)
+    if filled and all(_INTEGER.fullmatch(x) for x in filled):
+        if any(_LEADING_ZERO.fullmatch(x) for x in filled):
+            return text  # identifiers: "007" is no 7
+        values = [int(x) for x in filled]
+        if len(filled) == len(plain):
+            if all(-(1 << 63) <= v < (1 << 63) for v in values):
+                return np.array(values, dtype=np.int64)
+            if all(0 <= v < (1 << 64) for v in values):
+                return np.array(values, dtype=np.uint64)
+            return text
+        if any(abs(v) > 1 << 53 for v in values):
+            return text  # a float, needed for the empty cells, would round them
+    if not all(_NUMBER.fullmatch(x) for x in filled):
+        return text
+    numbers = [float(x) if x else np.nan for x in plain]
+    if any(np.isinf(v) for v, x in zip(numbers, plain) if x and x.lower() not in _WORDS):
+        return text  # beyond a double's range: no number beamid wrote
+    return np.array(numbers, dtype=float)
 
 
 def load_results(folder, as_dict=False):

@@ -401,6 +401,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   const api::FitNotes notes = api::fit_notes(r, c->options.cost);
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
+  if (c->spread) messages.append(api::window_spread_line(*c->spread, r));
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;

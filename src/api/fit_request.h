@@ -102,6 +102,7 @@ struct FitNotes {
   std::string rough;            // the cost is not smooth at the estimate (FitResult::roughness)
   std::string other_minimum;    // another start ended nearly as low, far away (FitResult::other_minimum)
   std::string few_degrees;      // the residual variance rests on fewer than 10 degrees of freedom
+  std::string relative_modes;   // the modal cost's relative weighting: its formal standard errors do not hold
   std::string transient;        // errors in variables: the free transient, not the force, accounts for the response
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
@@ -111,5 +112,9 @@ struct FitNotes {
 // another beam's record, or of a record in counts reported precise "free" estimates with exit 0.
 // `cost` is the fit's cost (its name and window).
 FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost);
+// "3 of 4 windows converged (window 2: max-evaluations); sd over them: EI 0.1 (formal ..., sandwich ...; the windows'
+// own formal ...: within the windows' noise)", or why there is no spread: what --windows K says beside the table, on
+// the command's stderr and in Python's messages (it was missing there: the twenty-fifth pass's adv59 P2).
+std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitResult& result);
 
 }  // namespace beamid::api

@@ -474,23 +474,28 @@ constexpr double kDropoutQuanta = 8;
 // slowly decaying mode's turning points, and is left to the quantisation note.
 constexpr int kClippedSamples = 3;
 
+// At each extreme of the record separately, its maximum and its minimum: a rail on one side only, below the other
+// side's peak (a sensor offset, a unipolar range), was never examined, and a record with 5.8 % of its samples on it
+// was fitted with cDI 3.7 standard errors off (the twenty-fifth pass's adv58 P1).
 void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
   const std::vector<double>& v = s.values;
   if (!(peak / record_quantum(v) >= kFineQuantisation)) return;
-  int count = 0, stretches = 0;
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (std::abs(v[i]) == peak) {
-      if (count == 0) at = i;
-      stretches += count == 0 || std::abs(v[i - 1]) != peak;
-      ++count;
-    }
-  if (count >= kClippedSamples && stretches >= 2)
-    throw InputError(in.where(first + at) + ": " + s.value_column + " reaches its peak magnitude " +
-                     format_value(std::abs(in.v[first + at])) + " on " + std::to_string(count) + " samples in " +
-                     std::to_string(stretches) +
-                     " separate stretches: the signal is clipped (the DAQ range was exceeded), so its spectrum is "
-                     "distorted");
+  for (const double extreme : {*std::max_element(v.begin(), v.end()), *std::min_element(v.begin(), v.end())}) {
+    int count = 0, stretches = 0;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] == extreme) {
+        if (count == 0) at = i;
+        stretches += count == 0 || v[i - 1] != extreme;
+        ++count;
+      }
+    if (count >= kClippedSamples && stretches >= 2)
+      throw InputError(in.where(first + at) + ": " + s.value_column + " reaches its " +
+                       (extreme > 0 ? "maximum " : "minimum ") + format_value(in.v[first + at]) + " on " +
+                       std::to_string(count) + " samples in " + std::to_string(stretches) +
+                       " separate stretches: the signal is clipped (the DAQ range was exceeded), so its spectrum is "
+                       "distorted");
+  }
 }
 
 void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
@@ -506,7 +511,12 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     std::size_t j = i + 1;
     while (j < v.size() && v[j] == v[i]) ++j;
     const std::size_t run = j - i;
-    if (run >= kDropoutRun && i > 0 && j < v.size()) {
+    // A run entered and left by at most 2 quanta is a quantised turning point or inflection of a record sampled
+    // fast (10 bits at 10-50 kHz held one level for 33-349 samples, refused as lost data: the twenty-fifth pass's
+    // adv58 P2); a dropout or a held value jumps on at least one side.
+    const bool gentle =
+        i > 0 && j < v.size() && std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= 2 * quantum;
+    if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
       if (std::min(before, after) >= level)
         throw InputError(in.where(first + i) + ": " + s.value_column + " = " + format_value(in.v[first + i]) + " on " +
@@ -563,11 +573,23 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
   // as clipped (the twenty-fourth pass's adv56 P3); it is left to the quantisation note. Floating-point values never
   // repeat at a turning point, and their quantum is round-off, so they keep the rule as it was.
   const double quantum = record_quantum(v);
+  const double top = *std::max_element(v.begin(), v.end()), bottom = *std::min_element(v.begin(), v.end());
+  // At the peak magnitude anywhere, as before; at the other side's extreme (a one-sided rail: the twenty-fifth pass's
+  // adv58 P1) inside the record only, a flat lead-in or tail being no rail.
+  const auto inside = [&](std::size_t i) {
+    std::size_t j = i;
+    while (j < v.size() && v[j] == v[i]) ++j;
+    return i > 0 && j < v.size();
+  };
   for (std::size_t i = 0; i + 2 < v.size(); ++i)
-    if (std::abs(v[i]) == peak && v[i + 1] == v[i] && v[i + 2] == v[i] && steep_plateau(v, i, quantum))
+    if ((std::abs(v[i]) == peak || ((v[i] == top || v[i] == bottom) && inside(i))) && v[i + 1] == v[i] &&
+        v[i + 2] == v[i] && steep_plateau(v, i, quantum))
       throw InputError(in.where(first + i) + ": " + column + " = " + format_value(in.v[first + i]) +
-                       " on 3 or more consecutive samples at the record's peak: the signal is "
-                       "clipped (the DAQ range was exceeded), so its spectrum is distorted");
+                       " on 3 or more consecutive samples at the record's " +
+                       (std::abs(v[i]) == peak ? "peak"
+                        : v[i] == top          ? "maximum"
+                                               : "minimum") +
+                       ": the signal is clipped (the DAQ range was exceeded), so its spectrum is distorted");
   check_scattered_clipping(in, s, first, peak);
   check_dropouts(in, s, first, peak);
 }

@@ -104,6 +104,14 @@ TEST(ReportBlocks, MalformedMarkersAreLocatedErrors) {
   for (const std::string misspelt : {"<!--BEGIN GENERATED x-->", "<!-- begin generated x -->",
                                      "<!--  END  GENERATED x -->", "<!-- BEGIN  GENERATED x -->"})
     EXPECT_EQ(error_of("x\n" + misspelt + "\n").rfind("R.md:2: a ", 0), 0u) << misspelt << ": " << error_of(misspelt);
+  // And the misspellings the twenty-fifth pass found ignored (adv58 P3); a name with a blank at an end is no name.
+  for (const std::string misspelt :
+       {"<!-- BEGIN GENERATD x -->", "<!-- BEGIN-GENERATED x -->", "<!---BEGIN_GENERATED x -->",
+        "<!--\xC2\xA0"
+        "BEGIN GENERATED x -->",
+        "<!-- BEGIN GENERATED  x -->", "<!-- END GENERATED x  -->"})
+    EXPECT_EQ(error_of("x\n" + misspelt + "\n").rfind("R.md:2: a ", 0), 0u) << misspelt << ": " << error_of(misspelt);
+  EXPECT_EQ(error_of("<!-- a comment about what is generated -->\n"), "no error");
   EXPECT_EQ(marker_line("| a |\n|---|\n<!-- END GENERATED\tx -->\n"), 3u);
   EXPECT_EQ(marker_line("| a |\n<!-- a comment -->\n"), 0u);
 }

@@ -434,8 +434,34 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
     return text;
   };
   EXPECT_NO_THROW(read_time_series(write("crest.csv", slow_wave(1.0))));
-  EXPECT_NE(error_of(write("rail.csv", slow_wave(0.56))).find("consecutive samples at the record's peak"),
+  // A rail on one side only, below the other side's peak (the twenty-fifth pass's adv58 P1): at -0.5 the decay's
+  // negative half meets it in several stretches while its positive peak is 0.8.
+  const auto one_sided = [](double rail) {
+    std::string text = "t_s,a_m_s2\n";
+    for (int i = 0; i < 4000; ++i) {
+      const double t = i * 1e-3;
+      const double x = 0.8 * std::exp(-0.3 * t) * std::sin(2 * std::numbers::pi * 2.46 * t + 0.3) +
+                       0.05 * std::sin(2 * std::numbers::pi * 26.5 * t);
+      text += format_value(t) + "," + format_value(std::max(x, rail)) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NE(error_of(write("one_sided.csv", one_sided(-0.5)))
+                .find("-0.5 on 3 or more consecutive samples at the "
+                      "record's minimum"),
             std::string::npos)
+      << error_of(write("one_sided.csv", one_sided(-0.5)));
+  EXPECT_NO_THROW(read_time_series(write("two_sided.csv", one_sided(-2.0))));
+  // A 10-bit record at 50 kHz holds a slow turning point's level for over 32 samples, entered and left by one
+  // quantum: no dropout (adv58 P2 refused it as lost data).
+  std::string fine_rate = "t_s,a_m_s2\n";
+  for (int i = 0; i < 50000; ++i) {
+    const double t = i * 2e-5, quantum = 1.0 / 512;
+    const double x = std::exp(-0.3 * t) * std::sin(2 * std::numbers::pi * 2.46 * t + 0.3);
+    fine_rate += format_value(t) + "," + format_value(quantum * std::round(x / quantum)) + "\n";
+  }
+  EXPECT_NO_THROW(read_time_series(write("fine_rate.csv", fine_rate)));
+  EXPECT_NE(error_of(write("rail.csv", slow_wave(0.56))).find("consecutive samples at the record's"), std::string::npos)
       << error_of(write("rail.csv", slow_wave(0.56)));
   // A dropout: 100 zeros at 0.5 s inside a 30 Hz decay sampled at 1 kHz (the ninth pass's #6), named on its first line
   // (header line 1, sample i on line i + 2). The same decay quantised to a 16-bit range, whose tail rounds to zero for
