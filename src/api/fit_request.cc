@@ -378,8 +378,8 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
 std::vector<std::string> FitNotes::lines() const {
   std::vector<std::string> out;
   for (const std::string* note :
-       {&budget, &rough, &other_minimum, &few_degrees, &transient, &on_bound, &explains_nothing, &pairing, &no_errors,
-        &no_sandwich, &correlated_bins, &failed, &identifiability})
+       {&budget, &rough, &other_minimum, &few_degrees, &relative_modes, &transient, &on_bound, &explains_nothing,
+        &pairing, &no_errors, &no_sandwich, &correlated_bins, &failed, &identifiability})
     if (!note->empty()) out.push_back(*note);
   return out;
 }
@@ -492,7 +492,9 @@ void weighting_note(const fit::FitResult& result, const costs::CostOptions& cost
   // fractions, which a record does not measure them to (its first mode to 3e-6, a weak high one to 2.5e-4): over
   // model-exact records its formal standard errors were 2 times too small with 4 modes and 3-5 times too large with 6
   // (the twenty-fifth pass's adv59 P1); the measured weighting's held within 15 %.
-  if (result.status != "failed" && result.covariance_status == "ok" && cost.name == costs::kModalCost &&
+  // The cost whose standard errors are printed: a hybrid's refinement's, not its modal global stage's (the
+  // twenty-sixth pass's adv61 P3).
+  if (result.status != "failed" && result.covariance_status == "ok" && result.final_cost == costs::kModalCost &&
       cost.mode_weight == costs::kRelativeModeWeight)
     notes.relative_modes =
         "the modal cost's relative weighting (the default) takes every mode's errors as equally "

@@ -204,7 +204,8 @@ std::string precision_mismatch(const ModeComparison& c) {
          g(100 * std::abs(at->model_hz / at->data_hz - 1), 2) + " %) from its " + g(at->data_hz) + " +- " +
          g(at->data_uncertainty_hz, 2) + " Hz" +
          (others.empty() ? "" : " (also beyond " + g(kFrequencyMismatchUncertainties, 2) + " at " + others + " Hz)") +
-         ": model error, a cost whose estimate is biased (noise on the spikes' magnitudes, a window), or a record "
+         ": model error, a cost whose estimate is biased or weighted off the record's precision (noise on the spikes' "
+         "magnitudes, a window, the modal cost's relative weighting), or a record "
          "that is no free decay of one linear beam (a second hit, a frequency that changes with the amplitude), which "
          "the standard errors do not include; quote the spread over windows (--windows K)";
 }

@@ -580,6 +580,7 @@ FitResult fit(const FitOptions& o, const std::vector<Record>& given) {
   const std::vector<model::BeamParameters> estimates = map.estimates(best.x);  // inside the bounds, always
   result.beam = estimates.front();
   result.cost = best.cost;
+  result.final_cost = o.cost.name;
   record_results(objective, records, estimates, result);
   parameter_results(objective, map, o, best, starts, estimates, result);
   return result;

@@ -168,6 +168,8 @@ struct FitResult {
   // estimate (set by api::compute_fit, NaN otherwise): large when the force decides the fit, small when the free
   // transient terms do, negative when the channel's sign is wrong.
   double negated_force_rise = std::numeric_limits<double>::quiet_NaN();
+  // The cost of the final stage, whose standard errors these are (a hybrid's refinement's).
+  std::string final_cost;
   Identifiability identifiability;
   double cost = 0;
   long evaluations = 0;  // over all starts and stages

@@ -474,13 +474,23 @@ constexpr double kDropoutQuanta = 8;
 // slowly decaying mode's turning points, and is left to the quantisation note.
 constexpr int kClippedSamples = 3;
 
+// The median of the record's values (the upper one of an even count).
+double record_median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 // At each extreme of the record separately, its maximum and its minimum: a rail on one side only, below the other
 // side's peak (a sensor offset, a unipolar range), was never examined, and a record with 5.8 % of its samples on it
 // was fitted with cDI 3.7 standard errors off (the twenty-fifth pass's adv58 P1).
 void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
   const std::vector<double>& v = s.values;
   if (!(peak / record_quantum(v) >= kFineQuantisation)) return;
+  // An extreme where the signal rests (its median: a force channel at 0 before and after the hit) is no rail: such a
+  // channel was refused as clipped at its minimum 0 (the twenty-sixth pass's adv61 P2).
+  const double rest = record_median(v);
   for (const double extreme : {*std::max_element(v.begin(), v.end()), *std::min_element(v.begin(), v.end())}) {
+    if (extreme == rest) continue;
     int count = 0, stretches = 0;
     std::size_t at = 0;
     for (std::size_t i = 0; i < v.size(); ++i)
@@ -502,6 +512,13 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
   const std::vector<double>& v = s.values;
   const double quantum = record_quantum(v);
   const double level = std::max(kDropoutLevel * peak, std::isfinite(quantum) ? kDropoutQuanta * quantum : 0.0);
+  // The fastest slope per sample, from steps over 1, 16 and 64 samples less a quantum of rounding: a record sampled
+  // fast moves by less than a quantum a sample, so that its one-sample steps are 0 or 1 quantum whatever its slope.
+  double fastest = 0;
+  for (const std::size_t m : {std::size_t{1}, std::size_t{16}, std::size_t{64}})
+    for (std::size_t k = m; k < v.size(); ++k)
+      fastest = std::max(fastest, (std::abs(v[k] - v[k - m]) - quantum) / static_cast<double>(m));
+  const double turning_samples = fastest > 0 ? 8 * std::sqrt(2 * quantum * peak) / fastest : 0.0;
   const auto away = [&](std::size_t from, std::size_t to, double value) {
     double d = 0;
     for (std::size_t i = from; i < to; ++i) d = std::max(d, std::abs(v[i] - value));
@@ -514,8 +531,12 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     // A run entered and left by at most 2 quanta is a quantised turning point or inflection of a record sampled
     // fast (10 bits at 10-50 kHz held one level for 33-349 samples, refused as lost data: the twenty-fifth pass's
     // adv58 P2); a dropout or a held value jumps on at least one side.
-    const bool gentle =
-        i > 0 && j < v.size() && std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= 2 * quantum;
+    // Only as long as a turning point can hold one level: within a quantum q of a crest of a signal whose fastest
+    // step is s per sample, for about 2 sqrt(2 q peak) / s samples; 4 times that is allowed. (Without the bound a
+    // frozen channel of 674 samples that resumed within a quantum was accepted: the twenty-sixth pass's adv60 P2.)
+    const bool gentle = i > 0 && j < v.size() &&
+                        std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= 2.5 * quantum &&
+                        static_cast<double>(run) <= turning_samples;
     if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
       if (std::min(before, after) >= level)
@@ -545,8 +566,14 @@ bool steep_plateau(const std::vector<double>& v, std::size_t i, double quantum) 
   const double after = j < v.size() ? std::abs(v[j] - v[i]) : std::numeric_limits<double>::infinity();
   // Or by a tenth of the held value: a record of few levels (its quantum the step itself) reaches no turning point
   // that way.
+  // 2.5 quanta on a record of at least 10 bits over its peak (a step read back from decimal text as 2 quanta may
+  // compare above 2); 4.5 on a coarser one, whose crest next to a fast mode is entered and left by 2-4 quanta (8 bits
+  // at 5 kHz with a 190 Hz mode: the twenty-sixth pass's adv60 P1).
+  const double peak =
+      std::max(std::abs(*std::max_element(v.begin(), v.end())), std::abs(*std::min_element(v.begin(), v.end())));
+  const double quanta = peak / quantum >= kFineQuantisation ? 2.5 : 4.5;
   const double step = std::min(before, after);
-  return step > 2 * quantum || step > 0.1 * std::abs(v[i]);
+  return step > quanta * quantum || step > 0.1 * std::abs(v[i]);
 }
 
 void check_values(const Samples& in, const TimeSeries& s, std::size_t first, const std::string& path) {
@@ -574,6 +601,7 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
   // repeat at a turning point, and their quantum is round-off, so they keep the rule as it was.
   const double quantum = record_quantum(v);
   const double top = *std::max_element(v.begin(), v.end()), bottom = *std::min_element(v.begin(), v.end());
+  const double rest = record_median(v);
   // At the peak magnitude anywhere, as before; at the other side's extreme (a one-sided rail: the twenty-fifth pass's
   // adv58 P1) inside the record only, a flat lead-in or tail being no rail.
   const auto inside = [&](std::size_t i) {
@@ -582,8 +610,8 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
     return i > 0 && j < v.size();
   };
   for (std::size_t i = 0; i + 2 < v.size(); ++i)
-    if ((std::abs(v[i]) == peak || ((v[i] == top || v[i] == bottom) && inside(i))) && v[i + 1] == v[i] &&
-        v[i + 2] == v[i] && steep_plateau(v, i, quantum))
+    if ((std::abs(v[i]) == peak || ((v[i] == top || v[i] == bottom) && v[i] != rest && inside(i))) &&
+        v[i + 1] == v[i] && v[i + 2] == v[i] && steep_plateau(v, i, quantum))
       throw InputError(in.where(first + i) + ": " + column + " = " + format_value(in.v[first + i]) +
                        " on 3 or more consecutive samples at the record's " +
                        (std::abs(v[i]) == peak ? "peak"

@@ -452,6 +452,14 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
             std::string::npos)
       << error_of(write("one_sided.csv", one_sided(-0.5)));
   EXPECT_NO_THROW(read_time_series(write("two_sided.csv", one_sided(-2.0))));
+  // A force channel at rest before and after its hit sits at its minimum, 0, on thousands of samples in two stretches:
+  // its median, where it rests, no rail (the twenty-sixth pass's adv61 P2 refused simulate's own force column).
+  std::string hit = "t_s,force_N\n";
+  for (int i = 0; i < 4096; ++i) {
+    const double f = i >= 100 && i < 104 ? std::pow(std::sin(std::numbers::pi * (i - 99) / 5.0), 2) : 0.0;
+    hit += format_value(i * 1e-3) + "," + format_value(f) + "\n";
+  }
+  EXPECT_NO_THROW(read_time_series(write("hit.csv", hit)));
   // A 10-bit record at 50 kHz holds a slow turning point's level for over 32 samples, entered and left by one
   // quantum: no dropout (adv58 P2 refused it as lost data).
   std::string fine_rate = "t_s,a_m_s2\n";
@@ -461,6 +469,22 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
     fine_rate += format_value(t) + "," + format_value(quantum * std::round(x / quantum)) + "\n";
   }
   EXPECT_NO_THROW(read_time_series(write("fine_rate.csv", fine_rate)));
+  // But a channel frozen at a crest for one whole period of a 30 Hz mode (667 samples at 20 kHz, 10 bits, zeta 0.05 %)
+  // resumes within a quantum of the held value and is still lost data: a turning point holds a level for about 13
+  // samples here, and the exemption stops at 4 times that (the twenty-sixth pass's adv60 P2 accepted 674 samples).
+  std::vector<double> held(20000);
+  const double quantum10 = 1.0 / 512, omega = 2 * std::numbers::pi * 30;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const double t = static_cast<double>(i) / 20000;
+    held[i] = quantum10 * std::round(std::exp(-0.0005 * omega * t) * std::sin(omega * t) / quantum10);
+  }
+  const std::size_t crest = 5000 + 167;  // t = 0.25 s + a quarter period: sin = 1
+  for (std::size_t i = crest; i < crest + 667; ++i) held[i] = held[crest - 1];
+  std::string frozen = "t_s,a_m_s2\n";
+  for (std::size_t i = 0; i < held.size(); ++i)
+    frozen += format_value(static_cast<double>(i) / 20000) + "," + format_value(held[i]) + "\n";
+  EXPECT_NE(error_of(write("frozen.csv", frozen)).find("a dropout (lost data)"), std::string::npos)
+      << error_of(write("frozen.csv", frozen));
   EXPECT_NE(error_of(write("rail.csv", slow_wave(0.56))).find("consecutive samples at the record's"), std::string::npos)
       << error_of(write("rail.csv", slow_wave(0.56)));
   // A dropout: 100 zeros at 0.5 s inside a 30 Hz decay sampled at 1 kHz (the ninth pass's #6), named on its first line

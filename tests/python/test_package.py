@@ -179,6 +179,11 @@ def test_fit_says_what_the_command_line_says_of_its_damping(tmp_path):
         spread = beamid.fit(data=str(record), beam="banks-aluminium", elements=8, estimate="EI",
                             output="acceleration", pulse_width=0.004, cost="time", windows=2)
     assert any(m.startswith("2 of 2 windows converged; sd over them: EI") for m in spread.messages), spread.messages
+    # The modal cost's relative weighting says its formal errors do not hold, here too (adv61 P1: only the CLI said).
+    with pytest.warns(UserWarning):
+        modal = beamid.fit(data=str(record), beam="banks-aluminium", elements=8, estimate="EI,cDI",
+                           output="acceleration", pulse_width=0.004, cost="modal", spikes=3)
+    assert any("relative weighting" in m for m in modal.messages), modal.messages
 
 
 def test_fit_failures_are_statuses_and_bad_flags_are_errors():
