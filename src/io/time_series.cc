@@ -491,14 +491,22 @@ void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_
   const double rest = record_median(v);
   for (const double extreme : {*std::max_element(v.begin(), v.end()), *std::min_element(v.begin(), v.end())}) {
     if (extreme == rest) continue;
+    // A new stretch only after the signal has gone a tenth of the peak away from the extreme: a rail is met once a
+    // swing, while noise on a pluck's pre-trigger lead-in at the static deflection met its quantised maximum again
+    // and again within a few quanta (the twenty-seventh pass's adv63 P1).
     int count = 0, stretches = 0;
     std::size_t at = 0;
-    for (std::size_t i = 0; i < v.size(); ++i)
+    bool away = true;
+    for (std::size_t i = 0; i < v.size(); ++i) {
       if (v[i] == extreme) {
         if (count == 0) at = i;
-        stretches += count == 0 || v[i - 1] != extreme;
+        stretches += away ? 1 : 0;
+        away = false;
         ++count;
+      } else if (std::abs(v[i] - extreme) > 0.1 * peak) {
+        away = true;
       }
+    }
     if (count >= kClippedSamples && stretches >= 2)
       throw InputError(in.where(first + at) + ": " + s.value_column + " reaches its " +
                        (extreme > 0 ? "maximum " : "minimum ") + format_value(in.v[first + at]) + " on " +
@@ -566,12 +574,12 @@ bool steep_plateau(const std::vector<double>& v, std::size_t i, double quantum) 
   const double after = j < v.size() ? std::abs(v[j] - v[i]) : std::numeric_limits<double>::infinity();
   // Or by a tenth of the held value: a record of few levels (its quantum the step itself) reaches no turning point
   // that way.
-  // 2.5 quanta on a record of at least 10 bits over its peak (a step read back from decimal text as 2 quanta may
-  // compare above 2); 4.5 on a coarser one, whose crest next to a fast mode is entered and left by 2-4 quanta (8 bits
-  // at 5 kHz with a 190 Hz mode: the twenty-sixth pass's adv60 P1).
-  const double peak =
-      std::max(std::abs(*std::max_element(v.begin(), v.end())), std::abs(*std::min_element(v.begin(), v.end())));
-  const double quanta = peak / quantum >= kFineQuantisation ? 2.5 : 4.5;
+  // A quantised crest held for L samples within a quantum q of its top (half-width w = (L - 1) / 2 samples) drops at
+  // most ((w + 1) / w)^2 q at the next sample out, so it is entered and left by at most that: 4 quanta for L = 3,
+  // 2.25 for L = 5; half a quantum more for the rounding of text. (A flat 2.5 refused 12-bit plucks' troughs and 8-bit
+  // crests at 5 kHz: the twenty-sixth pass's adv60 P1 and the twenty-seventh's adv63 P1.)
+  const double w = std::max(1.0, static_cast<double>(j - i - 1) / 2);
+  const double quanta = std::max(2.5, (w + 1) * (w + 1) / (w * w) + 0.5);
   const double step = std::min(before, after);
   return step > quanta * quantum || step > 0.1 * std::abs(v[i]);
 }

@@ -460,6 +460,18 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
     hit += format_value(i * 1e-3) + "," + format_value(f) + "\n";
   }
   EXPECT_NO_THROW(read_time_series(write("hit.csv", hit)));
+  // A pluck's pre-trigger lead-in holds the static deflection, its largest value, with noise of a few quanta that
+  // meets the quantised maximum again and again (12 bits at 500 Hz), then decays: no rail, since between its visits
+  // the signal never goes a tenth of the peak away (the twenty-seventh pass's adv63 P1 refused 6 of 12 seeds).
+  std::string pluck = "t_s,x_m\n";
+  const double q12 = 1.0 / 2048;
+  for (int i = 0; i < 4396; ++i) {
+    const double t = (i - 300) * 2e-3;
+    const double x = i < 300 ? 1.0 + 2.6 * q12 * std::sin(1.7 * i) * std::sin(0.31 * i)
+                             : std::exp(-0.2 * t) * std::cos(2 * std::numbers::pi * 2.46 * t);
+    pluck += format_value(i * 2e-3) + "," + format_value(q12 * std::round(0.95 * x / q12)) + "\n";
+  }
+  EXPECT_NO_THROW(read_time_series(write("pluck.csv", pluck)));
   // A 10-bit record at 50 kHz holds a slow turning point's level for over 32 samples, entered and left by one
   // quantum: no dropout (adv58 P2 refused it as lost data).
   std::string fine_rate = "t_s,a_m_s2\n";
