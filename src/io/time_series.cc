@@ -483,13 +483,14 @@ double record_median(std::vector<double> v) {
 // At each extreme of the record separately, its maximum and its minimum: a rail on one side only, below the other
 // side's peak (a sensor offset, a unipolar range), was never examined, and a record with 5.8 % of its samples on it
 // was fitted with cDI 3.7 standard errors off (the twenty-fifth pass's adv58 P1).
-void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
+// `rest` is the record's median (check_values): an extreme where the signal rests (a force channel at 0 before and
+// after the hit) is no rail: such a channel was refused as clipped at its minimum 0 (the twenty-sixth pass's adv61
+// P2).
+void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_t first, double peak, double top,
+                              double bottom, double rest) {
   const std::vector<double>& v = s.values;
   if (!(peak / record_quantum(v) >= kFineQuantisation)) return;
-  // An extreme where the signal rests (its median: a force channel at 0 before and after the hit) is no rail: such a
-  // channel was refused as clipped at its minimum 0 (the twenty-sixth pass's adv61 P2).
-  const double rest = record_median(v);
-  for (const double extreme : {*std::max_element(v.begin(), v.end()), *std::min_element(v.begin(), v.end())}) {
+  for (const double extreme : {top, bottom}) {
     if (extreme == rest) continue;
     // A new stretch only after the signal has gone a tenth of the peak away from the extreme: a rail is met once a
     // swing, while noise on a pluck's pre-trigger lead-in at the static deflection met its quantised maximum again
@@ -572,8 +573,6 @@ bool steep_plateau(const std::vector<double>& v, std::size_t i, double quantum) 
   while (j < v.size() && v[j] == v[i]) ++j;
   const double before = i > 0 ? std::abs(v[i - 1] - v[i]) : std::numeric_limits<double>::infinity();
   const double after = j < v.size() ? std::abs(v[j] - v[i]) : std::numeric_limits<double>::infinity();
-  // Or by a tenth of the held value: a record of few levels (its quantum the step itself) reaches no turning point
-  // that way.
   // A quantised crest held for L samples within a quantum q of its top (half-width w = (L - 1) / 2 samples) drops at
   // most ((w + 1) / w)^2 q at the next sample out, so it is entered and left by at most that: 4 quanta for L = 3,
   // 2.25 for L = 5; half a quantum more for the rounding of text. (A flat 2.5 refused 12-bit plucks' troughs and 8-bit
@@ -581,6 +580,8 @@ bool steep_plateau(const std::vector<double>& v, std::size_t i, double quantum) 
   const double w = std::max(1.0, static_cast<double>(j - i - 1) / 2);
   const double quanta = std::max(2.5, (w + 1) * (w + 1) / (w * w) + 0.5);
   const double step = std::min(before, after);
+  // Or by a tenth of the held value: a record of few levels (its quantum the step itself) reaches no turning point
+  // that way.
   return step > quanta * quantum || step > 0.1 * std::abs(v[i]);
 }
 
@@ -626,7 +627,7 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
                         : v[i] == top          ? "maximum"
                                                : "minimum") +
                        ": the signal is clipped (the DAQ range was exceeded), so its spectrum is distorted");
-  check_scattered_clipping(in, s, first, peak);
+  check_scattered_clipping(in, s, first, peak, top, bottom, rest);
   check_dropouts(in, s, first, peak);
 }
 

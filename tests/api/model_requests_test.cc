@@ -75,21 +75,27 @@ TEST(ModelRunRequest, RefusesWhatOnlyTheFlagParserCheckedBefore) {
             "beamid crb: give one of --noise-sd S (absolute) and --noise-level L (fraction of the RMS)");
 }
 
-TEST(RecordRequests, ASpikesDecayRateIsNeverNegative) {
-  // The thin beam at N = 6, 1024 samples after the 4 ms pulse, noise-free: the three-bin estimate of spike 2's decay
-  // rate came out -0.098 1/s, the neighbours' leakage on a 1 s record, where the mode decays at 0.255 1/s (the
-  // twenty-second pass's P4). A passive beam's modes decay: a rate is positive or NaN, never negative.
+// banks-aluminium's 4 ms tip pulse at N elements over `samples` samples, noise-free, as a record.
+io::TimeSeries simulated_record(int elements, int samples) {
   std::ostringstream warnings;
   SimulateRequest simulate;
   simulate.run.beam = model::preset("banks-aluminium");
-  simulate.run.elements = 6;
-  simulate.run.experiment.samples = 1024;
+  simulate.run.elements = elements;
+  simulate.run.experiment.samples = samples;
   simulate.run.experiment.pulse_width_s = 0.004;
   const SimulateResult s = compute_simulate(simulate, warnings);
   io::TimeSeries record;
   record.path = "<simulated>";
   record.dt_s = s.run.experiment.dt_s;
   record.values = s.y;
+  return record;
+}
+
+TEST(RecordRequests, ASpikesDecayRateIsNeverNegative) {
+  // The thin beam at N = 6, 1024 samples after the 4 ms pulse, noise-free: the three-bin estimate of spike 2's decay
+  // rate came out -0.098 1/s, the neighbours' leakage on a 1 s record, where the mode decays at 0.255 1/s (the
+  // twenty-second pass's P4). A passive beam's modes decay: a rate is positive or NaN, never negative.
+  const io::TimeSeries record = simulated_record(6, 1024);
   SpikesRequest spikes;
   spikes.spikes.count = 4;
   const SpikesResult p = compute_spikes(spikes, record);
@@ -102,17 +108,9 @@ TEST(RecordRequests, ASpikesDecayRateIsNeverNegative) {
 
 TEST(RecordRequests, SpikesAndModalIdFindTheModesOfASimulatedRecord) {
   std::ostringstream warnings;
-  SimulateRequest simulate;
-  simulate.run.beam = model::preset("banks-aluminium");
-  simulate.run.elements = 8;
-  simulate.run.experiment.pulse_width_s = 0.004;
-  const SimulateResult s = compute_simulate(simulate, warnings);
-  io::TimeSeries record;
-  record.path = "<simulated>";
-  record.dt_s = s.run.experiment.dt_s;
-  record.values = s.y;
+  const io::TimeSeries record = simulated_record(8, simulation::Experiment().samples);
   ModesRequest modes;
-  modes.beam = simulate.run.beam;
+  modes.beam = model::preset("banks-aluminium");
   modes.elements = 8;
   modes.count = 2;
   const ModesResult m = compute_modes(modes, warnings);

@@ -106,25 +106,34 @@ Problem line_problem(const Eigen::VectorXd& e, const Eigen::VectorXd& times) {
   return p;
 }
 
+// The line of line_problem over t = 0..39 with residual pattern e_i = 0.3 sin(1.7 i), and the same with a step of
+// `size` added to residual 0 once coordinate k exceeds `from`.
+Problem sine_line() {
+  Eigen::VectorXd e(40);
+  for (int i = 0; i < 40; ++i) e(i) = 0.3 * std::sin(1.7 * i);
+  return line_problem(e, Eigen::VectorXd::LinSpaced(40, 0, 39));
+}
+Problem with_step(const Problem& smooth, int k, double from, double size) {
+  Problem stepped = smooth;
+  stepped.residuals = [smooth, k, from, size](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    smooth.residuals(x, r);
+    r(0) += x(k) > from ? size : 0.0;
+    return true;
+  };
+  return stepped;
+}
+
 TEST(Optimizers, TheCovarianceSaysWhereTheResidualsAreNotSmooth) {
   // A residual that jumps by 0.5 just beside the estimate, within the slope's first step h = 2e-6 (the
   // errors-in-variables cost's round-off steps: the twenty-first pass's P1): the central differences at h and 10 h
   // differ by far more than kRoughJacobian (0.5 / 2h against 0.5 / 20h, on a column of norm 144), and the coordinate
   // is named; the same line without the jump is smooth (exact differences: no change beyond round-off).
-  Eigen::VectorXd e(40);
-  for (int i = 0; i < 40; ++i) e(i) = 0.3 * std::sin(1.7 * i);
-  const Problem smooth = line_problem(e, Eigen::VectorXd::LinSpaced(40, 0, 39));
+  const Problem smooth = sine_line();
   const Eigen::Vector2d at(1.0, 2.0000000003);
   const Covariance plain = covariance_at(smooth, at);
   ASSERT_TRUE(plain.ok()) << plain.status;
   EXPECT_EQ(plain.rough_coordinate, -1);
-  Problem rough = smooth;
-  rough.residuals = [smooth](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-    smooth.residuals(x, r);
-    r(0) += x(1) > 2.0000000003 + 1e-6 ? 0.5 : 0.0;
-    return true;
-  };
-  const Covariance c = covariance_at(rough, at);
+  const Covariance c = covariance_at(with_step(smooth, 1, 2.0000000003 + 1e-6, 0.5), at);
   EXPECT_EQ(c.rough_coordinate, 1);
   EXPECT_GT(c.rough_change, kRoughJacobian);
 }
@@ -135,20 +144,12 @@ TEST(Optimizers, TheCovarianceSaysWhereACliffLiesWithinTheStandardErrors) {
   // (the intercept's: s^2 = 0.047, sd 0.068) it rises as predicted, to round-off. A residual (0 there) that jumps by
   // 1 at half a standard error of the intercept adds 1 to the sum of squares there, against a predicted rise
   // q = sd^2 |J_0|^2 = 0.0046 x 40 = 0.19: beyond kNonQuadraticRise q = 0.37, and the intercept is named.
-  Eigen::VectorXd e(40);
-  for (int i = 0; i < 40; ++i) e(i) = 0.3 * std::sin(1.7 * i);
-  const Problem smooth = line_problem(e, Eigen::VectorXd::LinSpaced(40, 0, 39));
+  const Problem smooth = sine_line();
   const Eigen::Vector2d at(1.0, 2.0);
   const Covariance plain = covariance_at(smooth, at);
   ASSERT_TRUE(plain.ok()) << plain.status;
   EXPECT_EQ(plain.nonquadratic_coordinate, -1);
-  Problem cliff = smooth;
-  cliff.residuals = [smooth](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
-    smooth.residuals(x, r);
-    r(0) += x(0) > 1.0 + 0.03 ? 1.0 : 0.0;
-    return true;
-  };
-  const Covariance c = covariance_at(cliff, at);
+  const Covariance c = covariance_at(with_step(smooth, 0, 1.0 + 0.03, 1.0), at);
   ASSERT_TRUE(c.ok()) << c.status;
   EXPECT_EQ(c.rough_coordinate, -1);  // the Jacobian's steps (1e-6, 1e-5) do not reach it
   EXPECT_EQ(c.nonquadratic_coordinate, 0);
