@@ -95,6 +95,7 @@ std::optional<io::TimeSeries> read_force_channel(const Flags& a, const RecordRea
   if (!a.has("force-channel")) return std::nullopt;
   io::ImportOptions o = read_import_options(a);
   o.channel = a.text("force-channel");
+  o.excitation = true;
   for (const std::string& channel : a.texts("channel"))
     a.require(channel != o.channel, "force-channel", "names a response --channel too: the force drives the model");
   try {

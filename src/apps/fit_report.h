@@ -10,6 +10,7 @@
 #include "apps/flags.h"
 #include "fit/identification.h"
 #include "fit/window_spread.h"
+#include "galerkin/modes.h"
 #include "io/time_series.h"
 
 namespace beamid::apps {
@@ -40,6 +41,10 @@ struct ModePair {
   // The measured frequency's uncertainty (signal/measured_modes.h) and, when its span is notable, what widens it.
   double data_uncertainty_hz = 0;
   std::string data_note;
+  // The model frequency's standard error at the estimate, propagated from the fit's covariance (NaN when the fit has
+  // none): an estimator that weights the record's modes off their measured precision (the errors-in-variables
+  // likelihood down-weights the resonance bins) scatters the model's modes more widely than the record's pencil does.
+  double model_uncertainty_hz = std::numeric_limits<double>::quiet_NaN();
   // Decay rates -Re(lambda), 1/s, and the record's uncertainty of its own (signal/measured_modes.h).
   double data_decay_1_s = 0, model_decay_1_s = std::numeric_limits<double>::quiet_NaN();
   double data_decay_uncertainty_1_s = std::numeric_limits<double>::quiet_NaN();
@@ -53,6 +58,12 @@ struct ModeComparison {
   std::vector<std::string> notes;
   std::string status = "ok";  // or why the data's modes could not be identified
 };
+// The standard error of each model mode's frequency at the estimate (NaN where unknown): u_k = f_k sqrt(g_k^T S g_k),
+// with g_k = d log f_k / d log q (galerkin::frequency_sensitivities, of the undamped mode nearest in frequency) and S
+// the covariance of log q from the fitted parameters' standard errors and correlation. Damping moves the undamped
+// frequencies not at all and |lambda| only to second order in zeta.
+std::vector<double> model_frequency_uncertainties(const fit::FitResult& result, int elements,
+                                                  const std::vector<galerkin::DampedMode>& model);
 // K = the cost's spike count (at most 8) modes in the cost's frequency band.
 ModeComparison compare_modes(const FitReportInput& input);
 // The model mode each data mode pairs with (-1: none): one to one, closest relative frequency first, and only within
@@ -68,8 +79,8 @@ std::string modes_line(const ModeComparison& comparison);
 // by more (2 u, u its measured uncertainty: a frequency that changes with the amplitude) is judged by that instead.
 // "" when every pair agrees.
 // Within kModeMismatch, the note says when a model mode misses the record's by more than
-// kFrequencyMismatchUncertainties of its measured uncertainty (model error, a second hit), which the standard errors
-// do not include either.
+// kFrequencyMismatchUncertainties of its measured uncertainty combined with the fit's own standard error of that
+// frequency (model error, a second hit), which the standard errors do not include either.
 inline constexpr double kModeMismatch = 0.02;
 inline constexpr double kFrequencyMismatchUncertainties = 10;
 std::string modes_mismatch_note(const ModeComparison& comparison);

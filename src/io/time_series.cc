@@ -517,7 +517,23 @@ void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_
   }
 }
 
-void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak) {
+// `rest` (the record's median) of an excitation (ImportOptions::excitation, or a record in a force unit) is where it
+// rests between hits: a force channel exactly 0 between a hammer's two hits was refused as lost data (the
+// twenty-seventh pass's adv62 P1). A response at rest holds its noise, and a response's run of zeros stays a dropout.
+// What a refusal as clipped or as a dropout cannot rule out on a record of fewer than kFineQuantisation steps over its
+// peak: a slow mode's turning point holds one level for tens of samples and its crest for several (6 and 5 bits over
+// the range: 35 and 49 samples, refused as lost data; 4 bits: as clipped, with nothing said of the quantisation: the
+// twenty-seventh pass's adv62 P2). "" on a finer record.
+std::string coarse_quantisation_clause(double peak, double quantum) {
+  if (!std::isfinite(quantum) || !(peak / quantum < kFineQuantisation)) return "";
+  return ", or a slow turning point of a record quantised this coarsely (its step is 1/" +
+         format_value(std::round(peak / quantum)) + " of its peak, " +
+         format_value(std::round(10 * std::log2(2 * peak / quantum)) / 10) +
+         " bits over its range; a record that uses more of the DAQ range tells the two apart)";
+}
+
+void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak, double rest,
+                    bool excitation) {
   const std::vector<double>& v = s.values;
   const double quantum = record_quantum(v);
   const double level = std::max(kDropoutLevel * peak, std::isfinite(quantum) ? kDropoutQuanta * quantum : 0.0);
@@ -546,14 +562,16 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     const bool gentle = i > 0 && j < v.size() &&
                         std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= 2.5 * quantum &&
                         static_cast<double>(run) <= turning_samples;
-    if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle) {
+    const bool resting = (excitation || is_force_unit(s.unit)) && v[i] == rest;
+    if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle && !resting) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
       if (std::min(before, after) >= level)
         throw InputError(in.where(first + i) + ": " + s.value_column + " = " + format_value(in.v[first + i]) + " on " +
                          std::to_string(run) +
                          " consecutive samples inside the record, with the vibration on both sides: a dropout (lost "
-                         "data), whose spectrum is no beam's; cut the record before it (--duration) or after it "
-                         "(--start), or repair it");
+                         "data), whose spectrum is no beam's" +
+                         coarse_quantisation_clause(peak, quantum) +
+                         "; cut the record before it (--duration) or after it (--start), or repair it");
     }
     i = j;
   }
@@ -585,7 +603,7 @@ bool steep_plateau(const std::vector<double>& v, std::size_t i, double quantum) 
   return step > quanta * quantum || step > 0.1 * std::abs(v[i]);
 }
 
-void check_values(const Samples& in, const TimeSeries& s, std::size_t first, const std::string& path) {
+void check_values(const Samples& in, const TimeSeries& s, std::size_t first, const std::string& path, bool excitation) {
   const std::vector<double>& v = s.values;
   const std::string& column = s.value_column;
   const std::string window = first > 0 || v.size() < in.v.size() ? " in the window" : "";
@@ -626,9 +644,10 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
                        (std::abs(v[i]) == peak ? "peak"
                         : v[i] == top          ? "maximum"
                                                : "minimum") +
-                       ": the signal is clipped (the DAQ range was exceeded), so its spectrum is distorted");
+                       ": the signal is clipped (the DAQ range was exceeded), so its spectrum is distorted" +
+                       coarse_quantisation_clause(peak, quantum));
   check_scattered_clipping(in, s, first, peak, top, bottom, rest);
-  check_dropouts(in, s, first, peak);
+  check_dropouts(in, s, first, peak, rest, excitation);
 }
 
 // The window into s: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so
@@ -703,7 +722,7 @@ TimeSeries finish(Samples in, const std::string& path, const ImportOptions& o) {
   TimeSeries s = in.series;
   const std::size_t first = cut_window(s, in.v, in.t.front(), dt, path, o);
   convert_to_si(s, o, path);
-  check_values(in, s, first, path);
+  check_values(in, s, first, path, o.excitation);
   if (o.resample_rate_hz) resample_to_rate(s, *o.resample_rate_hz, path);
   return s;
 }

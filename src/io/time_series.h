@@ -42,6 +42,9 @@ struct ImportOptions {
   // --sample-rate; --channel then chooses among the others. "": none.
   std::string time_channel;
   std::optional<double> resample_rate_hz;  // band-limited resampling onto this rate after everything else
+  // The channel is an excitation (--force-channel): a hammer's force rests between its hits, so a run at its rest
+  // level is no dropout (as for any channel in a force unit, N, kN or lbf).
+  bool excitation = false;
   // What a file of several channels is told when none is chosen (a prediction has no --channel of its own).
   std::string channel_advice = "choose one with --channel NAME or --channel INDEX";
 };

@@ -487,8 +487,10 @@ std::string quantity_of(const std::string& unit) {
   return "";
 }
 
+bool is_force_unit(const std::string& unit) { return unit == "N" || unit == "kN" || unit == "lbf"; }
+
 bool is_non_motion_unit(const std::string& unit) {
-  return unit == "V" || unit == "mV" || unit == "N" || unit == "kN" || unit == "lbf" || unit == "Pa";
+  return unit == "V" || unit == "mV" || is_force_unit(unit) || unit == "Pa";
 }
 
 bool is_known_unit(const std::string& unit) {

@@ -40,6 +40,8 @@ std::optional<SiConversion> si_conversion(const std::string& unit);
 std::string quantity_of(const std::string& unit);
 // Whether a known unit measures no motion (V, mV, N, kN, lbf, Pa): a record in it is a raw sensor signal.
 bool is_non_motion_unit(const std::string& unit);
+// Whether a unit (in beamid's spelling) measures a force (N, kN, lbf).
+bool is_force_unit(const std::string& unit);
 // Whether a unit (in beamid's spelling) is one beamid knows: SI, converted to SI, or no motion. A label a file states
 // that is none of these is refused rather than taken as SI (nm, ft, degF, furlong/fortnight were read as m or m/s).
 bool is_known_unit(const std::string& unit);

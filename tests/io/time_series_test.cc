@@ -528,6 +528,49 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   // P4). The 8-bit record's real dropout, zeros where the decay is still 0.135, is named as before.
   EXPECT_NO_THROW(read_time_series(write("coarse.csv", record(-1000, 1.0 / 128, 0.05))));
   EXPECT_NE(error_of(write("coarse_dropout.csv", record(500, 1.0 / 128, 0))).find("a dropout"), std::string::npos);
+  // A record of 64 steps over its peak (7 bits over its range) whose slow mode (0.3 of the peak at 2.46 Hz) outlives
+  // the fast ones holds its turning points for 47 samples: the refusal cannot tell that from lost data, and says so
+  // (the twenty-seventh pass's adv62 P2 was told of a dropout alone).
+  std::vector<double> crests(4096);
+  double crest_peak = 0;
+  for (std::size_t i = 0; i < crests.size(); ++i) {
+    const double t = static_cast<double>(i) * 1e-3, pi = std::numbers::pi;
+    crests[i] = 0.3 * std::sin(2 * pi * 2.46 * t + 0.3) + std::exp(-5 * t) * std::sin(2 * pi * 26.6 * t) +
+                0.5 * std::exp(-8 * t) * std::sin(2 * pi * 81.7 * t);
+    crest_peak = std::max(crest_peak, std::abs(crests[i]));
+  }
+  std::string slow_crests = "t_s,v_m_s\n";
+  for (std::size_t i = 0; i < crests.size(); ++i)
+    slow_crests += format_value(static_cast<double>(i) * 1e-3) + "," +
+                   format_value(crest_peak / 64 * std::round(64 * crests[i] / crest_peak)) + "\n";
+  EXPECT_NE(error_of(write("slow_crests.csv", slow_crests))
+                .find("a dropout (lost data), whose spectrum is no beam's, or a slow turning point of a record "
+                      "quantised this coarsely (its step is 1/"),
+            std::string::npos)
+      << error_of(write("slow_crests.csv", slow_crests));
+  EXPECT_EQ(error_of(write("dropout.csv", record(500, 0, 0))).find("quantised"), std::string::npos);
+  // A hammer's force exactly 0 between two hits (half sines of 20 samples at 0.01 s and 2 s) rests there: no dropout
+  // in a force unit, nor in a channel read as the excitation (--force-channel); a response so still would be lost
+  // data (the twenty-seventh pass's adv62 P1 refused the force).
+  const auto two_hits = [](const std::string& column) {
+    std::string text = "t_s," + column + "\n";
+    for (int i = 0; i < 4096; ++i) {
+      double f = 0;
+      if (i >= 10 && i < 30) f = std::sin(std::numbers::pi * (i - 10) / 20.0);
+      if (i >= 2000 && i < 2020) f = 0.5 * std::sin(std::numbers::pi * (i - 2000) / 20.0);
+      text += format_value(i * 1e-3) + "," + format_value(f) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NO_THROW(read_time_series(write("hits_N.csv", two_hits("force (N)"))));
+  EXPECT_NO_THROW(read_time_series(write("hits_lbf.csv", two_hits("hammer_lbf"))));
+  ImportOptions excitation;
+  excitation.excitation = true;
+  EXPECT_NO_THROW(read_time_series(write("hits.csv", two_hits("hammer")), excitation));
+  EXPECT_NE(error_of(write("hits.csv", two_hits("hammer"))).find("1971 consecutive samples inside the record"),
+            std::string::npos)
+      << error_of(write("hits.csv", two_hits("hammer")));
+  EXPECT_NE(error_of(write("hits_m.csv", two_hits("x_m"))).find("a dropout (lost data)"), std::string::npos);
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";
   ImportOptions o;
