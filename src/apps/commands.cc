@@ -179,6 +179,9 @@ int run_report(const Flags& a, std::ostream& out) {
       continue;
     }
     std::string content = io::read_file(file, "block '" + name + "': cannot read its source", kMaxReportBytes);
+    // A UTF-8 byte-order mark (editors' and spreadsheets' exports on Windows) marks the file's encoding, not its text:
+    // pasted after the BEGIN marker, it stopped the table there from rendering (the twenty-eighth pass's adv64 P4).
+    if (content.rfind("\xEF\xBB\xBF", 0) == 0) content.erase(0, 3);
     // A source is one of beamid's tables: text, and no marker of its own, which would break the next refresh (its
     // END line closed the block early: the sixteenth pass's P8).
     // Text, as the report itself must be: a control byte other than a tab or a line end (an ESC in a study file's

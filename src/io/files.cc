@@ -1,6 +1,7 @@
 #include "io/files.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -261,6 +263,28 @@ std::string replaceable_output_problem(const std::filesystem::path& path) {
 bool is_leftover_temporary(const std::filesystem::path& path) {
   const std::string name = path.filename().string();
   return name.rfind(kTemporaryPrefix, 0) == 0 && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
+}
+
+RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& folder, double min_age_s) {
+  namespace fs = std::filesystem;
+  RemovedTemporaries removed;
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::path& path = it->path();
+    std::error_code entry_ec;
+    if (!is_leftover_temporary(path) || it->is_symlink(entry_ec) || !it->is_regular_file(entry_ec)) continue;
+    // ".beamid-<pid>-<n>.tmp": a process that still runs (or that this user may not signal) may still be writing.
+    const std::string name = path.filename().string();
+    const std::size_t digits = std::string(kTemporaryPrefix).size();
+    const long pid = std::strtol(name.c_str() + digits, nullptr, 10);
+    if (pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;
+    const auto written = fs::last_write_time(path, entry_ec);
+    if (entry_ec || std::chrono::duration<double>(now - written).count() < min_age_s) continue;
+    const std::uintmax_t size = fs::file_size(path, entry_ec);
+    if (fs::remove(path, entry_ec) && !entry_ec) ++removed.files, removed.bytes += size;
+  }
+  return removed;
 }
 
 namespace {

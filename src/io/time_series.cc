@@ -741,6 +741,12 @@ void check_options(const ImportOptions& o) {
     throw InputError("--duration = '" + format_value(*o.duration_s) + "': must be > 0 (s)");
   if (o.sample_rate_hz && !(*o.sample_rate_hz > 0 && std::isfinite(*o.sample_rate_hz)))
     throw InputError("--sample-rate = '" + format_value(*o.sample_rate_hz) + "': must be > 0 (Hz)");
+  // Below 1e-6 Hz one step is beyond the longest record read (1e6 s); below 1e-308 it overflows to inf, which was
+  // blamed on "a duplicated or misordered line" (the twenty-eighth pass's adv64 P2).
+  if (o.sample_rate_hz && *o.sample_rate_hz < 1e-6)
+    throw InputError("--sample-rate = '" + format_value(*o.sample_rate_hz) +
+                     "': must be at least 1e-6 Hz (one step would be longer than the longest record read, 1e6 s; is "
+                     "the rate in Hz?)");
   if (o.resample_rate_hz && !(*o.resample_rate_hz > 0 && std::isfinite(*o.resample_rate_hz)))
     throw InputError("--resample-rate = '" + format_value(*o.resample_rate_hz) + "': must be > 0 (Hz)");
 }

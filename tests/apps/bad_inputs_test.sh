@@ -215,6 +215,14 @@ sed 's/^samples = 256$/samples = 256\ndt_s = 10/; /^max_frequency_hz/d' "$tmp/mi
 "$BEAMID" study "$tmp/alias.toml" --output "$tmp/alias" >"$tmp/out" 2>&1
 if grep -qF "a truth record failed: every mode of the truth" "$tmp/out" && grep -qF "Nyquist" "$tmp/alias/cases.csv"
 then ok; else bad "aliased truth: $(head -c 300 "$tmp/out")"; fi
+# One rule for --shard's K and N: decimal digits only, and an N too large named as such (the twenty-eighth pass's
+# adv64 P5 had " 1/2" taken, "1/2 " refused, and 1/99999999999 told it was no integer).
+expect_error "shard with a blank" "--shard = ' 1/2': must be K/N with integers 1 <= K <= N (digits only)" study \
+  "$tmp/mini.toml" --shard " 1/2" --output "$tmp/shard_blank"
+expect_error "shard with a sign" "--shard = '1/+2': must be K/N" study "$tmp/mini.toml" --shard "1/+2" \
+  --output "$tmp/shard_sign"
+expect_error "shard count too large" "--shard = '1/99999999999': N must be at most 1000000" study "$tmp/mini.toml" \
+  --shard 1/99999999999 --output "$tmp/shard_large"
 # A comma at the end of --shards is refused as the message says, not dropped (the twenty-third pass's P4).
 expect_error "merge with a trailing comma" "comma at an end" merge "$tmp/mini.toml" --shards "$tmp/half," \
   --output "$tmp/merged_comma"
@@ -488,6 +496,9 @@ while [ $(( (10 + ${#header} + 1) % 64 )) -ne 0 ]; do header="$header "; done
   >"$tmp/object.npy"
 expect_error "object npy" "an object array (Python objects) is not a signal" spikes --data "$tmp/object.npy" \
   --sample-rate 1000
+# A rate whose step overflows was blamed on "a duplicated or misordered line" (the twenty-eighth pass's adv64 P2).
+expect_error "sample rate too low" "--sample-rate = '1e-308': must be at least 1e-6 Hz" spikes \
+  --data "$tmp/object.npy" --sample-rate 1e-308
 # On a model-exact record with white noise the window spread is the windows' own noise, and said so, not offered as
 # model error (the third pass's P317: 37 times the full fit's formal error).
 "$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --noise-level 0.01 >"$tmp/noisy.csv"
@@ -825,6 +836,13 @@ mkdir -p "$tmp/res9"
 printf 'x\n<!-- BEGIN GENERATED ../a/report -->\nold\n<!-- END GENERATED ../a/report -->\n' >"$tmp/r9.md"
 expect_error "a block name out of results" "r9.md:2: block '../a/report': must be a relative name" \
   report --update "$tmp/r9.md" --results "$tmp/res9"
+# A block source's byte-order mark is its encoding, not text to paste (the twenty-eighth pass's adv64 P4).
+mkdir -p "$tmp/res10"
+printf '\xef\xbb\xbf| a | b |\n|---|---|\n| 1 | 2 |\n' >"$tmp/res10/t.md"
+printf 'x\n<!-- BEGIN GENERATED t -->\nold\n<!-- END GENERATED t -->\n' >"$tmp/r10.md"
+if "$BEAMID" report --update "$tmp/r10.md" --results "$tmp/res10" >/dev/null 2>"$tmp/err" &&
+  [ "$(sed -n 3p "$tmp/r10.md")" = "| a | b |" ]
+then ok; else bad "a source's byte-order mark in the report: $(sed -n 3p "$tmp/r10.md" | od -c | head -2)"; fi
 # A killed verify's leftover temporary is its own: a rerun into the folder goes on (it was refused: P10).
 mkdir -p "$tmp/verify" && printf 'partial' >"$tmp/verify/.beamid-99999-1.tmp"
 if timeout 300 "$BEAMID" verify --output "$tmp/verify" >/dev/null 2>"$tmp/err" && [ -s "$tmp/verify/frequencies.csv" ]

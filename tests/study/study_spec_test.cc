@@ -99,9 +99,16 @@ TEST(StudySpec, ErrorsNameFileLineKeyValueAndConstraint) {
             "s.toml:27: unknown key sweep.replicate: valid keys are elements, cost, noise, replicates, method, start, "
             "pulse_width_s, samples");
   EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = -5")),
-            "s.toml:4: study.seed = -5: must be an integer in 0..2^53");
+            "s.toml:4: study.seed = -5: must be an integer in 0..2^53 - 1");
   EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 9007199254740993")),  // 2^53 + 1, no double: P361
-            "s.toml:4: study.seed = 9007199254740993: an integer beyond 2^53: must be an integer in 0..2^53");
+            "s.toml:4: study.seed = 9007199254740993: must be an integer in 0..2^53 - 1");
+  // 2^53 itself is beyond the range the message states, and a float is no seed, as for every integer key (the
+  // twenty-eighth pass's adv64 P3 ran seeds 7.0 and 1e3); 2^53 - 1 is one.
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 9007199254740992")),
+            "s.toml:4: study.seed = 9007199254740992: must be an integer in 0..2^53 - 1");
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 7.0")),
+            "s.toml:4: study.seed = 7.0: must be an integer in 0..2^53 - 1");
+  EXPECT_EQ(error_of(replaced(kValid, "seed = 5", "seed = 9007199254740991")), "no error");
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = -0.004")),
             "s.toml:10: truth.pulse_width_s = -0.004: must be at least 1e-12 s (narrower is an impulse at any dt >= "
             "1e-9 s)");

@@ -80,10 +80,15 @@ void read_study_table(const config::Document& document, StudySpec& spec) {
   if (const std::string problem = io::study_name_problem(spec.name); !problem.empty())
     r.fail("name", "'" + spec.name + "'", problem);
   spec.question = r.string("question", std::nullopt);
-  const double seed = r.number(
-      "seed", std::nullopt, [](double v) { return v >= 0 && v < 9.007199254740992e15 && v == std::floor(v); },
-      "must be an integer in 0..2^53");
-  spec.seed = static_cast<std::uint64_t>(seed);
+  // An integer as every other integer key is (7.0 and 1e3 were taken as seeds: the twenty-eighth pass's adv64 P3),
+  // below 2^53 so that Python and JSON readers keep it exactly.
+  const std::optional<config::Node> seed = r.get("seed");
+  if (!seed) throw InputError(r.where() + ": [study] is missing key 'seed'");
+  const std::optional<std::int64_t> value = seed->integer();
+  constexpr std::int64_t kLargestSeed = (std::int64_t{1} << 53) - 1;
+  if (!value) r.fail("seed", seed->text(), "must be an integer in 0..2^53 - 1");
+  if (*value < 0 || *value > kLargestSeed) r.fail("seed", std::to_string(*value), "must be an integer in 0..2^53 - 1");
+  spec.seed = static_cast<std::uint64_t>(*value);
   r.finish({"name", "question", "seed"});
 }
 
