@@ -98,12 +98,14 @@ struct FitNotes {
   std::string no_sandwich;      // the formal errors are defined but the sandwich ones are not (a residual's leverage 1)
   std::string pairing;          // (A4) fails at the estimate: data and model spikes or modes do not pair one to one
   std::string correlated_bins;  // a window correlates the DFT bins the standard errors take as independent
-  std::string budget;           // the evaluation budget ran out: the estimate is where the optimizer stopped
-  std::string rough;            // the cost is not smooth at the estimate (FitResult::roughness)
-  std::string other_minimum;    // another start ended nearly as low, far away (FitResult::other_minimum)
-  std::string few_degrees;      // the residual variance rests on fewer than 10 degrees of freedom
-  std::string relative_modes;   // the modal cost's relative weighting: its formal standard errors do not hold
-  std::string transient;        // errors in variables: the free transient, not the force, accounts for the response
+  std::string correlated_residuals;  // the time cost's residuals are not white: the standard errors understate
+  std::string budget;                // the evaluation budget ran out: the estimate is where the optimizer stopped
+  std::string rough;                 // the cost is not smooth at the estimate (FitResult::roughness)
+  std::string other_minimum;         // another start ended nearly as low, far away (FitResult::other_minimum)
+  std::string few_degrees;           // the residual variance rests on fewer than 10 degrees of freedom
+  std::string
+      weighting;  // a weighting whose formal standard errors do not hold (modal relative, spike not inverse-variance)
+  std::string transient;  // errors in variables: the free transient, not the force, accounts for the response
   // The notes that are not empty, in the order the command prints them (identifiability last, after its summary).
   std::vector<std::string> lines() const;
 };

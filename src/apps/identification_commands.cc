@@ -172,13 +172,14 @@ int run_fit(const Flags& a, std::ostream& out) {
   if (!notes.rough.empty()) std::cerr << "beamid fit: " << notes.rough << "\n";
   if (!notes.other_minimum.empty()) std::cerr << "beamid fit: " << notes.other_minimum << "\n";
   if (!notes.few_degrees.empty()) std::cerr << "beamid fit: " << notes.few_degrees << "\n";
-  if (!notes.relative_modes.empty()) std::cerr << "beamid fit: " << notes.relative_modes << "\n";
+  if (!notes.weighting.empty()) std::cerr << "beamid fit: " << notes.weighting << "\n";
   if (!notes.transient.empty()) std::cerr << "beamid fit: " << notes.transient << "\n";
   if (!notes.on_bound.empty()) std::cerr << "beamid fit: " << notes.on_bound << "\n";
   if (!notes.explains_nothing.empty()) std::cerr << "beamid fit: " << notes.explains_nothing << "\n";
   if (!notes.no_errors.empty()) std::cerr << "beamid fit: " << notes.no_errors << "\n";
   if (!notes.no_sandwich.empty()) std::cerr << "beamid fit: " << notes.no_sandwich << "\n";
   if (!notes.correlated_bins.empty()) std::cerr << "beamid fit: " << notes.correlated_bins << "\n";
+  if (!notes.correlated_residuals.empty()) std::cerr << "beamid fit: " << notes.correlated_residuals << "\n";
   if (!notes.failed.empty()) std::cerr << "beamid fit: " << notes.failed << "\n";
   std::cerr << "beamid fit (commit " << io::commit_label() << "): " << data.path << ", beam " << beam_name
             << ", N = " << o.elements << ", cost " << o.cost.name << ", optimizer " << o.optimizer.method

@@ -216,12 +216,54 @@ TEST(FitRequest, StandardErrorsOfFewDegreesOfFreedomAreSaidToBe) {
   EXPECT_NE(fit_notes(modal.result, modal.options.cost).few_degrees.find("+- 4.3 standard errors"), std::string::npos);
   // The relative weighting's formal errors do not hold (adv59 P1: 2 times too small with 4 modes, 3-5 times too
   // large with 6), said; the measured weighting's are not.
-  EXPECT_NE(fit_notes(modal.result, modal.options.cost).relative_modes, "");
+  EXPECT_NE(fit_notes(modal.result, modal.options.cost).weighting, "");
   r.cost.mode_weight = std::string("measured");
   const FitComputation measured = compute_fit(r, {record()}, warnings);
-  EXPECT_EQ(fit_notes(measured.result, measured.options.cost).relative_modes, "");
+  EXPECT_EQ(fit_notes(measured.result, measured.options.cost).weighting, "");
+  // So are spike-smooth's relative (the default) and absolute weightings' (the twenty-eighth pass's adv65 P3: 1.7-2.2
+  // and 4-15 times below the scatter); inverse-variance's are not.
+  r.cost.name = "spike-smooth";
+  r.cost.mode_weight.reset();
+  r.estimate = {"EI", "rho"};
+  const FitComputation smooth = compute_fit(r, {record()}, warnings);
+  ASSERT_EQ(smooth.result.covariance_status, "ok");
+  EXPECT_NE(fit_notes(smooth.result, smooth.options.cost).weighting.find("the spike cost's relative weighting"),
+            std::string::npos);
+  r.cost.frequency_weight = std::string("inverse-variance");
+  const FitComputation inverse = compute_fit(r, {record()}, warnings);
+  EXPECT_EQ(fit_notes(inverse.result, inverse.options.cost).weighting, "");
   const FitComputation time = compute_fit(request(), {record()}, warnings);
   EXPECT_EQ(fit_notes(time.result, time.options.cost).few_degrees, "");
+}
+
+TEST(FitRequest, CorrelatedTimeResidualsAreSaid) {
+  // The twenty-eighth pass's adv65 P2: in AR(0.9) noise a time fit taken as white had formal errors 3.7-4 times below
+  // the scatter, with nothing said. Its residuals' lag-1 autocorrelation is the noise's, about 0.9 (said); with white
+  // noise it is O(1/sqrt(4096)) = 0.016 (quiet); whitened by the right model (--noise-model ar:0.9) quiet again.
+  std::ostringstream warnings;
+  io::TimeSeries coloured = record(), white = record();
+  coloured.values = signal::add_noise(coloured.values, 0.05, 3, signal::parse_noise_model("ar:0.9"));
+  white.values = signal::add_noise(white.values, 0.05, 3);
+  const FitComputation as_white = compute_fit(request(), {coloured}, warnings);
+  EXPECT_NE(fit_notes(as_white.result, as_white.options.cost).correlated_residuals.find("lag-1 autocorrelation 0.9"),
+            std::string::npos)
+      << fit_notes(as_white.result, as_white.options.cost).correlated_residuals;
+  const FitComputation of_white = compute_fit(request(), {white}, warnings);
+  EXPECT_EQ(fit_notes(of_white.result, of_white.options.cost).correlated_residuals, "");
+  FitRequest whitened = request();
+  whitened.cost.noise_model = std::string("ar:0.9");
+  const FitComputation gls = compute_fit(whitened, {coloured}, warnings);
+  EXPECT_EQ(fit_notes(gls.result, gls.options.cost).correlated_residuals, "");
+  // freq-ml with the colour estimated from the white fit's residuals: its standard errors take that estimate as known,
+  // said (the twenty-eighth pass's adv65 P1: 2.5 times below the scatter over 30 displacement records).
+  FitRequest estimated = request();
+  estimated.cost.name = "freq-ml";
+  estimated.cost.noise_model = std::string("estimated");
+  const FitComputation ml = compute_fit(estimated, {coloured}, warnings);
+  EXPECT_NE(fit_notes(ml.result, ml.options.cost).weighting.find("noise colour was estimated"), std::string::npos);
+  estimated.cost.noise_model = std::string("ar:0.9");
+  const FitComputation known = compute_fit(estimated, {coloured}, warnings);
+  EXPECT_EQ(fit_notes(known.result, known.options.cost).weighting, "");
 }
 
 TEST(FitRequest, FlagsMapToTheSameRequestAndTheSameNumbers) {

@@ -836,6 +836,13 @@ mkdir -p "$tmp/res9"
 printf 'x\n<!-- BEGIN GENERATED ../a/report -->\nold\n<!-- END GENERATED ../a/report -->\n' >"$tmp/r9.md"
 expect_error "a block name out of results" "r9.md:2: block '../a/report': must be a relative name" \
   report --update "$tmp/r9.md" --results "$tmp/res9"
+# In coloured noise the record's pencil finds poles of the noise: set aside and said, not a "local minimum" (the
+# twenty-eighth pass's adv65 P4: every maximum-likelihood fit in AR(0.9) noise was told it missed the record's modes).
+"$BEAMID" simulate "${S[@]}" --pulse-width 0.004 --noise-level 0.01 --noise-model ar:0.9 --seed 8 >"$tmp/ar.csv"
+expect_notice "coloured noise poles" "a pole of the noise, not compared" fit --data "$tmp/ar.csv" "${S[@]}" \
+  --pulse-width 0.004 --estimate EI,rho,gamma --start-scale 1.02 --cost time --noise-model ar:0.9
+if grep -q "does not reproduce the record's modes" "$tmp/err"; then bad "coloured noise: $(grep -m1 'does not' "$tmp/err")"
+else ok; fi
 # A block source's byte-order mark is its encoding, not text to paste (the twenty-eighth pass's adv64 P4).
 mkdir -p "$tmp/res10"
 printf '\xef\xbb\xbf| a | b |\n|---|---|\n| 1 | 2 |\n' >"$tmp/res10/t.md"
