@@ -13,6 +13,8 @@
 #include "galerkin/spline_space.h"
 #include "io/resources.h"
 #include "io/units.h"
+#include "signal/noise.h"
+#include "signal/noise_spectrum.h"
 #include "signal/spectrum.h"
 #include "signal/spikes.h"
 #include "simulation/simulator.h"
@@ -490,25 +492,34 @@ void transient_note(const fit::FitResult& result, FitNotes& notes) {
 // The time cost's formal errors take its residuals (whitened by a given noise model) as white, and the sandwich's
 // Newey-West errors as correlated over its few lags (fit::robust_lags): on records in AR(0.9) noise fitted as white
 // the formal errors were 3.7-4 times and the sandwich's 1.5 times below the scatter over 14 seeds, with nothing said
-// (the twenty-eighth pass's adv65 P2). Said when the residuals' lag-1 autocorrelation r1 is beyond 0.2 (an AR(1)
-// noise of 0.2 widens a mean's standard error by sqrt((1 + r1) / (1 - r1)) = 1.22) and beyond 5 / sqrt(m) (white
-// residuals' r1 has sd 1 / sqrt(m)): coloured noise, or model error, which leaves its residuals smooth.
+// (the twenty-eighth pass's adv65 P2). The residuals' colour is an AR model of them of order up to 20 by Akaike's
+// criterion (signal::fit_autoregressive, as --noise-model estimated takes it): a lag-1 test missed AR(0, 0.9) noise,
+// whose lag-1 autocorrelation is 0 and whose power near 0 Hz and Nyquist is 10 times its average (3.2 times below the
+// scatter: the twenty-ninth pass's adv67 P1). Said where that model puts more than kColouredExcess times the average
+// power in a bin (the standard error of a mode's parameters there about sqrt of it too small); quiet on a record fitted
+// to round-off (residual rms under 1e-9 of the record's: its residuals are the arithmetic's, adv67 P3).
 std::string correlated_residuals_note(const fit::FitResult& result) {
   const Eigen::VectorXd& e = result.final_evaluation.residuals;
   if (result.status == "failed" || result.covariance_status != "ok" || result.final_cost != costs::kTimeCost ||
-      e.size() < 16)
+      e.size() < 32)
     return "";
-  const auto m = e.size();
-  const double squares = e.squaredNorm();
-  if (!(squares > 0)) return "";
-  const double r1 = e.head(m - 1).dot(e.tail(m - 1)) / squares;
-  if (!(std::abs(r1) > std::max(0.2, 5 / std::sqrt(static_cast<double>(m))))) return "";
-  const double time_samples = (1 + std::abs(r1)) / (1 - std::abs(r1));
-  return "the residuals are correlated (lag-1 autocorrelation " + format_rounded(r1, 3) + " over " + std::to_string(m) +
-         " residuals; a correlation time of about " + format_rounded(time_samples, 2) +
-         " samples): the formal standard errors take them as white and understate the scatter (in AR(0.9) noise "
-         "3.7-4 times), and the sandwich's, which allow correlation over " +
-         std::to_string(fit::robust_lags(costs::kTimeCost, static_cast<int>(m))) +
+  bool above_round_off = false;
+  for (const fit::RecordResult& r : result.records)
+    above_round_off |= !(r.evaluation.value <= 1e-18 * r.zero_model_value);
+  if (!above_round_off) return "";
+  const auto m = static_cast<int>(e.size());
+  const signal::NoiseModel colour = signal::fit_autoregressive(std::vector<double>(e.data(), e.data() + m), 20);
+  if (colour.kind == "white") return "";
+  const std::vector<double> g = signal::power_excess(colour, m);
+  const auto peak = static_cast<std::size_t>(std::max_element(g.begin() + 1, g.end()) - g.begin());
+  if (!(g[peak] > signal::kColouredExcess)) return "";
+  return "the residuals are coloured: an AR(" + std::to_string(colour.ar.size()) +
+         ") model of them (Akaike's order) puts " + format_rounded(g[peak], 2) + " times their average power at " +
+         format_rounded(2.0 * static_cast<double>(peak) / m, 2) +
+         " of the Nyquist frequency; the formal standard errors take them as white and understate the scatter of "
+         "what the record holds there (in AR(0.9) noise 3.7-4 times), and the sandwich's, which allow correlation "
+         "over " +
+         std::to_string(fit::robust_lags(costs::kTimeCost, m)) +
          " lags, too when it lasts longer; coloured noise or model error: fit with --noise-model estimated (or "
          "ar:A) to weigh the noise's colour";
 }
@@ -521,19 +532,20 @@ void weighting_note(const fit::FitResult& result, const costs::CostOptions& cost
   // The cost whose standard errors are printed: a hybrid's refinement's, not its modal global stage's (the
   // twenty-sixth pass's adv61 P3).
   if (result.status == "failed" || result.covariance_status != "ok") return;
-  // The same for the spike costs' weightings across spikes other than inverse-variance: over 40 noise seeds of a
-  // thin beam's record spike-smooth's formal errors were 1.7-2.2 times below the scatter (rho, cDI) with the relative
-  // weighting, 4-15 times with the absolute one, and within 1.4 times with inverse-variance (the twenty-eighth pass's
-  // adv65 P3).
-  if (costs::is_spike_cost(result.final_cost) && cost.frequency_weight != costs::kInverseVarianceWeight)
-    notes.weighting = "the spike cost's " + cost.frequency_weight +
-                      " weighting across spikes takes every spike's frequency and decay-rate errors as equally "
-                      "precise " +
-                      (cost.frequency_weight == costs::kRelativeWeight ? "fractions" : "in Hz") +
-                      ", which the record does not measure them to: its formal standard errors can be several times "
-                      "too small (1.7-2.2 times with relative, 4-15 times with absolute, over 40 noise seeds of a "
-                      "thin beam); fit with --frequency-weight inverse-variance (each spike by its Cramer-Rao bound) "
-                      "for standard errors that hold better";
+  // The same for the spike costs, whatever their weighting across spikes: a spike's frequency, decay-rate and magnitude
+  // residuals are neither equally precise nor independent, and their few residuals leave the sandwich undefined. Over
+  // noise seeds of model-exact records spike-smooth's formal errors were 1.7-2.2 times below the scatter with the
+  // relative weighting and 4-15 times with the absolute one (the twenty-eighth pass's adv65 P3), and 3-8 times with
+  // inverse-variance on a velocity record (the twenty-ninth pass's adv67 P2; within 1.4 times on adv65's).
+  if (costs::is_spike_cost(result.final_cost))
+    notes.weighting =
+        "the spike cost's standard errors take its residuals (each spike's frequency, decay rate and "
+        "magnitude, with the " +
+        cost.frequency_weight +
+        " weighting across spikes) as equally precise and independent, which they are not: over noise "
+        "seeds of model-exact records they were 1.7-15 times below the scatter (every weighting); quote "
+        "the spread over windows (--windows K), or refine with a least-squares cost (--strategy hybrid "
+        "--refine freq-ml or time) for standard errors that hold";
   // freq-ml's colour estimated from the white fit's residuals is taken as known by its standard errors: over 30
   // displacement records in AR(0.9) noise (5 %) the scatter was 2.5 times them, 1.3 times with the colour known (the
   // twenty-eighth pass's adv65 P1; the local polynomial method overstates the noise at a lightly damped peak narrower

@@ -18,6 +18,7 @@
 #include "io/provenance.h"
 #include "io/text.h"
 #include "signal/measured_modes.h"
+#include "signal/noise_spectrum.h"
 #include "signal/spectrum.h"
 
 namespace beamid::apps {
@@ -70,26 +71,32 @@ ModePair mode_pair(const signal::MeasuredMode& data, const galerkin::DampedMode*
 namespace {
 
 // The pencil's uncertainties and its test of a pole against the noise take the residual as white. Coloured noise
-// (lag-1 autocorrelation rho of the pencil's residual beyond kColouredLag1) holds more power near some frequencies:
-// for an AR(1) of that rho, g(f) = (1 - rho^2) / (1 - 2 rho cos(2 pi f dt) + rho^2) times its average, 19 near 0 Hz
-// at rho 0.9. In AR(0.9) noise every correct fit was told that the record's noise poles at 3.4 and 8.7 Hz (0.4 and
-// 0.13 % of its largest value) had no model mode, "a local minimum", and the damping note fired on 6 of 14 fits whose
-// record's decay rate was 5 white-noise uncertainties from the truth (the twenty-eighth pass's adv65 P4). So each
-// measured mode's uncertainties are widened by sqrt(g(f)) where g > 1, and a pole no model mode pairs with whose energy
+// holds more power near some frequencies: g(f) times its average by an AR model of the pencil's residual
+// (PencilDiagnostics::residual_colour, Akaike's order), 19 near 0 Hz for AR(0.9), 10 near 0 Hz and Nyquist for
+// AR(0, 0.9), whose lag-1 autocorrelation is 0. In AR(0.9) noise every correct fit was told that the record's noise
+// poles at 3.4 and 8.7 Hz (0.4 and 0.13 % of its largest value) had no model mode, "a local minimum", and the damping
+// note fired on 6 of 14 fits whose record's decay rate was 5 white-noise uncertainties from the truth (the
+// twenty-eighth pass's adv65 P4; with AR(0, 0.9) a noise pole near Nyquist took the 404 Hz mode: adv67 P1). So where
+// the model's excess exceeds kColouredExcess somewhere, each measured mode's uncertainties are widened by sqrt(g(f))
+// where g > 1, and a pole no model mode pairs with (or that misses its partner beyond kModeMismatch) whose energy
 // over the record, A^2 / 2 sum_i |z|^2i, is below what noise of power sigma^2 g(f) puts into the best-fitting damped
 // sinusoid with probability kNoiseFalseAlarm (signal/matrix_pencil.h: 2 sigma^2 g ln(n / p)) is set aside as the
-// noise's (partner -2), and said.
-constexpr double kColouredLag1 = 0.2;
+// noise's (partner -2), and said. Not on a record the pencil fits to round-off (residual under 1e-9 of its rms: its
+// "colour" is the arithmetic's, adv67 P3).
 void weigh_coloured_residual(const signal::MeasuredModes& measured, const std::vector<double>& decay, double dt_s,
                              std::vector<int>& partner, ModeComparison& c) {
-  const double rho = measured.diagnostics.residual_lag1;
-  if (!(std::abs(rho) > kColouredLag1) || !(std::abs(rho) < 1)) return;
+  const signal::PencilDiagnostics& d = measured.diagnostics;
+  if (d.residual_colour.kind == "white" || !(d.residual_fraction > 1e-9) || decay.size() < 64) return;
+  const int samples = static_cast<int>(decay.size());
+  const std::vector<double> excess_by_bin = signal::power_excess(d.residual_colour, samples);
+  if (!(*std::max_element(excess_by_bin.begin() + 1, excess_by_bin.end()) > signal::kColouredExcess)) return;
   double squares = 0, largest = 0;
   for (double v : decay) squares += v * v, largest = std::max(largest, std::abs(v));
   const double n = static_cast<double>(decay.size());
-  const double sigma = measured.diagnostics.residual_fraction * std::sqrt(squares / n);
+  const double sigma = d.residual_fraction * std::sqrt(squares / n);
   const auto excess = [&](double f_hz) {
-    return (1 - rho * rho) / (1 - 2 * rho * std::cos(2 * std::numbers::pi * f_hz * dt_s) + rho * rho);
+    const auto bin = static_cast<long>(std::lround(std::abs(f_hz) * n * dt_s));
+    return excess_by_bin[static_cast<std::size_t>(std::clamp<long>(bin, 0, samples / 2))];
   };
   double widest = 1;
   for (std::size_t i = 0; i < c.pairs.size(); ++i) {
@@ -110,14 +117,14 @@ void weigh_coloured_residual(const signal::MeasuredModes& measured, const std::v
     c.notes.push_back("the record's pole at " + format_rounded(m.frequency_hz, 6) + " Hz (amplitude " +
                       format_rounded(m.amplitude / largest, 2) +
                       " of the record's largest value) is within its coloured noise (the pencil's residual: sd " +
-                      format_rounded(sigma / largest, 2) + " of the largest value, lag-1 autocorrelation " +
-                      format_rounded(rho, 2) + ", about " + format_rounded(std::max(g, 1.0), 2) +
+                      format_rounded(sigma / largest, 2) + " of the largest value, about " +
+                      format_rounded(std::max(g, 1.0), 2) +
                       " times its average power there): a pole of the noise, not compared");
   }
   if (widest > 1)
-    c.notes.push_back("the record's residual is coloured (lag-1 autocorrelation " + format_rounded(rho, 2) +
-                      "): the measured modes' uncertainties are widened for the comparison by the noise's excess "
-                      "power at their frequencies (as an AR(1) noise's), up to " +
+    c.notes.push_back("the record's residual is coloured (an AR(" + std::to_string(d.residual_colour.ar.size()) +
+                      ") model of the pencil's residual): the measured modes' uncertainties are widened for the "
+                      "comparison by the noise's excess power at their frequencies, up to " +
                       format_rounded(widest, 2) + " times");
 }
 

@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "core/limits.h"
 #include "core/scratch.h"
+#include "signal/noise_spectrum.h"
 #include "signal/spikes.h"
 
 namespace beamid::signal {
@@ -46,6 +47,8 @@ Eigen::VectorXcd amplitudes(const Eigen::VectorXcd& z, const std::vector<double>
   d.residual_fraction = rms > 0 ? std::sqrt(spread / n) / rms : 0.0;
   d.residual_lag1 =
       spread > 0 ? ((residual.head(n - 1).array() - mean) * (residual.tail(n - 1).array() - mean)).sum() / spread : 0.0;
+  if (n >= 64 && spread > 0)
+    d.residual_colour = fit_autoregressive(std::vector<double>(residual.data(), residual.data() + n), 16);
   if (!c.allFinite())
     throw NumericalError("matrix pencil: the amplitude least squares did not give finite amplitudes (model order " +
                          std::to_string(order) + "): try a lower --order");

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "signal/noise.h"
+
 namespace beamid::signal {
 
 // A lightly damped beam's modes have damping ratios of a few percent; an identified pole far above that (0.2) fits
@@ -110,6 +112,10 @@ struct PencilDiagnostics {
   // records leave a few % of coloured residual (the steel record 0.07 and 0.14, the UnB records 0.02-0.04 and
   // 0.13-0.91); a step of 3 x the record's RMS 0.85 and 0.98 (the eighteenth pass's P7).
   double residual_fraction = 0, residual_lag1 = 0;
+  // The residual's colour: an AR model of it of order up to 16 by Akaike's criterion (signal::fit_autoregressive;
+  // white where it picks order 0). What the pencil's uncertainties and noise threshold, which take the residual as
+  // white, miss in coloured noise (apps/fit_report.cc).
+  NoiseModel residual_colour;
 };
 // The residual above which a record is said to hold more than decaying exponentials: over kUnmodelledFraction of
 // its RMS, and slowly varying (lag-1 autocorrelation over kUnmodelledLag1).

@@ -118,6 +118,12 @@ BinVariance repeated_record_variance(const std::vector<Spectrum>& records, int s
   return out;
 }
 
+std::vector<double> power_excess(const NoiseModel& model, int samples) {
+  std::vector<double> g = model_bin_variance(model, samples);
+  for (double& v : g) v *= samples;
+  return g;
+}
+
 NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order) {
   return fit_autoregressive(std::vector<std::vector<double>>{e}, max_order);
 }

@@ -66,6 +66,13 @@ BinVariance repeated_record_variance(const std::vector<Spectrum>& records, int s
 // to Time Series and Forecasting, 5.1 and 5.5). Order 0 is "white". InputError for fewer than 8 samples or a
 // max_order outside 0..32; a record of zeros is white.
 NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order);
+// The model's power in each DFT bin k = 0..samples/2 over its average: samples E|N(k)|^2 of model_bin_variance for
+// unit process variance (1 in every bin for white noise). Where it exceeds 1, the noise is stronger than white noise
+// of its variance; the standard errors and detection thresholds that take it as white understate it there.
+std::vector<double> power_excess(const NoiseModel& model, int samples);
+// Beyond this excess in some bin a fit's residual is called coloured (fit notes, the record's modes in fit reports):
+// the standard error of what the record holds there is then about sqrt(1.5) = 1.22 times what white noise gives.
+inline constexpr double kColouredExcess = 1.5;
 // The same from several records of one process (the deviations of repeated records from their mean): one mean over
 // all samples removed, the lag products summed over the records (none across a record's ends) over the total count, n
 // in Akaike's criterion the total count, the order at most the shortest record's length / 4. InputError for no records

@@ -220,34 +220,48 @@ TEST(FitRequest, StandardErrorsOfFewDegreesOfFreedomAreSaidToBe) {
   r.cost.mode_weight = std::string("measured");
   const FitComputation measured = compute_fit(r, {record()}, warnings);
   EXPECT_EQ(fit_notes(measured.result, measured.options.cost).weighting, "");
-  // So are spike-smooth's relative (the default) and absolute weightings' (the twenty-eighth pass's adv65 P3: 1.7-2.2
-  // and 4-15 times below the scatter); inverse-variance's are not.
+  // So are spike-smooth's with its relative weighting (the default; the twenty-eighth pass's adv65 P3: 1.7-2.2 times
+  // below the scatter).
   r.cost.name = "spike-smooth";
   r.cost.mode_weight.reset();
   r.estimate = {"EI", "rho"};
   const FitComputation smooth = compute_fit(r, {record()}, warnings);
   ASSERT_EQ(smooth.result.covariance_status, "ok");
-  EXPECT_NE(fit_notes(smooth.result, smooth.options.cost).weighting.find("the spike cost's relative weighting"),
+  EXPECT_NE(fit_notes(smooth.result, smooth.options.cost).weighting.find("with the relative weighting across spikes"),
             std::string::npos);
+  // And inverse-variance's (the twenty-ninth pass's adv67 P2: 3-8 times below the scatter on a velocity record).
   r.cost.frequency_weight = std::string("inverse-variance");
   const FitComputation inverse = compute_fit(r, {record()}, warnings);
-  EXPECT_EQ(fit_notes(inverse.result, inverse.options.cost).weighting, "");
+  EXPECT_NE(fit_notes(inverse.result, inverse.options.cost).weighting.find("with the inverse-variance weighting"),
+            std::string::npos);
+  // A least-squares refinement's errors are the refinement's: no such note.
+  r.strategy = "hybrid";
+  r.refine = std::string("time");
+  const FitComputation refined = compute_fit(r, {record()}, warnings);
+  EXPECT_EQ(fit_notes(refined.result, refined.options.cost).weighting, "");
   const FitComputation time = compute_fit(request(), {record()}, warnings);
   EXPECT_EQ(fit_notes(time.result, time.options.cost).few_degrees, "");
 }
 
 TEST(FitRequest, CorrelatedTimeResidualsAreSaid) {
   // The twenty-eighth pass's adv65 P2: in AR(0.9) noise a time fit taken as white had formal errors 3.7-4 times below
-  // the scatter, with nothing said. Its residuals' lag-1 autocorrelation is the noise's, about 0.9 (said); with white
-  // noise it is O(1/sqrt(4096)) = 0.016 (quiet); whitened by the right model (--noise-model ar:0.9) quiet again.
+  // the scatter, with nothing said. An AR model of its residuals (Akaike's order) puts about (1 + 0.9) / (1 - 0.9) =
+  // 19 times their average power near 0 Hz: said. So is AR(0, 0.9) noise, whose lag-1 autocorrelation is 0 (the
+  // twenty-ninth pass's adv67 P1). White noise: Akaike's order 0, or an excess within sampling error (quiet); whitened
+  // by the right model (--noise-model ar:0.9) quiet again; a noise-free record fitted to round-off quiet (adv67 P3).
   std::ostringstream warnings;
-  io::TimeSeries coloured = record(), white = record();
+  io::TimeSeries coloured = record(), white = record(), second = record();
   coloured.values = signal::add_noise(coloured.values, 0.05, 3, signal::parse_noise_model("ar:0.9"));
+  second.values = signal::add_noise(second.values, 0.05, 3, signal::parse_noise_model("ar:0,0.9"));
   white.values = signal::add_noise(white.values, 0.05, 3);
   const FitComputation as_white = compute_fit(request(), {coloured}, warnings);
-  EXPECT_NE(fit_notes(as_white.result, as_white.options.cost).correlated_residuals.find("lag-1 autocorrelation 0.9"),
-            std::string::npos)
-      << fit_notes(as_white.result, as_white.options.cost).correlated_residuals;
+  const std::string note = fit_notes(as_white.result, as_white.options.cost).correlated_residuals;
+  EXPECT_NE(note.find("the residuals are coloured: an AR("), std::string::npos) << note;
+  EXPECT_NE(note.find("of the Nyquist frequency"), std::string::npos) << note;
+  const FitComputation lag2 = compute_fit(request(), {second}, warnings);
+  EXPECT_NE(fit_notes(lag2.result, lag2.options.cost).correlated_residuals, "");
+  const FitComputation exact = compute_fit(request(), {record()}, warnings);
+  EXPECT_EQ(fit_notes(exact.result, exact.options.cost).correlated_residuals, "");
   const FitComputation of_white = compute_fit(request(), {white}, warnings);
   EXPECT_EQ(fit_notes(of_white.result, of_white.options.cost).correlated_residuals, "");
   FitRequest whitened = request();
