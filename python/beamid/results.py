@@ -11,6 +11,12 @@ import re
 import numpy as np
 
 
+def _check_as_dict(function, as_dict):
+    # A bool, as every switch of the package: "no" is truthy, and gave dicts (the twenty-ninth pass's adv66 P6).
+    if not isinstance(as_dict, (bool, np.bool_)):
+        raise TypeError(f"{function}(): as_dict = {as_dict!r}: must be a bool")
+
+
 def read_table(path, as_dict=False):
     """One CSV table: a structured array (one field per column), or with ``as_dict`` a dict of column arrays."""
     # utf-8-sig: a byte-order mark (as spreadsheets write one) is no part of the first column's name.
@@ -19,6 +25,7 @@ def read_table(path, as_dict=False):
     # pass's P11).
     if not isinstance(path, (str, bytes, os.PathLike)):
         raise TypeError(f"read_table(): path = {path!r}: must be a str or an os.PathLike (the table's file)")
+    _check_as_dict("read_table", as_dict)
     if not os.path.isfile(path):
         raise ValueError(f"{path}: not a regular file (a folder, a pipe or a device): a results table is a CSV file")
     if os.path.getsize(path) > 1 << 30:
@@ -114,6 +121,7 @@ def load_results(folder, as_dict=False):
     files it held were returned as if they were a study's tables)."""
     if not isinstance(folder, (str, os.PathLike)) or isinstance(folder, bytes):
         raise TypeError(f"load_results(): folder = {folder!r}: must be a str or an os.PathLike (the results folder)")
+    _check_as_dict("load_results", as_dict)
     if not os.path.isdir(folder):
         raise FileNotFoundError(f"{folder}: not a results folder (beamid study writes results/<study>/)")
     if not os.path.isfile(os.path.join(folder, "manifest.json")):
@@ -138,4 +146,8 @@ def load_results(folder, as_dict=False):
             tables["manifest"] = json.load(f)
         except (json.JSONDecodeError, UnicodeDecodeError) as error:  # named: it named no file (the pass's P15)
             raise ValueError(f"{manifest}: not the manifest.json beamid writes: {error}") from None
+    # An object, as beamid writes it (a list, a string or a number was returned as the manifest: adv66 P6).
+    if not isinstance(tables["manifest"], dict):
+        raise ValueError(f"{manifest}: not the manifest.json beamid writes: a JSON "
+                         f"{type(tables['manifest']).__name__}, not an object")
     return tables

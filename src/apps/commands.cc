@@ -133,6 +133,9 @@ int run_verify(const Flags& a, std::ostream& out) {
                       ", which verify did not write: its folder holds only its own "
                       "tables (choose a new or an empty folder)");
     }
+  // Its own leftovers, of a killed verify, once their process is gone (the twenty-ninth pass's adv66 P2).
+  if (const std::string removed = io::remove_leftovers_of_output(output); !removed.empty())
+    std::cerr << "beamid verify: " << removed << "\n";
   write_verification(output, out);
   return 0;
 }

@@ -53,7 +53,9 @@ int run_study(const Flags& a, std::ostream& out) {
     constexpr double kMostShards = 1e6;  // a shard per unit at most; a plan holds far fewer units than this
     const double k = std::stod(s.substr(0, slash)), n = std::stod(s.substr(slash + 1));
     if (n > kMostShards) a.require(false, "shard", "N must be at most 1000000");
-    o.shard_index = static_cast<int>(std::min(k, kMostShards + 1));
+    // Named as given: a K above 1e6 was shown clamped, "--shard = 1000001/1000000" (the twenty-ninth pass's adv66 P4).
+    if (k < 1 || k > n) a.require(false, "shard", "must be K/N with 1 <= K <= N");
+    o.shard_index = static_cast<int>(k);
     o.shard_count = static_cast<int>(n);
   }
   if (auto e = study::validation_error(o)) throw InputError("beamid study: --" + *e);
@@ -96,6 +98,8 @@ int run_merge(const Flags& a, std::ostream& out) {
     throw InputError("beamid merge: " + output + " (the default --output, results/<study name>): " + problem);
   }
   const study::Store store(output + "/store", io::commit_label());
+  if (const std::string removed = io::remove_leftovers_of_output(output); !removed.empty())
+    std::cerr << "beamid merge: " << removed << "\n";
   // The unit ids of this study file: a shard's record of any other unit is left behind and named (shards run from
   // another study file of the same name said only "N units are missing").
   const study::Plan plan = study::make_plan(spec);

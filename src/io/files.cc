@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -261,11 +262,23 @@ std::string replaceable_output_problem(const std::filesystem::path& path) {
 }
 
 bool is_leftover_temporary(const std::filesystem::path& path) {
+  // ".beamid-<pid>-<n>.tmp" exactly, pid and n decimal digits, pid positive: a user's ".beamid-notes.tmp" is no
+  // temporary of beamid's (the twenty-ninth pass's adv66 P3 had it removed).
   const std::string name = path.filename().string();
-  return name.rfind(kTemporaryPrefix, 0) == 0 && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
+  const std::string prefix = kTemporaryPrefix, suffix = ".tmp";
+  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  const auto dash = middle.find('-');
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+  };
+  return dash != std::string::npos && digits(middle.substr(0, dash)) && digits(middle.substr(dash + 1)) &&
+         middle.find_first_not_of('0', 0) < dash;
 }
 
-RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& folder, double min_age_s) {
+RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& folder, double min_age_s, int depth) {
   namespace fs = std::filesystem;
   RemovedTemporaries removed;
   std::error_code ec;
@@ -273,18 +286,30 @@ RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& fold
   for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     const fs::path& path = it->path();
     std::error_code entry_ec;
+    if (depth > 0 && !it->is_symlink(entry_ec) && it->is_directory(entry_ec)) {
+      const RemovedTemporaries below = remove_leftover_temporaries(path, min_age_s, depth - 1);
+      removed.files += below.files, removed.bytes += below.bytes;
+      continue;
+    }
     if (!is_leftover_temporary(path) || it->is_symlink(entry_ec) || !it->is_regular_file(entry_ec)) continue;
     // ".beamid-<pid>-<n>.tmp": a process that still runs (or that this user may not signal) may still be writing.
     const std::string name = path.filename().string();
     const std::size_t digits = std::string(kTemporaryPrefix).size();
     const long pid = std::strtol(name.c_str() + digits, nullptr, 10);
-    if (pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
     const auto written = fs::last_write_time(path, entry_ec);
     if (entry_ec || std::chrono::duration<double>(now - written).count() < min_age_s) continue;
     const std::uintmax_t size = fs::file_size(path, entry_ec);
     if (fs::remove(path, entry_ec) && !entry_ec) ++removed.files, removed.bytes += size;
   }
   return removed;
+}
+
+std::string remove_leftovers_of_output(const std::filesystem::path& folder) {
+  const RemovedTemporaries removed = remove_leftover_temporaries(folder, 60, 1);
+  if (removed.files == 0) return "";
+  return folder.string() + ": removed " + std::to_string(removed.files) +
+         " partial file(s) that killed runs left behind (" + std::to_string(removed.bytes) + " bytes)";
 }
 
 namespace {

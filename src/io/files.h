@@ -18,15 +18,21 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& tex
 // one: the leftover of a killed write, which a folder check takes for beamid's own and may remove.
 inline constexpr const char* kTemporaryPrefix = ".beamid-";
 bool is_leftover_temporary(const std::filesystem::path& path);
-// Removes the leftover temporaries in `folder` (not below it) whose writing process no longer runs on this machine and
-// which have not been written for `min_age_s` seconds (a live writer on another machine sharing the folder keeps its
-// file fresh), and returns how many it removed and their bytes. A killed merge or study left partial records in a
-// store that no later run removed (the twenty-eighth pass's adv64 P1).
+// Removes the leftover temporaries in `folder`, and in its folders `depth` levels down (not through links), whose
+// writing process no longer runs on this machine and which have not been written for `min_age_s` seconds (a live
+// writer on another machine sharing the folder keeps its file fresh), and returns how many it removed and their bytes.
+// A killed merge or study left partial records in a store, and tables in landscape/, that no later run removed (the
+// twenty-eighth pass's adv64 P1, the twenty-ninth's adv66 P2).
 struct RemovedTemporaries {
   int files = 0;
   std::uintmax_t bytes = 0;
 };
-RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& folder, double min_age_s = 60);
+RemovedTemporaries remove_leftover_temporaries(const std::filesystem::path& folder, double min_age_s = 60,
+                                               int depth = 0);
+// remove_leftover_temporaries of an output folder and the folders in it (store/, landscape/, ...), with the line a
+// command prints when it removed any ("<folder>: removed N partial file(s) that killed runs left behind (B bytes)"),
+// else "".
+std::string remove_leftovers_of_output(const std::filesystem::path& folder);
 
 // Why an existing path cannot be an output ("is a folder", "is a symbolic link ...", "is not a regular file ..."), or
 // "" when it does not exist or is a regular file.

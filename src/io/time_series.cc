@@ -524,16 +524,23 @@ void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_
 // peak: a slow mode's turning point holds one level for tens of samples and its crest for several (6 and 5 bits over
 // the range: 35 and 49 samples, refused as lost data; 4 bits: as clipped, with nothing said of the quantisation: the
 // twenty-seventh pass's adv62 P2). "" on a finer record.
-std::string coarse_quantisation_clause(double peak, double quantum) {
+// Only for a run entered and left within kTurningQuanta quanta, as a turning point is (check_dropouts: gentle): one
+// jumped into by 25 quanta is no turning point (the twenty-ninth pass's adv66 P5).
+constexpr double kTurningQuanta = 2.5;
+std::string coarse_quantisation_clause(double peak, double quantum, const std::vector<double>& v, std::size_t i) {
   if (!std::isfinite(quantum) || !(peak / quantum < kFineQuantisation)) return "";
+  std::size_t j = i;
+  while (j < v.size() && v[j] == v[i]) ++j;
+  const double before = i > 0 ? std::abs(v[i - 1] - v[i]) : 0.0, after = j < v.size() ? std::abs(v[j] - v[i]) : 0.0;
+  if (std::max(before, after) > kTurningQuanta * quantum) return "";
   return ", or a slow turning point of a record quantised this coarsely (its step is 1/" +
          format_value(std::round(peak / quantum)) + " of its peak, " +
          format_value(std::round(10 * std::log2(2 * peak / quantum)) / 10) +
          " bits over its range; a record that uses more of the DAQ range tells the two apart)";
 }
 
-void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak, double rest,
-                    bool excitation) {
+void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, double peak, double top, double bottom,
+                    double rest, bool excitation) {
   const std::vector<double>& v = s.values;
   const double quantum = record_quantum(v);
   const double level = std::max(kDropoutLevel * peak, std::isfinite(quantum) ? kDropoutQuanta * quantum : 0.0);
@@ -560,17 +567,30 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     // step is s per sample, for about 2 sqrt(2 q peak) / s samples; 4 times that is allowed. (Without the bound a
     // frozen channel of 674 samples that resumed within a quantum was accepted: the twenty-sixth pass's adv60 P2.)
     const bool gentle = i > 0 && j < v.size() &&
-                        std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= 2.5 * quantum &&
+                        std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= kTurningQuanta * quantum &&
                         static_cast<double>(run) <= turning_samples;
-    const bool resting = (excitation || is_force_unit(s.unit)) && v[i] == rest;
+    // At rest between hits only where a hit has ended and the next begins: approached by a falling magnitude and
+    // left by a rising one. Zeros inside a hit (its force at 20-80 % of its peak on both sides, rising into them)
+    // were taken as rest, and EI came out 7.7 % low (the twenty-ninth pass's adv66 P1).
+    const auto from_rest = [&](std::size_t k) { return std::abs(v[k] - rest); };
+    const bool ended = i < 2 || from_rest(i - 1) <= from_rest(i - 2);
+    const bool begins = j + 1 >= v.size() || from_rest(j) <= from_rest(j + 1);
+    const bool resting = (excitation || is_force_unit(s.unit)) && v[i] == rest && ended && begins;
     if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle && !resting) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
+      // Held at the record's maximum or minimum: a rail as likely as lost data (a crest clipped at 60 % of the peak
+      // of an 8-bit record, entered by 2 quanta a sample, was called lost data alone: adv66 P5).
+      const std::string cause =
+          v[i] == top || v[i] == bottom
+              ? std::string(" at the record's ") + (v[i] == top ? "maximum" : "minimum") +
+                    ": clipped (the DAQ range was exceeded) or a dropout (lost data), either way a spectrum no "
+                    "beam's"
+              : " inside the record, with the vibration on both sides: a dropout (lost data), whose spectrum is no "
+                "beam's";
       if (std::min(before, after) >= level)
         throw InputError(in.where(first + i) + ": " + s.value_column + " = " + format_value(in.v[first + i]) + " on " +
-                         std::to_string(run) +
-                         " consecutive samples inside the record, with the vibration on both sides: a dropout (lost "
-                         "data), whose spectrum is no beam's" +
-                         coarse_quantisation_clause(peak, quantum) +
+                         std::to_string(run) + " consecutive samples" + cause +
+                         coarse_quantisation_clause(peak, quantum, v, i) +
                          "; cut the record before it (--duration) or after it (--start), or repair it");
     }
     i = j;
@@ -645,9 +665,9 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
                         : v[i] == top          ? "maximum"
                                                : "minimum") +
                        ": the signal is clipped (the DAQ range was exceeded), so its spectrum is distorted" +
-                       coarse_quantisation_clause(peak, quantum));
+                       coarse_quantisation_clause(peak, quantum, v, i));
   check_scattered_clipping(in, s, first, peak, top, bottom, rest);
-  check_dropouts(in, s, first, peak, rest, excitation);
+  check_dropouts(in, s, first, peak, top, bottom, rest, excitation);
 }
 
 // The window into s: from the sample nearest to start_s, round(duration / dt) samples (nearest, not "t >= start", so

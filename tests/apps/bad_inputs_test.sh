@@ -221,6 +221,8 @@ expect_error "shard with a blank" "--shard = ' 1/2': must be K/N with integers 1
   "$tmp/mini.toml" --shard " 1/2" --output "$tmp/shard_blank"
 expect_error "shard with a sign" "--shard = '1/+2': must be K/N" study "$tmp/mini.toml" --shard "1/+2" \
   --output "$tmp/shard_sign"
+expect_error "shard index too large" "--shard = '5000000/2': must be K/N with 1 <= K <= N" study "$tmp/mini.toml" \
+  --shard 5000000/2 --output "$tmp/shard_index"
 expect_error "shard count too large" "--shard = '1/99999999999': N must be at most 1000000" study "$tmp/mini.toml" \
   --shard 1/99999999999 --output "$tmp/shard_large"
 # A comma at the end of --shards is refused as the message says, not dropped (the twenty-third pass's P4).

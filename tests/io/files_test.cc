@@ -84,6 +84,38 @@ TEST(WriteFileAtomic, ItsTemporaryIsANameOfItsOwnAndTouchesNoUsersFile) {
   fs::remove_all(dir);
 }
 
+TEST(OutputFolder, PartialFilesOfKilledRunsAreRemovedWhenTheirWriterIsGone) {
+  // The twenty-eighth pass's adv64 P1 and the twenty-ninth's adv66 P2, P3: a killed merge left
+  // ".beamid-<pid>-<n>.tmp" in store/ and landscape/, and no later run removed them; then a user's
+  // ".beamid-notes.tmp" was removed as one. Removed: the pattern exactly, its process gone (pid 99999999 is above any
+  // Linux pid_max, 2^22), unwritten for a minute, in the folder or one level down. Kept: a live writer's (this test),
+  // one written a moment ago (a writer on another machine), names beamid never writes, two levels down.
+  const fs::path dir = scratch("leftovers");
+  fs::create_directories(dir / "store" / "damaged");
+  const auto write = [&](const fs::path& path, bool old) {
+    std::ofstream(path) << "partial record";
+    if (old) fs::last_write_time(path, fs::file_time_type::clock::now() - std::chrono::minutes(5));
+  };
+  const std::string mine = ".beamid-" + std::to_string(::getpid()) + "-4.tmp";
+  for (const fs::path& p : {dir / ".beamid-99999999-3.tmp", dir / "store" / ".beamid-99999999-7.tmp", dir / mine,
+                            dir / ".beamid-notes.tmp", dir / ".beamid-0-1.tmp", dir / ".beamid--5-1.tmp",
+                            dir / "u1.tmp", dir / "store" / "damaged" / ".beamid-99999999-8.tmp"})
+    write(p, true);
+  write(dir / ".beamid-99999999-5.tmp", false);
+  EXPECT_EQ(remove_leftovers_of_output(dir),
+            dir.string() + ": removed 2 partial file(s) that killed runs left behind (28 bytes)");
+  EXPECT_FALSE(fs::exists(dir / ".beamid-99999999-3.tmp"));
+  EXPECT_FALSE(fs::exists(dir / "store" / ".beamid-99999999-7.tmp"));
+  for (const fs::path& kept :
+       {dir / mine, dir / ".beamid-notes.tmp", dir / ".beamid-0-1.tmp", dir / ".beamid--5-1.tmp", dir / "u1.tmp",
+        dir / "store" / "damaged" / ".beamid-99999999-8.tmp", dir / ".beamid-99999999-5.tmp"})
+    EXPECT_TRUE(fs::exists(kept)) << kept;
+  EXPECT_EQ(remove_leftovers_of_output(dir), "");
+  EXPECT_TRUE(is_leftover_temporary(".beamid-12-0.tmp"));
+  EXPECT_FALSE(is_leftover_temporary(".beamid-00-0.tmp"));
+  fs::remove_all(dir);
+}
+
 TEST(OutputFolder, ALinkThatLeadsNowhereIsNamedAndKept) {
   // Taken for a missing folder, a dangling link was "created" (File exists) and then removed (the twenty-first
   // pass's P3).

@@ -549,6 +549,10 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
             std::string::npos)
       << error_of(write("slow_crests.csv", slow_crests));
   EXPECT_EQ(error_of(write("dropout.csv", record(500, 0, 0))).find("quantised"), std::string::npos);
+  // Not where the run is jumped into: the 8-bit decay's zeros at 0.5 s are entered by about 5 quanta, no turning
+  // point (the twenty-ninth pass's adv66 P5 was offered one for a run entered by 25).
+  EXPECT_EQ(error_of(write("coarse_dropout.csv", record(500, 1.0 / 128, 0))).find("turning point"), std::string::npos)
+      << error_of(write("coarse_dropout.csv", record(500, 1.0 / 128, 0)));
   // A hammer's force exactly 0 between two hits (half sines of 20 samples at 0.01 s and 2 s) rests there: no dropout
   // in a force unit, nor in a channel read as the excitation (--force-channel); a response so still would be lost
   // data (the twenty-seventh pass's adv62 P1 refused the force).
@@ -567,9 +571,20 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   ImportOptions excitation;
   excitation.excitation = true;
   EXPECT_NO_THROW(read_time_series(write("hits.csv", two_hits("hammer")), excitation));
-  EXPECT_NE(error_of(write("hits.csv", two_hits("hammer"))).find("1971 consecutive samples inside the record"),
+  EXPECT_NE(error_of(write("hits.csv", two_hits("hammer"))).find("1971 consecutive samples at the record's minimum"),
             std::string::npos)
       << error_of(write("hits.csv", two_hits("hammer")));
+  // Zeros inside a hit (a 200-sample half sine, samples 20-51 lost while it rises) are lost data, excitation or not
+  // (the twenty-ninth pass's adv66 P1 took them as rest, and EI came out 7.7 % low).
+  std::string inside_hit = "t_s,force_N\n";
+  for (int i = 0; i < 4096; ++i) {
+    double f = i < 200 ? std::sin(std::numbers::pi * i / 200.0) : 0.0;
+    if (i >= 20 && i < 52) f = 0;
+    inside_hit += format_value(i * 1e-4) + "," + format_value(f) + "\n";
+  }
+  EXPECT_NE(error_of(write("inside_hit.csv", inside_hit), excitation).find("on 32 consecutive samples"),
+            std::string::npos)
+      << error_of(write("inside_hit.csv", inside_hit), excitation);
   EXPECT_NE(error_of(write("hits_m.csv", two_hits("x_m"))).find("a dropout (lost data)"), std::string::npos);
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";

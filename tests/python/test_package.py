@@ -605,6 +605,17 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
     (tmp_path / "manifest.json").write_text("{", encoding="utf-8")
     with pytest.raises(ValueError, match=re.escape(str(tmp_path / "manifest.json")) + ": not the manifest.json"):
         beamid.load_results(str(tmp_path))
+    # A manifest that is valid JSON but no object, and a switch that is no bool, are refused (the twenty-ninth pass's
+    # adv66 P6: a list came back as the manifest, and as_dict="no" gave dicts).
+    for text in ("[1, 2]", '"just a string"', "42"):
+        (tmp_path / "manifest.json").write_text(text, encoding="utf-8")
+        with pytest.raises(ValueError, match="not an object"):
+            beamid.load_results(str(tmp_path))
+    (tmp_path / "manifest.json").write_text("{}", encoding="utf-8")
+    with pytest.raises(TypeError, match="as_dict = 'no': must be a bool"):
+        beamid.load_results(str(tmp_path), as_dict="no")
+    with pytest.raises(TypeError, match="as_dict = 'no': must be a bool"):
+        beamid.read_table(str(tmp_path / "cases.csv"), as_dict="no")
     os.mkfifo(tmp_path / "pipe.csv")
     with pytest.raises(ValueError, match="not a regular file"):
         beamid.read_table(str(tmp_path / "pipe.csv"))

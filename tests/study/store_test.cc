@@ -6,10 +6,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -57,32 +55,6 @@ TEST(Store, ReusesOnlyRecordsOfTheSameBuild) {
   EXPECT_EQ(Store(dir.string(), "build-a").load("u1")->number("x"), 1.5);
   EXPECT_FALSE(Store(dir.string(), "build-b").load("u1")) << "another build's record must be recomputed";
   EXPECT_FALSE(Store(dir.string(), "build-a").load("u2"));
-  fs::remove_all(dir);
-}
-
-TEST(Store, PartialRecordsOfKilledRunsAreRemovedWhenTheirWriterIsGone) {
-  // The twenty-eighth pass's adv64 P1: a merge killed mid-write left ".beamid-<pid>-<n>.tmp" in store/, and no later
-  // run removed it. Removed: one whose process is gone (pid 99999999 is above any Linux pid_max, 2^22) and that no
-  // one has written for a minute. Kept: one whose writer still runs (this test), and one written a moment ago (a
-  // writer on another machine sharing the folder).
-  const fs::path dir = scratch("leftovers");
-  fs::create_directories(dir);
-  const auto write = [&](const std::string& name, bool old) {
-    std::ofstream(dir / name) << "partial record";
-    if (old) fs::last_write_time(dir / name, fs::file_time_type::clock::now() - std::chrono::minutes(5));
-  };
-  write(".beamid-99999999-3.tmp", true);
-  write(".beamid-" + std::to_string(::getpid()) + "-4.tmp", true);
-  write(".beamid-99999999-5.tmp", false);
-  write("u1.tmp", true);  // not beamid's pattern: a user's
-  std::ostringstream log;
-  Store(dir.string(), "build-a", &log);
-  EXPECT_FALSE(fs::exists(dir / ".beamid-99999999-3.tmp"));
-  EXPECT_TRUE(fs::exists(dir / (".beamid-" + std::to_string(::getpid()) + "-4.tmp")));
-  EXPECT_TRUE(fs::exists(dir / ".beamid-99999999-5.tmp"));
-  EXPECT_TRUE(fs::exists(dir / "u1.tmp"));
-  EXPECT_NE(log.str().find("removed 1 partial file(s) that killed runs left behind (14 bytes)"), std::string::npos)
-      << log.str();
   fs::remove_all(dir);
 }
 

@@ -247,6 +247,8 @@ RunSummary run_study(const StudySpec& spec, const RunOptions& options, std::ostr
   if (const std::string problem = io::claim_store(options.output_dir + "/store", spec.path); !problem.empty())
     throw InputError("beamid study: --output " + options.output_dir + ": " + problem);
   const Store store(options.output_dir + "/store", io::commit_label(), &log);
+  if (const std::string removed = io::remove_leftovers_of_output(options.output_dir); !removed.empty())
+    log << "beamid study: " << removed << "\n";
   log << "beamid study " << spec.path << " (commit " << io::commit_label() << "): '" << spec.name << "', seed "
       << spec.seed << ", " << plan.truths.size() << " truth record(s), " << plan.units.size() << " units";
   if (options.shard_count > 1)

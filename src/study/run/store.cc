@@ -127,11 +127,6 @@ Store::Store(std::string directory, std::string code_version, std::ostream* log)
   if (ec)
     throw InputError("--output: " + directory_ + ": cannot create the study store folder: " + ec.message() +
                      " (is --output a folder beamid may create?)");
-  // The partial files killed runs left here and beside the store (a table's, in the study's output folder).
-  for (const fs::path& folder : {fs::path(directory_), fs::path(directory_).parent_path()})
-    if (const io::RemovedTemporaries removed = io::remove_leftover_temporaries(folder); removed.files > 0)
-      (log_ ? *log_ : std::cerr) << folder.string() << ": removed " << removed.files
-                                 << " partial file(s) that killed runs left behind (" << removed.bytes << " bytes)\n";
 }
 
 namespace {
