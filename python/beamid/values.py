@@ -222,6 +222,10 @@ class FitResult(_Fields):
     model_output      the model's output at the estimate (array)
     records           per record of a joint fit: name, cost, status, weight, amplitude_scale
     a4                "ok" or the spike costs' (A4) condition in words (the spike counts of model and data differ)
+    profiles          profile=KEYS' profile-likelihood intervals, by key: estimate, standard_error, interval_68 and
+                      interval_95 ((lower, upper), NaN on a side the data do not close within the bounds),
+                      open_below, open_above, values and statistic (the profile: (S(v) - S_min) / s^2 at each value,
+                      chi^2 with one degree of freedom); {} without profile
     messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
                       identifiability, a record's frequency that changes with the amplitude, modes or damping the
                       estimate does not reproduce (beyond 2 %, or 10 of the record's uncertainties), a window that
@@ -246,6 +250,7 @@ class FitResult(_Fields):
     model_output: np.ndarray
     records: list
     a4: str
+    profiles: dict
     messages: list
     commit: str
 
@@ -253,10 +258,11 @@ class FitResult(_Fields):
     def _from_core(cls, raw):
         rows = raw["parameters"]
         direct = {f.name: raw[f.name] for f in dataclasses.fields(cls)
-                  if f.name not in ("parameters", "standard_errors", "modes", "estimates", "messages")}
+                  if f.name not in ("parameters", "standard_errors", "modes", "estimates", "messages", "profiles")}
         return cls(parameters=_table(rows, _PARAMETER_FIELDS), estimates=dict(raw["estimates"]),
                    standard_errors={r["parameter"]: r["standard_error"] for r in rows},
-                   modes=_table(raw["modes"], _MODE_FIELDS), messages=list(raw["messages"]), **direct)
+                   modes=_table(raw["modes"], _MODE_FIELDS), messages=list(raw["messages"]),
+                   profiles={key: dict(q) for key, q in raw["profiles"].items()}, **direct)
 
     @property
     def ok(self) -> bool:

@@ -355,6 +355,27 @@ void write_report(const apps::Flags& a, const apps::FitReportInput& input, const
 // `abandoned`: None, or a threading.Event the package sets when the caller was interrupted (Ctrl-C) while this ran
 // on its worker thread: the fit then finishes in the background, but writes no report (an interrupted fit replaced a
 // newer fit's report at the same path 12 s later: the twenty-second pass's P1).
+// --profile's intervals: their lines among the messages, as on the command line, and their numbers by key.
+py::dict profiles_dict(const std::vector<fit::Profile>& profiles, py::list& messages) {
+  py::dict out;
+  for (const fit::Profile& p : profiles) {
+    messages.append(p.line());
+    py::dict q;
+    q["estimate"] = p.estimate;
+    q["standard_error"] = p.standard_error;
+    q["interval_68"] = py::make_tuple(p.lower68, p.upper68);
+    q["interval_95"] = py::make_tuple(p.lower95, p.upper95);
+    q["open_below"] = p.open_below;
+    q["open_above"] = p.open_above;
+    py::list values, statistics;
+    for (const fit::ProfilePoint& point : p.points) values.append(point.value), statistics.append(point.statistic);
+    q["values"] = values;
+    q["statistic"] = statistics;  // (S(v) - S_min) / s^2 at each value: chi^2_1 at the interval's level
+    out[py::str(p.key)] = q;
+  }
+  return out;
+}
+
 py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
                 const py::object& data, const py::object& time, const py::object& abandoned) {
   std::ostringstream warned;
@@ -402,6 +423,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   if (c->spread) messages.append(api::window_spread_line(*c->spread, r));
+  d["profiles"] = profiles_dict(c->profiles, messages);
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;

@@ -323,6 +323,32 @@ void refuse_zero_model(const fit::FitOptions& o, const std::vector<fit::Record>&
 
 }  // namespace
 
+namespace {
+
+// --profile: each named key's profile-likelihood interval about the fit (fit/profile.h), a refit per point; a key
+// named once and estimated, and a failed fit none.
+void compute_profiles(const FitRequest& request, const std::vector<double>& data, FitComputation& c) {
+  for (std::size_t k = 0; k < request.profile.size(); ++k) {
+    const std::string& key = request.profile[k];
+    if (std::find(request.profile.begin(), request.profile.begin() + static_cast<std::ptrdiff_t>(k), key) !=
+        request.profile.begin() + static_cast<std::ptrdiff_t>(k))
+      refuse(request.caller, "profile", key, "is given twice: name each parameter once");
+    if (std::none_of(c.options.estimate.begin(), c.options.estimate.end(),
+                     [&](const fit::EstimatedParameter& e) { return e.key == key; }))
+      refuse(request.caller, "profile", key, "is not estimated (a profile refits the others with it fixed)");
+  }
+  if (request.profile.empty() || c.result.status == "failed") return;
+  std::vector<fit::Record> records = c.records;
+  if (records.empty()) records.push_back({"record1", c.options.start, c.options.experiment, data, {}, {}, {}});
+  for (const std::string& key : request.profile) try {
+      c.profiles.push_back(fit::profile(c.options, records, c.result, key));
+    } catch (const InputError& error) {
+      refuse(request.caller, "profile", key, error.what());
+    }
+}
+
+}  // namespace
+
 FitComputation compute_fit(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
                            std::ostream& warnings) {
   FitComputation c;
@@ -365,6 +391,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
   if (c.records.empty()) warn_noisy_force(request, o, data, c.result, warnings);
   if (c.records.empty() && c.result.final_evaluation.transient_share > 0.5)
     c.result.negated_force_rise = negated_force_rise(o, data, c.result);
+  compute_profiles(request, data, c);
   // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
   if (request.windows && c.result.status != "failed") {
     try {

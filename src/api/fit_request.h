@@ -20,6 +20,7 @@
 #include "api/experiment_request.h"
 #include "api/request.h"
 #include "fit/identification.h"
+#include "fit/profile.h"
 #include "fit/window_spread.h"
 #include "io/time_series.h"
 #include "model/beam_parameters.h"
@@ -54,6 +55,7 @@ struct FitRequest {
   std::optional<std::string> detrend;         // --detrend (default linear for a free decay, none otherwise)
   std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments
   std::optional<int> windows;                 // --windows K: also the spread of the estimates over K windows
+  std::vector<std::string> profile;           // --profile: estimated keys whose profile-likelihood intervals to give
   // --sensor-bandwidth, --sensor-filter-order, --sensor-oversampling: the record's anti-alias filter in the model
   // (fit/sensed_output.h; unset: none)
   std::optional<double> sensor_bandwidth_hz;
@@ -69,7 +71,8 @@ struct FitComputation {
   std::vector<double> sensors_m;  // each record's sensor position (several channels)
   fit::FitResult result;
   std::optional<fit::WindowSpread> spread;
-  bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
+  std::vector<fit::Profile> profiles;  // --profile's, in its order (fit/profile.h)
+  bool welch_picked = false;           // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
 };
 
 // The fit options the request gives for these channels (their time step and length fix dt and Nbar), validated:

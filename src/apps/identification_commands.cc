@@ -188,6 +188,7 @@ int run_fit(const Flags& a, std::ostream& out) {
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
   if (!notes.pairing.empty()) std::cerr << "beamid fit: " << notes.pairing << "\n";
+  for (const fit::Profile& p : c.profiles) std::cerr << "beamid fit: " << p.line() << "\n";
   if (!notes.identifiability.empty()) std::cerr << "beamid fit: " << notes.identifiability << "\n";
   if (result.records.size() > 1)
     for (std::size_t k = 0; k < result.records.size(); ++k) {
@@ -232,6 +233,9 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("of-interest",
                 "comma-separated estimated keys the identifiability verdict is about, the rest marginalised "
                 "(default: the non-damping ones)"),
+      text_flag("profile",
+                "comma-separated estimated keys: their profile-likelihood intervals (68 and 95 %), the others "
+                "refitted with each fixed on a grid"),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
       text_flag("refine",
