@@ -124,7 +124,11 @@ def load_results(folder, as_dict=False):
     _check_as_dict("load_results", as_dict)
     if not os.path.isdir(folder):
         raise FileNotFoundError(f"{folder}: not a results folder (beamid study writes results/<study>/)")
-    if not os.path.isfile(os.path.join(folder, "manifest.json")):
+    manifest_path = os.path.join(folder, "manifest.json")
+    if os.path.lexists(manifest_path) and not os.path.isfile(manifest_path):  # a folder was "no manifest" (adv68 P5)
+        raise ValueError(f"{manifest_path}: not a regular file (a folder, a pipe or a broken link): not the "
+                         "manifest.json beamid writes")
+    if not os.path.isfile(manifest_path):
         raise ValueError(f"{folder}: no manifest.json: not a results folder that beamid study or beamid real wrote "
                          "(a shard's folder gets its tables from beamid merge)")
     tables = {}

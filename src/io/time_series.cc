@@ -491,7 +491,7 @@ void check_scattered_clipping(const Samples& in, const TimeSeries& s, std::size_
   const std::vector<double>& v = s.values;
   if (!(peak / record_quantum(v) >= kFineQuantisation)) return;
   for (const double extreme : {top, bottom}) {
-    if (extreme == rest) continue;
+    if (!(std::abs(extreme - rest) > 0.1 * peak)) continue;  // the noise about the rest level (check_values)
     // A new stretch only after the signal has gone a tenth of the peak away from the extreme: a rail is met once a
     // swing, while noise on a pluck's pre-trigger lead-in at the static deflection met its quantised maximum again
     // and again within a few quanta (the twenty-seventh pass's adv63 P1).
@@ -569,12 +569,17 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     const bool gentle = i > 0 && j < v.size() &&
                         std::max(std::abs(v[i - 1] - v[i]), std::abs(v[j] - v[i])) <= kTurningQuanta * quantum &&
                         static_cast<double>(run) <= turning_samples;
-    // At rest between hits only where a hit has ended and the next begins: approached by a falling magnitude and
-    // left by a rising one. Zeros inside a hit (its force at 20-80 % of its peak on both sides, rising into them)
-    // were taken as rest, and EI came out 7.7 % low (the twenty-ninth pass's adv66 P1).
-    const auto from_rest = [&](std::size_t k) { return std::abs(v[k] - rest); };
-    const bool ended = i < 2 || from_rest(i - 1) <= from_rest(i - 2);
-    const bool begins = j + 1 >= v.size() || from_rest(j) <= from_rest(j + 1);
+    // At rest between hits only where a hit has ended and the next begins: the force lands on its rest level at the
+    // pace it was falling (its last step before the run at most kLandingSteps times the step before, and a quantum),
+    // and leaves it at the pace it rises. Zeros inside a hit (its force at 20-80 % of its peak on both sides, rising
+    // into them) were taken as rest, and EI came out 7.7 % low (the twenty-ninth pass's adv66 P1); so were zeros in
+    // the dip between a hit and its rebound, where the force falls slowly and jumps to 0 (the thirtieth's adv68 P1).
+    // A quantum of noise at rest lands and leaves within a quantum (adv68 P3).
+    constexpr double kLandingSteps = 3;
+    const double tolerance = std::isfinite(quantum) ? quantum : 0.0;
+    const bool ended = i < 2 || std::abs(v[i - 1] - rest) <= kLandingSteps * std::abs(v[i - 2] - v[i - 1]) + tolerance;
+    const bool begins =
+        j + 1 >= v.size() || std::abs(v[j] - rest) <= kLandingSteps * std::abs(v[j + 1] - v[j]) + tolerance;
     const bool resting = (excitation || is_force_unit(s.unit)) && v[i] == rest && ended && begins;
     if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle && !resting) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
@@ -651,13 +656,16 @@ void check_values(const Samples& in, const TimeSeries& s, std::size_t first, con
   const double rest = record_median(v);
   // At the peak magnitude anywhere, as before; at the other side's extreme (a one-sided rail: the twenty-fifth pass's
   // adv58 P1) inside the record only, a flat lead-in or tail being no rail.
+  // An extreme within a tenth of the peak of the rest level is the noise about it, no rail: a hammer channel's
+  // minimum one quantum below its rest was refused as clipped (the thirtieth pass's adv68 P2).
+  const auto off_rest = [&](double extreme) { return std::abs(extreme - rest) > 0.1 * peak; };
   const auto inside = [&](std::size_t i) {
     std::size_t j = i;
     while (j < v.size() && v[j] == v[i]) ++j;
     return i > 0 && j < v.size();
   };
   for (std::size_t i = 0; i + 2 < v.size(); ++i)
-    if ((std::abs(v[i]) == peak || ((v[i] == top || v[i] == bottom) && v[i] != rest && inside(i))) &&
+    if ((std::abs(v[i]) == peak || ((v[i] == top || v[i] == bottom) && off_rest(v[i]) && inside(i))) &&
         v[i + 1] == v[i] && v[i + 2] == v[i] && steep_plateau(v, i, quantum))
       throw InputError(in.where(first + i) + ": " + column + " = " + format_value(in.v[first + i]) +
                        " on 3 or more consecutive samples at the record's " +

@@ -118,6 +118,11 @@ BinVariance repeated_record_variance(const std::vector<Spectrum>& records, int s
   return out;
 }
 
+double coloured_excess_threshold(int order, int samples) {
+  if (samples <= 0) return std::numeric_limits<double>::infinity();
+  return std::max(kColouredExcess, std::exp(3 * std::sqrt(4.0 * order / samples)));
+}
+
 std::vector<double> power_excess(const NoiseModel& model, int samples) {
   std::vector<double> g = model_bin_variance(model, samples);
   for (double& v : g) v *= samples;

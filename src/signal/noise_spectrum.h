@@ -73,6 +73,11 @@ std::vector<double> power_excess(const NoiseModel& model, int samples);
 // Beyond this excess in some bin a fit's residual is called coloured (fit notes, the record's modes in fit reports):
 // the standard error of what the record holds there is then about sqrt(1.5) = 1.22 times what white noise gives.
 inline constexpr double kColouredExcess = 1.5;
+// The excess an AR(p) model of m samples of white noise stays under: its log spectrum's sd is about sqrt(4 p / m) at
+// 0 Hz and Nyquist (sqrt(2 p / m) between; Berk 1974), so three of those, or kColouredExcess where that is more. (At
+// 64-256 samples Akaike's order 1-4 of white residuals put 1.5 times the power somewhere on 14 in 40 to 4 in 40
+// records: the thirtieth pass's adv69 P3.)
+double coloured_excess_threshold(int order, int samples);
 // The same from several records of one process (the deviations of repeated records from their mean): one mean over
 // all samples removed, the lag products summed over the records (none across a record's ends) over the total count, n
 // in Akaike's criterion the total count, the order at most the shortest record's length / 4. InputError for no records

@@ -54,6 +54,16 @@ std::string npy(const std::vector<double>& values, std::size_t rows, std::size_t
       const float f = static_cast<float>(v);
       std::memcpy(bytes, &f, 4);
       size = 4;
+    } else if (descr.substr(1) == "f2") {  // half precision, for values it holds exactly (11 significant bits)
+      std::uint16_t h = 0;
+      if (v != 0) {
+        int exponent = 0;
+        const double mantissa = std::frexp(std::abs(v), &exponent);  // v = mantissa 2^exponent, mantissa in [0.5, 1)
+        h = static_cast<std::uint16_t>((v < 0 ? 0x8000 : 0) | ((exponent + 14) << 10) |
+                                       (static_cast<int>(std::ldexp(mantissa, 11)) - 1024));
+      }
+      std::memcpy(bytes, &h, 2);
+      size = 2;
     } else if (descr.substr(1) == "i2") {
       const auto i = static_cast<std::int16_t>(v);
       std::memcpy(bytes, &i, 2);
@@ -105,6 +115,11 @@ TEST(RecordFormats, NpyArraysOfEveryVersionOrderAndByteOrder) {
   for (std::size_t i = 0; i < n; ++i) counts[i] = std::round(1000 * one[i]);
   o.channel.clear();
   EXPECT_EQ(read_time_series(write("counts.npy", npy(counts, n, 0, 1, "<i2")), o).values, counts);
+  // Half precision (NumPy's float16; refused as no number type: the thirtieth pass's adv68 P4): the counts over 1024,
+  // which it holds exactly (11 significant bits), come back exactly.
+  std::vector<double> halves(n);
+  for (std::size_t i = 0; i < n; ++i) halves[i] = counts[i] / 1024;
+  EXPECT_EQ(read_time_series(write("halves.npy", npy(halves, n, 0, 1, "<f2")), o).values, halves);
 }
 
 TEST(RecordFormats, AnArraysTimeChannelIsItsTimeBase) {

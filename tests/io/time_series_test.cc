@@ -585,6 +585,31 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
   EXPECT_NE(error_of(write("inside_hit.csv", inside_hit), excitation).find("on 32 consecutive samples"),
             std::string::npos)
       << error_of(write("inside_hit.csv", inside_hit), excitation);
+  // A hit and its rebound on a 12-bit force channel (quantum 1/2048 of the peak): the force falls to a dip at 36 % of
+  // the peak and rises again. Samples lost in the dip (35 read as 0, where the force falls by 0.02 a sample) are lost
+  // data, not rest (the thirtieth pass's adv68 P1: EI 5.6 % low). At rest the channel's noise is a quantum: three
+  // samples a quantum below rest are no rail (adv68 P2), and a quantum of noise just before the rest is no dropout's
+  // edge (adv68 P3).
+  const double q_hammer = 1.0 / 2048;
+  const auto hammer = [&](bool lost_in_dip) {
+    std::string text = "t_s,force_N\n";
+    for (int i = 0; i < 4096; ++i) {
+      double f = 0;
+      if (i >= 10 && i < 130) f = std::sin(std::numbers::pi * (i - 10) / 120.0);
+      if (i >= 90 && i < 210) f = std::max(f, 0.6 * std::sin(std::numbers::pi * (i - 90) / 120.0));
+      if (lost_in_dip && i >= 100 && i < 135) f = 0;
+      if (i >= 2000 && i < 2003) f = -q_hammer;  // noise at rest
+      if (i == 2500) f = q_hammer;
+      if (i >= 3000 && i < 3100) f = 0.5 * std::sin(std::numbers::pi * (i - 3000) / 100.0);
+      text += format_value(i * 1e-4) + "," + format_value(q_hammer * std::round(f / q_hammer)) + "\n";
+    }
+    return text;
+  };
+  EXPECT_NO_THROW(read_time_series(write("hammer.csv", hammer(false)), excitation))
+      << error_of(write("hammer.csv", hammer(false)), excitation);
+  EXPECT_NE(error_of(write("hammer_lost.csv", hammer(true)), excitation).find("on 35 consecutive samples"),
+            std::string::npos)
+      << error_of(write("hammer_lost.csv", hammer(true)), excitation);
   EXPECT_NE(error_of(write("hits_m.csv", two_hits("x_m"))).find("a dropout (lost data)"), std::string::npos);
   // Channels by name and index; an unknown one lists the choices.
   const std::string two = "t_s,ax_g,ay_g\n0,1,2\n0.1,1,2\n0.2,1,2\n0.3,1,3\n0.4,1,2\n0.5,1,2\n0.6,1,2\n0.7,1,2\n";

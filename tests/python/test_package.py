@@ -632,6 +632,11 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
         (tmp_path / "manifest.json").write_text(text, encoding="utf-8")
         with pytest.raises(ValueError, match="not an object"):
             beamid.load_results(str(tmp_path))
+    (tmp_path / "manifest.json").unlink()
+    (tmp_path / "manifest.json").mkdir()  # a folder of that name is named as such (the thirtieth pass's adv68 P5)
+    with pytest.raises(ValueError, match="manifest.json: not a regular file"):
+        beamid.load_results(str(tmp_path))
+    (tmp_path / "manifest.json").rmdir()
     (tmp_path / "manifest.json").write_text("{}", encoding="utf-8")
     with pytest.raises(TypeError, match="as_dict = 'no': must be a bool"):
         beamid.load_results(str(tmp_path), as_dict="no")
