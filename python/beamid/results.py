@@ -140,18 +140,32 @@ def load_results(folder, as_dict=False):
             continue
         for name in sorted(os.listdir(where)):
             path = os.path.join(where, name)
-            if name.endswith(".csv") and os.path.isfile(path):
-                tables[(sub + "/" if sub else "") + name[:-4]] = read_table(path, as_dict=as_dict)
+            if not name.endswith(".csv"):
+                continue
+            if not os.path.isfile(path):  # left out silently (the thirty-first pass's adv70 P2)
+                raise ValueError(f"{path}: not a regular file (a folder, a pipe or a broken link): not a table "
+                                 "beamid writes")
+            tables[(sub + "/" if sub else "") + name[:-4]] = read_table(path, as_dict=as_dict)
     manifest = os.path.join(folder, "manifest.json")
     if os.path.getsize(manifest) > 1 << 26:
         raise ValueError(f"{manifest}: {os.path.getsize(manifest)} bytes: more than the 67108864 a manifest may have")
     with open(manifest, encoding="utf-8") as f:
         try:
             tables["manifest"] = json.load(f)
-        except (json.JSONDecodeError, UnicodeDecodeError) as error:  # named: it named no file (the pass's P15)
+        # Named: it named no file (the twenty-second pass's P15), nor did Python's own limits on nesting and on an
+        # integer's digits (the thirty-first pass's adv70 P6).
+        except (json.JSONDecodeError, UnicodeDecodeError, RecursionError, ValueError) as error:
             raise ValueError(f"{manifest}: not the manifest.json beamid writes: {error}") from None
     # An object, as beamid writes it (a list, a string or a number was returned as the manifest: adv66 P6).
     if not isinstance(tables["manifest"], dict):
         raise ValueError(f"{manifest}: not the manifest.json beamid writes: a JSON "
                          f"{type(tables['manifest']).__name__}, not an object")
+    # A study's cases.csv holds the cases its manifest counts: one cut at a line boundary read as complete (the
+    # thirty-first pass's adv70 P1: 5 rows of 12).
+    expected = tables["manifest"].get("cases")
+    if "cases" in tables and isinstance(expected, int) and not isinstance(expected, bool):
+        rows = len(next(iter(tables["cases"].values()))) if as_dict else len(tables["cases"])
+        if tables["cases"] is not None and rows != expected:
+            raise ValueError(f"{os.path.join(folder, 'cases.csv')}: {rows} rows, but manifest.json counts {expected} "
+                             "cases: cut short or from another run (rerun beamid study to rewrite it)")
     return tables

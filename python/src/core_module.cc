@@ -356,10 +356,10 @@ void write_report(const apps::Flags& a, const apps::FitReportInput& input, const
 // on its worker thread: the fit then finishes in the background, but writes no report (an interrupted fit replaced a
 // newer fit's report at the same path 12 s later: the twenty-second pass's P1).
 // --profile's intervals: their lines among the messages, as on the command line, and their numbers by key.
-py::dict profiles_dict(const std::vector<fit::Profile>& profiles, py::list& messages) {
+py::dict profiles_dict(const std::vector<fit::Profile>& profiles, const api::FitNotes& notes, py::list& messages) {
   py::dict out;
   for (const fit::Profile& p : profiles) {
-    messages.append(p.line());
+    messages.append(api::profile_line(p, notes));
     py::dict q;
     q["estimate"] = p.estimate;
     q["standard_error"] = p.standard_error;
@@ -423,7 +423,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   if (c->spread) messages.append(api::window_spread_line(*c->spread, r));
-  d["profiles"] = profiles_dict(c->profiles, messages);
+  d["profiles"] = profiles_dict(c->profiles, notes, messages);
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;

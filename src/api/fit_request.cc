@@ -622,6 +622,14 @@ void weighting_note(const fit::FitResult& result, const costs::CostOptions& cost
 
 }  // namespace
 
+std::string profile_line(const fit::Profile& profile, const FitNotes& notes) {
+  const bool doubted = !notes.weighting.empty() || !notes.correlated_residuals.empty() ||
+                       !notes.correlated_bins.empty() || !notes.rough.empty();
+  return profile.line() + (doubted ? "; it weighs the residuals as the standard errors do, which the notes on them "
+                                     "doubt: its coverage fails with theirs"
+                                   : "");
+}
+
 FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost) {
   FitNotes notes;
   // The formal and sandwich errors take the residuals as uncorrelated (the sandwich lags only the time cost's). A

@@ -188,7 +188,7 @@ int run_fit(const Flags& a, std::ostream& out) {
             << result.evaluations << " evaluations, " << result.wall_time_s << " s"
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
   if (!notes.pairing.empty()) std::cerr << "beamid fit: " << notes.pairing << "\n";
-  for (const fit::Profile& p : c.profiles) std::cerr << "beamid fit: " << p.line() << "\n";
+  for (const fit::Profile& p : c.profiles) std::cerr << "beamid fit: " << api::profile_line(p, notes) << "\n";
   if (!notes.identifiability.empty()) std::cerr << "beamid fit: " << notes.identifiability << "\n";
   if (result.records.size() > 1)
     for (std::size_t k = 0; k < result.records.size(); ++k) {

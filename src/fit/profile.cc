@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "core/errors.h"
@@ -67,6 +69,24 @@ double crossing(const ProfilePoint& a, const ProfilePoint& b, double level) {
 
 }  // namespace
 
+double profile_level(double probability, int dof) {
+  const double z = probability > 0.9 ? 1.959963984540054 : 1.0;  // the standard normal quantile of 0.975 or 0.8413
+  if (dof <= 0) return std::numeric_limits<double>::infinity();
+  double t = 0;
+  if (dof == 1) {
+    t = std::tan(std::numbers::pi * (probability - 0.5));
+  } else if (dof == 2) {
+    t = (2 * probability - 1) / std::sqrt(2 * probability * (1 - probability));
+  } else {
+    const double n = dof, z2 = z * z;
+    t = z + (z2 * z + z) / (4 * n) + (5 * std::pow(z, 5) + 16 * z2 * z + 3 * z) / (96 * n * n) +
+        (3 * std::pow(z, 7) + 19 * std::pow(z, 5) + 17 * z2 * z - 15 * z) / (384 * n * n * n) +
+        (79 * std::pow(z, 9) + 776 * std::pow(z, 7) + 1482 * std::pow(z, 5) - 1920 * z2 * z - 945 * z) /
+            (92160 * n * n * n * n);
+  }
+  return t * t;
+}
+
 Profile profile(const FitOptions& options, const std::vector<Record>& records, const FitResult& best,
                 const std::string& key) {
   Profile p;
@@ -85,11 +105,17 @@ Profile profile(const FitOptions& options, const std::vector<Record>& records, c
                      " residuals, " + format_value(n) +
                      " parameters) or no residual, so no noise level to scale "
                      "the cost's rise by");
+  if (options.record_weights == kNoiseWeights && records.size() > 1)
+    throw InputError("profile = '" + key +
+                     "': the records are weighted by their noise (--record-weights noise), which "
+                     "every refit would estimate again, flattening the profile; profile with the default weights");
   if (best.parameters.size() == 1 && costs::is_estimated_noise(options.cost.noise_model))
     throw InputError("profile = '" + key +
                      "': with one estimated parameter and the noise estimated from the fit, "
                      "the profile would evaluate the cost under another noise model; estimate another parameter too");
   p.estimate = it->estimate, p.standard_error = it->standard_error;
+  const int dof = static_cast<int>(m - n);
+  p.level68 = profile_level(0.8413447460685429, dof), p.level95 = profile_level(0.975, dof);
   const double variance = best.cost / (m - n);
   const double log_range = std::log(it->upper) - std::log(it->lower);
   const double step = std::isfinite(it->standard_error) && it->standard_error > 0
@@ -101,18 +127,25 @@ Profile profile(const FitOptions& options, const std::vector<Record>& records, c
   for (const int side : {-1, 1}) {
     std::vector<model::BeamParameters> from = start;
     bool closed = false;
-    for (int k = 1; k <= kMaxProfileSteps; ++k) {
-      double value = it->estimate * std::exp(side * k * step);
+    double offset = 0, stride = step, previous = 0;  // ln(value / estimate) of the last point, and its D
+    int halvings = 0;
+    for (int k = 1; k <= kMaxProfileSteps;) {
+      double value = it->estimate * std::exp(side * (offset + stride));
       const bool at_bound = side < 0 ? value <= it->lower : value >= it->upper;
       if (at_bound) value = side < 0 ? it->lower : it->upper;
       const Refit r = refit(options, records, key, value, from);
       ProfilePoint point{value, r.cost, (r.cost - best.cost) / variance, r.status};
-      if (std::isfinite(point.statistic) && point.statistic < -1e-9 * best.cost / variance && p.lower_minimum.empty())
+      if (point.statistic - previous > 2 && halvings < kMaxProfileHalvings) {  // too coarse a step: halve it
+        stride /= 2, ++halvings;
+        continue;
+      }
+      if (std::isfinite(point.statistic) && point.statistic < -kLowerMinimumD && p.lower_minimum.empty())
         p.lower_minimum = key + " = " + format_value(value) + " gives a lower cost (" + format_value(r.cost) + " < " +
                           format_value(best.cost) + "): the fit's estimate is no global minimum";
       p.points.push_back(point);
-      if (std::isfinite(r.cost)) from = r.beams;
-      if (point.statistic > kProfileLevel95) {
+      ++k, offset = std::abs(std::log(value / it->estimate));
+      if (std::isfinite(r.cost)) from = r.beams, previous = point.statistic;
+      if (point.statistic > p.level95) {
         closed = true;
         break;
       }
@@ -126,15 +159,16 @@ Profile profile(const FitOptions& options, const std::vector<Record>& records, c
       std::find_if(p.points.begin(), p.points.end(), [&](const ProfilePoint& q) { return q.value == p.estimate; }) -
       p.points.begin());
   // Outwards from the estimate, the first point at or beyond each level.
-  for (const double level : {kProfileLevel68, kProfileLevel95}) {
+  for (const bool wide : {false, true}) {
+    const double level = wide ? p.level95 : p.level68;
     for (std::size_t i = centre; i + 1 < p.points.size(); ++i)
       if (p.points[i + 1].statistic >= level) {
-        (level == kProfileLevel68 ? p.upper68 : p.upper95) = crossing(p.points[i], p.points[i + 1], level);
+        (wide ? p.upper95 : p.upper68) = crossing(p.points[i], p.points[i + 1], level);
         break;
       }
     for (std::size_t i = centre; i > 0; --i)
       if (p.points[i - 1].statistic >= level) {
-        (level == kProfileLevel68 ? p.lower68 : p.lower95) = crossing(p.points[i], p.points[i - 1], level);
+        (wide ? p.lower95 : p.lower68) = crossing(p.points[i], p.points[i - 1], level);
         break;
       }
   }

@@ -369,9 +369,13 @@ double checked_step(Samples& in, const std::string& path, const ImportOptions& o
           in.where(i) + ": " + column + " = " + format_value(t[i]) +
           (t[i] == t[i - 1] ? ": repeats the previous sample's time" : ": goes back from the previous sample's ") +
           (t[i] == t[i - 1] ? "" : format_value(t[i - 1]) + " s") +
-          (coarse && t[i] == t[i - 1] ? " (the time column is printed to " + format_value(resolution) +
-                                            " s, too coarse for its step: print it with more digits)"
-                                      : " (a duplicated or misordered line)"));
+          (coarse && t[i] == t[i - 1]
+               ? (in.series.format == "csv" || in.series.format == "lvm" || in.series.format == "text"
+                      ? " (the time column is printed to " + format_value(resolution) +
+                            " s, too coarse for its step: print it with more digits)"
+                      : " (the time channel's type holds it only to " + format_value(resolution) +
+                            " s, too coarse for its step: store the times as float64, or give --sample-rate)")
+               : " (a duplicated or misordered line)"));
   refuse_sample_counter(in, path);
   if (dt < 1e-9)
     throw InputError(path + ": a step of " + format_value(dt) +
@@ -575,11 +579,24 @@ void check_dropouts(const Samples& in, const TimeSeries& s, std::size_t first, d
     // into them) were taken as rest, and EI came out 7.7 % low (the twenty-ninth pass's adv66 P1); so were zeros in
     // the dip between a hit and its rebound, where the force falls slowly and jumps to 0 (the thirtieth's adv68 P1).
     // A quantum of noise at rest lands and leaves within a quantum (adv68 P3).
+    // A pulse of at most kShortPulse samples off its rest lands from its crest in one step, whatever its pace (a
+    // 3-sample hit sampled at 0.105, 0.914, 0.809, 0 was refused: the thirty-first pass's adv70 P3).
     constexpr double kLandingSteps = 3;
+    constexpr std::size_t kShortPulse = 8;
     const double tolerance = std::isfinite(quantum) ? quantum : 0.0;
-    const bool ended = i < 2 || std::abs(v[i - 1] - rest) <= kLandingSteps * std::abs(v[i - 2] - v[i - 1]) + tolerance;
-    const bool begins =
-        j + 1 >= v.size() || std::abs(v[j] - rest) <= kLandingSteps * std::abs(v[j + 1] - v[j]) + tolerance;
+    const auto off_rest_samples = [&](std::size_t from, int direction) {  // consecutive samples off rest from `from`
+      std::size_t count = 0;
+      for (auto k = static_cast<std::ptrdiff_t>(from);
+           k >= 0 && k < static_cast<std::ptrdiff_t>(v.size()) && count <= kShortPulse &&
+           std::abs(v[static_cast<std::size_t>(k)] - rest) > tolerance;
+           k += direction)
+        ++count;
+      return count;
+    };
+    const bool ended = i < 2 || off_rest_samples(i - 1, -1) <= kShortPulse ||
+                       std::abs(v[i - 1] - rest) <= kLandingSteps * std::abs(v[i - 2] - v[i - 1]) + tolerance;
+    const bool begins = j + 1 >= v.size() || off_rest_samples(j, 1) <= kShortPulse ||
+                        std::abs(v[j] - rest) <= kLandingSteps * std::abs(v[j + 1] - v[j]) + tolerance;
     const bool resting = (excitation || is_force_unit(s.unit)) && v[i] == rest && ended && begins;
     if (run >= kDropoutRun && i > 0 && j < v.size() && !gentle && !resting) {
       const double before = away(i >= run ? i - run : 0, i, v[i]), after = away(j, std::min(v.size(), j + run), v[i]);
@@ -845,10 +862,13 @@ TimeSeries parse_time_series(const std::string& bytes, const std::string& path, 
   if (npy) {
     const NpyArray a = parse_npy(bytes, path);
     const std::size_t rows = a.shape[0], columns = a.shape.size() == 2 ? a.shape[1] : 1;
-    // A time channel is as precise as the array's type: float32 to 1.2e-7 of its largest value, float64 (and the
+    // A time channel is as precise as the array's type: float16 to 2e-3 of its largest value (the thirty-first
+    // pass's adv70 P5: its repeated times were blamed on a misordered line), float32 to 1.2e-7, float64 (and the
     // integer types, exact) to 4.4e-16.
-    const double precision = a.descr.substr(1) == "f4" ? 2 * std::numeric_limits<float>::epsilon()
-                                                       : 2 * std::numeric_limits<double>::epsilon();
+    const std::string type = a.descr.substr(1);
+    const double precision = type == "f2"   ? 2 * std::ldexp(1.0, -10)
+                             : type == "f4" ? 2 * std::numeric_limits<float>::epsilon()
+                                            : 2 * std::numeric_limits<double>::epsilon();
     Samples samples = array_samples(
         path, "npy", "array", rows, columns, [&a](std::size_t i, std::size_t j) { return a.at(i, j); }, nullptr,
         precision, o);

@@ -343,6 +343,10 @@ std::vector<std::string> tokens_after_name(const std::string& name) {
 std::pair<std::string, std::size_t> suffix_unit(const std::string& name) {
   const std::string n = lower(name);
   for (std::size_t at = 0; (at = n.find('_', at)) != std::string::npos; ++at) {
+    // A capital N is newtons ("force_N", what simulate --force-column writes; it had no unit, and a hammer channel
+    // resting at 0 between two hits was refused as clipped: the thirty-first pass's adv70 P4); a lower-case n is as
+    // likely a name ("x_n").
+    if (name.compare(at + 1, std::string::npos, "N") == 0) return {"N", at};
     if (is_unconverted_unit(name.substr(at + 1), false)) return {name.substr(at + 1), at};
     std::string suffix = n.substr(at + 1);
     std::replace(suffix.begin(), suffix.end(), '_', '/');  // m_s2 -> m/s2, mm_s -> mm/s, in_s -> in/s

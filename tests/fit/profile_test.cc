@@ -89,5 +89,44 @@ TEST(Profile, BoundsInsideTheIntervalLeaveItOpenAndSaySo) {
   EXPECT_THROW(profile(c.options, c.records, best, "cDI"), InputError);  // not estimated
 }
 
+TEST(Profile, ItsLevelsAreStudentsTSquaredAtTheFitsDegreesOfFreedom) {
+  // With the noise level from the residuals, D is F(1, nu) = t_nu^2 (the thirty-first pass's adv71 P4: the chi^2 level
+  // 3.84 covered 89 % at nu = 6). Tables: t_1(0.975) = 12.706, t_2 = 4.303, t_6 = 2.447, t_30 = 2.042; t_6(0.8413) =
+  // 1.0906 (by quadrature of t's density); for many residuals the chi^2_1 levels 1 and 3.8415.
+  EXPECT_NEAR(std::sqrt(profile_level(0.975, 1)), 12.706, 1e-3);
+  EXPECT_NEAR(std::sqrt(profile_level(0.975, 2)), 4.303, 1e-3);
+  EXPECT_NEAR(std::sqrt(profile_level(0.975, 6)), 2.447, 1e-3);
+  EXPECT_NEAR(std::sqrt(profile_level(0.975, 30)), 2.042, 1e-3);
+  EXPECT_NEAR(std::sqrt(profile_level(0.8413447460685429, 6)), 1.0906, 1e-3);
+  EXPECT_NEAR(profile_level(0.975, 100000), 3.8415, 1e-3);
+  EXPECT_NEAR(profile_level(0.8413447460685429, 100000), 1.0, 1e-3);
+}
+
+TEST(Profile, AnEstimateOnABoundIsProfiledInwardsToItsLevel) {
+  // EI bounded just below its estimate ends on that bound, with no formal error: the profile steps a fiftieth of the
+  // log range, halving any step that raises D by more than 2, so the 95 % end is bracketed by D within 2 of its level
+  // (a single coarse step put it where D was 8-14: adv71 P2); the bound's side stays open, and a refit a hair below
+  // the fit is no lower minimum (adv71 P3).
+  Case c = pulse_case({"EI", "rho"}, 1e-2, 2);
+  const double ei = model::parameter_value(c.options.start, "EI");
+  c.options.estimate[0].upper = ei * (1 - 2e-4);
+  c.options.start.EI = c.records[0].start.EI = ei * (1 - 3e-4);
+  const FitResult best = fit(c.options, c.records);
+  ASSERT_EQ(best.parameters[0].status, "at-upper-bound") << best.termination;
+  const Profile p = profile(c.options, c.records, best, "EI");
+  EXPECT_TRUE(p.open_above) << p.line();
+  ASSERT_FALSE(std::isnan(p.lower95)) << p.line();
+  for (std::size_t i = 0; i + 1 < p.points.size(); ++i)
+    if (p.points[i].value <= p.lower95 && p.points[i + 1].value >= p.lower95)
+      EXPECT_LE(p.points[i].statistic - p.points[i + 1].statistic, 2.0 + 1e-9) << p.line();
+  EXPECT_EQ(p.lower_minimum, "") << p.line();
+  // Records weighted by their noise would have every refit weigh them anew: refused.
+  Case joint = pulse_case({"EI", "rho"}, 1e-2, 2);
+  joint.records.push_back(joint.records.front());
+  joint.records.back().name = "record2";
+  joint.options.record_weights = kNoiseWeights;
+  EXPECT_THROW(profile(joint.options, joint.records, best, "EI"), InputError);
+}
+
 }  // namespace
 }  // namespace beamid::fit

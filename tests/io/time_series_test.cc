@@ -567,6 +567,18 @@ TEST(TimeSeries, MalformedLabViewAndDaqFilesNameTheLine) {
     return text;
   };
   EXPECT_NO_THROW(read_time_series(write("hits_N.csv", two_hits("force (N)"))));
+  // "force_N", simulate --force-column's own name, is in newtons too (the thirty-first pass's adv70 P4).
+  EXPECT_NO_THROW(read_time_series(write("hits_force_N.csv", two_hits("force_N"))));
+  // Two hits 3 samples long, sampled at 0.105, 0.914, 0.809, 0: a pulse the sampling barely resolves lands from its
+  // crest in one step, at any phase (adv70 P3 refused this phase as clipped).
+  std::string short_hits = "t_s,force_N\n";
+  for (int i = 0; i < 4096; ++i) {
+    const int k = i < 2000 ? i - 10 : i - 2010;
+    const double f = k >= 0 && k < 3 ? std::vector<double>{0.105, 0.914, 0.809}[static_cast<std::size_t>(k)] : 0.0;
+    short_hits += format_value(i * 1e-3) + "," + format_value(f) + "\n";
+  }
+  EXPECT_NO_THROW(read_time_series(write("short_hits.csv", short_hits)))
+      << error_of(write("short_hits.csv", short_hits));
   EXPECT_NO_THROW(read_time_series(write("hits_lbf.csv", two_hits("hammer_lbf"))));
   ImportOptions excitation;
   excitation.excitation = true;

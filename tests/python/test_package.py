@@ -632,6 +632,22 @@ def test_load_results_reads_the_subfolders_and_names_a_bad_manifest(tmp_path):
         (tmp_path / "manifest.json").write_text(text, encoding="utf-8")
         with pytest.raises(ValueError, match="not an object"):
             beamid.load_results(str(tmp_path))
+    # Python's own limits (nesting, an integer's digits) are named as damage too (the thirty-first pass's adv70 P6).
+    for text in ("[" * 100000, "1" * 5001):
+        (tmp_path / "manifest.json").write_text(text, encoding="utf-8")
+        with pytest.raises(ValueError, match="manifest.json: not the manifest.json beamid writes"):
+            beamid.load_results(str(tmp_path))
+    # A cases.csv of fewer rows than the manifest counts is cut short; a table that is a folder is named (adv70 P1,
+    # P2: both were returned or left out without a word).
+    (tmp_path / "manifest.json").write_text('{"cases": 3}', encoding="utf-8")
+    with pytest.raises(ValueError, match="cases.csv: 1 rows, but manifest.json counts 3 cases"):
+        beamid.load_results(str(tmp_path))
+    (tmp_path / "manifest.json").write_text('{"cases": 1}', encoding="utf-8")
+    assert len(beamid.load_results(str(tmp_path))["cases"]) == 1
+    (tmp_path / "summary.csv").mkdir()
+    with pytest.raises(ValueError, match="summary.csv: not a regular file"):
+        beamid.load_results(str(tmp_path))
+    (tmp_path / "summary.csv").rmdir()
     (tmp_path / "manifest.json").unlink()
     (tmp_path / "manifest.json").mkdir()  # a folder of that name is named as such (the thirtieth pass's adv68 P5)
     with pytest.raises(ValueError, match="manifest.json: not a regular file"):
