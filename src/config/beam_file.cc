@@ -124,9 +124,11 @@ void parse_attachments(Table root, BeamParameters& beam) {
             " times the beam's mass rho l = " + format_rounded(beam.rho * l) + " kg)");
     const double most_J = model::max_body_inertia_kg_m2(a.m, beam);
     a.J = t.number(
-        "J", 0.0, [&](double v) { return v >= 0 && v <= most_J; },
-        "must be in [0, (m + rho l) l^2 = " + format_rounded(most_J) +
-            "] kg m^2 (about the body's centre; a radius of gyration up to a beam length)");
+        "J", 0.0, [&](double v) { return v >= 0 && v <= most_J && (a.m > 0 || v == 0); },
+        a.m > 0 ? "must be in [0, (m + rho l) l^2 = " + format_rounded(most_J) +
+                      "] kg m^2 (about the body's centre; the body's and the beam's mass at a radius of gyration of "
+                      "a beam length)"
+                : std::string("must be 0: the attachment has no mass (m = 0), so no inertia"));
     a.c = t.number(
         "c", 0.0, [&](double v) { return std::abs(v) <= l; },
         "must be in [-l, l] m: the body's centre lies within a beam length of its fixing point" + of_length);

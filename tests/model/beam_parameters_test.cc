@@ -151,7 +151,10 @@ TEST(BeamToml, ATipBodyNoRigHasIsRefusedOnItsLine) {
             "0.04253 kg): at most 425.3 kg");
   EXPECT_EQ(error_of(replace(kValid, "J_o = 5.208e-6", "J_o = 1e3")),
             "beam.toml:14: beam.J_o = 1000: the tip body's inertia about its centre must be at most (m + rho l) l^2 = "
-            "0.01935 kg m^2 (a radius of gyration up to a beam length)");
+            "0.01935 kg m^2 (the body's and the beam's mass at a radius of gyration of a beam length)");
+  // A body of no mass has no inertia (the thirty-first pass's adv71 P6: m = 0, J_o = 0.008 moved mode 1 to 1.79 Hz).
+  EXPECT_EQ(error_of(replace(replace(kValid, "m = 0.050", "m = 0"), "J_o = 5.208e-6", "J_o = 0.008")),
+            "beam.toml:14: beam.J_o = 0.008: the tip body has no mass (m = 0), so no inertia; give its mass m");
   // The largest admissible body is admissible.
   EXPECT_NO_THROW(config::parse_beam_toml(replace(kValid, "m = 0.050", "m = 425"), "beam.toml"));
 }
@@ -170,7 +173,7 @@ TEST(BeamToml, AttachmentErrorsNameLineKeyValueAndConstraint) {
             "l = 0.04253 kg)");
   EXPECT_EQ(error_of(base + "x = 0.1\nm = 0.001\nJ = 1e6\n"),
             "beam.toml:18: attachment1.J = 1e+06: must be in [0, (m + rho l) l^2 = 0.009103] kg m^2 (about the "
-            "body's centre; a radius of gyration up to a beam length)");
+            "body's centre; the body's and the beam's mass at a radius of gyration of a beam length)");
   EXPECT_EQ(error_of(base + "x = 0.1\nm = 1\nc = 0.5\n"),
             "beam.toml:18: attachment1.c = 0.5: must be in [-l, l] m: the body's centre lies within a beam length of "
             "its fixing point (l = 0.4573 m)");
