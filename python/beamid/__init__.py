@@ -222,6 +222,9 @@ def _record_flags(data, flags):
         return None, dict(flags, data=data)
     if isinstance(data, (bytes, bytearray)):
         raise TypeError("data: a path (str or os.PathLike) or an array of samples, not bytes")
+    if isinstance(data, Record):  # read_record's result was refused as "an array of dtype object" (adv72 P3)
+        raise TypeError("data: a Record: pass its file's path, or its samples with their step, "
+                        "data=record.values, sample_rate=1 / record.dt_s (and units=record.unit)")
     if _ndim(data) < 0:  # a ragged nesting: NumPy's "inhomogeneous shape" named no argument
         raise TypeError(f"data = {repr(data)[:80]}: a ragged list, no array of samples")
     if np.ma.isMaskedArray(data) and np.ma.is_masked(data):
@@ -465,7 +468,7 @@ def _check_type(command, name, kind, value):
         raise TypeError(f"{command}(): {name} = {value!r}: must be {expected}")
 
 
-def _typed(function, command, leading, skip=()):
+def _typed(function, command, leading, skip=(), label=None):
     """The function with the command's flags as its keyword-only parameters (from the program's registry): a real
     signature for help() and editors, its docstring listing each flag, and every call checked against it (an unknown
     keyword or a value of the wrong type is a TypeError before the core sees it)."""
@@ -487,8 +490,14 @@ def _typed(function, command, leading, skip=()):
     def checked(*args, **kwargs):
         bound = signature.bind(*args, **kwargs)
         for name, value in bound.arguments.items():
-            if name in kinds and value is not None and value is not False:
-                _check_type(command, name, kinds[name], value)
+            # False means "left out" only for a switch: start=False was dropped without a word (adv72 P2).
+            if name in kinds and value is not None and (value is not False or kinds[name] != "switch"):
+                try:
+                    _check_type(command, name, kinds[name], value)
+                except TypeError as error:  # named as the function the caller called
+                    if label is None:
+                        raise
+                    raise TypeError(str(error).replace(f"{command}():", f"{label}():")) from None
         positional = {p.name: bound.arguments.get(p.name, p.default) for p in leading}
         given = {k: v for k, v in bound.arguments.items() if k in kinds}
         return function(**positional, **given)
@@ -518,3 +527,9 @@ cost = _typed(cost, "cost", [_positional("data", annotation=_RECORD),
 fit = _typed(fit, "fit", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
 crb = _typed(crb, "crb", [])
 modal_id = _typed(modal_id, "modal-id", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
+# read_record takes modal-id's import flags, checked as every function's are (channel=True was "--data is required",
+# duration=False was dropped: the thirty-second pass's adv72 P2).
+_IMPORT_FLAG_NAMES = {name.strip().replace("_", "-") for name in _IMPORT_FLAGS.split(",")}
+read_record = _typed(read_record, "modal-id", [_positional("path")],
+                     skip={f["name"] for f in _core.command_flags("modal-id") if f["name"] not in _IMPORT_FLAG_NAMES},
+                     label="read_record")

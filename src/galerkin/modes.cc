@@ -393,7 +393,10 @@ std::vector<DampedMode> StateSpaceModes::underdamped_modes() const {
     if (lambda.imag() <= 0) continue;
     const double magnitude = std::abs(lambda);
     if (-lambda.real() / magnitude > 1 - kCriticalMargin) continue;
-    modes.push_back({magnitude / (2 * std::numbers::pi), -lambda.real() / magnitude, lambda});
+    // An undamped beam's poles lie on the axis to round-off, either side: its ratios of -1e-24 are 0 (a passive beam
+    // has no negative damping ratio: the thirty-second pass's adv73 P2). Only round-off's: 1e-12 and beyond is kept.
+    const double ratio = -lambda.real() / magnitude;
+    modes.push_back({magnitude / (2 * std::numbers::pi), ratio < 0 && ratio > -1e-12 ? 0.0 : ratio, lambda});
   }
   std::sort(modes.begin(), modes.end(),
             [](const DampedMode& a, const DampedMode& b) { return a.frequency_hz < b.frequency_hz; });

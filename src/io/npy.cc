@@ -21,6 +21,14 @@ const std::string kMagic = "\x93NUMPY";
 // The value of `key` in the header dict, as its source text up to the next top-level comma or closing brace.
 std::string dict_value(const std::string& header, const std::string& key, const std::string& path,
                        std::size_t header_offset) {
+  // A key stated twice is refused: NumPy takes the last, this reader took the first, and a repeated 'shape' gave
+  // spikes of a scrambled signal with exit 0 (the thirty-second pass's adv72 P1).
+  std::size_t stated = 0;
+  for (const char quote : {'\'', '"'})
+    for (auto at = header.find(std::string(1, quote) + key + quote); at != std::string::npos;
+         at = header.find(std::string(1, quote) + key + quote, at + 1))
+      ++stated;
+  if (stated > 1) fail(path, header_offset, "header key '" + key + "' is stated " + std::to_string(stated) + " times");
   for (const char quote : {'\'', '"'}) {
     const std::string quoted = std::string(1, quote) + key + quote;
     const auto at = header.find(quoted);

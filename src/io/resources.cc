@@ -55,8 +55,9 @@ void check_memory(const std::string& what, double bytes, std::ostream& warn) {
     throw InputError(what + ": needs about " + bytes_text(bytes) + " of memory; this machine has " +
                      bytes_text(*available) + " available");
   if (bytes > 0.25 * *available)
-    warn << "beamid: " << what << ": needs about " << bytes_text(bytes) << " of memory (" << bytes_text(*available)
-         << " available)\n";
+    // `what` names the command ("beamid simulate: ..."), or is a bare description that gets the program's name.
+    warn << (what.rfind("beamid", 0) == 0 ? "" : "beamid: ") << what << ": needs about " << bytes_text(bytes)
+         << " of memory (" << bytes_text(*available) << " available)\n";
 }
 
 }  // namespace beamid::io

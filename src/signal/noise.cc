@@ -170,7 +170,7 @@ NoiseModel parse_noise_model(const std::string& text) {
     if (m.ar.size() > kMaxArOrder) fail("at most " + std::to_string(kMaxArOrder) + " coefficients");
     if (const double r = spectral_radius(m.ar); !(r < 1 - 1e-6))
       fail("not stationary: a root of z^p - a1 z^(p-1) - ... has modulus " + format_rounded(r, 6) +
-           " (must be below 1)");
+           " (must be below 1 - 1e-6: nearer 1, the process's variance and correlation time exceed any record)");
     return m;
   }
   if (kind == "power") {

@@ -103,6 +103,18 @@ TEST(HeavyDamping, APassiveBeamHasNoPoleInTheRightHalfPlane) {
   }
 }
 
+TEST(HeavyDamping, AnUndampedBeamsRatiosAreZeroNotNegative) {
+  // Every damping coefficient 0 (cDI, kAcs, gamma): the poles lie on the imaginary axis to round-off, and ratios of
+  // -1e-24 were printed at N = 4 and 16 (the thirty-second pass's adv73 P2). Zero, to the last bit, at every N.
+  model::BeamParameters beam = model::preset("banks-aluminium");
+  beam.cDI = beam.kAcs = beam.gamma = 0;
+  for (int elements : {4, 8, 16, 32}) {
+    const StateSpaceModes modes(combine(BeamForms(SplineSpace(elements), beam.l), beam));
+    ASSERT_FALSE(modes.underdamped_modes().empty());
+    for (const DampedMode& m : modes.underdamped_modes()) EXPECT_GE(m.damping_ratio, 0.0) << "N = " << elements;
+  }
+}
+
 TEST(HeavyDamping, ADecayRateTheDampingMatrixCannotResolveIsRefused) {
   // Shear damping 1e8-3e10 times the preset's (kAcs = 1e9 .. 3e11 N s) at N = 8: the first mode's frequency stays
   // within 1e-8, but its shear strain is a small difference of entries of C up to 4.5e12, and its damping ratio came

@@ -202,6 +202,20 @@ TEST(RecordFormats, ResampleIsACubicSplineWithinItsErrorBound) {
 }
 
 TEST(RecordFormats, MalformedNpyFilesNameTheByte) {
+  // A header key stated twice ("'shape': (4,), 'shape': (2, 2)"): NumPy takes the last, and reading the first gave
+  // spikes of a scrambled signal (the thirty-second pass's adv72 P1): refused by name.
+  {
+    std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (8,), 'shape': (4, 2), }";
+    while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+    header += '\n';
+    std::string file = std::string("\x93NUMPY\x01") + '\0' + static_cast<char>(header.size()) + '\0' + header;
+    file += std::string(64, '\0');
+    ImportOptions o;
+    o.units = "as-is";
+    o.sample_rate_hz = 1000;
+    EXPECT_NE(error_of(write("twice.npy", file), o).find("header key 'shape' is stated 2 times"), std::string::npos)
+        << error_of(write("twice.npy", file), o);
+  }
   std::vector<double> v(64, 1.0);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::sin(0.3 * static_cast<double>(i));
   ImportOptions o;

@@ -158,6 +158,24 @@ def test_fit_is_the_program_bit_for_bit(tmp_path):
     assert from_float32.estimates["EI"] == pytest.approx(from_file.estimates["EI"], rel=1e-2)
 
 
+def test_read_record_checks_its_flags_and_a_record_is_no_array(tmp_path):
+    # The thirty-second pass's adv72 P2, P3: read_record's flags went unchecked (channel=True said "--data is
+    # required", duration=False was dropped), start=False was dropped by spikes too, and a Record given as data was
+    # "an array of dtype object".
+    record = tmp_path / "record.csv"
+    record.write_text(run("simulate", "--beam", "banks-aluminium", "--elements", "6", "--samples", "256"))
+    with pytest.raises(TypeError, match=r"read_record\(\): channel = True"):
+        beamid.read_record(str(record), channel=True)
+    with pytest.raises(TypeError, match=r"read_record\(\): duration = False: must be a number"):
+        beamid.read_record(str(record), duration=False)
+    with pytest.raises(TypeError, match=r"spikes\(\): start = False: must be a number"):
+        beamid.spikes(str(record), start=False)
+    r = beamid.read_record(str(record), duration=0.1)
+    assert r.values.shape == (100,) and r.dt_s == pytest.approx(1e-3)
+    with pytest.raises(TypeError, match="data: a Record: pass its file's path"):
+        beamid.spikes(r)
+
+
 def test_fit_profile_gives_the_likelihood_ratio_interval(tmp_path):
     # issue 34: at 0.1 % noise the cost is quadratic over EI's interval, so its profile-likelihood interval is the
     # formal one, estimate +- 1.96 SE, to within the Gauss-Newton curvature's own error (about the noise level times
@@ -413,9 +431,10 @@ def test_dict_beams_and_prediction_arrays_are_checked():
                                         "attachment3.m": 0.5}))
     with pytest.raises(TypeError, match="must be a file path"):  # the fourth pass's Q490
         beamid.read_record(123)
-    # An unknown keyword of read_record names read_record's keywords, not modal-id's help (Q489); beam() checks a dict
-    # as every function does, and names a spec of another type (Q518, Q519).
-    with pytest.raises(beamid.InputError, match=r"read_record takes channel, units"):
+    # An unknown keyword of read_record is refused by its signature, as every function's is, not with modal-id's help
+    # (Q489; its flags are typed since adv72 P2); beam() checks a dict as every function does, and names a spec of
+    # another type (Q518, Q519).
+    with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):
         beamid.read_record(__file__, bogus=1)
     with pytest.raises(beamid.InputError, match="<beam dict>:1: \\[beam\\] is missing key 'l'"):
         beamid.beam({"EI": 0.491})

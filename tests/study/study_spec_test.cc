@@ -245,7 +245,7 @@ TEST(StudySpec, TheRecordsNoiseColourAndAMethodsAssumedNoiseAreReadAndNamedInThe
   EXPECT_EQ(s.methods.at(0).noise_model, "truth");
   EXPECT_EQ(error_of(replaced(kValid, "pulse_width_s = 0.004", "pulse_width_s = 0.004\nnoise_model = \"ar:1.1\"")),
             "s.toml:11: truth.noise_model = 'ar:1.1': not stationary: a root of z^p - a1 z^(p-1) - ... has modulus "
-            "1.1 (must be below 1)");
+            "1.1 (must be below 1 - 1e-6: nearer 1, the process's variance and correlation time exceed any record)");
   EXPECT_EQ(
       error_of(replaced(replaced(kValid, "strategy = \"direct\"", "strategy = \"direct\"\nnoise_model = \"ar:0.5\""),
                         "cost = [\"time\", \"spike-smooth\"]", "cost = [\"spike-smooth\"]")),
