@@ -670,8 +670,14 @@ FitNotes fit_notes(const fit::FitResult& result, const costs::CostOptions& cost)
   if (!at_bound.empty())
     notes.on_bound =
         "on a bound: " + at_bound + " (the bound, not the data, set the value; its standard error is not defined)";
+  // Where (A4) fails at the last evaluation, that is why no cost was finite: more spikes asked for than the model's
+  // spectrum shows (the thirty-second pass's adv73 P1 named only the optimizer's tolerance here).
   if (result.status == "failed")
-    notes.failed = "the fit failed, so no estimate is printed (NaN): " + result.termination;
+    notes.failed = "the fit failed, so no estimate is printed (NaN): " +
+                   (result.final_evaluation.a4 != "ok" && !result.final_evaluation.a4.empty()
+                        ? result.final_evaluation.a4 +
+                              " (ask for fewer --spikes, or a model of more elements whose spectrum shows them)"
+                        : result.termination);
   // The budget ran out before the optimizer converged: --max-evaluations 5 printed EI 35 standard errors from the
   // minimum as "free" with its standard error, and 1 or 2 evaluations the start itself, said only inside the summary
   // line (the twentieth pass's P2). The estimate is kept (a study's capped Nelder-Mead fits are results too), and said.

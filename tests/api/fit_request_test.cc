@@ -302,6 +302,22 @@ TEST(FitRequest, CorrelatedTimeResidualsAreSaid) {
   EXPECT_EQ(fit_notes(known.result, known.options.cost).weighting, "");
 }
 
+TEST(FitRequest, AFitThatFailsOnA4SaysSo) {
+  // More spikes than the model's spectrum shows: every evaluation violates (A4), and the failure named the optimizer's
+  // tolerance instead (the thirty-second pass's adv73 P1).
+  FitRequest r = request();
+  r.estimate = {"EI"};
+  r.cost.name = "spike";
+  r.cost.spikes.count = 4;  // the record's spectrum (N = 6) shows 4 maxima; an N = 1 model's fewer
+  r.elements = 1;
+  std::ostringstream warnings;
+  const FitComputation c = compute_fit(r, {record()}, warnings);
+  ASSERT_EQ(c.result.status, "failed");
+  EXPECT_NE(fit_notes(c.result, c.options.cost).failed.find("(A4) violated: the model spectrum shows"),
+            std::string::npos)
+      << fit_notes(c.result, c.options.cost).failed;
+}
+
 TEST(FitRequest, FlagsMapToTheSameRequestAndTheSameNumbers) {
   const apps::Flags flags("fit", {{"beam", "banks-aluminium"},
                                   {"elements", "6"},
