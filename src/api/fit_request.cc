@@ -564,10 +564,10 @@ std::string correlated_residuals_note(const fit::FitResult& result) {
   if (frequency) return uneven_bins_note(e);
   const auto m = static_cast<int>(e.size());
   const signal::NoiseModel colour = signal::fit_autoregressive(std::vector<double>(e.data(), e.data() + m), 20);
-  if (colour.kind == "white") return "";
-  const std::vector<double> g = signal::power_excess(colour, m);
-  const auto peak = static_cast<std::size_t>(std::max_element(g.begin() + 1, g.end()) - g.begin());
-  if (!(g[peak] > signal::coloured_excess_threshold(static_cast<int>(colour.ar.size()), m))) return "";
+  const signal::ColourExcess excess = signal::colour_excess(colour, m);
+  if (!excess.coloured) return "";
+  const std::vector<double>& g = excess.by_bin;
+  const std::size_t peak = excess.peak_bin;
   return "the residuals are coloured: an AR(" + std::to_string(colour.ar.size()) +
          ") model of them (Akaike's order) puts " + format_rounded(g[peak], 2) + " times their average power at " +
          format_rounded(2.0 * static_cast<double>(peak) / m, 2) +

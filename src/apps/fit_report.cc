@@ -86,12 +86,11 @@ namespace {
 void weigh_coloured_residual(const signal::MeasuredModes& measured, const std::vector<double>& decay, double dt_s,
                              std::vector<int>& partner, ModeComparison& c) {
   const signal::PencilDiagnostics& d = measured.diagnostics;
-  if (d.residual_colour.kind == "white" || !(d.residual_fraction > 1e-9) || decay.size() < 64) return;
+  if (!(d.residual_fraction > 1e-9) || decay.size() < 64) return;
   const int samples = static_cast<int>(decay.size());
-  const std::vector<double> excess_by_bin = signal::power_excess(d.residual_colour, samples);
-  if (!(*std::max_element(excess_by_bin.begin() + 1, excess_by_bin.end()) >
-        signal::coloured_excess_threshold(static_cast<int>(d.residual_colour.ar.size()), samples)))
-    return;
+  const signal::ColourExcess colour = signal::colour_excess(d.residual_colour, samples);
+  if (!colour.coloured) return;
+  const std::vector<double>& excess_by_bin = colour.by_bin;
   double squares = 0, largest = 0;
   for (double v : decay) squares += v * v, largest = std::max(largest, std::abs(v));
   const double n = static_cast<double>(decay.size());

@@ -37,9 +37,9 @@ Refit refit(const FitOptions& options, const std::vector<Record>& records, const
   try {
     if (o.estimate.empty()) {
       // Nothing to refit: the cost at the value, as the fit's objective computes it.
-      const ParameterMap map(std::vector<model::BeamParameters>{o.start}, options.estimate, options.scaling);
       std::vector<model::BeamParameters> beams;
       for (const Record& r : fixed) beams.push_back(r.start);
+      const ParameterMap map(beams, options.estimate, options.scaling);  // every record's beam, as fit's map has
       JointObjective objective(options, fixed, map);
       const costs::Evaluation e = objective.evaluate(beams).evaluation;
       out.cost = e.ok() ? e.value : std::numeric_limits<double>::infinity();

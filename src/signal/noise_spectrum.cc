@@ -129,6 +129,17 @@ std::vector<double> power_excess(const NoiseModel& model, int samples) {
   return g;
 }
 
+ColourExcess colour_excess(const NoiseModel& model, int samples) {
+  ColourExcess out;
+  if (model.kind == "white" || samples < 4) return out;
+  out.by_bin = power_excess(model, samples);
+  out.peak_bin =
+      static_cast<std::size_t>(std::max_element(out.by_bin.begin() + 1, out.by_bin.end()) - out.by_bin.begin());
+  const int order = model.kind == "ar" ? static_cast<int>(model.ar.size()) : 1;
+  out.coloured = out.by_bin[out.peak_bin] > coloured_excess_threshold(order, samples);
+  return out;
+}
+
 NoiseModel fit_autoregressive(const std::vector<double>& e, int max_order) {
   return fit_autoregressive(std::vector<std::vector<double>>{e}, max_order);
 }

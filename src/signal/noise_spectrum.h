@@ -78,6 +78,15 @@ inline constexpr double kColouredExcess = 1.5;
 // 64-256 samples Akaike's order 1-4 of white residuals put 1.5 times the power somewhere on 14 in 40 to 4 in 40
 // records: the thirtieth pass's adv69 P3.)
 double coloured_excess_threshold(int order, int samples);
+// power_excess of `model` for `samples` samples, its largest bin above the offset, and whether that exceeds
+// coloured_excess_threshold at the model's order (never for white noise): the one test of colour the fit notes and
+// the fit reports share.
+struct ColourExcess {
+  std::vector<double> by_bin;  // power_excess
+  std::size_t peak_bin = 0;
+  bool coloured = false;
+};
+ColourExcess colour_excess(const NoiseModel& model, int samples);
 // The same from several records of one process (the deviations of repeated records from their mean): one mean over
 // all samples removed, the lag products summed over the records (none across a record's ends) over the total count, n
 // in Akaike's criterion the total count, the order at most the shortest record's length / 4. InputError for no records
