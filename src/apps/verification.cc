@@ -124,6 +124,10 @@ std::vector<ReductionRow> model_reduction_rows(const std::vector<std::string>& p
   return rows;
 }
 
+// The last line of every block: the commit of the program that computed it, which the one-commit rule of REPORT.md
+// (tools/report_commits.py) reads, as it reads a study block's.
+std::string written_by() { return "\n*Written by `beamid verify`, commit " + io::commit_label() + ".*\n"; }
+
 void write_model_reduction(const std::string& folder, const std::vector<ReductionRow>& rows, std::ostream& log) {
   std::ostringstream csv, md;
   csv << "preset,variant,elements,retained,size,gap_ratio,coupling_relative,slowest_discarded_re,"
@@ -157,7 +161,7 @@ void write_model_reduction(const std::string& folder, const std::vector<Reductio
        << " | " << sci(row.decoupled) << " |\n";
   }
   io::write_file_atomic(std::filesystem::path(folder) / "model_reduction.csv", csv.str());
-  io::write_file_atomic(std::filesystem::path(folder) / "model_reduction.md", md.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "model_reduction.md", md.str() + written_by());
   log << "verify: wrote " << folder << "/model_reduction.{csv,md}\n";
 }
 
@@ -215,7 +219,7 @@ void write_verification(const std::string& folder, std::ostream& log) {
     md << "\n";
   }
   io::write_file_atomic(std::filesystem::path(folder) / "frequencies.csv", csv.str());
-  io::write_file_atomic(std::filesystem::path(folder) / "frequencies.md", md.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "frequencies.md", md.str() + written_by());
   log << "verify: wrote " << folder << "/frequencies.{csv,md}\n";
 
   // 2. The exact modal propagator against CVODE.
@@ -260,7 +264,7 @@ void write_verification(const std::string& folder, std::ostream& log) {
     }
   }
   io::write_file_atomic(std::filesystem::path(folder) / "fast_vs_cvode.csv", csv2.str());
-  io::write_file_atomic(std::filesystem::path(folder) / "fast_vs_cvode.md", md2.str());
+  io::write_file_atomic(std::filesystem::path(folder) / "fast_vs_cvode.md", md2.str() + written_by());
   log << "verify: wrote " << folder << "/fast_vs_cvode.{csv,md}\n";
 
   // 3. Modal truncation: what dropping the stiff modes' damping coupling costs (simulation/modal_truncation.h).

@@ -46,6 +46,20 @@ class ReportCommits(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
         self.assertIn("naming no commit: v/frequencies", r.stdout)
 
+    def test_results_older_than_the_code_fail(self):
+        text = block("a/report", "commit 0123abcd4567;") + block("b/report", "commit 0123abcd4567;")
+        r = run(text, "--check", "--code", "0123abcd4567")
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        r = run(text, "--check", "--code", "0123abcd")  # an abbreviation of the same commit
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        r = run(text, "--check", "--code", "89ef0123abcd")
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(len(r.stdout.splitlines()), 1)
+        self.assertIn("older than the code's 89ef0123abcd", r.stdout)
+        r = run(text, "--check", "--code", "unknown")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--code 'unknown': must be a commit", r.stderr)
+
     def test_census_lists_every_commit(self):
         text = block("a/report", "commit 0123abcd4567;") + block("b/report", "commit 0123abcd4567;") + \
             block("c/report", "commit 89ef0123abcd;")
