@@ -3,12 +3,13 @@
 tables, as REPORT.md blocks.
 
 Reads results/comparison*/ (start_distance/reach.csv, reference.csv, reference_modes.csv, timings.csv,
-convergence.csv and manifest.json) and writes RESULTS_DIR/design/{answer,accuracy,modes,across_n}.md, which `beamid
-report` pastes into the blocks design/answer, design/accuracy, design/modes and design/across_n. Each opens with the
-commit that made the tables it reads; when the studies come from several commits it names none of them, so that
-`make report-check` fails rather than a block mixing them silently. Seconds come from the timings files, which change
-from run to run; everything else is a function of the tables, so a second run writes the same bytes. Only the
-standard library.
+convergence.csv and manifest.json) and writes RESULTS_DIR/design/{answer,accuracy,modes,across_n,compute}.md, which `beamid
+report` pastes into the blocks of those names under design/. Each opens with the commit that made the tables it
+reads; when the studies come from several commits it names none of them, so that `make report-check` fails rather
+than a block mixing them silently. compute.md alone holds seconds, from the timings files, which change from run to
+run (it is a timings file, as timings.csv is); every other block is a function of the tables (the answer's compute is
+the median number of model evaluations per fit), so a second run writes them byte for byte. Only the standard
+library.
 """
 import csv
 import json
@@ -109,9 +110,9 @@ class Study:
                   if r["parameter"] in keys]
         return max(values) if values else float("nan")
 
-    def seconds(self, run, experiment):
+    def timing(self, run, experiment, column):
         found = self.of(self.timings, run, experiment)
-        return float(found[0]["median_seconds"]) if found else float("nan")
+        return float(found[0][column]) if found else float("nan")
 
 
 def provenance(studies):
@@ -133,7 +134,7 @@ def answer(thin, thick):
         modes = " / ".join(error.modes_in[x] for x in e)
         out.append("**%s beam** (records of %s modes; values for each, separated by /)\n" % (beam.capitalize(), modes))
         out.append("| method | 50 %% radius, %% (95 %% interval), with model error | without | worst RMSE / bound "
-                   "on %s, with model error | without | median s per fit |" % ", ".join(stiff))
+                   "on %s, with model error | without | median evaluations per fit |" % ", ".join(stiff))
         out.append("|---|---|---|---|---|---|")
         for run in error.runs:
             reach_e = [error.of(error.reach, run, x) for x in e]
@@ -145,7 +146,7 @@ def answer(thin, thick):
                 " / ".join(ratio(error.worst(run, x, stiff)) for x in e),
                 " / ".join(ratio(control.worst(run, x, stiff)) for x in control.experiments)
                 if control.of(control.reference, run, control.experiments[0]) else "-",
-                " / ".join("%.2g" % error.seconds(run, x) for x in e)))
+                " / ".join("%.0f" % error.timing(run, x, "median_evaluations") for x in e)))
         out.append("")
     # The evaluation budget where it bound: the fits of every run of every design study that ran out of it.
     spent = []
@@ -260,6 +261,30 @@ def across_n(thin, thick):
     return "\n".join(out)
 
 
+def compute(thin, thick):
+    """Per run and experiment of each beam's study with all three model errors: median evaluations and seconds per
+    fit, and the run's total seconds (the timings files: seconds change from run to run)."""
+    out = ["Median model evaluations and seconds per fit, and each run's total seconds over its fits (from the "
+           "start and from the truth), in the studies with all three model errors (`start_distance/timings.csv`: "
+           "the seconds change from run to run and with the machine's load).\n"]
+    for beam, studies in (("thin", thin), ("thick", thick)):
+        error = studies[-1]
+        if not error.present:
+            continue
+        e = error.experiments
+        out.append("**%s beam** (records of %s modes, separated by /)\n" %
+                   (beam.capitalize(), " / ".join(error.modes_in[x] for x in e)))
+        out.append("| method | median evaluations per fit | median s per fit | total s |")
+        out.append("|---|---|---|---|")
+        for run in error.runs:
+            out.append("| `%s` | %s | %s | %s |" % (
+                run, " / ".join("%.0f" % error.timing(run, x, "median_evaluations") for x in e),
+                " / ".join("%.2g" % error.timing(run, x, "median_seconds") for x in e),
+                " / ".join("%.0f" % error.timing(run, x, "total_seconds") for x in e)))
+        out.append("")
+    return "\n".join(out)
+
+
 def main(argv):
     if len(argv) != 2:
         sys.exit("usage: design_tables.py RESULTS_DIR")
@@ -272,10 +297,11 @@ def main(argv):
     os.makedirs(folder, exist_ok=True)
     head = provenance(thin + thick)
     for name, body in (("answer", answer(thin, thick)), ("accuracy", accuracy(thin, thick)),
-                       ("modes", modes_table(thin, thick)), ("across_n", across_n(thin, thick))):
+                       ("modes", modes_table(thin, thick)), ("across_n", across_n(thin, thick)),
+                       ("compute", compute(thin, thick))):
         with open(os.path.join(folder, name + ".md"), "w") as f:
             f.write(head + "\n" + body.rstrip() + "\n")
-    print("design_tables.py: wrote %s/{answer,accuracy,modes,across_n}.md" % folder)
+    print("design_tables.py: wrote %s/{answer,accuracy,modes,across_n,compute}.md" % folder)
     return 0
 
 

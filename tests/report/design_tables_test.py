@@ -63,9 +63,9 @@ class DesignTables(unittest.TestCase):
             lines = answer.splitlines()
             order = [l.split("|")[1].strip() for l in lines if l.startswith("| `")]
             self.assertEqual(order, ["`time/direct`", "`time/direct-sensed`", "`modal/direct`"])
-            self.assertIn("| `time/direct` | 2 (1-4) | 2 (1-4) | 60 | 1.1 | 0.05 |", answer)
-            self.assertIn("| `modal/direct` | < 0.1 | > 20 | 78 | 3.6 | 0.05 |", answer)
-            self.assertIn("| `time/direct-sensed` | 3 (1.5-6) | - | 4.4 | - | 0.05 |", answer)
+            self.assertIn("| `time/direct` | 2 (1-4) | 2 (1-4) | 60 | 1.1 | 10 |", answer)
+            self.assertIn("| `modal/direct` | < 0.1 | > 20 | 78 | 3.6 | 10 |", answer)
+            self.assertIn("| `time/direct-sensed` | 3 (1.5-6) | - | 4.4 | - | 10 |", answer)
             accuracy = (root / "design" / "accuracy.md").read_text()
             self.assertIn("| `time/direct` | 1.1 | 60 |", accuracy)  # the control's column, then all three errors'
             self.assertIn("| `time/direct` | -0.064* | -0.064* |", accuracy)  # the study's EI and rho rows alike
@@ -73,6 +73,11 @@ class DesignTables(unittest.TestCase):
             across = (root / "design" / "across_n.md").read_text()
             self.assertIn("| `time/direct` | 0.2 / 50 |", across)
             self.assertIn("| `time/direct-sensed` | 0.02 / 5 |", across)
+            # Seconds only in compute.md (a timings file): the answer's compute is evaluations, a function of the tables.
+            self.assertNotIn("0.05", answer)
+            timing = (root / "design" / "compute.md").read_text()
+            self.assertIn("commit abc1234def56", timing)
+            self.assertIn("| `time/direct` | 10 | 0.05 | 10 |", timing)
             first = {p.name: p.read_bytes() for p in (root / "design").iterdir()}
             self.assertEqual(run(root).returncode, 0)
             self.assertEqual(first, {p.name: p.read_bytes() for p in (root / "design").iterdir()})
