@@ -165,7 +165,7 @@ def load_results(folder, as_dict=False):
     expected = tables["manifest"].get("cases")
     if "cases" in tables and isinstance(expected, int) and not isinstance(expected, bool):
         rows = len(next(iter(tables["cases"].values()))) if as_dict else len(tables["cases"])
-        if tables["cases"] is not None and rows != expected:
+        if rows != expected:
             raise ValueError(f"{os.path.join(folder, 'cases.csv')}: {rows} rows, but manifest.json counts {expected} "
                              "cases: cut short or from another run (rerun beamid study to rewrite it)")
     return tables
