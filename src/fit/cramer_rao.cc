@@ -141,9 +141,10 @@ CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elem
   const galerkin::BeamForms forms(space, beam.l, beam.support);
   if (simulation::has_exact_sensitivities(experiment, keys) && simulator.integrator == simulation::kFast) {
     check_noise(noise_sd);
-    simulation::SensitivityTrace s = simulation::simulate_with_sensitivities(forms, beam, simulated, keys);
+    // The sensor's filter carried through the closed form (fit::output_filter): the record's own grid.
+    simulation::SensitivityTrace s =
+        simulation::simulate_with_sensitivities(forms, beam, experiment, keys, output_filter(sensor, experiment.dt_s));
     if (!s.trace.ok()) throw NumericalError("Cramér-Rao bound: the model could not be evaluated: " + s.trace.status);
-    sense_columns(sensor, experiment, s.dy_dq);
     CramerRaoBound b;
     b.keys = keys;
     b.method = "exact";

@@ -33,6 +33,9 @@ struct Objective::Impl {
   // simulated record by the fast propagator: that map applied to the eigenvalue derivatives (galerkin/modes.h).
   bool exact_jacobian = false;
   bool pole_jacobian = false;
+  // The sensor's filter carried by the fast simulator's closed form (fit::output_filter); null without a filter or
+  // with cvode, which simulates `simulated` and filters it (sense_output).
+  std::shared_ptr<const simulation::OutputFilter> filter{};
 };
 
 Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
@@ -66,6 +69,7 @@ Objective::Objective(const FitOptions& o, const std::vector<double>& data) {
   const bool fast = o.simulator.integrator == simulation::kFast;
   // A free decay's poles are the model's, whatever its amplitudes: the modal cost's pole Jacobian holds there too.
   impl_->pole_jacobian = cost_->has_pole_jacobian() && fast;
+  if (fast) impl_->filter = output_filter(o.sensor, o.experiment.dt_s);
   std::vector<std::string> keys;
   for (const auto& e : o.estimate) keys.push_back(e.key);
   impl_->exact_jacobian = impl_->pole_jacobian || (cost_->has_output_jacobian() &&
@@ -86,14 +90,13 @@ Objective::Output Objective::evaluate_with_jacobian(const model::BeamParameters&
   }
   try {
     if (impl_->pole_jacobian) return evaluate_with_pole_jacobian(beam, keys, jacobian);
+    // The exact Jacobian is the fast simulator's: with a sensor, its filter is carried through the closed form.
     simulation::SensitivityTrace s =
-        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->simulated, keys);
+        simulation::simulate_with_sensitivities(impl_->forms, beam, impl_->experiment, keys, impl_->filter);
     if (!s.trace.ok()) {
       out.evaluation.status = s.trace.status;
       return out;
     }
-    sense_output(impl_->sensor, impl_->experiment, s.trace.y);
-    sense_columns(impl_->sensor, impl_->experiment, s.dy_dq);
     out.y = std::move(s.trace.y);
     out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, s.trace.poles_rad_s});
     if (out.evaluation.ok())
@@ -200,20 +203,24 @@ Objective::Output Objective::evaluate(const model::BeamParameters& beam, Respons
       out.evaluation = cost_->evaluate(costs::ModelResponse{out.y, decay.poles_rad_s});
       return out;
     }
-    // With the sensor's filter, the model runs on the finer grid where its output is read; a cost that reads only
-    // the poles (modal), which the filter does not move, gets them from the record's grid, and no unfiltered output.
+    // With the sensor's filter, the model's output is read as the sensor delivers it: the fast simulator carries the
+    // filter through its closed form on the record's grid; cvode runs on the finer grid and the output is filtered. A
+    // cost that reads only the poles (modal), which the filter does not move, gets them from the record's grid, and
+    // no unfiltered output.
     const bool sensed = impl_->sensor.cutoff_hz > 0 && (response == Response::always || cost_->uses_response());
+    const bool fine = sensed && !impl_->filter;
     simulation::ResponseProblem problem =
-        simulation::make_problem(impl_->forms, system, sensed ? impl_->simulated : impl_->experiment, beam.l);
+        simulation::make_problem(impl_->forms, system, fine ? impl_->simulated : impl_->experiment, beam.l);
     problem.frf = cost_->uses_transfer_function();
+    if (sensed) problem.output_filter = impl_->filter;
     simulation::Trace trace = impl_->simulator->run(system, problem);
     if (!trace.ok()) {
       out.evaluation.status = trace.status;
       return out;
     }
-    if (sensed)
+    if (fine)
       sense_output(impl_->sensor, impl_->experiment, trace.y);
-    else if (impl_->sensor.cutoff_hz > 0)
+    else if (impl_->sensor.cutoff_hz > 0 && !sensed)
       trace.y.clear();
     out.y = std::move(trace.y);
     poles = std::move(trace.poles_rad_s);

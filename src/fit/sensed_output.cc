@@ -42,17 +42,11 @@ void sense_output(const signal::SensorFilter& sensor, const simulation::Experime
   if (sensor.cutoff_hz > 0) y = signal::sense(sensor, y, record.dt_s, level_before(record, y));
 }
 
-void sense_columns(const signal::SensorFilter& sensor, const simulation::Experiment& record, Eigen::MatrixXd& columns) {
-  if (!(sensor.cutoff_hz > 0)) return;
-  const Eigen::Index fine = columns.rows();
-  Eigen::MatrixXd sensed(fine / sensor.oversampling, columns.cols());
-  std::vector<double> column(static_cast<std::size_t>(fine));
-  for (Eigen::Index k = 0; k < columns.cols(); ++k) {
-    Eigen::VectorXd::Map(column.data(), fine) = columns.col(k);
-    const std::vector<double> out = signal::sense(sensor, column, record.dt_s, level_before(record, column));
-    sensed.col(k) = Eigen::VectorXd::Map(out.data(), static_cast<Eigen::Index>(out.size()));
-  }
-  columns = std::move(sensed);
+std::shared_ptr<const simulation::OutputFilter> output_filter(const signal::SensorFilter& sensor, double dt_s) {
+  if (!(sensor.cutoff_hz > 0)) return nullptr;
+  signal::FilterStateSpace f = signal::state_space(sensor, dt_s);
+  return std::make_shared<const simulation::OutputFilter>(std::move(f.a), std::move(f.b), std::move(f.c), f.d,
+                                                          sensor.oversampling);
 }
 
 }  // namespace beamid::fit

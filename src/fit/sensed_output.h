@@ -1,19 +1,22 @@
 // A model's output as a sensor of finite bandwidth delivers it (signal/sensor_filter.h), for a fit whose model
 // includes the measurement chain's anti-alias filter (issue 35: least squares' best practice when the record was
-// filtered before sampling): the model simulated `oversampling` times finer (simulation::finer), its output filtered
-// and every R-th sample kept, exactly as a study's truth is sensed. The filter is linear (its start, the steady state
-// of the first sample, is linear in that sample too), so the sensitivities of the sensed output are the sensed
-// sensitivities, column by column, exactly. The beam's poles are the model's whatever the filter: the modal cost reads
+// filtered before sampling): the model's output filtered on a grid `oversampling` times finer and every R-th sample
+// kept, exactly as a study's truth is sensed (the truth simulated finer and filtered sample by sample; a fitted model
+// by the fast simulator's closed form, output_filter). The filter is linear (its start, the steady state of the first
+// sample, is linear in that sample too), so the sensitivities of the sensed output are the sensed sensitivities,
+// exactly. The beam's poles are the model's whatever the filter: the modal cost reads
 // them unchanged.
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "signal/sensor_filter.h"
 #include "simulation/experiment.h"
+#include "simulation/output_filter.h"
 
 namespace beamid::fit {
 
@@ -34,10 +37,12 @@ simulation::Experiment simulated_experiment(const simulation::Experiment& record
 std::optional<double> level_before(const simulation::Experiment& record, const std::vector<double>& output);
 
 // The output simulated on simulated_experiment's grid, as the sensor delivers it on the record's (in place; nothing
-// without a filter).
+// without a filter): the truth's sensing, and a model run by cvode.
 void sense_output(const signal::SensorFilter& sensor, const simulation::Experiment& record, std::vector<double>& y);
-// The same for every column of a samples x parameters matrix (d y / d q: the levels before t = 0 are the
-// derivatives of the output's, so each column is sensed by the same rule).
-void sense_columns(const signal::SensorFilter& sensor, const simulation::Experiment& record, Eigen::MatrixXd& columns);
+
+// The sensor's filter as the fast simulator carries it through its closed form on the record's own grid (issue 32:
+// simulation/output_filter.h, the same output as simulating finer and sense_output, to round-off, at the cost of a
+// run on the record's grid); null without a filter.
+std::shared_ptr<const simulation::OutputFilter> output_filter(const signal::SensorFilter& sensor, double dt_s);
 
 }  // namespace beamid::fit

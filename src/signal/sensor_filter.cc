@@ -77,6 +77,42 @@ std::vector<double> sense(const SensorFilter& f, const std::vector<double>& fine
   return out;
 }
 
+FilterStateSpace state_space(const SensorFilter& f, double dt_s) {
+  if (auto error = validation_error(f, dt_s)) throw InputError(*error);
+  FilterStateSpace total;  // the identity, extended section by section
+  if (!(f.cutoff_hz > 0)) return total;
+  for (const Section& s : sections(f, dt_s / f.oversampling)) {
+    // One section: y = b0 x + s1, s1' = (b1 - a1 b0) x - a1 s1 + s2, s2' = (b2 - a2 b0) x - a2 s1 (s2 absent for a
+    // first-order one, whose a2 = b2 = 0).
+    const bool second = s.a2 != 0 || s.b2 != 0;
+    const Eigen::Index n = second ? 2 : 1;
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd b(n), c = Eigen::VectorXd::Zero(n);
+    a(0, 0) = -s.a1;
+    b(0) = s.b1 - s.a1 * s.b0;
+    c(0) = 1;
+    if (second) {
+      a(0, 1) = 1;
+      a(1, 0) = -s.a2;
+      b(1) = s.b2 - s.a2 * s.b0;
+    }
+    // In cascade after `total`: its output C1 s1 + D1 x is this section's input.
+    const Eigen::Index m = total.a.rows();
+    FilterStateSpace next;
+    next.a = Eigen::MatrixXd::Zero(m + n, m + n);
+    next.a.topLeftCorner(m, m) = total.a;
+    next.a.bottomLeftCorner(n, m) = b * total.c.transpose();
+    next.a.bottomRightCorner(n, n) = a;
+    next.b.resize(m + n);
+    next.b << total.b, b * total.d;
+    next.c.resize(m + n);
+    next.c << s.b0 * total.c, c;
+    next.d = s.b0 * total.d;
+    total = std::move(next);
+  }
+  return total;
+}
+
 std::complex<double> sensor_response(const SensorFilter& f, double dt_s, double frequency_hz) {
   if (auto error = validation_error(f, dt_s)) throw InputError(*error);
   const double fine_dt = dt_s / f.oversampling;

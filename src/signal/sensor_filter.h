@@ -9,6 +9,7 @@
 // t = 0 (the beam at rest, or a displacement held at a pluck's static deflection); then every R-th sample is kept.
 #pragma once
 
+#include <Eigen/Dense>
 #include <complex>
 #include <optional>
 #include <string>
@@ -32,6 +33,19 @@ std::optional<std::string> validation_error(const SensorFilter& filter, double d
 // fine record whose length is not a multiple of R.
 std::vector<double> sense(const SensorFilter& filter, const std::vector<double>& fine, double dt_s,
                           std::optional<double> level_before = std::nullopt);
+
+// The filter on its fine grid (dt_s / oversampling) as one linear system of order `order`, the sections in cascade
+// (each in direct form II transposed, a first-order one with one state):
+//   s_{i+1} = A s_i + B x_i,  y_i = C s_i + D x_i,
+// with unit gain at DC, C (I - A)^-1 B + D = 1. sense() runs the same recursion section by section; this form lets a
+// closed-form response carry the filter through a sum of exponentials (simulation/output_filter.h). An identity (order
+// 0, D = 1) for a cut-off of 0. InputError for an invalid filter.
+struct FilterStateSpace {
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b, c;
+  double d = 1;
+};
+FilterStateSpace state_space(const SensorFilter& filter, double dt_s);
 
 // The digital filter's response at f (Hz) on the fine grid (for checks against the analog magnitude).
 std::complex<double> sensor_response(const SensorFilter& filter, double dt_s, double frequency_hz);

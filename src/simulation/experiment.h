@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "core/names.h"
 
 namespace beamid::simulation {
+
+class OutputFilter;  // simulation/output_filter.h
 
 // Excitations and sensor outputs by name (the registries every reader of these names uses).
 inline const std::string kPulse = "pulse";
@@ -77,6 +80,10 @@ struct ResponseProblem {
   int derivative = 0;
   double dt_s = 0;
   int samples = 0;
+  // A filter on the output and its decimation (a sensor's anti-alias filter in a fitted model): the trace is the
+  // output filtered on the grid dt_s / R and every R-th sample kept, on this grid (dt_s, samples). The fast simulator
+  // carries it through its closed form; cvode refuses it. None: the output as it is.
+  std::shared_ptr<const OutputFilter> output_filter;
 
   // P(t) of the pulse or the sampled force, N.
   double force_N(double t_s) const;

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "galerkin/modes.h"
+#include "simulation/output_filter.h"
 
 namespace beamid::simulation {
 namespace {
@@ -136,6 +137,9 @@ Trace sampled_force_trace(Trace trace, const galerkin::StateSpaceModes& modes,
 }
 
 }  // namespace
+
+complex pulse_divided_exp(complex a, complex b) { return divided_exp(a, b); }
+complex pulse_divided_exp_da(complex a, complex b) { return divided_exp_da(a, b); }
 
 complex pulse_response_derivative(complex lambda, double t, double tau) {
   // d/dlambda of t D(lambda t, mu t) is t^2 dD/da (lambda t, mu t), for mu = 0 and +-i w.
@@ -312,6 +316,145 @@ void require_above_round_off(const std::vector<double>& y, double cancelling, do
                             : std::string()));
 }
 
+// The response of a pulse or a pluck: written into y for the samples inside the pulse (i < first_free, t_i <= tau),
+// and returned after it as a sum of exponentials Re sum_k a_k e^{lambda_k (t - tau)} (amplitudes at tau, each term's
+// last sample not yet set), with what the round-off check needs.
+struct ModalResponse {
+  int first_free = 0;
+  double tau = 0, direct = 0, cancelling = 0;
+  std::vector<Exponential> free;
+  double negligible = 0;  // 1e-18 of the bound on every later output: a term below it is left out
+};
+
+ModalResponse pulse_and_free_terms(std::vector<double>& y, const galerkin::StateSpaceModes& modes,
+                                   const ResponseProblem& p, Trace& trace) {
+  ModalResponse r;
+  const Eigen::VectorXcd& lambda = modes.eigenvalues();
+  const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
+  const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
+  const Eigen::VectorXcd g = pulse ? Eigen::VectorXcd(p.amplitude_N * modes.input_coefficients(p.load))
+                                   : Eigen::VectorXcd::Zero(lambda.size());
+  // Modal initial state: only a pluck has one (a pulse starts at rest), so the pulse path skips the solve.
+  const Eigen::VectorXcd e0 = p.w0.isZero(0.0) ? Eigen::VectorXcd::Zero(lambda.size())
+                                               : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
+  r.direct = (p.derivative == 2 && pulse) ? modes.feedthrough(p.sensor, p.load) : 0.0;
+  record_poles(trace, modes);
+
+  const double tau = pulse ? p.pulse_width_s : 0.0;
+  r.tau = tau;
+  const double w = pulse ? 2 * std::numbers::pi / tau : 0.0;
+  // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
+  // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
+  const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
+  r.first_free = first_free;
+
+  // Inside the pulse, rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds splits into
+  //   rho(t) = alpha e^{lambda t} + beta + gamma e^{iwt} + delta e^{-iwt},
+  //   alpha = w^2 / (2 lambda (lambda^2 + w^2)),  beta = -1/(2 lambda),  gamma, delta = 1/(4 (lambda -+ iw))
+  // (from int_0^t e^{lambda (t-s)} e^{mu s} ds = (e^{lambda t} - e^{mu t})/(lambda - mu) for mu = 0, +-iw; alpha
+  // summed without cancellation). The terms beta, gamma, delta of all modes collapse into three sums, and the
+  // alpha e^{lambda t} join the free decay's sum of exponentials. The split loses accuracy only by cancellation
+  // between terms of size 1/|lambda| or 1/|lambda -+ iw| against rho ~ tau, so a mode uses it when |lambda| tau >= 1
+  // and |lambda -+ iw| tau >= 1 (at most a factor of 2 lost); the slow and near-resonant ones keep the exact step
+  // below, which is free of cancellation (divided exponentials).
+  complex beta_sum = 0, gamma_sum = 0, delta_sum = 0;
+  // The in-pulse values' round-off, the modal data's accuracy times `cancelling`: a split mode's terms have sizes
+  // |hg| / |lambda|, |hg| / |lambda -+ iw|; a stepped one's rho carries eps |hg| per unit time (its divided
+  // exponentials are at most 1 for Re lambda <= 0). Checked against the record's peak (require_above_round_off).
+  std::vector<Exponential> in_pulse;
+  double bound = 0;  // sum of |mode amplitudes| at tau: no later output can exceed it
+  for (int k = 0; k < lambda.size(); ++k) {
+    if (lambda(k).imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
+    const complex l = lambda(k);
+    const double weight = l.imag() > 0 ? 2.0 : 1.0;
+    const complex hk = weight * h(k);
+    const complex i_w(0.0, w);
+    if (first_free > 0) {
+      const bool split = std::abs(l) * tau >= 1 && std::abs(l - i_w) * tau >= 1 && std::abs(l + i_w) * tau >= 1;
+      if (split) {
+        const complex hg = hk * g(k);
+        beta_sum += hg * (-0.5 / l);
+        gamma_sum += hg * (0.25 / (l - i_w));
+        delta_sum += hg * (0.25 / (l + i_w));
+        const complex amplitude = hg * (w * w / (2.0 * l * (l * l + w * w))) + hk * e0(k);
+        in_pulse.push_back({l, amplitude, first_free - 1});
+        r.cancelling += std::abs(hg) * (0.5 / std::abs(l) + 0.25 / std::abs(l - i_w) + 0.25 / std::abs(l + i_w));
+      } else {
+        r.cancelling += std::abs(hk * g(k)) * (first_free - 1) * p.dt_s;
+        add_stepped_pulse_mode(y, l, hk, hk * g(k), e0(k), w, tau, p.dt_s, first_free);
+      }
+    }
+    const complex amplitude =
+        hk * ((pulse ? g(k) * pulse_response(l, tau, tau) : complex(0)) + e0(k) * std::exp(l * tau));
+    bound += std::abs(amplitude);
+    r.free.push_back({l, amplitude, p.samples - 1});
+  }
+  add_split_pulse_terms(y, p, w, first_free, beta_sum, gamma_sum, delta_sum, r.direct);
+  if (!in_pulse.empty()) add_in_pulse_exponentials(y, p.dt_s, first_free, std::move(in_pulse));
+  // Each mode dropped once its amplitude is below 1e-18 of the bound.
+  r.negligible = 1e-18 * bound;
+  std::erase_if(r.free, [&](const Exponential& term) { return std::abs(term.amplitude) <= r.negligible; });
+  return r;
+}
+
+// t = 0 is the initial condition itself: evaluated from the state, not as a sum over modes (for a pluck's
+// acceleration that sum runs over every stiff mode, clustered shear relaxation rates included, and loses ~1e-5).
+// w(0) = w0, w'(0) = 0, w''(0) = M^-1 (f P(0) - K w0).
+double initial_sample(const galerkin::SecondOrderSystem& system, const ResponseProblem& p) {
+  if (p.derivative == 0) return p.sensor.dot(p.w0);
+  if (p.derivative == 1) return 0.0;
+  return p.sensor.dot(system.M.llt().solve(p.force_N(0.0) * p.load - system.K * p.w0));
+}
+
+// The free decay's terms added to y from sample `begin` on (grid dt_s), each up to its last significant sample.
+void add_free_terms(std::vector<double>& y, int begin, double dt_s, const ModalResponse& r,
+                    std::vector<Exponential> terms) {
+  const int samples = static_cast<int>(y.size());
+  for (Exponential& term : terms)
+    term.last = last_significant(term.lambda, std::abs(term.amplitude), r.negligible, r.tau, dt_s, begin, samples);
+  add_exponentials(y, begin, dt_s, r.tau, std::move(terms));
+}
+
+// The record as the output filter delivers it (output_filter.h): the pulse simulated on the fine grid dt / R and
+// filtered sample by sample; after it, each free term times the filter's H(mu) on the record's grid, and the
+// filter's decay from the difference between its state at the pulse's end and the terms' particular states there.
+void filtered_record(Trace& trace, const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
+                     const ResponseProblem& p) {
+  const OutputFilter& filter = *p.output_filter;
+  const int decimation = filter.decimation();
+  ResponseProblem fine = p;
+  fine.output_filter.reset();
+  fine.dt_s = p.dt_s / decimation;
+  const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
+  const double fine_samples = static_cast<double>(p.samples) * decimation;
+  // The head simulated on the fine grid: the pulse, or a pluck's first sample, which is the exact initial state's
+  // (initial_sample: for an acceleration the modal sum there is off by the round-off of every stiff mode's term,
+  // which the filter would carry on).
+  const int n1 = static_cast<int>(pulse ? std::min(fine_samples, std::floor(p.pulse_width_s / fine.dt_s) + 1) : 1.0);
+  fine.samples = n1;
+  std::vector<double> head(static_cast<std::size_t>(fine.samples), 0.0);
+  const ModalResponse r = pulse_and_free_terms(head, modes, fine, trace);
+  head[0] = initial_sample(system, fine);
+  // What the sensor saw before t = 0: a displacement held at rest or at a pluck's deflection; a velocity or an
+  // acceleration is 0 before the release or the force (fit/sensed_output.h's level_before).
+  Eigen::MatrixXd state = filter.steady_state(p.derivative == 0 ? head[0] : 0.0);
+  Eigen::Map<Eigen::MatrixXd> record(trace.y.data(), p.samples, 1);
+  filter.run(Eigen::Map<const Eigen::MatrixXd>(head.data(), n1, 1), state, record);
+  const int begin = (n1 + decimation - 1) / decimation;  // the first record sample after the pulse
+  if (begin >= p.samples) return;
+  std::vector<Exponential> filtered = r.free;
+  const double since_tau = n1 * fine.dt_s - r.tau;  // at the fine sample n1, where the filter's state is known
+  for (Exponential& term : filtered) {
+    const OutputFilter::Response at = filter.at(std::exp(term.lambda * fine.dt_s));
+    if (filter.order() > 0) state.col(0) -= (at.v * term.amplitude * std::exp(term.lambda * since_tau)).real();
+    term.amplitude *= at.h;
+  }
+  trace.stats.modes = static_cast<int>(filtered.size());
+  add_free_terms(trace.y, begin, p.dt_s, r, std::move(filtered));
+  filter.add_transient(record, n1, std::move(state));
+  require_above_round_off(trace.y, r.cancelling, r.tau, r.direct, std::min(begin, p.samples), p);
+}
+
 }  // namespace
 
 Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin::SecondOrderSystem& system,
@@ -320,94 +463,21 @@ Trace ModalSimulator::run(const galerkin::StateSpaceModes& modes, const galerkin
   trace.stats.integrator = "fast";
   trace.y.assign(static_cast<std::size_t>(p.samples), 0.0);
   try {
-    if (!p.force_samples_N.empty()) return sampled_force_trace(std::move(trace), modes, system, p);
-    const Eigen::VectorXcd& lambda = modes.eigenvalues();
-    const Eigen::VectorXcd h = modes.output_coefficients(p.sensor, p.derivative);
-    const bool pulse = p.pulse_width_s > 0 && p.amplitude_N != 0;
-    const Eigen::VectorXcd g = pulse ? Eigen::VectorXcd(p.amplitude_N * modes.input_coefficients(p.load))
-                                     : Eigen::VectorXcd::Zero(lambda.size());
-    // Modal initial state: only a pluck has one (a pulse starts at rest), so the pulse path skips the solve.
-    const Eigen::VectorXcd e0 = p.w0.isZero(0.0) ? Eigen::VectorXcd::Zero(lambda.size())
-                                                 : modes.state_coefficients(p.w0, Eigen::VectorXd::Zero(p.w0.size()));
-    const double direct = (p.derivative == 2 && pulse) ? modes.feedthrough(p.sensor, p.load) : 0.0;
-    record_poles(trace, modes);
-
-    const double tau = pulse ? p.pulse_width_s : 0.0;
-    const double w = pulse ? 2 * std::numbers::pi / tau : 0.0;
-    // Samples inside the pulse, t_i <= tau, are evaluated in closed form; the rest propagate freely from tau.
-    // (In double before the cast: tau / dt may exceed the int range, e.g. dt = 1e-12 s against a 4 ms pulse.)
-    const int first_free = static_cast<int>(std::min<double>(p.samples, pulse ? std::floor(tau / p.dt_s) + 1 : 0));
-
-    // Inside the pulse, rho(t) = int_0^t e^{lambda (t-s)} sin^2(pi s/tau) ds splits into
-    //   rho(t) = alpha e^{lambda t} + beta + gamma e^{iwt} + delta e^{-iwt},
-    //   alpha = w^2 / (2 lambda (lambda^2 + w^2)),  beta = -1/(2 lambda),  gamma, delta = 1/(4 (lambda -+ iw))
-    // (from int_0^t e^{lambda (t-s)} e^{mu s} ds = (e^{lambda t} - e^{mu t})/(lambda - mu) for mu = 0, +-iw; alpha
-    // summed without cancellation). The terms beta, gamma, delta of all modes collapse into three sums, and the
-    // alpha e^{lambda t} join the free decay's sum of exponentials. The split loses accuracy only by cancellation
-    // between terms of size 1/|lambda| or 1/|lambda -+ iw| against rho ~ tau, so a mode uses it when |lambda| tau >= 1
-    // and |lambda -+ iw| tau >= 1 (at most a factor of 2 lost); the slow and near-resonant ones keep the exact step
-    // below, which is free of cancellation (divided exponentials).
-    complex beta_sum = 0, gamma_sum = 0, delta_sum = 0;
-    // The in-pulse values' round-off, the modal data's accuracy times `cancelling`: a split mode's terms have sizes
-    // |hg| / |lambda|, |hg| / |lambda -+ iw|; a stepped one's rho carries eps |hg| per unit time (its divided
-    // exponentials are at most 1 for Re lambda <= 0). Checked against the record's peak (require_above_round_off).
-    double cancelling = 0;
-    std::vector<Exponential> in_pulse, free;
-    double bound = 0;  // sum of |mode amplitudes| at tau: no later output can exceed it
-    std::vector<complex> at_tau;
-    std::vector<int> free_modes;
-    for (int k = 0; k < lambda.size(); ++k) {
-      if (lambda(k).imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
-      const complex l = lambda(k);
-      const double weight = l.imag() > 0 ? 2.0 : 1.0;
-      const complex hk = weight * h(k);
-      const complex i_w(0.0, w);
-      if (first_free > 0) {
-        const bool split = std::abs(l) * tau >= 1 && std::abs(l - i_w) * tau >= 1 && std::abs(l + i_w) * tau >= 1;
-        if (split) {
-          const complex hg = hk * g(k);
-          beta_sum += hg * (-0.5 / l);
-          gamma_sum += hg * (0.25 / (l - i_w));
-          delta_sum += hg * (0.25 / (l + i_w));
-          const complex amplitude = hg * (w * w / (2.0 * l * (l * l + w * w))) + hk * e0(k);
-          in_pulse.push_back({l, amplitude, first_free - 1});
-          cancelling += std::abs(hg) * (0.5 / std::abs(l) + 0.25 / std::abs(l - i_w) + 0.25 / std::abs(l + i_w));
-        } else {
-          cancelling += std::abs(hk * g(k)) * (first_free - 1) * p.dt_s;
-          add_stepped_pulse_mode(trace.y, l, hk, hk * g(k), e0(k), w, tau, p.dt_s, first_free);
-        }
-      }
-      const complex amplitude =
-          hk * ((pulse ? g(k) * pulse_response(l, tau, tau) : complex(0)) + e0(k) * std::exp(l * tau));
-      bound += std::abs(amplitude);
-      at_tau.push_back(amplitude);
-      free_modes.push_back(k);
+    if (!p.force_samples_N.empty()) {
+      if (p.output_filter) throw InputError("fast: an output filter on a sampled force is not carried");
+      return sampled_force_trace(std::move(trace), modes, system, p);
     }
-    add_split_pulse_terms(trace.y, p, w, first_free, beta_sum, gamma_sum, delta_sum, direct);
-    if (!in_pulse.empty()) add_in_pulse_exponentials(trace.y, p.dt_s, first_free, std::move(in_pulse));
-
-    // Free decay: y_i = Re sum_k A_k e^{lambda_k (t_i - tau)}, each mode dropped once its amplitude is below 1e-18 of
-    // the bound.
-    const double negligible = 1e-18 * bound;
-    int modes_used = 0;
-    if (first_free < p.samples) {
-      for (std::size_t j = 0; j < free_modes.size(); ++j) {
-        const complex l = lambda(free_modes[j]);
-        if (std::abs(at_tau[j]) <= negligible) continue;
-        ++modes_used;
-        free.push_back(
-            {l, at_tau[j], last_significant(l, std::abs(at_tau[j]), negligible, tau, p.dt_s, first_free, p.samples)});
-      }
-      add_exponentials(trace.y, first_free, p.dt_s, tau, std::move(free));
+    if (p.output_filter) {
+      filtered_record(trace, modes, system, p);
+      return trace;
     }
-    trace.stats.modes = modes_used;
-    // t = 0 is the initial condition itself: evaluate it from the state, not as a sum over modes (for a pluck's
-    // acceleration that sum runs over every stiff mode, clustered shear relaxation rates included, and loses ~1e-5).
-    // w(0) = w0, w'(0) = 0, w''(0) = M^-1 (f P(0) - K w0).
-    if (p.derivative == 0) trace.y[0] = p.sensor.dot(p.w0);
-    if (p.derivative == 1) trace.y[0] = 0.0;
-    if (p.derivative == 2) trace.y[0] = p.sensor.dot(system.M.llt().solve(p.force_N(0.0) * p.load - system.K * p.w0));
-    require_above_round_off(trace.y, cancelling, tau, direct, first_free, p);
+    ModalResponse r = pulse_and_free_terms(trace.y, modes, p, trace);
+    if (r.first_free < p.samples) {
+      trace.stats.modes = static_cast<int>(r.free.size());
+      add_free_terms(trace.y, r.first_free, p.dt_s, r, std::move(r.free));
+    }
+    trace.y[0] = initial_sample(system, p);
+    require_above_round_off(trace.y, r.cancelling, r.tau, r.direct, r.first_free, p);
   } catch (const NumericalError& error) {
     trace.status = std::string("fast: ") + error.what();
   }

@@ -40,4 +40,9 @@ std::complex<double> pulse_response(std::complex<double> lambda, double t_s, dou
 // dD/da (a, b) = e^a phi2(b - a), phi2(z) = (e^z - 1 - z)/z^2 (the second divided exponential).
 std::complex<double> pulse_response_derivative(std::complex<double> lambda, double t_s, double tau_s);
 
+// The divided exponential D(a, b) = (e^a - e^b)/(a - b) and its derivative in a, dD/da (a, b), without cancellation
+// or overflow (the one-sample steps of the pulse response and its derivative, simulation/sensitivities.cc).
+std::complex<double> pulse_divided_exp(std::complex<double> a, std::complex<double> b);
+std::complex<double> pulse_divided_exp_da(std::complex<double> a, std::complex<double> b);
+
 }  // namespace beamid::simulation

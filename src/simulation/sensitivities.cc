@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <optional>
 
 #include "core/errors.h"
 #include "galerkin/complex_products.h"
 #include "galerkin/modes.h"
 #include "simulation/modal_simulator.h"
+#include "simulation/output_filter.h"
 
 namespace beamid::simulation {
 namespace {
@@ -81,6 +83,131 @@ ModalDerivatives modal_derivatives(const galerkin::SecondOrderSystem& system, co
   return d;
 }
 
+// Adds d y / d q inside the pulse to the rows 1 <= i < first_free of dy (grid p.dt_s; t = 0 is exactly 0: the pulse
+// starts at rest with P(0) = 0), with the acceleration's direct term. rho and d rho / d lambda are the closed forms
+// every `anchor_every` samples and between them the exact one-sample step (the sensed model's fine grid, R times the
+// samples), from rho(t + h) = e^{lambda h} rho(t) + h [D(lambda h, 0)/2 - (e^{iwt} D(lambda h, iwh) + e^{-iwt}
+// D(lambda h, -iwh))/4] and its derivative in lambda, d rho(t + h) = e^{lambda h} (d rho(t) + h rho(t)) + h^2
+// [D_a(lambda h, 0)/2 - (e^{iwt} D_a(lambda h, iwh) + e^{-iwt} D_a(lambda h, -iwh))/4]; anchor_every = 1: the closed
+// forms at every sample.
+void add_in_pulse(Eigen::MatrixXd& dy, const ModalDerivatives& d, const ResponseProblem& p, int first_free,
+                  const std::vector<galerkin::SecondOrderSystem>& derivatives,
+                  const galerkin::SecondOrderSystem& system, int anchor_every) {
+  const double tau = p.pulse_width_s, h = p.dt_s, w = 2 * std::numbers::pi / tau;
+  const Eigen::Index np = dy.cols();
+  for (Eigen::Index k = 0; k < d.lambda.size(); ++k) {
+    const complex l = d.lambda(k);
+    if (l.imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
+    const double weight = l.imag() > 0 ? 2.0 : 1.0;
+    const Eigen::VectorXcd dr = weight * d.d_residue.row(k).transpose();
+    const Eigen::VectorXcd rdl = weight * d.residue(k) * d.d_lambda.row(k).transpose();
+    const complex step = std::exp(l * h), turn = std::polar(1.0, w * h), iwh(0.0, w * h);
+    const complex d0 = h * pulse_divided_exp(l * h, 0.0), dp = h * pulse_divided_exp(l * h, iwh),
+                  dm = h * pulse_divided_exp(l * h, -iwh);
+    const complex e0 = h * h * pulse_divided_exp_da(l * h, 0.0), ep = h * h * pulse_divided_exp_da(l * h, iwh),
+                  em = h * h * pulse_divided_exp_da(l * h, -iwh);
+    complex rho, drho, rotation;
+    for (int i = 1; i < first_free; ++i) {
+      if ((i - 1) % anchor_every == 0) {
+        rho = pulse_response(l, i * h, tau);
+        drho = pulse_response_derivative(l, i * h, tau);
+        rotation = std::polar(1.0, w * i * h);
+      }
+      for (Eigen::Index q = 0; q < np; ++q) dy(i, q) += (dr(q) * rho + rdl(q) * drho).real();
+      drho = step * (drho + h * rho) + 0.5 * e0 - 0.25 * (rotation * ep + std::conj(rotation) * em);
+      rho = step * rho + 0.5 * d0 - 0.25 * (rotation * dp + std::conj(rotation) * dm);
+      rotation *= turn;
+    }
+  }
+  if (p.derivative == 2) {
+    // The acceleration's direct term c^T M^-1 f P(t): d/dq = -c^T M^-1 dM M^-1 f P(t).
+    const Eigen::LLT<Eigen::MatrixXd> mass(system.M);
+    const Eigen::VectorXd mf = mass.solve(p.load), mc = mass.solve(p.sensor);
+    for (Eigen::Index q = 0; q < np; ++q) {
+      const double direct = -mc.dot(derivatives[static_cast<std::size_t>(q)].M * mf);
+      for (int i = 1; i < first_free; ++i) dy(i, q) += direct * p.force_N(i * h);
+    }
+  }
+}
+
+// After the pulse, mode by mode: Re[(a_q + (t - tau) b_q) e^{lambda (t - tau)}] with a_q = dR_q rho(tau) + R dlambda_q
+// d rho / d lambda (tau), b_q = R dlambda_q rho(tau) (the weights of a pair included), at the samples i >= begin of
+// the grid dt_s, until e^{lambda (t - tau)} is below 1e-18 (the mode's contribution has then fallen by 18 orders of
+// magnitude from its size at tau).
+struct FreeSensitivity {
+  complex lambda;
+  Eigen::VectorXcd a, b;
+};
+std::vector<FreeSensitivity> free_sensitivities(const ModalDerivatives& d, double tau) {
+  std::vector<FreeSensitivity> out;
+  for (Eigen::Index k = 0; k < d.lambda.size(); ++k) {
+    const complex l = d.lambda(k);
+    if (l.imag() < 0) continue;
+    const double weight = l.imag() > 0 ? 2.0 : 1.0;
+    const Eigen::VectorXcd dr = weight * d.d_residue.row(k).transpose();
+    const Eigen::VectorXcd rdl = weight * d.residue(k) * d.d_lambda.row(k).transpose();
+    const complex rho_tau = pulse_response(l, tau, tau), drho_tau = pulse_response_derivative(l, tau, tau);
+    out.push_back({l, dr * rho_tau + rdl * drho_tau, rdl * rho_tau});
+  }
+  return out;
+}
+void add_free(Eigen::MatrixXd& dy, const FreeSensitivity& mode, double tau, double dt, int begin) {
+  constexpr int kAnchorEvery = 256;
+  const complex l = mode.lambda;
+  const int samples = static_cast<int>(dy.rows());
+  int last = samples - 1;
+  if (l.real() < 0) {
+    const double c = std::ceil((tau + std::log(1e-18) / l.real()) / dt);
+    if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, begin - 1.0, samples - 1.0));
+  }
+  const complex step = std::exp(l * dt);
+  complex factor;
+  for (int i = begin; i <= last; ++i) {
+    const double since = i * dt - tau;
+    if ((i - begin) % kAnchorEvery == 0) factor = std::exp(l * since);
+    for (Eigen::Index q = 0; q < dy.cols(); ++q) dy(i, q) += (factor * (mode.a(q) + since * mode.b(q))).real();
+    factor *= step;
+  }
+}
+
+// The sensitivities as the output filter delivers them (output_filter.h): inside the pulse on the fine grid, filtered
+// sample by sample from rest; after it, each mode's a, b through the filter (a' = H a + dt_f mu H' b, b' = H b) on the
+// record's grid, and the filter's decay from its state at the pulse's end less the modes' particular states there,
+// Re[(v a + b ((t - tau) v + dt_f mu v')) e^{lambda (t - tau)}].
+Eigen::MatrixXd filtered_sensitivities(const ModalDerivatives& d, const ResponseProblem& p,
+                                       const std::vector<galerkin::SecondOrderSystem>& derivatives,
+                                       const galerkin::SecondOrderSystem& system, Eigen::Index np) {
+  const OutputFilter& filter = *p.output_filter;
+  const int decimation = filter.decimation();
+  ResponseProblem fine = p;
+  fine.dt_s = p.dt_s / decimation;
+  const double tau = p.pulse_width_s;
+  const int n1 =
+      static_cast<int>(std::min(static_cast<double>(p.samples) * decimation, std::floor(tau / fine.dt_s) + 1));
+  Eigen::MatrixXd head = Eigen::MatrixXd::Zero(n1, np);
+  add_in_pulse(head, d, fine, n1, derivatives, system, 256);
+  Eigen::MatrixXd dy = Eigen::MatrixXd::Zero(p.samples, np);
+  Eigen::MatrixXd state = Eigen::MatrixXd::Zero(filter.order(), np);  // at rest: every derivative 0 before t = 0
+  filter.run(head, state, dy);
+  const int begin = (n1 + decimation - 1) / decimation;
+  if (begin >= p.samples) return dy;
+  const double since = n1 * fine.dt_s - tau;
+  for (FreeSensitivity mode : free_sensitivities(d, tau)) {
+    const complex mu = std::exp(mode.lambda * fine.dt_s);
+    const OutputFilter::Response at = filter.at(mu);
+    if (filter.order() > 0) {
+      const complex e = std::exp(mode.lambda * since);
+      const Eigen::VectorXcd tail = since * at.v + fine.dt_s * mu * at.dv;
+      state -= ((at.v * mode.a.transpose() + tail * mode.b.transpose()) * e).real();
+    }
+    mode.a = at.h * mode.a + fine.dt_s * mu * at.dh * mode.b;
+    mode.b *= at.h;
+    add_free(dy, mode, tau, p.dt_s, begin);
+  }
+  filter.add_transient(dy, n1, std::move(state));
+  return dy;
+}
+
 }  // namespace
 
 bool has_exact_sensitivities(const Experiment& e) { return e.excitation == kPulse; }
@@ -91,7 +218,8 @@ bool has_exact_sensitivities(const Experiment& e, const std::vector<std::string>
 }
 
 SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
-                                             const Experiment& experiment, const std::vector<std::string>& keys) {
+                                             const Experiment& experiment, const std::vector<std::string>& keys,
+                                             std::shared_ptr<const OutputFilter> filter) {
   if (!has_exact_sensitivities(experiment))
     throw InputError("excitation = '" + experiment.excitation +
                      "': exact sensitivities are available for a pulse from rest only");
@@ -104,7 +232,8 @@ SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, c
   SensitivityTrace out;
   out.keys = keys;
   const galerkin::SecondOrderSystem system = galerkin::combine(forms, beam);
-  const ResponseProblem p = make_problem(forms, system, experiment, beam.l);
+  ResponseProblem p = make_problem(forms, system, experiment, beam.l);
+  p.output_filter = std::move(filter);
   std::optional<galerkin::StateSpaceModes> modes;  // decomposed once, for the output and its derivatives
   try {
     modes.emplace(system);
@@ -117,50 +246,16 @@ SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, c
   try {
     const ModalDerivatives d = modal_derivatives(system, p, *modes, derivatives);
     const auto np = static_cast<Eigen::Index>(keys.size());
+    if (p.output_filter) {
+      out.dy_dq = filtered_sensitivities(d, p, derivatives, system, np);
+      return out;
+    }
     out.dy_dq = Eigen::MatrixXd::Zero(p.samples, np);
-    const double tau = p.pulse_width_s, dt = p.dt_s;
-    const int first_free = static_cast<int>(std::min<double>(p.samples, std::floor(tau / dt) + 1));
-    constexpr int kAnchorEvery = 256;
-    for (Eigen::Index k = 0; k < d.lambda.size(); ++k) {
-      const complex l = d.lambda(k);
-      if (l.imag() < 0) continue;  // its conjugate partner carries it (2 Re below)
-      const double weight = l.imag() > 0 ? 2.0 : 1.0;
-      const Eigen::VectorXcd dr = weight * d.d_residue.row(k).transpose();
-      const Eigen::VectorXcd rdl = weight * d.residue(k) * d.d_lambda.row(k).transpose();
-      // Inside the pulse: closed forms at every sample (t = 0 is exactly 0: the pulse starts at rest with P(0) = 0).
-      for (int i = 1; i < first_free; ++i) {
-        const double t = i * dt;
-        const complex rho = pulse_response(l, t, tau), drho = pulse_response_derivative(l, t, tau);
-        for (Eigen::Index q = 0; q < np; ++q) out.dy_dq(i, q) += (dr(q) * rho + rdl(q) * drho).real();
-      }
-      if (first_free >= p.samples) continue;
-      // After it: A_q + (t - tau) B_q times e^{lambda (t - tau)}, until that factor is below 1e-18 (the mode's
-      // contribution has then fallen by 18 orders of magnitude from its size at tau).
-      const complex rho_tau = pulse_response(l, tau, tau), drho_tau = pulse_response_derivative(l, tau, tau);
-      const Eigen::VectorXcd a = dr * rho_tau + rdl * drho_tau, b = rdl * rho_tau;
-      int last = p.samples - 1;
-      if (l.real() < 0) {
-        const double c = std::ceil((tau + std::log(1e-18) / l.real()) / dt);
-        if (std::isfinite(c)) last = static_cast<int>(std::clamp<double>(c, first_free - 1.0, p.samples - 1.0));
-      }
-      const complex step = std::exp(l * dt);
-      complex factor;
-      for (int i = first_free; i <= last; ++i) {
-        const double since = i * dt - tau;
-        if ((i - first_free) % kAnchorEvery == 0) factor = std::exp(l * since);
-        for (Eigen::Index q = 0; q < np; ++q) out.dy_dq(i, q) += (factor * (a(q) + since * b(q))).real();
-        factor *= step;
-      }
-    }
-    if (p.derivative == 2) {
-      // The acceleration's direct term c^T M^-1 f P(t): d/dq = -c^T M^-1 dM M^-1 f P(t).
-      const Eigen::LLT<Eigen::MatrixXd> mass(system.M);
-      const Eigen::VectorXd mf = mass.solve(p.load), mc = mass.solve(p.sensor);
-      for (Eigen::Index q = 0; q < np; ++q) {
-        const double direct = -mc.dot(derivatives[static_cast<std::size_t>(q)].M * mf);
-        for (int i = 1; i < first_free; ++i) out.dy_dq(i, q) += direct * p.force_N(i * dt);
-      }
-    }
+    const double tau = p.pulse_width_s;
+    const int first_free = static_cast<int>(std::min<double>(p.samples, std::floor(tau / p.dt_s) + 1));
+    add_in_pulse(out.dy_dq, d, p, first_free, derivatives, system, 1);
+    if (first_free < p.samples)
+      for (const FreeSensitivity& mode : free_sensitivities(d, tau)) add_free(out.dy_dq, mode, tau, p.dt_s, first_free);
   } catch (const NumericalError& error) {
     out.trace.status = std::string("sensitivities: ") + error.what();
     out.dy_dq.resize(0, 0);

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,8 +46,11 @@ bool has_exact_sensitivities(const Experiment& experiment);
 bool has_exact_sensitivities(const Experiment& experiment, const std::vector<std::string>& keys);
 
 // y and d y / d q for the parameters `keys` (estimable beam keys). InputError for an experiment without closed
-// form sensitivities or a bad key; a failed decomposition is a trace with that status (dy_dq then empty).
+// form sensitivities or a bad key; a failed decomposition is a trace with that status (dy_dq then empty). With an
+// output filter (output_filter.h), both as it delivers them: the filter is linear and starts from rest, so the
+// sensitivities of the filtered output are the filtered sensitivities.
 SensitivityTrace simulate_with_sensitivities(const galerkin::BeamForms& forms, const model::BeamParameters& beam,
-                                             const Experiment& experiment, const std::vector<std::string>& keys);
+                                             const Experiment& experiment, const std::vector<std::string>& keys,
+                                             std::shared_ptr<const OutputFilter> filter = nullptr);
 
 }  // namespace beamid::simulation

@@ -64,6 +64,36 @@ TEST(SensorFilter, StartsFromTheLevelBeforeTheRecord) {
   EXPECT_EQ(sense(f, constant, kDt, 0.7), sense(f, constant, kDt));  // the level held before: the default
 }
 
+TEST(SensorFilter, ItsStateSpaceFormIsTheSameRecursion) {
+  // The cascade as one system (state_space) run over a record from its steady start gives sense()'s samples: the same
+  // products in another order, so to round-off (1e-13 of a unit input); its DC gain is 1, and its response at a
+  // frequency, C (zI - A)^-1 B + D at z = e^{j omega dt_fine}, is sensor_response's. Orders 1 to 5 take in a
+  // first-order section (odd orders) and several pairs.
+  for (const int order : {1, 2, 4, 5}) {
+    const SensorFilter f{200, order, 16};
+    const FilterStateSpace ss = state_space(f, kDt);
+    ASSERT_EQ(ss.a.rows(), order);
+    const Eigen::Index n = ss.a.rows();
+    EXPECT_NEAR(ss.c.dot((Eigen::MatrixXd::Identity(n, n) - ss.a).lu().solve(ss.b)) + ss.d, 1.0, 1e-12) << order;
+    const std::complex<double> z = std::polar(1.0, 2 * std::numbers::pi * 150 * kDt / 16);
+    const Eigen::VectorXcd v = (z * Eigen::MatrixXcd::Identity(n, n) - ss.a.cast<std::complex<double>>())
+                                   .lu()
+                                   .solve(ss.b.cast<std::complex<double>>());
+    EXPECT_LT(std::abs(ss.c.cast<std::complex<double>>().dot(v) + ss.d - sensor_response(f, kDt, 150)), 1e-12);
+    std::vector<double> x(1600);
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = std::sin(0.01 * static_cast<double>(i * i)) + 0.3;
+    Eigen::VectorXd state = (Eigen::MatrixXd::Identity(n, n) - ss.a).lu().solve(ss.b) * x.front();
+    const std::vector<double> expected = sense(f, x, kDt);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (i % 16 == 0) {
+        EXPECT_NEAR(ss.c.dot(state) + ss.d * x[i], expected[i / 16], 1e-13) << order << " " << i;
+      }
+      state = ss.a * state + ss.b * x[i];
+    }
+  }
+  EXPECT_EQ(state_space(SensorFilter{0, 4, 16}, kDt).a.rows(), 0);  // no filter: the identity
+}
+
 TEST(SensorFilter, RefusesWhatItCannotRealise) {
   EXPECT_TRUE(validation_error(SensorFilter{200, 0, 16}, kDt).has_value());
   EXPECT_TRUE(validation_error(SensorFilter{200, 9, 16}, kDt).has_value());
