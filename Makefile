@@ -14,7 +14,7 @@ BEAMID     := $(BUILD)/beamid
 # (windows and continuation, measured on other seeds than the design's records): REPORT.md names them and the commit
 # of their committed results but quotes none of their numbers; `make study-tuning` reruns them. On a cluster, any
 # study runs as shards (README.md).
-STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick comparison-thick-control comparison-thick-n48 comparison-thick-damping comparison-thick-sensor paper thick modes landscape landscape-thick efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
+STUDIES      ?= comparison comparison-control comparison-n48 comparison-damping comparison-sensor comparison-thick comparison-thick-control comparison-thick-n48 comparison-thick-damping comparison-thick-sensor comparison-coloured comparison-thick-coloured paper thick modes landscape landscape-thick efficiency efficiency-coloured efficiency-coloured-thick efficiency-powerlaw errors-in-variables bias
 REAL_STUDIES ?= real-steel real-steel-candidates synthetic-strip real-unb-tipmass
 TUNING_STUDIES ?= start-distance windows windows-thick
 STUDY_JOBS ?= 0
