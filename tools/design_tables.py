@@ -2,8 +2,8 @@
 """design_tables.py RESULTS_DIR: the main text's tables of the design (issue 35 items 4 and 5), from its studies'
 tables, as REPORT.md blocks.
 
-Reads results/comparison*/ (start_distance/reach.csv, reference.csv, reference_modes.csv, timings.csv,
-convergence.csv and manifest.json) and writes RESULTS_DIR/design/{answer,accuracy,modes,across_n,compute}.md, which `beamid
+Reads results/comparison*/ (the coloured-noise studies comparison-coloured and comparison-thick-coloured too; start_distance/reach.csv, reference.csv, reference_modes.csv, timings.csv,
+convergence.csv and manifest.json) and writes RESULTS_DIR/design/{answer,accuracy,coloured,modes,across_n,compute}.md, which `beamid
 report` pastes into the blocks of those names under design/. Each opens with the commit that made the tables it
 reads; when the studies come from several commits it names none of them, so that `make report-check` fails rather
 than a block mixing them silently. compute.md alone holds seconds, from the timings files, which change from run to
@@ -23,6 +23,8 @@ THICK = ["comparison-thick-control", "comparison-thick-n48", "comparison-thick-d
          "comparison-thick"]
 TRUTHS = ["none (control)", "N48", "N48 + loss", "N48 + sensor", "all three"]
 BEAMS = [("thin", THIN, ["EI", "rho"]), ("thick", THICK, ["EI", "kAG", "rho"])]
+# The design's three model errors with AR(1) noise (issue 35 item 1), beside the white design's all-three study.
+COLOURED = {"thin": "comparison-coloured", "thick": "comparison-thick-coloured"}
 DAMPING = {"cDI", "gamma", "kAcs"}
 WINDOWS = {"hann", "exponential", "rectangular"}
 
@@ -98,6 +100,8 @@ class Study:
         timing = os.path.join(sd, "timings.csv")
         self.timings = rows(timing) if os.path.exists(timing) else []
         self.convergence = rows(os.path.join(folder, "convergence.csv"))
+        fits = os.path.join(sd, "fits.csv")
+        self.fits = rows(fits) if os.path.exists(fits) else []
         self.experiments = sorted({r["experiment"] for r in self.reference}, key=int)
         self.modes_in = {r["experiment"]: r["modes_in_data"] for r in self.reference}
         self.runs = ordered(list(dict.fromkeys(run_name(r["cost"], r["method"]) for r in self.reference)))
@@ -109,6 +113,14 @@ class Study:
         values = [float(r["rmse_over_bound"]) for r in self.of(self.reference, run, experiment)
                   if r["parameter"] in keys]
         return max(values) if values else float("nan")
+
+    def on_bound(self, run, experiment):
+        """The fits from the truth (offset 0) of a run and experiment that ended on a parameter's bound, and all of
+        them, from fits.csv (its experiments in the order of reference.csv's)."""
+        width = {r["experiment"]: r["pulse_width_s"] for r in self.reference}[experiment]
+        mine = [r for r in self.fits if run_name(r["cost"], r["method"]) == run and float(r["offset"]) == 0
+                and r["pulse_width_s"] == width]
+        return sum(r["status"] == "converged-at-bound" for r in mine), len(mine)
 
     def timing(self, run, experiment, column):
         found = self.of(self.timings, run, experiment)
@@ -261,6 +273,45 @@ def across_n(thin, thick):
     return "\n".join(out)
 
 
+def coloured(thin, thick, colour):
+    """Per beam: each run of the coloured-noise study (worst RMSE over the coloured-noise bound, bias), beside the same
+    run's ratio in the white design with all three model errors."""
+    out = []
+    for beam, studies, stiff in (("thin", thin, ["EI", "rho"]), ("thick", thick, ["EI", "kAG", "rho"])):
+        c, white = colour[beam], studies[-1]
+        if not c.present:
+            continue
+        e = c.experiments
+        modes = " / ".join(c.modes_in[x] for x in e)
+        out.append("**%s beam, all three model errors, AR(1) noise (a = 0.9)**: worst RMSE / coloured-noise "
+                   "Cramér-Rao bound over %s of the 20 fits from the truth, records of %s modes (separated by /); "
+                   "beside it the same run's ratio in white noise (the table above, all three); bias (%%; * beyond "
+                   "2 Monte-Carlo standard errors); and how many of the fits from the truth ended on a parameter's bound (the fits' "
+                   "status)\n" % (beam.capitalize(), ", ".join(stiff), modes))
+        out.append("| method | RMSE / bound, coloured | white | " + " | ".join("bias " + k for k in stiff) +
+                   " | fits on a bound |")
+        out.append("|---|---|---|" + "---|" * len(stiff) + "---|")
+        for run in list(dict.fromkeys(run_name(r["cost"], r["method"]) for r in c.reference)):
+            biases = []
+            for key in stiff:
+                parts = []
+                for x in e:
+                    found = [r for r in c.of(c.reference, run, x) if r["parameter"] == key]
+                    if not found:
+                        parts.append("-")
+                        continue
+                    bias, mcse = float(found[0]["bias"]), float(found[0]["mcse"])
+                    parts.append(signed_pct(bias) + ("*" if abs(bias) > 2 * mcse else ""))
+                biases.append(" / ".join(parts))
+            in_white = white.present and white.of(white.reference, run, white.experiments[0])
+            out.append("| `%s` | %s | %s | %s | %s |" % (
+                run, " / ".join(ratio(c.worst(run, x, stiff)) for x in e),
+                " / ".join(ratio(white.worst(run, x, stiff)) for x in white.experiments) if in_white else "-",
+                " | ".join(biases), " / ".join("%d/%d" % c.on_bound(run, x) for x in e)))
+        out.append("")
+    return "\n".join(out)
+
+
 def compute(thin, thick):
     """Per run and experiment of each beam's study with all three model errors: median evaluations and seconds per
     fit, and the run's total seconds (the timings files: seconds change from run to run)."""
@@ -295,13 +346,15 @@ def main(argv):
         sys.exit("design_tables.py: no design study has results in " + results)
     folder = os.path.join(results, "design")
     os.makedirs(folder, exist_ok=True)
-    head = provenance(thin + thick)
+    colour = {beam: Study(results, name) for beam, name in COLOURED.items()}
+    head = provenance(thin + thick + list(colour.values()))
     for name, body in (("answer", answer(thin, thick)), ("accuracy", accuracy(thin, thick)),
+                       ("coloured", coloured(thin, thick, colour)),
                        ("modes", modes_table(thin, thick)), ("across_n", across_n(thin, thick)),
                        ("compute", compute(thin, thick))):
         with open(os.path.join(folder, name + ".md"), "w") as f:
             f.write(head + "\n" + body.rstrip() + "\n")
-    print("design_tables.py: wrote %s/{answer,accuracy,modes,across_n,compute}.md" % folder)
+    print("design_tables.py: wrote %s/{answer,accuracy,coloured,modes,across_n,compute}.md" % folder)
     return 0
 
 

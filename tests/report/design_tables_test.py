@@ -38,6 +38,11 @@ def study(root, name, commit, runs):
     (folder / "reference.csv").write_text(reference)
     (folder / "reference_modes.csv").write_text(modes)
     (folder / "timings.csv").write_text(timings)
+    fits = "cost,method,offset,direction,status,pulse_width_s\n"
+    for cost, method, *_ in runs:  # two fits from the truth a run, the second on a bound; one from a start
+        fits += f"{cost},{method},0,0,converged,0.008\n{cost},{method},0,0,converged-at-bound,0.008\n"
+        fits += f"{cost},{method},0.01,1,converged-at-bound,0.008\n"
+    (folder / "fits.csv").write_text(fits)
     (root / name / "convergence.csv").write_text(
         "cost,method,start,elements,status,relative_error_EI,relative_error_rho,relative_error_cDI,relative_error_gamma\n"
         "time,direct,truth,16,converged,0.001,-0.002,0.5,0.1\n"
@@ -70,6 +75,16 @@ class DesignTables(unittest.TestCase):
             self.assertIn("| `time/direct` | 1.1 | 60 |", accuracy)  # the control's column, then all three errors'
             self.assertIn("| `time/direct` | -0.064* | -0.064* |", accuracy)  # the study's EI and rho rows alike
             self.assertIn("| `modal/direct` | +0.018 | +0.018 |", accuracy)  # 1.8e-4 within 2 MCSE: no star
+            # No coloured-noise study yet: the block is there, empty but for its provenance.
+            self.assertNotIn("AR(1)", (root / "design" / "coloured.md").read_text())
+            study(root, "comparison-coloured", "abc1234def56", [("time", "direct-sensed", 0.03, "inside", 7.5, 2e-4, 1e-5),
+                                                                ("freq-ml", "estimated-sensed", 0.03, "inside", 1.9, 1e-5, 1e-5)])
+            self.assertEqual(run(root).returncode, 0)
+            colour = (root / "design" / "coloured.md").read_text()
+            self.assertIn("`comparison-coloured`", colour)  # named among the tables it comes from
+            # Its ratio beside the white design's for the same run, and "-" for a run the white design does not have.
+            self.assertIn("| `time/direct-sensed` | 7.5 | 4.4 | +0.02* | +0.02* | 1/2 |", colour)
+            self.assertIn("| `freq-ml/estimated-sensed` | 1.9 | - | +0.001 | +0.001 | 1/2 |", colour)
             across = (root / "design" / "across_n.md").read_text()
             self.assertIn("| `time/direct` | 0.2 / 50 |", across)
             self.assertIn("| `time/direct-sensed` | 0.02 / 5 |", across)
