@@ -114,6 +114,19 @@ class Study:
                   if r["parameter"] in keys]
         return max(values) if values else float("nan")
 
+    def biases(self, run, key):
+        """A run's bias of `key` in each experiment (%, separated by /), starred beyond 2 Monte-Carlo standard
+        errors; "-" where the run has no such row."""
+        parts = []
+        for x in self.experiments:
+            found = [r for r in self.of(self.reference, run, x) if r["parameter"] == key]
+            if not found:
+                parts.append("-")
+                continue
+            bias, mcse = float(found[0]["bias"]), float(found[0]["mcse"])
+            parts.append(signed_pct(bias) + ("*" if abs(bias) > 2 * mcse else ""))
+        return " / ".join(parts)
+
     def on_bound(self, run, experiment):
         """The fits from the truth (offset 0) of a run and experiment that ended on a parameter's bound, and all of
         them, from fits.csv (its experiments in the order of reference.csv's)."""
@@ -201,17 +214,7 @@ def accuracy(thin, thick):
         out.append("| method | " + " | ".join(stiff) + " |")
         out.append("|---|" + "---|" * len(stiff))
         for run in last.runs:
-            cells = []
-            for key in stiff:
-                parts = []
-                for x in last.experiments:
-                    found = [r for r in last.of(last.reference, run, x) if r["parameter"] == key]
-                    if not found:
-                        parts.append("-")
-                        continue
-                    bias, mcse = float(found[0]["bias"]), float(found[0]["mcse"])
-                    parts.append(signed_pct(bias) + ("*" if abs(bias) > 2 * mcse else ""))
-                cells.append(" / ".join(parts))
+            cells = [last.biases(run, key) for key in stiff]
             out.append("| `%s` | %s |" % (run, " | ".join(cells)))
         out.append("")
     return "\n".join(out)
@@ -292,17 +295,7 @@ def coloured(thin, thick, colour):
                    " | fits on a bound |")
         out.append("|---|---|---|" + "---|" * len(stiff) + "---|")
         for run in list(dict.fromkeys(run_name(r["cost"], r["method"]) for r in c.reference)):
-            biases = []
-            for key in stiff:
-                parts = []
-                for x in e:
-                    found = [r for r in c.of(c.reference, run, x) if r["parameter"] == key]
-                    if not found:
-                        parts.append("-")
-                        continue
-                    bias, mcse = float(found[0]["bias"]), float(found[0]["mcse"])
-                    parts.append(signed_pct(bias) + ("*" if abs(bias) > 2 * mcse else ""))
-                biases.append(" / ".join(parts))
+            biases = [c.biases(run, key) for key in stiff]
             in_white = white.present and white.of(white.reference, run, white.experiments[0])
             out.append("| `%s` | %s | %s | %s | %s |" % (
                 run, " / ".join(ratio(c.worst(run, x, stiff)) for x in e),
