@@ -151,22 +151,21 @@ std::string dangling_link_problem(const std::filesystem::path& folder) {
 
 std::string unwritable_folder_problem(const std::filesystem::path& folder) {
   namespace fs = std::filesystem;
-  // The folders this check creates, leaf first, are removed again (when still empty): a command that then fails on
-  // its inputs leaves no empty output folder behind.
-  std::vector<fs::path> created;
+  // The asked folder, when this check creates it, is removed again (when still empty): a command that then fails on
+  // its inputs leaves no empty output folder behind. The parents it creates stay: another process may be making
+  // its own folder in them. Removing an empty results/ raced the shards of a Slurm job array started together: one
+  // shard's check removed results/ between another's mkdir of results/ and of results/smoke-shard-2 (ENOENT, exit 2).
   std::error_code ec;
   if (std::string problem = dangling_link_problem(folder); !problem.empty()) return problem;
-  for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
-    created.push_back(p);
-    if (p == p.parent_path()) break;
-  }
+  const bool creates_it = !fs::exists(fs::symlink_status(folder, ec));
   struct Cleanup {
-    const std::vector<fs::path>& folders;
+    const fs::path& folder;
+    bool created;
     ~Cleanup() {
       std::error_code e;
-      for (const fs::path& p : folders) fs::remove(p, e);
+      if (created) fs::remove(folder, e);
     }
-  } cleanup{created};
+  } cleanup{folder, creates_it};
   try {
     make_folder(folder);
   } catch (const InputError& error) {

@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -113,6 +116,36 @@ TEST(OutputFolder, PartialFilesOfKilledRunsAreRemovedWhenTheirWriterIsGone) {
   EXPECT_EQ(remove_leftovers_of_output(dir), "");
   EXPECT_TRUE(is_leftover_temporary(".beamid-12-0.tmp"));
   EXPECT_FALSE(is_leftover_temporary(".beamid-00-0.tmp"));
+  fs::remove_all(dir);
+}
+
+TEST(OutputFolder, TheCheckRemovesTheFolderItMadeButNotTheParentsOthersShare) {
+  // Shards of a Slurm array start together: one shard's check removed an empty results/ that another shard had just
+  // made, and that shard's mkdir of results/smoke-shard-2 failed (ENOENT, exit 2; CI of 2026-11-29). The asked folder
+  // is removed again (a refused command leaves no empty output behind); its parents stay.
+  const fs::path dir = scratch("parents");
+  const fs::path folder = dir / "results" / "smoke-shard-1";
+  EXPECT_EQ(unwritable_folder_problem(folder), "");
+  EXPECT_FALSE(fs::exists(folder));
+  EXPECT_TRUE(fs::is_directory(dir / "results"));
+  // Many checks of sibling folders at once, each making its own folder in the shared parent: none is refused.
+  fs::remove_all(dir / "results");
+  std::vector<std::string> problems(8);
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < problems.size(); ++k)
+    threads.emplace_back([&, k] {
+      const fs::path mine = dir / "results" / ("shard-" + std::to_string(k));
+      try {
+        for (int round = 0; round < 50 && problems[k].empty(); ++round) {
+          problems[k] = unwritable_folder_problem(mine);
+          if (problems[k].empty()) make_folder(mine), fs::remove(mine);
+        }
+      } catch (const InputError& error) {
+        problems[k] = error.what();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  for (const std::string& problem : problems) EXPECT_EQ(problem, "");
   fs::remove_all(dir);
 }
 

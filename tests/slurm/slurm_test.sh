@@ -25,7 +25,8 @@ cleanup() {
   "${as_root[@]}" rm -rf "$scratch"
 }
 trap cleanup EXIT
-fail() { echo "FAIL: $*"; for f in "$scratch"/slurm/*.log "$scratch"/work/beamid-*.log; do [ -f "$f" ] && { echo "== $f"; tail -20 "$f"; }; done; exit 1; }
+# The jobs' own logs first: CI shows a failure's head, and a shard's one-line error is the answer.
+fail() { echo "FAIL: $*"; for f in "$scratch"/work/beamid-*.log "$scratch"/slurm/*.log; do [ -f "$f" ] && { echo "== $f"; tail -20 "$f"; }; done; exit 1; }
 
 # munge: its own key, socket, pid and log, owned by the munge user, in the scratch folder.
 m="$scratch/munge"
@@ -98,9 +99,14 @@ ln -s "$SRC/studies" "$w/studies"
 cd "$w"
 "$BUILD/beamid" study studies/smoke.toml --output "$w/single" >/dev/null 2>&1 || fail "the single run failed"
 
-wait_for() {  # wait_for JOBID...: until none is pending or running
+wait_for() {  # wait_for JOBID...: until none is pending or running; a job whose dependency failed ends the test
+  local jobs
+  jobs=$(IFS=,; echo "$*")
   for _ in $(seq 1200); do
-    [ -z "$(squeue -h -j "$(IFS=,; echo "$*")" -o %i 2>/dev/null)" ] && return 0
+    [ -z "$(squeue -h -j "$jobs" -o %i 2>/dev/null)" ] && return 0
+    # A job waiting on a failed one waits forever (it cost CI 10 minutes to learn that a shard had failed).
+    squeue -h -j "$jobs" -o "%i %r" 2>/dev/null | grep -q DependencyNeverSatisfied &&
+      fail "jobs $*: one can never start, a job it waits for failed"
     sleep 0.5
   done
   fail "jobs $* did not finish in 10 minutes"
