@@ -33,10 +33,10 @@ import numpy as np
 from . import _core
 from ._core import InputError, NumericalError, OutputError
 from .results import load_results, read_table
-from .values import CostValue, CramerRao, FitResult, Record, Spikes, System
+from .values import CostValue, CramerRao, Design, FitResult, Record, Spikes, System
 
-__all__ = ["InputError", "NumericalError", "OutputError", "FitResult", "Spikes", "CostValue", "CramerRao", "System", "Record", "version", "presets", "beam", "beam_toml", "modes",
-           "simulate", "system", "spikes", "cost", "fit", "crb", "modal_id", "read_record", "load_results",
+__all__ = ["InputError", "NumericalError", "OutputError", "FitResult", "Spikes", "CostValue", "CramerRao", "Design", "System", "Record", "version", "presets", "beam", "beam_toml", "modes",
+           "simulate", "system", "spikes", "cost", "fit", "crb", "design", "modal_id", "read_record", "load_results",
            "read_table"]
 
 
@@ -346,6 +346,16 @@ def crb(**flags) -> "CramerRao":
     return CramerRao._from_core(r)
 
 
+def design(**flags) -> "Design":
+    """``beamid design``: the candidate experiments (``sensor_x``, ``sensors``, ``force_x``, ``pulse_width``, ``dt``,
+    ``samples``: lists, or ranges "START:STOP:COUNT") ranked by the ``criterion`` (D, A or a key) of the Fisher
+    information of ``estimate``: a :class:`Design`, best first."""
+    f, toml = _beam_argument(flags)
+    r = _call(_core.design, _arguments(f), toml)
+    _warn_lines(r)
+    return Design._from_core(r)
+
+
 def modal_id(data, time=None, **flags) -> np.ndarray:
     """``beamid modal-id``: the modes of a free decay by the matrix pencil, a structured array (mode, frequency_hz,
     damping_ratio, amplitude, phase_rad, frequency_sd_hz: the Cramér-Rao bound at the residual's noise level;
@@ -390,10 +400,14 @@ _KINDS = {"number": float, "integer": int, "text": str, "switch": bool}
 # tuple of items, a single item, or the comma-separated text. The program's parser checks the items' values.
 _LISTS = {"estimate": str, "channel": (str, int), "spike_frequencies": float, "bounds": str}
 _FIT_LISTS = {"sensor_x": float}  # a list in fit (one position per channel), one number elsewhere
+# design's candidates: lists of values (a text item may be a range "START:STOP:COUNT").
+_DESIGN_LISTS = {"sensor_x": float, "force_x": float, "pulse_width": float, "dt": float, "samples": int}
 _PATHS = {"data", "prediction", "report", "beam"}
 
 
 def _list_item(command, name):
+    if command == "design" and name in _DESIGN_LISTS:
+        return _DESIGN_LISTS[name]
     return _LISTS.get(name) or (_FIT_LISTS.get(name) if command == "fit" else None)
 
 
@@ -526,6 +540,7 @@ cost = _typed(cost, "cost", [_positional("data", annotation=_RECORD),
                              _positional("prediction", annotation=_RECORD), _TIME], skip={"data", "prediction"})
 fit = _typed(fit, "fit", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
 crb = _typed(crb, "crb", [])
+design = _typed(design, "design", [])
 modal_id = _typed(modal_id, "modal-id", [_positional("data", annotation=_RECORD), _TIME], skip={"data"})
 # read_record takes modal-id's import flags, checked as every function's are (channel=True was "--data is required",
 # duration=False was dropped: the thirty-second pass's adv72 P2).

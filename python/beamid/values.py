@@ -103,6 +103,47 @@ class CostValue(_Fields):
 
 
 @dataclasses.dataclass(repr=False)
+class Design(_Fields):
+    """``beamid design``: every candidate experiment, best first, by a criterion of the Fisher information.
+
+    parameters       the parameters of interest, in the order of relative_sd's columns
+    criterion_name   "D", "A" or the key ranked by
+    noise_model      the noise's colour
+    sensors_x_m      per candidate, the positions of its channels (an array each)
+    force_x_m, pulse_width_s, dt_s, samples   per candidate, its other choices
+    criterion        per candidate, the criterion's value (relative: 0.01 is 1 %; NaN without a bound)
+    relative_sd      candidates x parameters: the bound on each relative sd
+    status           per candidate, "ok" or why it has no bound (ranked last)
+    """
+    parameters: list
+    criterion_name: str
+    noise_model: str
+    sensors_x_m: list
+    force_x_m: np.ndarray
+    pulse_width_s: np.ndarray
+    dt_s: np.ndarray
+    samples: np.ndarray
+    criterion: np.ndarray
+    relative_sd: np.ndarray
+    status: list
+
+    def to_pandas(self):
+        """One row per candidate, the sensors as a tuple, a column per parameter's relative sd."""
+        pandas = _pandas()
+        frame = pandas.DataFrame({"sensors_x_m": [tuple(s) for s in self.sensors_x_m], "force_x_m": self.force_x_m,
+                                  "pulse_width_s": self.pulse_width_s, "dt_s": self.dt_s,
+                                  "samples": self.samples.astype(int), "criterion": self.criterion})
+        for k, key in enumerate(self.parameters):
+            frame["relative_sd_" + key] = self.relative_sd[:, k]
+        frame["status"] = self.status
+        return frame
+
+    def __repr__(self):
+        return (f"Design({len(self.status)} candidates by {self.criterion_name}; best {self.criterion[0]:.4g} with "
+                f"sensors at {list(self.sensors_x_m[0])} m)")
+
+
+@dataclasses.dataclass(repr=False)
 class CramerRao(_Fields):
     """``beamid crb``: the Cramér-Rao bound at the given parameters.
 

@@ -495,6 +495,43 @@ py::dict py_crb(const std::vector<std::string>& args, const std::optional<std::s
   return d;
 }
 
+py::dict py_design(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml) {
+  std::ostringstream warned;
+  const api::DesignResult r = without_gil(
+      "design", args,
+      [&warned](const apps::Flags& a) { return api::compute_design(apps::design_request_of(a), warned); }, beam_toml);
+  py::dict d;
+  d["warnings"] = warning_lines(warned);
+  d["parameters"] = r.options.keys;
+  d["criterion_name"] = r.options.criterion;
+  d["noise_model"] = r.options.noise_model;
+  py::list sensors, status;
+  std::vector<double> force, width, dt, criterion;
+  std::vector<double> samples;
+  Eigen::MatrixXd relative(static_cast<Eigen::Index>(r.rows.size()), static_cast<Eigen::Index>(r.options.keys.size()));
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    const fit::DesignRow& row = r.rows[i];
+    sensors.append(copied_array(row.candidate.sensors_x_m));
+    force.push_back(row.candidate.force_x_m);
+    width.push_back(row.candidate.pulse_width_s);
+    dt.push_back(row.candidate.dt_s);
+    samples.push_back(row.candidate.samples);
+    criterion.push_back(row.criterion);
+    relative.row(static_cast<Eigen::Index>(i)) = row.relative_sd.transpose();
+    status.append(row.status);
+  }
+  d["sensors_x_m"] = sensors;
+  d["force_x_m"] = copied_array(force);
+  d["pulse_width_s"] = copied_array(width);
+  d["dt_s"] = copied_array(dt);
+  d["samples"] = copied_array(samples);
+  d["criterion"] = copied_array(criterion);
+  d["relative_sd"] = matrix_array(relative);
+  d["status"] = status;
+  d["commit"] = io::commit_label();
+  return d;
+}
+
 py::dict py_modal_id(const std::vector<std::string>& args, const py::object& data, const py::object& time) {
   const auto array = array_record(data, time);
   const api::ModalIdResult r = without_gil("modal-id", args, [&array](const apps::Flags& a) {
@@ -606,6 +643,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("cost", &py_cost);
   m.def("fit", &py_fit);
   m.def("crb", &py_crb);
+  m.def("design", &py_design);
   m.def("modal_id", &py_modal_id);
   m.def("read_record", &py_read_record);
 }

@@ -41,6 +41,11 @@ int run_fit(const Flags& flags, std::ostream& out);
 // beamid crb --beam B --elements N --estimate KEYS (--noise-sd S | --noise-level L) [experiment flags]:
 // parameter,value,crb_sd,crb_relative_sd (the Cramér-Rao bound, fit/cramer_rao.h)
 int run_crb(const Flags& flags, std::ostream& out);
+// beamid design --beam B --elements N --estimate KEYS (--noise-sd S | --noise-level L) --sensor-x LIST [--sensors K]
+// [--force-x LIST] [--pulse-width LIST] [--dt LIST] [--samples LIST] [--criterion D|A|KEY]: every candidate, best
+// first: rank,sensors_x_m,force_x_m,pulse_width_s,dt_s,samples,criterion,relative_sd_<key>...,status
+// (fit/experiment_design.h)
+int run_design(const Flags& flags, std::ostream& out);
 // beamid modal-id --data FILE [--modes K] [--order M] [--min-frequency F] [--max-frequency F]:
 // mode,frequency_hz,damping_ratio,amplitude,phase_rad (matrix pencil, signal/matrix_pencil.h)
 int run_modal_id(const Flags& flags, std::ostream& out);
@@ -61,6 +66,7 @@ std::vector<FlagSpec> import_flags();
 std::vector<FlagSpec> cost_flags(bool required);
 std::vector<FlagSpec> fit_flags();
 std::vector<FlagSpec> crb_flags();
+std::vector<FlagSpec> design_flags();
 std::vector<FlagSpec> modal_id_flags();
 std::vector<FlagSpec> study_flags();
 std::vector<FlagSpec> merge_flags();

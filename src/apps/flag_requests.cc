@@ -184,6 +184,27 @@ api::CrbRequest crb_request_of(const Flags& a) {
   return r;
 }
 
+api::DesignRequest design_request_of(const Flags& a) {
+  api::DesignRequest r;
+  // The shared experiment (output, force amplitude); the other experiment flags are the design's lists.
+  r.run = {caller_of(a), a.text("beam"), read_beam(a), a.integer("elements"), {}};
+  if (a.has("output")) r.run.experiment.output = a.text("output");
+  if (a.has("excitation")) r.run.experiment.excitation = a.text("excitation");
+  r.run.experiment.force_amplitude_N = a.optional_number("force-amplitude");
+  r.estimate = a.texts("estimate");
+  r.noise_sd = a.optional_number("noise-sd");
+  r.noise_level = a.optional_number("noise-level");
+  if (a.has("noise-model")) r.noise_model = a.text("noise-model");
+  if (a.has("criterion")) r.criterion = a.text("criterion");
+  r.sensors = a.optional_integer("sensors");
+  r.sensor_x = a.texts("sensor-x");
+  r.force_x = a.texts("force-x");
+  r.pulse_width = a.texts("pulse-width");
+  r.dt = a.texts("dt");
+  r.samples = a.texts("samples");
+  return r;
+}
+
 api::ModalIdRequest modal_id_request_of(const Flags& a) {
   api::ModalIdRequest r;
   r.caller = caller_of(a);

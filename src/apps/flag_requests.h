@@ -4,6 +4,7 @@
 #pragma once
 
 #include "api/cost_request.h"
+#include "api/design_request.h"
 #include "api/experiment_request.h"
 #include "api/fit_request.h"
 #include "api/model_requests.h"
@@ -32,6 +33,7 @@ api::CostEvaluationRequest cost_evaluation_request_of(const Flags& a);
 // `force`: the record's --force-channel, read by the caller (apps::read_force_channel), which drives the model.
 api::FitRequest fit_request_of(const Flags& a, const std::optional<io::TimeSeries>& force = std::nullopt);
 api::CrbRequest crb_request_of(const Flags& a);
+api::DesignRequest design_request_of(const Flags& a);
 api::ModalIdRequest modal_id_request_of(const Flags& a);
 
 }  // namespace beamid::apps

@@ -103,6 +103,12 @@ std::vector<Command> make_commands() {
                crb_flags(),
                {{"noise-sd", "noise-level"}},
                run_crb});
+  c.push_back(
+      {"design",
+       "rank candidate experiments (sensor, force, pulse, sampling) by the Fisher information of chosen parameters",
+       design_flags(),
+       {{"noise-sd", "noise-level"}},
+       run_design});
   c.push_back({"modal-id",
                "modal frequencies, damping ratios and amplitudes of a free-decay record (matrix pencil)",
                modal_id_flags(),

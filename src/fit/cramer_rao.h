@@ -64,7 +64,7 @@ CramerRaoBound cramer_rao_bound(const LogModel& model, const Eigen::VectorXd& lo
 // Galerkin model of order `elements` with the given simulator: with the exact sensitivities of the modal closed form
 // for a pulse and the fast integrator, else with Ridders' differences of the simulator. InputError for a bad key or
 // a parameter that is 0. With a sensor filter (a cut-off > 0), the bound of the record as that sensor delivers it
-// (fit/sensed_output.h: the sensitivities simulated finer, filtered and decimated, exactly).
+// (fit/sensed_output.h: the sensitivities filtered and decimated, exactly: through the closed form for a pulse).
 CramerRaoBound beam_cramer_rao_bound(const model::BeamParameters& beam, int elements,
                                      const simulation::Experiment& experiment, const std::vector<std::string>& keys,
                                      double noise_sd, const simulation::SimulatorOptions& simulator = {},

@@ -441,7 +441,10 @@ void filtered_record(Trace& trace, const galerkin::StateSpaceModes& modes, const
   Eigen::Map<Eigen::MatrixXd> record(trace.y.data(), p.samples, 1);
   filter.run(Eigen::Map<const Eigen::MatrixXd>(head.data(), n1, 1), state, record);
   const int begin = (n1 + decimation - 1) / decimation;  // the first record sample after the pulse
-  if (begin >= p.samples) return;
+  if (begin >= p.samples) {  // the pulse outlasts the record: every sample was filtered on the fine grid
+    require_above_round_off(trace.y, r.cancelling, r.tau, r.direct, p.samples, p);
+    return;
+  }
   std::vector<Exponential> filtered = r.free;
   const double since_tau = n1 * fine.dt_s - r.tau;  // at the fine sample n1, where the filter's state is known
   for (Exponential& term : filtered) {

@@ -184,6 +184,24 @@ check "crb scales with the noise" awk -F, 'NR == FNR { if (FNR > 1) a[$1] = $4; 
 expect_error "crb needs a noise" "give one of --noise-sd S (absolute) and --noise-level L" crb $crb_flags
 expect_error "crb unknown key" "'EJ' is not a parameter of this beam" crb --beam banks-aluminium --elements 4 --estimate EJ \
   --noise-sd 1e-6
+# design: every candidate a row, best first, and its bound is crb's for that experiment (the same sensitivities);
+# the sensor at the clamp has no bound and comes last, unranked; a range expands to its count.
+design_flags="--beam banks-aluminium --elements 4 --estimate EI,rho --dt 1e-3 --samples 1024 --pulse-width 0.004 --noise-sd 1e-6"
+"$BEAMID" design $design_flags --sensor-x 0:0.4573:3 --criterion EI >"$tmp/d1.csv" 2>"$tmp/d1.err" || fail=$((fail + 1))
+check "design header" test "$(head -1 "$tmp/d1.csv")" = "rank,sensors_x_m,force_x_m,pulse_width_s,dt_s,samples,criterion,relative_sd_EI,relative_sd_rho,status"
+check "design rows" test "$(wc -l <"$tmp/d1.csv")" -eq 4
+check "design best first" awk -F, 'NR == 2 { a = $7 } NR == 3 { exit !($1 == 2 && a <= $7) }' "$tmp/d1.csv"
+check "design clamp last" awk -F, 'END { exit !($1 == "" && $2 == "0") }' "$tmp/d1.csv"
+check "design says the gain" grep -q "candidates ranked by EI" "$tmp/d1.err"
+"$BEAMID" crb $design_flags --sensor-x 0.4573 >"$tmp/d2.csv" 2>/dev/null || fail=$((fail + 1))
+check "design bound is crb's" awk -F, 'NR == FNR { if ($2 + 0 > 0.457) d = $8; next }
+    FNR == 2 { r = d / $4 - 1; if (r < 0) r = -r; exit !(r < 1e-9) }' "$tmp/d1.csv" "$tmp/d2.csv"
+expect_error "design bad range" "--sensor-x = '0:1:1': a range's COUNT must be an integer in 2..1000" design \
+  $design_flags --sensor-x 0:1:1
+expect_error "design off the beam" "--sensor-x = '2': must lie on the beam" design $design_flags --sensor-x 2
+expect_error "design criterion" "--criterion = 'kAG': must be D, A or one of --estimate's parameters" design \
+  $design_flags --criterion kAG
+expect_error "design sensors" "--sensors = '3': must be in 1..2" design $design_flags --sensor-x 0.2,0.4 --sensors 3
 printf '[beam]\nl = 0.4573\nrho = 0.093\nrho_r2 = 1.984e-8\nkAG = 7.363e5\nEI = 0.491\ngamma = 0\ncDI = 0.649e-5\nkAcs = 9.73\nm = 0.05\nc = 0.0125\nJ_o = 5.208e-6\n' >"$tmp/nogamma.toml"
 expect_error "crb zero parameter" "gamma = 0: must be > 0" crb --beam "$tmp/nogamma.toml" --elements 4 --estimate gamma \
   --noise-sd 1e-6

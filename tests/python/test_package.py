@@ -266,6 +266,25 @@ def test_beams_as_dicts():
         beamid.beam(toml=beamid.beam_toml(dict(steel, EI=-1.0)))
 
 
+def test_design_ranks_as_the_program_and_its_bounds_are_crbs():
+    # Three sensor positions (a range) with two channels each, ranked by EI's bound: the program's rows, the pair's
+    # information at least each sensor's alone, and the best single sensor's bound crb's for that experiment.
+    flags = dict(beam="banks-aluminium", elements=4, estimate=["EI", "rho"], noise_sd=1e-6, samples=1024,
+                 pulse_width=0.004, criterion="EI")
+    d = beamid.design(sensor_x="0.15:0.4573:3", sensors=2, **flags)
+    assert isinstance(d, beamid.Design) and len(d.status) == 3 and all(s == "ok" for s in d.status)
+    assert np.all(np.diff(d.criterion) >= 0) and np.array_equal(d.criterion, d.relative_sd[:, 0])
+    cli = run("design", "--beam", "banks-aluminium", "--elements", "4", "--estimate", "EI,rho", "--noise-sd", "1e-6",
+              "--samples", "1024", "--pulse-width", "0.004", "--criterion", "EI", "--sensor-x", "0.15:0.4573:3",
+              "--sensors", "2").splitlines()
+    assert np.array_equal(np.array([float(line.split(",")[6]) for line in cli[1:]]), d.criterion)
+    single = beamid.design(sensor_x=[0.15, 0.4573], **flags)
+    assert d.criterion[0] <= single.criterion[0] * (1 + 1e-12)
+    bound = beamid.crb(beam="banks-aluminium", elements=4, estimate=["EI", "rho"], noise_sd=1e-6, samples=1024,
+                       pulse_width=0.004, sensor_x=single.sensors_x_m[0][0])
+    assert abs(single.relative_sd[0, 0] / bound.crb_relative_sd[0] - 1) < 1e-9
+
+
 def test_system_crb_and_costs():
     s = beamid.system(beam="thick-steel", elements=4)
     n = s["M"].shape[0]
