@@ -4,6 +4,7 @@ answers ``result["field"]`` and ``to_dict()``, so that scripts written when thes
 ones have ``to_pandas()`` (pandas is optional: Debian's python3-pandas).
 """
 import dataclasses
+import typing
 
 import numpy as np
 
@@ -267,6 +268,10 @@ class FitResult(_Fields):
                       interval_95 ((lower, upper), NaN on a side the data do not close within the bounds),
                       open_below, open_above, values and statistic (the profile: (S(v) - S_min) / s^2 at each value,
                       chi^2 with one degree of freedom); {} without profile
+    posterior         posterior=True's samples (least-squares costs), a dict: keys; parameters by key (mean, sd, median,
+                      interval_95, rhat, effective_samples); draws (every kept draw, a column per key); correlation;
+                      status ("converged" or why not); acceptance; evaluations; log_evidence_laplace and
+                      log_evidence_sampled (value, standard error); None without posterior
     messages          what the command line would say on stderr: a failure, estimates on a bound, (A4), weak
                       identifiability, a record's frequency that changes with the amplitude, modes or damping the
                       estimate does not reproduce (beyond 2 %, or 10 of the record's uncertainties), a window that
@@ -292,6 +297,7 @@ class FitResult(_Fields):
     records: list
     a4: str
     profiles: dict
+    posterior: typing.Optional[dict]
     messages: list
     commit: str
 

@@ -376,6 +376,40 @@ py::dict profiles_dict(const std::vector<fit::Profile>& profiles, const api::Fit
   return out;
 }
 
+// --posterior: its lines among the messages, as on the command line, and its numbers: by key, the summaries; the
+// draws (rows: every kept draw, columns: the keys' order), the correlation, the evidences and the chains' verdict.
+py::object posterior_dict(const std::optional<fit::Posterior>& posterior, py::list& messages) {
+  if (!posterior) return py::none();
+  const fit::Posterior& p = *posterior;
+  for (const std::string& line : api::posterior_lines(p)) messages.append(line);
+  py::dict out, parameters;
+  py::list keys;
+  for (const fit::PosteriorParameter& q : p.parameters) {
+    py::dict s;
+    s["mean"] = q.mean, s["sd"] = q.sd, s["median"] = q.median;
+    s["interval_95"] = py::make_tuple(q.lower95, q.upper95);
+    s["rhat"] = q.rhat, s["effective_samples"] = q.effective_samples;
+    parameters[py::str(q.key)] = s;
+    keys.append(q.key);
+  }
+  out["keys"] = keys;
+  out["parameters"] = parameters;
+  out["draws"] = matrix_array(p.samples.draws);
+  out["correlation"] = matrix_array(p.correlation);
+  out["status"] = p.status;
+  out["acceptance"] = p.samples.acceptance;
+  out["evaluations"] = p.samples.evaluations;
+  out["log_evidence_laplace"] = p.log_evidence_laplace;
+  out["log_evidence_sampled"] = py::make_tuple(p.log_evidence_sampled, p.log_evidence_sampled_se);
+  return out;
+}
+
+// --profile's and --posterior's entries of a fit's dict, their lines among the messages.
+void add_uncertainty(py::dict& d, const api::FitComputation& c, const api::FitNotes& notes, py::list& messages) {
+  d["profiles"] = profiles_dict(c.profiles, notes, messages);
+  d["posterior"] = posterior_dict(c.posterior, messages);
+}
+
 py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::string>& beam_toml,
                 const py::object& data, const py::object& time, const py::object& abandoned) {
   std::ostringstream warned;
@@ -423,7 +457,7 @@ py::dict py_fit(const std::vector<std::string>& args, const std::optional<std::s
   for (const std::string& note : notes.lines()) messages.append(note);
   if (r.final_evaluation.a4 != "ok" && notes.pairing.empty()) messages.append(r.final_evaluation.a4);
   if (c->spread) messages.append(api::window_spread_line(*c->spread, r));
-  d["profiles"] = profiles_dict(c->profiles, notes, messages);
+  add_uncertainty(d, *c, notes, messages);
   d["cost"] = r.cost;
   d["evaluations"] = r.evaluations;
   d["wall_time_s"] = r.wall_time_s;

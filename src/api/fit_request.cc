@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "api/model_notes.h"
 #include "api/record_checks.h"
@@ -347,6 +348,33 @@ void compute_profiles(const FitRequest& request, const std::vector<double>& data
     }
 }
 
+// --posterior: the posterior about the fit (fit/posterior.h), on the cores the machine has (the draws do not depend
+// on them); a failed fit has none.
+// --posterior's request, before the fit runs: a least-squares cost, and --posterior-steps only with it.
+void check_posterior(const FitRequest& request, const FitComputation& c) {
+  if (!request.posterior && request.posterior_steps)
+    refuse(request.caller, "posterior-steps", std::to_string(*request.posterior_steps),
+           "sets the length of --posterior's chains: give --posterior too");
+  if (!request.posterior) return;
+  if (const std::string problem = fit::posterior_problem(c.options, c.records); !problem.empty())
+    refuse(request.caller, "--posterior: " + problem);
+}
+
+void compute_posterior(const FitRequest& request, const std::vector<double>& data, FitComputation& c) {
+  if (!request.posterior || c.result.status == "failed") return;
+  std::vector<fit::Record> records = c.records;
+  if (records.empty()) records.push_back({"record1", c.options.start, c.options.experiment, data, {}, {}, {}});
+  fit::PosteriorOptions o;
+  if (request.posterior_steps) o.sampler.steps = *request.posterior_steps;
+  o.sampler.seed = static_cast<std::uint64_t>(request.seed.value_or(1));
+  o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  try {
+    c.posterior = fit::posterior(c.options, records, c.result, o);
+  } catch (const InputError& error) {
+    refuse(request.caller, "--" + std::string(error.what()));  // "posterior: ..."
+  }
+}
+
 }  // namespace
 
 FitComputation compute_fit(const FitRequest& request, const std::vector<io::TimeSeries>& channels,
@@ -378,6 +406,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
     for (const fit::Record& r : c.records) c.sensors_m.push_back(r.experiment.sensor_x_m.value_or(o.start.l));
   }
   refuse_zero_model(o, c.records, caller);
+  check_posterior(request, c);
   const std::vector<double>& data = channels.front().values;
   // The lower layers' input errors ("cost spike: spikes = 8: the data spectrum has only 5 local maxima ...") name
   // the command (they did not: the fifth pass's R258-R263).
@@ -392,6 +421,7 @@ FitComputation compute_fit(const FitRequest& request, const std::vector<io::Time
   if (c.records.empty() && c.result.final_evaluation.transient_share > 0.5)
     c.result.negated_force_rise = negated_force_rise(o, data, c.result);
   compute_profiles(request, data, c);
+  compute_posterior(request, data, c);
   // windows K: the spread over K disjoint windows (fit/window_spread.h), an uncertainty that admits model error.
   if (request.windows && c.result.status != "failed") {
     try {
@@ -621,6 +651,24 @@ void weighting_note(const fit::FitResult& result, const costs::CostOptions& cost
 }
 
 }  // namespace
+
+std::vector<std::string> posterior_lines(const fit::Posterior& p) {
+  std::vector<std::string> lines;
+  for (std::size_t k = 0; k < p.parameters.size(); ++k) lines.push_back("posterior " + p.line(k));
+  std::ostringstream s;
+  s << "posterior: " << p.status << " (" << p.samples.chains << " chains of " << p.samples.walkers << " walkers, "
+    << p.samples.steps << " steps after a warm-up, acceptance " << std::lround(100 * p.samples.acceptance) << " %, "
+    << p.samples.evaluations << " model evaluations, " << std::lround(p.wall_time_s) << " s); uniform prior on the "
+    << "bounds, the noise level integrated out";
+  lines.push_back(s.str());
+  s.str("");
+  s.precision(8);
+  s << "posterior evidence ln p(data): Laplace " << p.log_evidence_laplace << ", sampled " << p.log_evidence_sampled
+    << " +- " << p.log_evidence_sampled_se << " (compare models of this record only)";
+  if (!p.evidence_note.empty()) s << "; " << p.evidence_note;
+  lines.push_back(s.str());
+  return lines;
+}
 
 std::string profile_line(const fit::Profile& profile, const FitNotes& notes) {
   const bool doubted = !notes.weighting.empty() || !notes.correlated_residuals.empty() ||

@@ -20,6 +20,7 @@
 #include "api/experiment_request.h"
 #include "api/request.h"
 #include "fit/identification.h"
+#include "fit/posterior.h"
 #include "fit/profile.h"
 #include "fit/window_spread.h"
 #include "io/time_series.h"
@@ -56,6 +57,9 @@ struct FitRequest {
   std::optional<int> welch;                   // --welch K: the spikes picked on Welch's average of K segments
   std::optional<int> windows;                 // --windows K: also the spread of the estimates over K windows
   std::vector<std::string> profile;           // --profile: estimated keys whose profile-likelihood intervals to give
+  // --posterior: sample the estimated parameters' posterior (fit/posterior.h), --posterior-steps per walker
+  bool posterior = false;
+  std::optional<int> posterior_steps;
   // --sensor-bandwidth, --sensor-filter-order, --sensor-oversampling: the record's anti-alias filter in the model
   // (fit/sensed_output.h; unset: none)
   std::optional<double> sensor_bandwidth_hz;
@@ -71,8 +75,9 @@ struct FitComputation {
   std::vector<double> sensors_m;  // each record's sensor position (several channels)
   fit::FitResult result;
   std::optional<fit::WindowSpread> spread;
-  std::vector<fit::Profile> profiles;  // --profile's, in its order (fit/profile.h)
-  bool welch_picked = false;           // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
+  std::vector<fit::Profile> profiles;       // --profile's, in its order (fit/profile.h)
+  std::optional<fit::Posterior> posterior;  // --posterior's
+  bool welch_picked = false;  // the spikes were picked on Welch's average (options.cost.spikes.frequencies_hz)
 };
 
 // The fit options the request gives for these channels (their time step and length fix dt and Nbar), validated:
@@ -125,5 +130,7 @@ std::string window_spread_line(const fit::WindowSpread& spread, const fit::FitRe
 // residuals (weighting, colour, a window's correlated bins): the profile weighs them alike (its 95 % intervals covered
 // the truth on 4-8 of 12 seeds there: the thirty-first pass's adv71 P5).
 std::string profile_line(const fit::Profile& profile, const FitNotes& notes);
+// --posterior's lines: one per parameter (fit::Posterior::line), then the chains' verdict and the evidences.
+std::vector<std::string> posterior_lines(const fit::Posterior& posterior);
 
 }  // namespace beamid::api

@@ -151,6 +151,8 @@ api::FitRequest fit_request_of(const Flags& a, const std::optional<io::TimeSerie
   r.estimate = a.texts("estimate");
   r.of_interest = a.texts("of-interest");
   r.profile = a.texts("profile");
+  r.posterior = a.has("posterior");
+  r.posterior_steps = a.optional_integer("posterior-steps");
   r.bounds = bounds_of(a);
   r.bound_factor = a.optional_number("bound-factor");
   r.start_scale = a.optional_number("start-scale").value_or(r.start_scale);

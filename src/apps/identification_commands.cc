@@ -189,6 +189,8 @@ int run_fit(const Flags& a, std::ostream& out) {
             << (result.final_evaluation.a4 != "ok" ? ", " + result.final_evaluation.a4 : "") << "\n";
   if (!notes.pairing.empty()) std::cerr << "beamid fit: " << notes.pairing << "\n";
   for (const fit::Profile& p : c.profiles) std::cerr << "beamid fit: " << api::profile_line(p, notes) << "\n";
+  if (c.posterior)
+    for (const std::string& line : api::posterior_lines(*c.posterior)) std::cerr << "beamid fit: " << line << "\n";
   if (!notes.identifiability.empty()) std::cerr << "beamid fit: " << notes.identifiability << "\n";
   if (result.records.size() > 1)
     for (std::size_t k = 0; k < result.records.size(); ++k) {
@@ -236,6 +238,15 @@ std::vector<FlagSpec> fit_flags() {
       text_flag("profile",
                 "comma-separated estimated keys: their profile-likelihood intervals (68 and 95 %), the others "
                 "refitted with each fixed on a grid"),
+      switch_flag("posterior",
+                  "sample the estimated parameters' posterior (least-squares costs: time, freq-band, freq-ml; "
+                  "uniform prior on the bounds, the noise level integrated out): means, sds, 95 % intervals, "
+                  "R-hat, effective sample sizes and the evidence"),
+      integer_flag(
+          "posterior-steps",
+          "with --posterior, the steps per walker after the warm-up (default 2000: 50 autocorrelation times of a "
+          "4-parameter posterior)",
+          20, 1000000),
       text_flag("optimizer", fit::optimizer_names().alternatives() + " (default: lm, nelder-mead for spike)"),
       text_flag("strategy", fit::strategy_names().alternatives() + " (default direct)"),
       text_flag("refine",

@@ -108,6 +108,12 @@ check "fit: a recovered parameter is free" awk -F, 'NR == 2 { exit !($7 == "free
 # recovered estimate agree on mode 1, 2.4638 Hz.
 check "fit: modes at the estimate" grep -Eq "modes at the estimate \(data by matrix pencil, \+- its uncertainty \| model\): 2.46383 \+- [0-9.]+e-1[0-9] \| 2.46383 Hz" "$tmp/f.err"
 check "fit report: modes table" grep -q "^## Modes" "$tmp/fit.md"
+# --posterior takes a least-squares cost (the others have no likelihood), and --posterior-steps needs it.
+expect_error "posterior of a spike cost" "--posterior: the cost 'spike-smooth' is no likelihood" fit --data "$tmp/z.csv" \
+  --beam banks-aluminium --elements 4 --estimate EI --cost spike-smooth --pulse-width 0.004 --posterior
+expect_error "posterior steps alone" "--posterior-steps = '500': sets the length of --posterior's chains" fit \
+  --data "$tmp/z.csv" --beam banks-aluminium --elements 4 --estimate EI --cost time --pulse-width 0.004 \
+  --posterior-steps 500
 # A beam whose air damping leaves 3 underdamped modes (kAcs = 1e7): the pencil's pole of the record's overdamped part,
 # 3e-9 of its size, pairs with no model mode and is said to (the tenth adversarial pass's PH_f3).
 sed 's/^kAcs = .*/kAcs = 1e7/' "$tmp/beam.toml" >"$tmp/k3.toml"
